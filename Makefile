@@ -1,0 +1,37 @@
+# The two commands a new user needs: `make run` and `make test`. Everything else is CMake.
+PRESET ?= default
+BUILD  := build/$(PRESET)
+RANKS  ?= 2
+SCENE  ?=
+MPIRUN := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe
+
+.PHONY: all deps configure build run test bench format clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake --preset $(PRESET)
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build --preset $(PRESET)
+
+run: build
+	mkdir -p out
+	$(MPIRUN) -n $(RANKS) $(BUILD)/bin/regolith $(SCENE) --output out --json out/summary.json
+
+test: build
+	ctest --preset $(PRESET)
+
+bench: build
+	bash bench/run-all.sh $(BUILD)
+
+format:
+	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
+
+clean:
+	rm -rf build out

@@ -1,0 +1,19 @@
+#include "core/mpi/Buffer.hpp"
+
+#include <fmt/format.h>
+
+namespace regolith::core {
+
+void RecvBuffer::throwShort(std::size_t n, char const* what) const {
+    throw BufferError(fmt::format("message buffer too short: reading {} ({} bytes) at offset {} "
+                                  "of a {}-byte buffer, {} bytes remain",
+                                  what, n, m_pos, m_data.size(), remaining()));
+}
+
+void RecvBuffer::throwCorrupt(std::uint64_t n, std::size_t bytes, char const* what) const {
+    throw BufferError(fmt::format("corrupt message buffer: {} claims {} elements of {} bytes at "
+                                  "offset {}, but only {} bytes remain",
+                                  what, n, bytes, m_pos, remaining()));
+}
+
+} // namespace regolith::core

@@ -1,0 +1,28 @@
+#include "gravity/petsc/PetscSession.hpp"
+
+#include "core/Error.hpp"
+
+#include <petscsys.h>
+
+#include <string>
+
+namespace regolith::gravity {
+
+PetscSession::PetscSession(int& argc, char**& argv) {
+    PetscErrorCode const ierr = PetscInitialize(&argc, &argv, nullptr, nullptr);
+    if (ierr != 0)
+        throw core::Error("PetscInitialize failed with error code " + std::to_string(ierr));
+}
+
+PetscSession::~PetscSession() {
+    PetscFinalize();
+}
+
+char const* PetscSession::version() {
+    static char text[256] = {};
+    if (text[0] == '\0')
+        PetscGetVersion(text, sizeof text);
+    return text;
+}
+
+} // namespace regolith::gravity

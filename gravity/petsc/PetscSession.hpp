@@ -1,0 +1,18 @@
+#pragma once
+/// RAII PETSc initialisation on MPI_COMM_WORLD (MPI must already be initialised; PETSc then
+/// leaves MPI_Finalize to the caller). No PETSc header leaks out of gravity/.
+namespace regolith::gravity {
+
+class PetscSession {
+public:
+    /// Collective over MPI_COMM_WORLD. Passes argc/argv so `-ksp_*` options reach PETSc.
+    PetscSession(int& argc, char**& argv);
+    ~PetscSession();
+    PetscSession(PetscSession const&) = delete;
+    PetscSession& operator=(PetscSession const&) = delete;
+
+    /// PETSc's version string, e.g. "Petsc Release Version 3.18.5".
+    [[nodiscard]] static char const* version();
+};
+
+} // namespace regolith::gravity
