@@ -1,0 +1,27 @@
+#pragma once
+/// What a block forest is made of: the `[domain]` section of a scene (DESIGN.md), as plain
+/// data. Parsed from TOML by domain/ForestConfig.hpp; turned into a forest by BlockForest.
+#include "core/math/AABB.hpp"
+
+#include <array>
+#include <vector>
+
+namespace regolith::domain {
+
+/// Static refinement: every block intersecting `region` (closed) is refined until its level
+/// is at least `level`; 2:1 balance then refines its neighbours as needed.
+struct RefineRegion {
+    core::AABB region;
+    int level = 1;
+};
+
+struct ForestSpec {
+    core::AABB domain{core::Vec3::Zero(), core::Vec3::Ones()};
+    std::array<int, 3> rootBlocks{1, 1, 1};
+    std::array<bool, 3> periodic{false, false, false};
+    std::vector<RefineRegion> refine;
+    /// Cells per block and axis for grid fields; zero when no grid is used.
+    std::array<int, 3> cellsPerBlock{0, 0, 0};
+};
+
+} // namespace regolith::domain
