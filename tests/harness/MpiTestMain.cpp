@@ -16,20 +16,23 @@ namespace {
 /// Records the failed assertions of this rank so rank 0 can report them.
 class FailureRecorder : public testing::EmptyTestEventListener {
 public:
+    // gtest holds its lock while calling OnTestPartResult, so the test name is recorded here
+    // rather than asked for there (current_test_info() would deadlock).
+    void OnTestStart(testing::TestInfo const& info) override {
+        m_current = std::string(info.test_suite_name()) + "." + info.name();
+    }
+    void OnTestEnd(testing::TestInfo const& /*info*/) override { m_current = "(global)"; }
     void OnTestPartResult(testing::TestPartResult const& r) override {
         if (!r.failed())
             return;
-        auto const* info = testing::UnitTest::GetInstance()->current_test_info();
-        m_report << "  "
-                 << (info ? std::string(info->test_suite_name()) + "." + info->name()
-                          : std::string("(global)"))
-                 << " at " << (r.file_name() ? r.file_name() : "?") << ":" << r.line_number()
-                 << "\n    " << r.summary() << "\n";
+        m_report << "  " << m_current << " at " << (r.file_name() ? r.file_name() : "?") << ":"
+                 << r.line_number() << "\n    " << r.summary() << "\n";
     }
     [[nodiscard]] std::string report() const { return m_report.str(); }
 
 private:
     std::ostringstream m_report;
+    std::string m_current = "(global)";
 };
 
 } // namespace
