@@ -4,10 +4,11 @@
 namespace regolith::core {
 
 enum class Tag : int {
-    ExchangeSizes = 101,  ///< NeighbourExchange: byte counts per peer
-    ExchangeData = 102,   ///< NeighbourExchange: payload
-    SparseExchange = 201, ///< SparseExchange (NBX): payload, receivers do not know senders
-    TestTraffic = 901,    ///< tests only
+    ExchangeSizes = 101,     ///< NeighbourExchange: byte counts per peer
+    ExchangeData = 102,      ///< NeighbourExchange: payload
+    SparseExchange = 201,    ///< SparseExchange (NBX): payload, receivers do not know senders
+    SparseExchangeAlt = 202, ///< SparseExchange: payload of odd-numbered calls (see there)
+    TestTraffic = 901,       ///< tests only
 };
 
 constexpr int toInt(Tag t) {

@@ -1,0 +1,25 @@
+#pragma once
+/// Output files written by one rank for the whole job (run summary, final dump), without
+/// half-written files and with one error for everybody when the file cannot be written.
+#include "core/mpi/Comm.hpp"
+
+#include <string>
+#include <string_view>
+
+namespace regolith::apps {
+
+/// Writes `text` to "<path>.tmp<pid>" in the same directory, then renames it to `path`, so a
+/// reader never sees a partial file. Throws core::InputError "cannot write '<path>': <why>".
+/// Not collective.
+void writeFileAtomically(std::string const& path, std::string_view text);
+
+/// Rank 0 writes `text` (ignored on other ranks) with writeFileAtomically; every rank learns
+/// the outcome and throws the same core::InputError if it failed. COLLECTIVE over `comm`.
+void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::string_view text);
+
+/// Checks before the run that `path` could be written: its directory exists and is writable.
+/// Rank 0 checks; every rank throws the same core::InputError "<option> <path>: ..." if not,
+/// so a long run never ends with an unwritable summary. COLLECTIVE over `comm`.
+void checkWritable(core::Comm const& comm, std::string const& path, std::string_view option);
+
+} // namespace regolith::apps

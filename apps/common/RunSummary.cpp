@@ -1,0 +1,62 @@
+#include "apps/common/RunSummary.hpp"
+
+#include "core/json/JsonWriter.hpp"
+
+#include <sys/resource.h>
+
+namespace regolith::apps {
+
+double pupcs(RunSummary const& s) {
+    if (!(s.wallSeconds > 0.0) || s.ranks <= 0)
+        return 0.0;
+    return static_cast<double>(s.steps) * static_cast<double>(s.particles) /
+           (s.wallSeconds * static_cast<double>(s.ranks));
+}
+
+std::string toJson(RunSummary const& s) {
+    core::JsonWriter w;
+    w.beginObject()
+        .member("scene", s.scene)
+        .member("ranks", s.ranks)
+        .member("blocks", s.blocks)
+        .member("sync", s.sync)
+        .member("particles", s.particles)
+        .member("shadows", s.shadows)
+        .member("steps", s.steps)
+        .member("wall_s", s.wallSeconds)
+        .member("pupcs", pupcs(s))
+        .member("peak_rss_bytes", s.peakRssBytes);
+    w.key("timing_s")
+        .beginObject()
+        .member("sync", s.timing.sync)
+        .member("contact", s.timing.contact)
+        .member("gravity", s.timing.gravity)
+        .member("integrate", s.timing.integrate)
+        .endObject();
+    w.key("comm")
+        .beginObject()
+        .member("messages_per_step", s.comm.messagesPerStep)
+        .member("bytes_per_step", s.comm.bytesPerStep)
+        .member("max_peers", s.comm.maxPeers)
+        .endObject();
+    w.key("conserved")
+        .beginObject()
+        .member("momentum", s.conserved.momentum)
+        .member("angular_momentum", s.conserved.angularMomentum)
+        .member("kinetic_energy", s.conserved.kineticEnergy)
+        .member("potential_energy", s.conserved.potentialEnergy)
+        .member("center_of_mass", s.conserved.centerOfMass)
+        .endObject();
+    w.member("checksum", s.checksum).endObject();
+    return w.str();
+}
+
+std::uint64_t peakRssBytes(core::Comm const& comm) {
+    rusage usage{};
+    unsigned long bytes = 0;
+    if (getrusage(RUSAGE_SELF, &usage) == 0 && usage.ru_maxrss > 0)
+        bytes = static_cast<unsigned long>(usage.ru_maxrss) * 1024UL;
+    return comm.allReduce(bytes, core::ReduceOp::Max);
+}
+
+} // namespace regolith::apps

@@ -1,0 +1,58 @@
+#pragma once
+/// The run summary every app writes with `--json` (DESIGN.md, "Run summary").
+#include "core/math/Vec3.hpp"
+#include "core/mpi/Comm.hpp"
+
+#include <cstdint>
+#include <string>
+
+namespace regolith::apps {
+
+/// The summary object; every key of the contract is always present. Times in seconds.
+struct RunSummary {
+    std::string scene;
+    int ranks = 1;
+    std::int64_t blocks = 0;
+    std::string sync;
+    std::int64_t particles = 0; ///< masters at the end, over all ranks
+    std::int64_t shadows = 0;   ///< shadow copies at the end, over all ranks
+    std::int64_t steps = 0;
+    double wallSeconds = 0.0; ///< the time-step loop only (set-up and output excluded)
+    std::uint64_t peakRssBytes = 0;
+
+    struct Timing {
+        double sync = 0.0;
+        double contact = 0.0;
+        double gravity = 0.0;
+        double integrate = 0.0;
+    } timing;
+
+    struct Communication {
+        double messagesPerStep = 0.0;
+        double bytesPerStep = 0.0;
+        int maxPeers = 0;
+    } comm;
+
+    struct Conserved {
+        core::Vec3 momentum = core::Vec3::Zero();
+        core::Vec3 angularMomentum = core::Vec3::Zero();
+        double kineticEnergy = 0.0;
+        double potentialEnergy = 0.0;
+        core::Vec3 centerOfMass = core::Vec3::Zero();
+    } conserved;
+
+    std::string checksum; ///< hex digest of the uid-sorted final state
+};
+
+/// Particle updates per core-second: steps * particles / (wall_s * ranks); 0 when nothing
+/// was timed (wall_s <= 0), so the JSON never holds an infinity.
+[[nodiscard]] double pupcs(RunSummary const& s);
+
+/// The summary as a JSON document (keys in the order of DESIGN.md).
+[[nodiscard]] std::string toJson(RunSummary const& s);
+
+/// The largest peak resident set size of any rank, in bytes (getrusage ru_maxrss, which
+/// Linux reports in KiB). COLLECTIVE over `comm`.
+[[nodiscard]] std::uint64_t peakRssBytes(core::Comm const& comm);
+
+} // namespace regolith::apps

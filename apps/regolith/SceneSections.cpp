@@ -1,0 +1,138 @@
+#include "apps/regolith/SceneSections.hpp"
+
+#include "core/config/ValueChecks.hpp"
+#include "domain/ForestConfig.hpp"
+
+#include <array>
+#include <filesystem>
+
+namespace regolith::apps {
+
+using core::isFiniteVec3;
+using core::isNonNegative;
+using core::isNonNegativeFinite;
+using core::isPositiveFinite;
+
+namespace {
+
+using namespace std::string_view_literals;
+
+constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
+constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
+constexpr std::array kSelfNames{"none"sv, "direct"sv,         "tree"sv,      "pm"sv,
+                                "p3m"sv,  "occupied-cells"sv, "tree-nodes"sv};
+constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
+
+/// The parsed section if present, else its defaults (every key of these sections is optional).
+template <class Section, class Parse>
+Section optionalSection(core::ConfigTable const& root, std::string_view key, Parse parse) {
+    auto const t = root.findTable(key);
+    return t ? parse(*t) : Section{};
+}
+
+} // namespace
+
+TimeSection parseTime(core::ConfigTable const& t) {
+    TimeSection s;
+    s.dt = t.getIf<double>("dt", isPositiveFinite, "a positive finite number");
+    s.steps = t.getIf<std::int64_t>("steps", isNonNegative, "a non-negative integer");
+    s.allowUnstable = t.getOr<bool>("allow_unstable", false);
+    s.integrator = static_cast<Integrator>(t.getChoiceOr(
+        "integrator", kIntegratorNames, static_cast<std::size_t>(Integrator::Verlet)));
+    return s;
+}
+
+SyncSection parseSync(core::ConfigTable const& t) {
+    SyncSection s;
+    s.method = static_cast<SyncMethod>(
+        t.getChoiceOr("method", kSyncNames, static_cast<std::size_t>(SyncMethod::Sos)));
+    s.reproducible = t.getOr<bool>("reproducible", false);
+    return s;
+}
+
+ContactSection parseContact(core::ConfigTable const& t) {
+    ContactSection s;
+    s.model = static_cast<ContactModel>(t.getChoiceOr("model", kContactNames, 0));
+    s.stiffness =
+        t.getOrIf<double>("stiffness", s.stiffness, isPositiveFinite, "a positive finite number");
+    s.restitution = t.getOrIf<double>(
+        "restitution", s.restitution, [](double e) { return e >= 0.0 && e <= 1.0; },
+        "a number in [0, 1]");
+    s.friction = t.getOrIf<double>("friction", s.friction, isNonNegativeFinite,
+                                   "a non-negative finite number");
+    s.rollingFriction = t.getOrIf<double>("rolling_friction", s.rollingFriction,
+                                          isNonNegativeFinite, "a non-negative finite number");
+    return s;
+}
+
+GravitySection parseGravity(core::ConfigTable const& t) {
+    GravitySection s;
+    s.external =
+        t.getOrIf<core::Vec3>("external", s.external, isFiniteVec3, "an array of 3 finite numbers");
+    s.self = static_cast<SelfGravity>(t.getChoiceOr("self", kSelfNames, 0));
+    s.G = t.getOrIf<double>("G", s.G, isPositiveFinite, "a positive finite number");
+    s.theta = t.getOrIf<double>("theta", s.theta, isPositiveFinite, "a positive finite number");
+    s.updateThreshold = t.getOrIf<double>("update_threshold", s.updateThreshold,
+                                          isNonNegativeFinite, "a non-negative finite number");
+    s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
+                                    "a non-negative finite number");
+    if (auto const petsc = t.findTable("petsc"))
+        s.petscOptions = petsc->getOr<std::string>("options", "");
+    return s;
+}
+
+WallSpec parseWall(core::ConfigTable const& t) {
+    WallSpec w;
+    w.point = t.getIf<core::Vec3>("point", isFiniteVec3, "an array of 3 finite numbers");
+    w.normal = t.getIf<core::Vec3>(
+        "normal", [](core::Vec3 const& n) { return isFiniteVec3(n) && n.norm() > 0.0; },
+        "a non-zero vector of 3 finite numbers");
+    w.normal.normalize();
+    return w;
+}
+
+OutputSection parseOutput(core::ConfigTable const& t) {
+    OutputSection s;
+    s.dir = t.getOrIf<std::string>(
+        "dir", s.dir, [](std::string const& d) { return !d.empty(); }, "a non-empty string");
+    s.vtkEvery = t.getOrIf<std::int64_t>("vtk_every", 0, isNonNegative, "a non-negative integer");
+    s.checkpointEvery =
+        t.getOrIf<std::int64_t>("checkpoint_every", 0, isNonNegative, "a non-negative integer");
+    return s;
+}
+
+SceneDescription parseScene(core::ConfigTable const& root, std::string const& scenePath) {
+    SceneDescription scene;
+    std::filesystem::path const source(scenePath);
+    scene.name = root.getOrIf<std::string>(
+        "name", scenePath.empty() ? std::string("default") : source.stem().string(),
+        [](std::string const& n) { return !n.empty(); }, "a non-empty string");
+    scene.forest = domain::parseForestSpec(root.table("domain"));
+    scene.time = parseTime(root.table("time"));
+    scene.sync = optionalSection<SyncSection>(root, "sync", parseSync);
+    scene.contact = optionalSection<ContactSection>(root, "contact", parseContact);
+    scene.gravity = optionalSection<GravitySection>(root, "gravity", parseGravity);
+    scene.output = optionalSection<OutputSection>(root, "output", parseOutput);
+    std::string const sceneDir = source.parent_path().string();
+    for (auto const& entry : root.tableArray("particles"))
+        scene.particles.push_back(parseParticleSource(entry, scene.forest.domain, sceneDir));
+    for (auto const& entry : root.tableArray("walls"))
+        scene.walls.push_back(parseWall(entry));
+    root.rejectUnknownKeys();
+    return scene;
+}
+
+std::string_view toString(SyncMethod m) {
+    return kSyncNames[static_cast<std::size_t>(m)];
+}
+std::string_view toString(ContactModel m) {
+    return kContactNames[static_cast<std::size_t>(m)];
+}
+std::string_view toString(SelfGravity g) {
+    return kSelfNames[static_cast<std::size_t>(g)];
+}
+std::string_view toString(Integrator i) {
+    return kIntegratorNames[static_cast<std::size_t>(i)];
+}
+
+} // namespace regolith::apps

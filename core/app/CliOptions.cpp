@@ -1,0 +1,92 @@
+#include "core/app/CliOptions.hpp"
+
+#include "core/Error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <memory>
+
+namespace regolith::core {
+
+namespace {
+
+/// The CLI11 parser, bound to `o`. One definition for parsing and for the usage text.
+std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, std::int64_t& steps) {
+    auto app = std::make_unique<CLI::App>(
+        "Runs a Regolith scene (TOML). Without a scene file it runs its embedded default "
+        "scene.\nScene keys can be overridden with --set section.key=value, where value is "
+        "TOML (1e-3, true, \"sos\", [2,2,2]); a bare word is a string (--set sync.method=sos), "
+        "and arrays of tables are indexed as particles.0.radius.",
+        std::string(appName));
+    app->set_help_flag("-h,--help", "Print this help and exit");
+    app->add_option("scene", o.scenePath, "Scene file (TOML); default: the embedded scene")
+        ->type_name("SCENE.toml");
+    app->add_option("--set", o.overrides, "Override a scene key (repeatable)")
+        ->type_name("SECTION.KEY=VALUE")
+        ->allow_extra_args(false);
+    app->add_option("--json", o.jsonPath, "Write the run summary (JSON) here, from rank 0")
+        ->type_name("FILE");
+    app->add_option("--dump", o.dumpPath, "Write the final particles (CSV, sorted by uid) here")
+        ->type_name("FILE");
+    app->add_option("--steps", steps, "Number of time steps (overrides time.steps)")
+        ->type_name("N");
+    app->add_option("--output", o.outputDir, "Output directory (overrides output.dir)")
+        ->type_name("DIR");
+    app->add_option("--restart", o.restartPath, "Start from this checkpoint")
+        ->type_name("CHECKPOINT");
+    app->add_flag("--quiet", o.quiet, "Print only warnings and errors");
+    return app;
+}
+
+/// `s` as a TOML basic string, quotes included.
+std::string tomlString(std::string_view s) {
+    std::string out = "\"";
+    for (char const c : s) {
+        if (c == '"' || c == '\\')
+            out += '\\';
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            out += fmt::format("\\u{:04X}", static_cast<unsigned char>(c));
+        else
+            out += c;
+    }
+    return out + "\"";
+}
+
+} // namespace
+
+CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view appName) {
+    CliOptions options;
+    std::int64_t steps = 0;
+    auto app = makeParser(appName, options, steps);
+    try {
+        app->parse(argc, argv);
+    } catch (CLI::CallForHelp const&) {
+        options.help = true;
+        return options;
+    } catch (CLI::ParseError const& e) {
+        throw InputError(fmt::format("{} (run '{} --help' for the options)", e.what(), appName));
+    }
+    if (app->count("--steps") > 0)
+        options.steps = steps;
+    return options;
+}
+
+std::string usage(std::string_view appName) {
+    CliOptions options;
+    std::int64_t steps = 0;
+    return makeParser(appName, options, steps)->help();
+}
+
+void applySceneOptions(CliOptions const& options, ConfigTable& scene) {
+    for (auto const& assignment : options.overrides)
+        scene.applyOverride(assignment);
+    if (options.steps)
+        scene.applyOverride(fmt::format("time.steps={}", *options.steps),
+                            fmt::format("--steps {}", *options.steps));
+    if (!options.outputDir.empty())
+        scene.applyOverride("output.dir=" + tomlString(options.outputDir),
+                            "--output " + options.outputDir);
+}
+
+} // namespace regolith::core

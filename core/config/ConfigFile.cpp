@@ -1,0 +1,47 @@
+#include "core/config/ConfigFile.hpp"
+
+#include "core/Error.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace regolith::core {
+
+std::string readTextFile(std::string const& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(fmt::format("cannot read '{}': it is a directory", path));
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw InputError(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad())
+        throw InputError(fmt::format("cannot read '{}': read error", path));
+    return text.str();
+}
+
+ConfigTable loadConfigFile(Comm const& comm, std::string const& path) {
+    // Rank 0 sends "1<text>" or "0<reason>"; every rank then fails or parses alike.
+    std::string message;
+    if (comm.rank() == 0) {
+        try {
+            message = readTextFile(path);
+            message.insert(message.begin(), '1');
+        } catch (InputError const& e) {
+            message = '0';
+            message += e.what();
+        }
+    }
+    comm.broadcast(message, 0);
+    if (message.empty() || message.front() != '1')
+        throw InputError(message.empty() ? "cannot read '" + path + "'" : message.substr(1));
+    return ConfigTable::fromString(std::string_view(message).substr(1), path);
+}
+
+} // namespace regolith::core

@@ -1,0 +1,83 @@
+#include "particles/detection/LinkedCells.hpp"
+
+#include "core/Error.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+
+namespace regolith::particles {
+
+void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double const> radii,
+                        std::span<std::size_t const> members, double minEdge,
+                        std::size_t maxCells) {
+    m_member.clear();
+    m_sphere.clear();
+    m_start.clear();
+    m_maxRadius = 0.0;
+    m_dims = {0, 0, 0};
+    if (members.empty())
+        return;
+    if (members.size() >= std::numeric_limits<std::uint32_t>::max())
+        throw core::Error("LinkedCells: " + std::to_string(members.size()) +
+                          " spheres exceed the 32-bit slot index");
+
+    core::Vec3 lo = positions[members[0]], hi = lo;
+    for (std::size_t k : members) {
+        lo = lo.cwiseMin(positions[k]);
+        hi = hi.cwiseMax(positions[k]);
+        m_maxRadius = std::max(m_maxRadius, radii[k]);
+    }
+    if (!lo.allFinite() || !hi.allFinite())
+        throw core::Error("LinkedCells: a sphere centre is not finite");
+    if (!(minEdge > 0.0) || !std::isfinite(minEdge))
+        throw core::Error("LinkedCells: cell edge " + std::to_string(minEdge) +
+                          " is not positive and finite");
+
+    // Grow the edge until the grid fits in maxCells (at most a few rounds: each one scales the
+    // cell count by about maxCells / count).
+    core::Vec3 const extent = hi - lo;
+    double edge = minEdge;
+    // Cell ids are stored as 32-bit integers.
+    maxCells = std::clamp<std::size_t>(maxCells, 1, std::numeric_limits<std::uint32_t>::max() - 1);
+    for (;;) {
+        double cells = 1.0;
+        for (int d = 0; d < 3; ++d) {
+            double const n = std::floor(extent[d] / edge) + 1.0;
+            m_dims[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(n);
+            cells *= n;
+        }
+        if (cells <= static_cast<double>(maxCells))
+            break;
+        edge *= std::cbrt(cells / static_cast<double>(maxCells)) * (1.0 + 1e-12);
+    }
+    m_origin = lo;
+    m_edge = edge;
+
+    // Counting sort by cell (stable: members of one cell stay in input order).
+    std::size_t const numCells = static_cast<std::size_t>(m_dims[0] * m_dims[1] * m_dims[2]);
+    m_start.assign(numCells + 1, 0);
+    m_cellOf.resize(members.size());
+    for (std::size_t k = 0; k < members.size(); ++k) {
+        core::Vec3 const& x = positions[members[k]];
+        auto const c =
+            static_cast<std::uint32_t>(cellIndex(coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)));
+        m_cellOf[k] = c;
+        ++m_start[c + 1];
+    }
+    for (std::size_t c = 0; c < numCells; ++c)
+        m_start[c + 1] += m_start[c];
+    m_member.resize(members.size());
+    m_sphere.resize(members.size());
+    // Fill using m_start[c] as the running insertion point, then shift back.
+    for (std::size_t k = 0; k < members.size(); ++k) {
+        std::uint32_t const slot = m_start[m_cellOf[k]]++;
+        m_member[slot] = members[k];
+        m_sphere[slot] = Sphere{positions[members[k]], radii[members[k]]};
+    }
+    for (std::size_t c = numCells; c > 0; --c)
+        m_start[c] = m_start[c - 1];
+    m_start[0] = 0;
+}
+
+} // namespace regolith::particles

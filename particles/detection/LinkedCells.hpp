@@ -1,0 +1,170 @@
+#pragma once
+/// Linked cells (Allen & Tildesley, "Computer Simulation of Liquids", 2nd ed., sec. 5.3.2)
+/// over the centres of a set of spheres, stored as a compressed row (counting sort by cell,
+/// members of a cell contiguous) with the spheres copied in cell order so that the pair loop
+/// streams through memory.
+#include "core/math/Vec3.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace regolith::particles {
+
+class LinkedCells {
+public:
+    /// Bins the spheres `members` (indices into `positions` / `radii`) by centre into cubic
+    /// cells of edge >= `minEdge` [length] covering the bounding box of those centres. If that
+    /// would take more than `maxCells` cells (sparse or far-flung sets), the edge grows until
+    /// it does not, so memory and the empty-cell sweep stay O(members).
+    /// Precondition: every member radius <= minEdge / 2, so that overlapping members are in
+    /// the same or adjacent cells; `minEdge` > 0 and finite centres.
+    void build(std::span<core::Vec3 const> positions, std::span<double const> radii,
+               std::span<std::size_t const> members, double minEdge, std::size_t maxCells);
+
+    /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
+    /// spheres overlap (|x_a - x_b| < r_a + r_b): same cell, then the 13 forward neighbours
+    /// of the half shell, so each pair is visited exactly once. Order: by cell, then slot.
+    template <class F>
+    void forEachOverlap(F&& f) const;
+
+    /// Calls `f(b)` for every member whose sphere overlaps the sphere (`centre`, `radius`).
+    /// Visits only cells intersecting the ball of radius `radius + maxMemberRadius` about
+    /// `centre`, row by row; returns the number of cells visited.
+    template <class F>
+    std::size_t forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const;
+
+    [[nodiscard]] double edge() const { return m_edge; }
+    [[nodiscard]] std::array<std::int64_t, 3> dims() const { return m_dims; }
+    [[nodiscard]] std::size_t numCells() const { return m_start.empty() ? 0 : m_start.size() - 1; }
+    [[nodiscard]] std::size_t numMembers() const { return m_member.size(); }
+    /// The members in cell order (cell by cell, z slowest, x fastest).
+    [[nodiscard]] std::span<std::size_t const> membersInCellOrder() const { return m_member; }
+    /// Heap bytes held.
+    [[nodiscard]] std::size_t bytes() const {
+        return m_start.capacity() * sizeof(std::uint32_t) +
+               m_member.capacity() * sizeof(std::size_t) + m_sphere.capacity() * sizeof(Sphere) +
+               m_cellOf.capacity() * sizeof(std::uint32_t);
+    }
+
+private:
+    struct Sphere {
+        core::Vec3 centre;
+        double radius;
+    };
+    /// Cell coordinate of `x` along `axis`, clamped to the grid (clamped in floating point,
+    /// so far-away query points cannot overflow the integer conversion).
+    [[nodiscard]] std::int64_t coord(double x, int axis) const {
+        auto const n = m_dims[static_cast<std::size_t>(axis)];
+        double const c = std::floor((x - m_origin[axis]) / m_edge);
+        if (!(c >= 0.0))
+            return 0;
+        return c >= static_cast<double>(n) ? n - 1 : static_cast<std::int64_t>(c);
+    }
+    [[nodiscard]] std::size_t cellIndex(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        return static_cast<std::size_t>((z * m_dims[1] + y) * m_dims[0] + x);
+    }
+
+    core::Vec3 m_origin = core::Vec3::Zero();
+    double m_edge = 1.0;
+    double m_maxRadius = 0.0;
+    std::array<std::int64_t, 3> m_dims{0, 0, 0};
+    std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
+    std::vector<std::size_t> m_member;   ///< original index of each slot
+    std::vector<Sphere> m_sphere;        ///< sphere of each slot
+    std::vector<std::uint32_t> m_cellOf; ///< scratch: cell of each member, in input order
+};
+
+// ---- implementation of the templates ------------------------------------------------------
+
+template <class F>
+void LinkedCells::forEachOverlap(F&& f) const {
+    auto const nx = m_dims[0], ny = m_dims[1], nz = m_dims[2];
+    auto test = [&](std::uint32_t s, std::uint32_t t) {
+        Sphere const& a = m_sphere[s];
+        Sphere const& b = m_sphere[t];
+        double const reach = a.radius + b.radius;
+        if ((b.centre - a.centre).squaredNorm() < reach * reach)
+            f(m_member[s], m_member[t]);
+    };
+    // The half shell of 13 forward neighbours, grouped into 5 slot ranges: cell x+1 of the
+    // same row, and the cells x-1..x+1 of the rows (dy, dz) = (1, 0), (-1, 1), (0, 1), (1, 1),
+    // which are consecutive in memory, so each row is one contiguous range of slots.
+    static constexpr std::int64_t kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    for (std::int64_t z = 0; z < nz; ++z)
+        for (std::int64_t y = 0; y < ny; ++y)
+            for (std::int64_t x = 0; x < nx; ++x) {
+                std::size_t const c = cellIndex(x, y, z);
+                std::uint32_t const begin = m_start[c], end = m_start[c + 1];
+                if (begin == end)
+                    continue;
+                for (std::uint32_t s = begin; s < end; ++s)
+                    for (std::uint32_t t = s + 1; t < end; ++t)
+                        test(s, t);
+                if (x + 1 < nx)
+                    for (std::uint32_t s = begin; s < end; ++s)
+                        for (std::uint32_t t = end; t < m_start[c + 2]; ++t)
+                            test(s, t);
+                std::int64_t const x0 = x > 0 ? x - 1 : 0, x1 = x + 1 < nx ? x + 1 : x;
+                for (auto const& row : kRows) {
+                    std::int64_t const oy = y + row[0], oz = z + row[1];
+                    if (oy < 0 || oy >= ny || oz >= nz)
+                        continue;
+                    std::uint32_t const rowBegin = m_start[cellIndex(x0, oy, oz)];
+                    std::uint32_t const rowEnd = m_start[cellIndex(x1, oy, oz) + 1];
+                    for (std::uint32_t s = begin; s < end; ++s)
+                        for (std::uint32_t t = rowBegin; t < rowEnd; ++t)
+                            test(s, t);
+                }
+            }
+}
+
+template <class F>
+std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const {
+    if (m_member.empty())
+        return 0;
+    double const reach = radius + m_maxRadius; // a member centre beyond this cannot touch
+    for (int d = 0; d < 3; ++d) {
+        double const end =
+            m_origin[d] + static_cast<double>(m_dims[static_cast<std::size_t>(d)]) * m_edge;
+        if (centre[d] + reach < m_origin[d] || centre[d] - reach > end)
+            return 0; // the ball misses the grid
+    }
+    auto lo = [&](int axis) { return coord(centre[axis] - reach, axis); };
+    auto hi = [&](int axis) { return coord(centre[axis] + reach, axis); };
+    // Distance from `v` to the slab [o + c h, o + (c + 1) h] along `axis` (0 inside).
+    auto gap = [&](std::int64_t c, int axis) {
+        double const a = m_origin[axis] + static_cast<double>(c) * m_edge;
+        double const v = centre[axis];
+        return v < a ? a - v : (v > a + m_edge ? v - a - m_edge : 0.0);
+    };
+    std::size_t visited = 0;
+    std::int64_t const z0 = lo(2), z1 = hi(2), y0 = lo(1), y1 = hi(1);
+    for (std::int64_t z = z0; z <= z1; ++z) {
+        double const gz = gap(z, 2);
+        for (std::int64_t y = y0; y <= y1; ++y) {
+            double const gy = gap(y, 1);
+            double const rest = reach * reach - gz * gz - gy * gy;
+            if (rest < 0.0)
+                continue; // this row of cells misses the ball
+            double const w = std::sqrt(rest);
+            std::int64_t const x0 = coord(centre[0] - w, 0), x1 = coord(centre[0] + w, 0);
+            visited += static_cast<std::size_t>(x1 - x0 + 1);
+            std::uint32_t const begin = m_start[cellIndex(x0, y, z)];
+            std::uint32_t const end = m_start[cellIndex(x1, y, z) + 1];
+            // Cells of one row are consecutive, so the row is one contiguous slot range.
+            for (std::uint32_t t = begin; t < end; ++t) {
+                Sphere const& b = m_sphere[t];
+                double const touch = radius + b.radius;
+                if ((b.centre - centre).squaredNorm() < touch * touch)
+                    f(m_member[t]);
+            }
+        }
+    }
+    return visited;
+}
+
+} // namespace regolith::particles

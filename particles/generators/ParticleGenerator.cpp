@@ -1,0 +1,131 @@
+#include "particles/generators/ParticleGenerator.hpp"
+
+#include "core/Error.hpp"
+#include "particles/generators/AgglomeratePacker.hpp"
+#include "particles/generators/EntrySource.hpp"
+#include "particles/generators/OverlapIndex.hpp"
+#include "particles/generators/ParticleSpecValidation.hpp"
+#include "particles/generators/RegionSet.hpp"
+#include "particles/storage/Uid.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace regolith::particles {
+
+namespace {
+
+/// Boxes whose neighbourhood must be generated, and the last entry whose overlap tests they
+/// serve: the requested boxes (all entries) and each agglomerate's bounding box (the entries
+/// before it, which it packs around).
+struct Source {
+    std::vector<core::AABB> boxes;
+    std::size_t anchor = 0;
+};
+
+/// margin[j] for the entries j <= anchor: how far around the source's boxes entry j must be
+/// known so that every keep decision of a later entry inside its own margin is right. A grain
+/// of entry k at distance d of the boxes is tested against grains of entry j < k within
+/// r_k + r_j, so margin[j] = max over j < k <= anchor of (margin[k] + maxR[k]) + maxR[j],
+/// margin[anchor] = 0.
+std::vector<double> sourceMargins(std::vector<double> const& maxRadius, std::size_t anchor) {
+    std::vector<double> margin(anchor + 1, 0.0);
+    double best = maxRadius[anchor];
+    for (std::size_t j = anchor; j-- > 0;) {
+        margin[j] = best + maxRadius[j];
+        best = std::max(best, margin[j] + maxRadius[j]);
+    }
+    // Grow by a relative hair so no rounding of the folded boxes can drop a needed grain;
+    // generating a little more than needed never changes a decision.
+    for (std::size_t j = 0; j < anchor; ++j)
+        margin[j] *= 1.0 + 1e-9;
+    return margin;
+}
+
+bool inAnyBox(core::Vec3 const& p, std::span<core::AABB const> boxes) {
+    return std::any_of(boxes.begin(), boxes.end(),
+                       [&](core::AABB const& b) { return b.contains(p); });
+}
+
+} // namespace
+
+GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB const& domainBox,
+                               std::array<bool, 3> const& periodic,
+                               std::span<core::AABB const> boxes) {
+    GeneratorDomain const domain{domainBox, periodic};
+    validateParticleSpecs(specs, domain);
+    if (specs.size() > std::numeric_limits<std::uint32_t>::max())
+        throw core::InputError("particles: too many entries");
+
+    std::vector<EntrySource> entries;
+    entries.reserve(specs.size());
+    GeneratedGrains result;
+    result.entryUidBegin.assign(1, 0);
+    std::uint64_t const uidLimit = kUidCounterMask; // generated uids fit the counter field
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+        entries.emplace_back(specs[k], k, domain);
+        std::uint64_t const begin = result.entryUidBegin.back();
+        if (entries.back().capacity() > uidLimit - begin)
+            throw core::InputError(
+                fmt::format("{}: the entries up to this one need more than 2^{} - 1 grain uids",
+                            entries.back().key(), kUidCounterBits));
+        result.entryUidBegin.push_back(begin + entries.back().capacity());
+    }
+    if (entries.empty())
+        return result;
+
+    std::vector<double> maxRadius;
+    for (auto const& e : entries)
+        maxRadius.push_back(e.maxRadius());
+    std::vector<Source> sources;
+    sources.push_back({std::vector<core::AABB>(boxes.begin(), boxes.end()), entries.size() - 1});
+    for (std::size_t k = 0; k < entries.size(); ++k)
+        if (entries[k].isAgglomerate() && k > 0) {
+            auto const& a = std::get<AgglomerateSpec>(specs[k].kind);
+            sources.push_back(
+                {{core::AABB{a.center.array() - a.radius, a.center.array() + a.radius}}, k});
+        }
+    std::vector<std::vector<double>> margins;
+    for (auto const& s : sources)
+        margins.push_back(sourceMargins(maxRadius, s.anchor));
+
+    // Kept grains of the entries so far inside their needed regions, for the skip tests.
+    OverlapIndex placed(domain);
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+        EntrySource const& entry = entries[k];
+        std::uint64_t const uidBegin = result.entryUidBegin[k];
+        std::vector<GrainInit> kept;
+        if (entry.isAgglomerate()) {
+            kept =
+                packAgglomerate(std::get<AgglomerateSpec>(specs[k].kind), uidBegin, specs[k].type,
+                                static_cast<std::uint32_t>(k), domain, placed, entry.key());
+        } else {
+            RegionSet needed;
+            for (std::size_t s = 0; s < sources.size(); ++s)
+                if (sources[s].anchor >= k)
+                    for (auto const& box : sources[s].boxes)
+                        needed.add(box, margins[s][k], domain);
+            kept = entry.candidatesIn(needed, uidBegin);
+            std::erase_if(
+                kept, [&](GrainInit const& g) { return placed.overlaps(g.position, g.radius); });
+        }
+        // Grains of one entry never skip each other: index them only after the whole entry.
+        if (k + 1 < entries.size())
+            for (auto const& g : kept)
+                placed.insert(g.position, g.radius);
+        for (auto& g : kept)
+            if (inAnyBox(g.position, boxes))
+                result.grains.push_back(g);
+    }
+    return result;
+}
+
+GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB const& domain,
+                               std::array<bool, 3> const& periodic) {
+    core::AABB const all[] = {domain};
+    return generateGrains(specs, domain, periodic, all);
+}
+
+} // namespace regolith::particles

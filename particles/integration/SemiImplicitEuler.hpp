@@ -1,0 +1,18 @@
+#pragma once
+/// Semi-implicit (symplectic) Euler: velocities from the new forces first, then positions
+/// from the new velocities. First order, symplectic for velocity-independent forces.
+#include "particles/integration/Integrator.hpp"
+
+namespace regolith::particles {
+
+struct SemiImplicitEuler {
+    /// Nothing: the whole step happens after the forces are known.
+    void preForce(ParticleStorage& /*ps*/, double /*dt*/, core::Vec3 const& /*gravity*/) const {}
+    /// v += dt (F/m + g); x += dt v; omega += dt tau / I; q rotated by omega dt (masters that
+    /// are not Fixed). Units: dt [time], gravity [length/time^2].
+    void postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+};
+
+static_assert(Integrator<SemiImplicitEuler>);
+
+} // namespace regolith::particles

@@ -1,0 +1,19 @@
+#pragma once
+/// Velocity Verlet in kick-drift-kick form (Swope, Andersen, Berens & Wilson, J. Chem. Phys.
+/// 76 (1982) 637): second order and symplectic for position-dependent forces; velocity
+/// dependent (damping) forces see the half-step velocity.
+#include "particles/integration/Integrator.hpp"
+
+namespace regolith::particles {
+
+struct VelocityVerlet {
+    /// Half kick with the old forces, then drift: v += dt/2 (F/m + g); x += dt v;
+    /// omega += dt/2 tau / I; q rotated by omega dt.
+    void preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+    /// Second half kick with the new forces: v += dt/2 (F/m + g); omega += dt/2 tau / I.
+    void postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+};
+
+static_assert(Integrator<VelocityVerlet>);
+
+} // namespace regolith::particles

@@ -1,0 +1,43 @@
+#pragma once
+/// The interface between contact evaluation and contact models: what a model sees of one
+/// contact, what it returns, and the concept a model satisfies.
+#include "core/math/Vec3.hpp"
+
+#include <concepts>
+#include <cstdint>
+
+namespace regolith::particles {
+
+/// The kinematics of one contact between body i and body j (a wall is always i), evaluated
+/// at the contact point.
+struct ContactState {
+    core::Vec3 normal;  ///< unit, from i towards j
+    double penetration; ///< overlap > 0 [length]
+    /// Velocity of j's material point relative to i's, at the contact point [length/time].
+    core::Vec3 relativeVelocity;
+    /// omega_j - omega_i [rad/time] (rolling resistance).
+    core::Vec3 relativeAngularVelocity;
+    double effectiveMass;   ///< 1 / (1/m_i + 1/m_j); m of the sphere against a wall [mass]
+    double effectiveRadius; ///< r_i r_j / (r_i + r_j); r of the sphere against a wall [length]
+    /// 1/I_i + 1/I_j: bounds the rolling torque so that it cannot reverse the relative
+    /// rotation within one step [1/(mass length^2)].
+    double inverseInertiaSum;
+    std::uint32_t typeI;
+    std::uint32_t typeJ;
+};
+
+/// A model's answer: acting on j; i receives the opposite (Newton's third law).
+struct ContactResponse {
+    core::Vec3 force = core::Vec3::Zero();  ///< applied at the contact point [force]
+    core::Vec3 torque = core::Vec3::Zero(); ///< pure couple (rolling resistance) [force length]
+};
+
+/// A contact force model: a stateless functor that, given the contact's kinematics, its
+/// tangential spring from the history (updated in place) and the time step, returns the
+/// force and couple on j.
+template <class M>
+concept ContactModel = requires(M const& m, ContactState const& s, core::Vec3& spring, double dt) {
+    { m(s, spring, dt) } -> std::same_as<ContactResponse>;
+};
+
+} // namespace regolith::particles

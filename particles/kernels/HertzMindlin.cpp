@@ -1,0 +1,95 @@
+#include "particles/kernels/HertzMindlin.hpp"
+
+#include "core/Error.hpp"
+#include "particles/kernels/TangentialSpring.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace regolith::particles {
+
+HertzMindlinParams HertzMindlinParams::fromMaterials(double youngsA, double poissonA,
+                                                     double youngsB, double poissonB,
+                                                     double restitution, double friction,
+                                                     double rollingFriction) {
+    for (auto [e, nu] : {std::pair(youngsA, poissonA), std::pair(youngsB, poissonB)}) {
+        if (!(e > 0.0) || !std::isfinite(e))
+            throw core::InputError(
+                fmt::format("contact.youngs_modulus = {}: expected a positive finite value", e));
+        if (!(nu > -1.0 && nu <= 0.5))
+            throw core::InputError(
+                fmt::format("contact.poisson_ratio = {}: expected a value in (-1, 0.5]", nu));
+    }
+    HertzMindlinParams p;
+    p.effectiveYoungsModulus =
+        1.0 / ((1.0 - poissonA * poissonA) / youngsA + (1.0 - poissonB * poissonB) / youngsB);
+    p.effectiveShearModulus = 1.0 / (2.0 * (2.0 - poissonA) * (1.0 + poissonA) / youngsA +
+                                     2.0 * (2.0 - poissonB) * (1.0 + poissonB) / youngsB);
+    p.restitution = restitution;
+    p.friction = friction;
+    p.rollingFriction = rollingFriction;
+    return p;
+}
+
+HertzMindlin::HertzMindlin(MaterialTable<HertzMindlinParams> materials)
+    : m_materials(std::move(materials))
+    , m_beta(m_materials.numTypes(), 0.0) {
+    auto const n = static_cast<std::uint32_t>(m_materials.numTypes());
+    for (std::uint32_t a = 0; a < n; ++a)
+        for (std::uint32_t b = a; b < n; ++b) {
+            auto const& p = m_materials(a, b);
+            auto bad = [&](char const* what, double v, char const* expected) {
+                return core::InputError(
+                    fmt::format("contact.{} = {} for material types ({}, {}): expected {}", what, v,
+                                a, b, expected));
+            };
+            if (!(p.effectiveYoungsModulus > 0.0) || !std::isfinite(p.effectiveYoungsModulus))
+                throw bad("youngs_modulus (effective)", p.effectiveYoungsModulus,
+                          "a positive finite value");
+            if (!(p.effectiveShearModulus >= 0.0) || !std::isfinite(p.effectiveShearModulus))
+                throw bad("shear_modulus (effective)", p.effectiveShearModulus,
+                          "a finite value >= 0");
+            if (!(p.restitution > 0.0 && p.restitution <= 1.0))
+                throw bad("restitution", p.restitution, "a value in (0, 1]");
+            if (!(p.friction >= 0.0) || !std::isfinite(p.friction))
+                throw bad("friction", p.friction, "a finite value >= 0");
+            if (!(p.rollingFriction >= 0.0) || !std::isfinite(p.rollingFriction))
+                throw bad("rolling_friction", p.rollingFriction, "a finite value >= 0");
+            double const l = std::log(p.restitution);
+            double const beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+            m_beta.set(a, b, -2.0 * std::sqrt(5.0 / 6.0) * beta);
+        }
+}
+
+ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec3& spring,
+                                         double dt) const {
+    HertzMindlinParams const& p = m_materials(s.typeI, s.typeJ);
+    double const damping = m_beta(s.typeI, s.typeJ);
+    double const a = std::sqrt(s.effectiveRadius * s.penetration);
+    double const sn = 2.0 * p.effectiveYoungsModulus * a;
+    double const st = 8.0 * p.effectiveShearModulus * a;
+    double const vn = s.relativeVelocity.dot(s.normal);
+    core::Vec3 const vt = s.relativeVelocity - vn * s.normal;
+    double const fn = (4.0 / 3.0) * p.effectiveYoungsModulus * a * s.penetration -
+                      damping * std::sqrt(sn * s.effectiveMass) * vn;
+
+    ContactResponse r;
+    r.force = fn * s.normal;
+    r.force += tangentialForce(spring, s.normal, vt, st, damping * std::sqrt(st * s.effectiveMass),
+                               p.friction * std::max(fn, 0.0), dt);
+    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
+    return r;
+}
+
+double HertzMindlin::contactTime(HertzMindlinParams const& p, double effectiveMass,
+                                 double effectiveRadius, double impactVelocity) {
+    double const e = p.effectiveYoungsModulus;
+    return 2.868 *
+           std::pow(effectiveMass * effectiveMass / (effectiveRadius * e * e * impactVelocity),
+                    0.2);
+}
+
+} // namespace regolith::particles

@@ -1,0 +1,60 @@
+#pragma once
+/// The tangential-spring history of one particle's contacts, keyed by partner uid, kept with
+/// the particle so that it travels with it (DESIGN.md: whichever block evaluates a contact
+/// finds its history). A pair's entry lives on the partner with the smaller uid (the `i` of
+/// the canonical contact order); a sphere–wall entry lives on the sphere, keyed by the wall's
+/// uid.
+#include "core/math/Vec3.hpp"
+#include "particles/storage/Uid.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace regolith::particles {
+
+/// One contact's memory.
+struct HistoryEntry {
+    Uid partner = kInvalidUid;
+    /// Accumulated tangential displacement of the partner relative to the owner at the
+    /// contact point, kept in the current tangent plane [length].
+    core::Vec3 spring = core::Vec3::Zero();
+    /// The evaluation pass that last touched this entry (see `keepOnly`).
+    std::uint32_t stamp = 0;
+};
+
+/// A small vector of `HistoryEntry` sorted by partner uid: look-up is a binary search over a
+/// handful of entries, iteration order is canonical (by uid), and an empty history costs no
+/// heap memory.
+class ContactHistory {
+public:
+    /// The entry for `partner`, or nullptr.
+    [[nodiscard]] HistoryEntry const* find(Uid partner) const;
+    [[nodiscard]] HistoryEntry* find(Uid partner);
+    /// The entry for `partner` (created with a zero spring if absent), stamped with `stamp`.
+    HistoryEntry& touch(Uid partner, std::uint32_t stamp);
+    /// Inserts or overwrites an entry (used when history arrives with a particle).
+    void set(HistoryEntry const& entry);
+    /// Removes the entry for `partner`; returns whether there was one.
+    bool erase(Uid partner);
+    /// Drops every entry whose stamp differs from `stamp`: the contacts not evaluated in the
+    /// current pass are broken. Returns how many were dropped.
+    std::size_t keepOnly(std::uint32_t stamp);
+
+    [[nodiscard]] std::size_t size() const { return m_entries.size(); }
+    [[nodiscard]] bool empty() const { return m_entries.empty(); }
+    void clear() { m_entries.clear(); }
+    [[nodiscard]] auto begin() const { return m_entries.begin(); }
+    [[nodiscard]] auto end() const { return m_entries.end(); }
+    /// Heap bytes held (capacity, not size).
+    [[nodiscard]] std::size_t heapBytes() const {
+        return m_entries.capacity() * sizeof(HistoryEntry);
+    }
+    /// The entries in uid order (for packing into messages).
+    [[nodiscard]] std::vector<HistoryEntry> const& entries() const { return m_entries; }
+
+private:
+    std::vector<HistoryEntry> m_entries;
+};
+
+} // namespace regolith::particles

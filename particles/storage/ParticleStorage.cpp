@@ -1,0 +1,188 @@
+#include "particles/storage/ParticleStorage.hpp"
+
+#include "core/Error.hpp"
+
+#include <string>
+#include <type_traits>
+#include <utility>
+
+namespace regolith::particles {
+
+template <class F>
+void ParticleStorage::forEachArray(F&& f) {
+    f(m_uid);
+    f(m_position);
+    f(m_velocity);
+    f(m_angularVelocity);
+    f(m_orientation);
+    f(m_force);
+    f(m_torque);
+    f(m_radius);
+    f(m_mass);
+    f(m_invMass);
+    f(m_invInertia);
+    f(m_flags);
+    f(m_type);
+    f(m_owner);
+    f(m_shadowHolders);
+    f(m_history);
+}
+
+ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
+    if (p.uid == kInvalidUid)
+        throw core::Error("ParticleStorage::add: invalid uid");
+    Index const i = size();
+    auto const [it, inserted] = m_index.try_emplace(p.uid, i);
+    if (!inserted)
+        throw core::Error("ParticleStorage::add: uid " + std::to_string(p.uid) +
+                          " is already stored");
+    (void)it;
+    m_uid.push_back(p.uid);
+    m_position.push_back(p.position);
+    m_velocity.push_back(p.velocity);
+    m_angularVelocity.push_back(p.angularVelocity);
+    m_orientation.push_back(p.orientation);
+    m_force.push_back(core::Vec3::Zero());
+    m_torque.push_back(core::Vec3::Zero());
+    m_radius.push_back(p.radius);
+    m_mass.push_back(p.mass);
+    m_invMass.push_back(0.0);
+    m_invInertia.push_back(0.0);
+    m_flags.push_back(p.flags);
+    m_type.push_back(p.type);
+    m_owner.push_back(p.owner);
+    m_shadowHolders.emplace_back();
+    m_history.emplace_back();
+    updateInverses(i);
+    return i;
+}
+
+void ParticleStorage::remove(Index i) {
+    Index const last = size() - 1;
+    m_index.erase(m_uid[i]);
+    if (i != last) {
+        forEachArray([i, last](auto& v) { v[i] = std::move(v[last]); });
+        m_index[m_uid[i]] = i;
+    }
+    forEachArray([](auto& v) { v.pop_back(); });
+}
+
+bool ParticleStorage::removeUid(Uid uid) {
+    Index const i = find(uid);
+    if (i == kNotFound)
+        return false;
+    remove(i);
+    return true;
+}
+
+ParticleStorage::Index ParticleStorage::find(Uid uid) const {
+    auto it = m_index.find(uid);
+    return it == m_index.end() ? kNotFound : it->second;
+}
+
+void ParticleStorage::permute(std::span<Index const> newToOld) {
+    Index const n = size();
+    if (newToOld.size() != n)
+        throw core::Error("ParticleStorage::permute: " + std::to_string(newToOld.size()) +
+                          " indices for " + std::to_string(n) + " particles");
+    std::vector<bool> seen(n, false);
+    for (Index k : newToOld) {
+        if (k >= n || seen[k])
+            throw core::Error("ParticleStorage::permute: not a permutation");
+        seen[k] = true;
+    }
+    forEachArray([newToOld](auto& v) {
+        std::remove_reference_t<decltype(v)> out;
+        out.reserve(v.capacity());
+        for (Index k : newToOld)
+            out.push_back(std::move(v[k]));
+        v.swap(out);
+    });
+    for (Index k = 0; k < n; ++k)
+        m_index[m_uid[k]] = k;
+}
+
+void ParticleStorage::reserve(std::size_t n) {
+    forEachArray([n](auto& v) { v.reserve(n); });
+    m_index.reserve(n);
+}
+
+void ParticleStorage::clear() {
+    forEachArray([](auto& v) { v.clear(); });
+    m_index.clear();
+}
+
+void ParticleStorage::setRadius(Index i, double radius) {
+    m_radius[i] = radius;
+    updateInverses(i);
+}
+
+void ParticleStorage::setMass(Index i, double mass) {
+    m_mass[i] = mass;
+    updateInverses(i);
+}
+
+void ParticleStorage::setFlags(Index i, Flags flags) {
+    m_flags[i] = flags;
+    updateInverses(i);
+}
+
+void ParticleStorage::updateInverses(Index i) {
+    if (m_flags[i].isFixed()) {
+        m_invMass[i] = 0.0;
+        m_invInertia[i] = 0.0;
+        return;
+    }
+    // Solid sphere about its centre: I = 2/5 m r^2. Invalid mass or radius gives inf or NaN
+    // here; validateParticles reports those before a run starts.
+    double const r = m_radius[i];
+    m_invMass[i] = 1.0 / m_mass[i];
+    m_invInertia[i] = 1.0 / (0.4 * m_mass[i] * r * r);
+}
+
+void ParticleStorage::resetForces() {
+    for (Index i = 0, n = size(); i < n; ++i) {
+        m_force[i].setZero();
+        m_torque[i].setZero();
+    }
+}
+
+std::size_t ParticleStorage::countMasters() const {
+    std::size_t n = 0;
+    for (Flags f : m_flags)
+        n += f.isMaster() ? 1 : 0;
+    return n;
+}
+
+std::size_t ParticleStorage::bytes() const {
+    std::size_t b = 0;
+    auto add = [&b](auto const& v) { b += v.capacity() * sizeof(v[0]); };
+    add(m_uid);
+    add(m_position);
+    add(m_velocity);
+    add(m_angularVelocity);
+    add(m_orientation);
+    add(m_force);
+    add(m_torque);
+    add(m_radius);
+    add(m_mass);
+    add(m_invMass);
+    add(m_invInertia);
+    add(m_flags);
+    add(m_type);
+    add(m_owner);
+    add(m_shadowHolders);
+    add(m_history);
+    for (auto const& h : m_shadowHolders)
+        b += h.capacity() * sizeof(BlockRef);
+    for (auto const& h : m_history)
+        b += h.heapBytes();
+    // libstdc++ unordered_map: one bucket pointer per bucket and one heap node per entry
+    // (next pointer plus key/value; integer keys do not cache their hash). Allocator
+    // overhead per node is not counted.
+    b += m_index.bucket_count() * sizeof(void*);
+    b += m_index.size() * (sizeof(void*) + sizeof(std::pair<Uid const, Index>));
+    return b;
+}
+
+} // namespace regolith::particles

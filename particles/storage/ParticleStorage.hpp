@@ -1,0 +1,160 @@
+#pragma once
+/// Structure-of-arrays storage of the spheres of one block (mesa_pd's `ParticleStorage`):
+/// one contiguous array per property, so kernels stream only what they touch.
+#include "core/math/Vec3.hpp"
+#include "particles/storage/ContactHistory.hpp"
+#include "particles/storage/ParticleFlags.hpp"
+#include "particles/storage/Uid.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+namespace regolith::particles {
+
+/// A block of the forest on a rank: who owns a master, who holds a shadow.
+struct BlockRef {
+    int rank = -1;
+    std::uint64_t block = 0;
+    friend bool operator==(BlockRef const&, BlockRef const&) = default;
+};
+
+/// Everything needed to create a particle. Force, torque and history start empty.
+struct ParticleInit {
+    Uid uid = kInvalidUid;
+    core::Vec3 position = core::Vec3::Zero();        ///< [length]
+    core::Vec3 velocity = core::Vec3::Zero();        ///< [length/time]
+    core::Vec3 angularVelocity = core::Vec3::Zero(); ///< world frame [rad/time]
+    core::Quat orientation = core::Quat::Identity();
+    double radius = 0.0;    ///< [length]
+    double mass = 0.0;      ///< [mass]
+    std::uint32_t type = 0; ///< material index into the contact model's MaterialTable
+    Flags flags{};
+    BlockRef owner{};
+};
+
+/// SoA particle storage with a uid -> index map.
+///
+/// Invariants: `find(uid(i)) == i` for every index, uids are unique; `invMass` and
+/// `invInertia` follow mass, radius and the Fixed flag (zero when fixed; a sphere's inertia
+/// is 2/5 m r^2). Adding is amortised O(1); removing is O(1) by moving the last particle into
+/// the freed slot, which changes that particle's index (never its uid). Indices are therefore
+/// only valid until the next removal.
+class ParticleStorage {
+public:
+    using Index = std::size_t;
+    static constexpr Index kNotFound = std::numeric_limits<Index>::max();
+
+    /// Appends a particle and returns its index. Throws core::Error if the uid is kInvalidUid
+    /// or already stored. Values are not checked here (see validateParticles).
+    Index add(ParticleInit const& p);
+    /// Removes the particle at `i` (< size()) by swap-with-last.
+    void remove(Index i);
+    /// Removes the particle with `uid`; returns false if there is none.
+    bool removeUid(Uid uid);
+    /// Index of `uid`, or kNotFound.
+    [[nodiscard]] Index find(Uid uid) const;
+    [[nodiscard]] bool contains(Uid uid) const { return find(uid) != kNotFound; }
+
+    /// Reorders the particles: new index k holds the particle that had index `newToOld[k]`
+    /// (mesa_pd's ParticleStorage::sort). Used to restore spatial locality, e.g. with
+    /// ContactDetector::spatialOrder. Throws core::Error unless `newToOld` is a permutation of
+    /// [0, size()). O(N) time and one temporary copy of each array.
+    void permute(std::span<Index const> newToOld);
+
+    [[nodiscard]] std::size_t size() const { return m_uid.size(); }
+    [[nodiscard]] bool empty() const { return m_uid.empty(); }
+    void reserve(std::size_t n);
+    void clear();
+
+    // ---- per-particle access (i < size()) ----------------------------------------------
+    [[nodiscard]] Uid uid(Index i) const { return m_uid[i]; }
+    [[nodiscard]] core::Vec3& position(Index i) { return m_position[i]; }
+    [[nodiscard]] core::Vec3 const& position(Index i) const { return m_position[i]; }
+    [[nodiscard]] core::Vec3& velocity(Index i) { return m_velocity[i]; }
+    [[nodiscard]] core::Vec3 const& velocity(Index i) const { return m_velocity[i]; }
+    [[nodiscard]] core::Vec3& angularVelocity(Index i) { return m_angularVelocity[i]; }
+    [[nodiscard]] core::Vec3 const& angularVelocity(Index i) const { return m_angularVelocity[i]; }
+    [[nodiscard]] core::Quat& orientation(Index i) { return m_orientation[i]; }
+    [[nodiscard]] core::Quat const& orientation(Index i) const { return m_orientation[i]; }
+    [[nodiscard]] core::Vec3& force(Index i) { return m_force[i]; }
+    [[nodiscard]] core::Vec3 const& force(Index i) const { return m_force[i]; }
+    [[nodiscard]] core::Vec3& torque(Index i) { return m_torque[i]; }
+    [[nodiscard]] core::Vec3 const& torque(Index i) const { return m_torque[i]; }
+    [[nodiscard]] double radius(Index i) const { return m_radius[i]; }
+    [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
+    [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
+    /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
+    [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }
+    [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
+    [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
+    [[nodiscard]] BlockRef owner(Index i) const { return m_owner[i]; }
+    [[nodiscard]] std::vector<BlockRef>& shadowHolders(Index i) { return m_shadowHolders[i]; }
+    [[nodiscard]] std::vector<BlockRef> const& shadowHolders(Index i) const {
+        return m_shadowHolders[i];
+    }
+    [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
+    [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
+
+    /// Setters for properties that others depend on (inverse mass and inertia).
+    void setRadius(Index i, double radius);
+    void setMass(Index i, double mass);
+    void setFlags(Index i, Flags flags);
+    void setType(Index i, std::uint32_t type) { m_type[i] = type; }
+    void setOwner(Index i, BlockRef owner) { m_owner[i] = owner; }
+
+    // ---- bulk access ---------------------------------------------------------------------
+    [[nodiscard]] std::vector<Uid> const& uids() const { return m_uid; }
+    [[nodiscard]] std::vector<core::Vec3> const& positions() const { return m_position; }
+    [[nodiscard]] std::vector<double> const& radii() const { return m_radius; }
+    [[nodiscard]] std::vector<Flags> const& allFlags() const { return m_flags; }
+
+    /// Zeroes force and torque of every particle (masters and shadows).
+    void resetForces();
+    /// Calls `f(i)` for every particle.
+    template <class F>
+    void forEach(F&& f) const {
+        for (Index i = 0, n = size(); i < n; ++i)
+            f(i);
+    }
+    /// Calls `f(i)` for every master (not Shadow).
+    template <class F>
+    void forEachMaster(F&& f) const {
+        for (Index i = 0, n = size(); i < n; ++i)
+            if (m_flags[i].isMaster())
+                f(i);
+    }
+    [[nodiscard]] std::size_t countMasters() const;
+
+    /// Bytes held by the storage: array capacities, heap of histories and shadow-holder lists,
+    /// and an estimate of the uid map (buckets plus one node per entry).
+    [[nodiscard]] std::size_t bytes() const;
+
+private:
+    void updateInverses(Index i);
+    template <class F>
+    void forEachArray(F&& f);
+
+    std::vector<Uid> m_uid;
+    std::vector<core::Vec3> m_position;
+    std::vector<core::Vec3> m_velocity;
+    std::vector<core::Vec3> m_angularVelocity;
+    std::vector<core::Quat> m_orientation;
+    std::vector<core::Vec3> m_force;
+    std::vector<core::Vec3> m_torque;
+    std::vector<double> m_radius;
+    std::vector<double> m_mass;
+    std::vector<double> m_invMass;
+    std::vector<double> m_invInertia;
+    std::vector<Flags> m_flags;
+    std::vector<std::uint32_t> m_type;
+    std::vector<BlockRef> m_owner;
+    std::vector<std::vector<BlockRef>> m_shadowHolders;
+    std::vector<ContactHistory> m_history;
+    std::unordered_map<Uid, Index> m_index;
+};
+
+} // namespace regolith::particles

@@ -1,0 +1,287 @@
+// Scene sections: the default scene parses to what it says; every validation rule of every
+// section rejects a bad value with a message naming where it came from.
+#include "apps/regolith/SceneSections.hpp"
+
+#include "core/Error.hpp"
+#include "core/config/ConfigFile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <initializer_list>
+#include <string>
+
+using namespace regolith;
+using apps::SceneDescription;
+
+namespace {
+
+// A valid scene using every section; the tests break it one key at a time with --set.
+constexpr char const* kScene = R"([domain]
+min = [0, 0, 0]
+max = [8, 8, 4]
+blocks = [2, 2, 1]
+periodic = [true, false, false]
+refine = [{ min = [0, 0, 0], max = [2, 2, 2], level = 1 }]
+cells_per_block = [8, 8, 8]
+[time]
+dt = 0.01
+steps = 10
+[sync]
+method = "hybrid"
+[contact]
+model = "hertz"
+stiffness = 1e7
+restitution = 0.5
+friction = 0.3
+rolling_friction = 0.01
+[gravity]
+external = [0, 0, -9.81]
+self = "tree"
+G = 1.0
+theta = 0.7
+update_threshold = 0.1
+softening = 0.01
+[gravity.petsc]
+options = "-pc_type gamg"
+[[particles]]
+kind = "lattice"
+lattice = "hcp"
+spacing = 1.0
+radius = 0.5
+density = 2.0
+velocity = { random = [-0.1, 0.1], seed = 7 }
+[[particles]]
+kind = "list"
+radius = [1.0, 2.0]
+position = [[1, 1, 1], [5, 5, 2]]
+density = 3.0
+[[particles]]
+kind = "agglomerate"
+center = [4, 4, 2]
+radius = 1.5
+grain_radius = [0.1, 0.2]
+count = 100
+velocity = [0, 1, 0]
+density = 3000.0
+seed = 3
+[[particles]]
+kind = "file"
+path = "initial.csv"
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 2]
+[output]
+dir = "results"
+vtk_every = 10
+checkpoint_every = 100
+)";
+
+SceneDescription parse(std::initializer_list<std::string_view> overrides = {}) {
+    auto root = core::ConfigTable::fromString(kScene, "scenes/s.toml");
+    for (auto const o : overrides)
+        root.applyOverride(o);
+    return apps::parseScene(root, "scenes/s.toml");
+}
+
+/// The InputError message for the scene with `override` applied.
+std::string errorWith(std::string_view override) {
+    try {
+        (void)parse({override});
+    } catch (core::InputError const& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+} // namespace
+
+TEST(SceneSections, EverySectionParsed) {
+    auto const s = parse();
+    EXPECT_EQ(s.name, "s");
+    EXPECT_EQ(s.forest.domain.max, core::Vec3(8, 8, 4));
+    EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 1}));
+    EXPECT_EQ(s.forest.periodic, (std::array<bool, 3>{true, false, false}));
+    ASSERT_EQ(s.forest.refine.size(), 1u);
+    EXPECT_EQ(s.forest.refine[0].level, 1);
+    EXPECT_EQ(s.forest.cellsPerBlock, (std::array<int, 3>{8, 8, 8}));
+    EXPECT_EQ(s.time.dt, 0.01);
+    EXPECT_EQ(s.time.steps, 10);
+    EXPECT_EQ(s.time.integrator, apps::Integrator::Verlet);
+    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid);
+    EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
+    EXPECT_EQ(s.contact.rollingFriction, 0.01);
+    EXPECT_EQ(s.gravity.self, apps::SelfGravity::Tree);
+    EXPECT_EQ(s.gravity.external, core::Vec3(0, 0, -9.81));
+    EXPECT_EQ(s.gravity.petscOptions, "-pc_type gamg");
+    ASSERT_EQ(s.particles.size(), 4u);
+    auto const& lattice = std::get<apps::LatticeSource>(s.particles[0]);
+    EXPECT_EQ(lattice.lattice, apps::LatticeKind::Hcp);
+    EXPECT_EQ(lattice.region.max, s.forest.domain.max); // default region: the domain
+    EXPECT_EQ(lattice.velocity.randomMin, -0.1);
+    EXPECT_EQ(lattice.velocity.seed, 7u);
+    auto const& list = std::get<apps::ListSource>(s.particles[1]);
+    EXPECT_EQ(list.radius, (std::vector<double>{1.0, 2.0}));
+    ASSERT_EQ(list.velocity.size(), 2u); // defaulted to rest, one per grain
+    EXPECT_EQ(list.velocity[1], core::Vec3::Zero());
+    auto const& agg = std::get<apps::AgglomerateSource>(s.particles[2]);
+    EXPECT_EQ(agg.count, 100);
+    EXPECT_EQ(agg.velocity.mean, core::Vec3(0, 1, 0));
+    EXPECT_EQ(agg.grainRadiusMax, 0.2);
+    auto const& file = std::get<apps::FileSource>(s.particles[3]);
+    EXPECT_EQ(file.resolvedPath, "scenes/initial.csv");
+    ASSERT_EQ(s.walls.size(), 1u);
+    EXPECT_EQ(s.walls[0].normal, core::Vec3(0, 0, 1)); // normalised
+    EXPECT_EQ(s.output.dir, "results");
+    EXPECT_EQ(s.output.checkpointEvery, 100);
+}
+
+TEST(SceneSections, DefaultsForOptionalSections) {
+    auto const root = core::ConfigTable::fromString(
+        "[domain]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n[time]\ndt = 1\nsteps = 0\n", "m.toml");
+    auto const s = apps::parseScene(root, "");
+    EXPECT_EQ(s.name, "default");
+    EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{1, 1, 1}));
+    EXPECT_EQ(s.sync.method, apps::SyncMethod::Sos);
+    EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
+    EXPECT_EQ(s.contact.stiffness, 1e4);
+    EXPECT_EQ(s.gravity.self, apps::SelfGravity::None);
+    EXPECT_TRUE(s.particles.empty());
+    EXPECT_EQ(s.output.dir, "out");
+}
+
+TEST(SceneSections, DefaultSceneFileIsValid) {
+    auto const root = core::ConfigTable::fromFile(REGOLITH_SOURCE_DIR "/scenes/default.toml");
+    auto const s = apps::parseScene(root, "scenes/default.toml");
+    EXPECT_EQ(s.name, "sparse-gas-small");
+    EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 2}));
+    ASSERT_EQ(s.particles.size(), 1u);
+    EXPECT_EQ(std::get<apps::LatticeSource>(s.particles[0]).radius, 0.4);
+}
+
+TEST(SceneSections, DomainRules) {
+    EXPECT_EQ(errorWith("domain.blocks=[4,0,4]"),
+              "--set domain.blocks=[4,0,4]: domain.blocks: expected an array of 3 positive "
+              "integers (at most 2097152 each), got [4, 0, 4]");
+    EXPECT_EQ(errorWith("domain.max=[8,-1,4]"),
+              "--set domain.max=[8,-1,4]: domain.max: must exceed domain.min on every axis, got "
+              "min = [0, 0, 0], max = [8, -1, 4]");
+    EXPECT_EQ(errorWith("domain.min=[0,0,nan]"),
+              "--set domain.min=[0,0,nan]: domain.min: expected an array of 3 finite numbers, got "
+              "[0, 0, nan]");
+    EXPECT_EQ(errorWith("domain.cells_per_block=[8,0,8]"),
+              "--set domain.cells_per_block=[8,0,8]: domain.cells_per_block: expected an array of "
+              "3 integers, all positive (or all zero: no grid), got [8, 0, 8]");
+    EXPECT_EQ(errorWith("domain.refine.0.level=9"),
+              "--set domain.refine.0.level=9: domain.refine[0].level: expected an integer in [0, "
+              "8], got 9");
+    EXPECT_EQ(errorWith("domain.refine.0.max=[2,2,9]"),
+              "--set domain.refine.0.max=[2,2,9]: domain.refine[0].max: the region [0, 0, 0] - "
+              "[2, 2, 9] must lie inside the domain [0, 0, 0] - [8, 8, 4]");
+    EXPECT_EQ(errorWith("domain.refine.0.min=[3,0,0]"),
+              "scenes/s.toml:6: domain.refine[0].max: must not be below "
+              "domain.refine[0].min on any axis, got min = [3, 0, 0], max = [2, 2, 2]");
+    EXPECT_EQ(errorWith("domain.periodic=[true,false]"),
+              "--set domain.periodic=[true,false]: domain.periodic: expected an array of 3 "
+              "booleans, got [true, false]");
+}
+
+TEST(SceneSections, TimeSyncContactGravityOutputRules) {
+    EXPECT_EQ(errorWith("time.dt=0"), "--set time.dt=0: time.dt: expected a positive finite "
+                                      "number, got 0");
+    EXPECT_EQ(errorWith("time.dt=inf"), "--set time.dt=inf: time.dt: expected a positive finite "
+                                        "number, got inf");
+    EXPECT_EQ(errorWith("time.steps=-1"), "--set time.steps=-1: time.steps: expected a "
+                                          "non-negative integer, got -1");
+    EXPECT_EQ(errorWith("time.integrator=leapfrog"),
+              "--set time.integrator=leapfrog: time.integrator: expected one of \"euler\", "
+              "\"verlet\", got \"leapfrog\"");
+    EXPECT_EQ(errorWith("time.allow_unstable=1"),
+              "--set time.allow_unstable=1: time.allow_unstable: expected a boolean, got 1 (an "
+              "integer)");
+    EXPECT_EQ(errorWith("sync.method=sso"),
+              "--set sync.method=sso: sync.method: expected one of \"nns\", \"sos\", \"hybrid\", "
+              "got \"sso\" \u2014 did you mean \"sos\"?");
+    EXPECT_EQ(errorWith("contact.model=hooke"),
+              "--set contact.model=hooke: contact.model: expected one of \"spring-dashpot\", "
+              "\"hertz\", got \"hooke\"");
+    EXPECT_EQ(errorWith("contact.restitution=1.5"),
+              "--set contact.restitution=1.5: contact.restitution: expected a number in [0, 1], "
+              "got 1.5");
+    EXPECT_EQ(errorWith("contact.friction=-0.1"),
+              "--set contact.friction=-0.1: contact.friction: expected a non-negative finite "
+              "number, got -0.1");
+    EXPECT_EQ(errorWith("contact.stiffness=0"),
+              "--set contact.stiffness=0: contact.stiffness: expected a positive finite number, "
+              "got 0");
+    EXPECT_EQ(errorWith("gravity.self=occupied_cells"),
+              "--set gravity.self=occupied_cells: gravity.self: expected one of \"none\", "
+              "\"direct\", \"tree\", \"pm\", \"p3m\", \"occupied-cells\", \"tree-nodes\", got "
+              "\"occupied_cells\" \u2014 did you mean \"occupied-cells\"?");
+    EXPECT_EQ(errorWith("gravity.theta=0"),
+              "--set gravity.theta=0: gravity.theta: expected a positive finite number, got 0");
+    EXPECT_EQ(errorWith("gravity.G=-1"),
+              "--set gravity.G=-1: gravity.G: expected a positive finite number, got -1");
+    EXPECT_EQ(errorWith("gravity.petsc.options=3"),
+              "--set gravity.petsc.options=3: gravity.petsc.options: expected a string, got 3 (an "
+              "integer)");
+    EXPECT_EQ(errorWith("output.vtk_every=-2"),
+              "--set output.vtk_every=-2: output.vtk_every: expected a non-negative integer, got "
+              "-2");
+    EXPECT_EQ(errorWith("walls.0.normal=[0,0,0]"),
+              "--set walls.0.normal=[0,0,0]: walls[0].normal: expected a non-zero vector of 3 "
+              "finite numbers, got [0, 0, 0]");
+}
+
+TEST(SceneSections, ParticleRules) {
+    EXPECT_EQ(errorWith("particles.0.kind=lattise"),
+              "--set particles.0.kind=lattise: particles[0].kind: expected one of \"lattice\", "
+              "\"list\", \"agglomerate\", \"file\", got \"lattise\" \u2014 did you mean "
+              "\"lattice\"?");
+    EXPECT_EQ(errorWith("particles.0.radius=0.6"),
+              "--set particles.0.radius=0.6: particles[0].radius: grains of radius 0.6 overlap on "
+              "a lattice with spacing 1 (need 2 * radius <= spacing)");
+    EXPECT_EQ(errorWith("particles.0.density=0"),
+              "--set particles.0.density=0: particles[0].density: expected a positive finite "
+              "number, got 0");
+    EXPECT_EQ(errorWith("particles.0.velocity.random=[1,-1]"),
+              "--set particles.0.velocity.random=[1,-1]: particles[0].velocity.random: expected "
+              "an array [min, max] of finite numbers with min <= max, got [1, -1]");
+    EXPECT_EQ(errorWith("particles.1.radius=[1.0]"),
+              "--set particles.1.radius=[1.0]: particles[1].radius: expected one positive finite "
+              "radius per position (2), got [1]");
+    EXPECT_EQ(errorWith("particles.1.radius=inf"),
+              "--set particles.1.radius=inf: particles[1].radius: expected a positive finite "
+              "number or an array of them, got inf");
+    EXPECT_EQ(errorWith("particles.2.grain_radius=[0.1,2.0]"),
+              "--set particles.2.grain_radius=[0.1,2.0]: particles[2].grain_radius: the largest "
+              "grain (2) must be smaller than the agglomerate radius (1.5)");
+    EXPECT_EQ(errorWith("particles.2.count=0"),
+              "--set particles.2.count=0: particles[2].count: expected a positive integer, got 0");
+    EXPECT_EQ(errorWith("particles.3.path=\"\""),
+              "--set particles.3.path=\"\": particles[3].path: expected a non-empty file name, "
+              "got \"\"");
+}
+
+TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
+    EXPECT_EQ(errorWith("particles.2.sead=3"),
+              "--set particles.2.sead=3: unknown key 'particles[2].sead' \u2014 did you mean "
+              "'seed'?");
+    EXPECT_EQ(errorWith("particles.1.spacing=1.0"),
+              "--set particles.1.spacing=1.0: unknown key 'particles[1].spacing' (known keys "
+              "here: density, kind, position, radius, velocity)");
+    EXPECT_EQ(errorWith("gravity.petsc.option=\"-ksp_view\""),
+              "--set gravity.petsc.option=\"-ksp_view\": unknown key 'gravity.petsc.option' "
+              "\u2014 did you mean 'options'?");
+    EXPECT_EQ(errorWith("outptu.dir=\"x\""),
+              "--set outptu.dir=\"x\": unknown key 'outptu' \u2014 did you mean 'output'?");
+    // In a file, the message names the line.
+    auto const root = core::ConfigTable::fromString(
+        "[domain]\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n[time]\ndt = 1\nsteps = 0\nstesp = 3\n",
+        "t.toml");
+    try {
+        (void)apps::parseScene(root, "t.toml");
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_STREQ(e.what(), "t.toml:7: unknown key 'time.stesp' \u2014 did you mean 'steps'?");
+    }
+}

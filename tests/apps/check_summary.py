@@ -1,0 +1,52 @@
+"""Checks a run summary (--json) against the contract in DESIGN.md.
+
+usage: check_summary.py summary.json [key=value ...]
+Every contract key must be present with the right type; each key=value compares a top-level
+value (numbers compared as numbers, the rest as strings). Exit code 1 with a reason if not.
+"""
+import json
+import sys
+
+NUMBER = (int, float)
+SCHEMA = {
+    "scene": str, "ranks": int, "blocks": int, "sync": str, "particles": int, "shadows": int,
+    "steps": int, "wall_s": NUMBER, "pupcs": NUMBER, "peak_rss_bytes": int,
+    "timing_s": {"sync": NUMBER, "contact": NUMBER, "gravity": NUMBER, "integrate": NUMBER},
+    "comm": {"messages_per_step": NUMBER, "bytes_per_step": NUMBER, "max_peers": int},
+    "conserved": {"momentum": list, "angular_momentum": list, "kinetic_energy": NUMBER,
+                  "potential_energy": NUMBER, "center_of_mass": list},
+    "checksum": str,
+}
+
+
+def check(obj, schema, where):
+    for key, kind in schema.items():
+        if key not in obj:
+            sys.exit(f"missing key {where}{key}")
+        value = obj[key]
+        if isinstance(kind, dict):
+            check(value, kind, f"{where}{key}.")
+        elif isinstance(value, bool) or not isinstance(value, kind):
+            sys.exit(f"{where}{key} has the wrong type: {value!r}")
+        elif kind is list and (len(value) != 3 or not all(isinstance(x, NUMBER) for x in value)):
+            sys.exit(f"{where}{key} is not 3 numbers: {value!r}")
+
+
+def main():
+    with open(sys.argv[1], encoding="utf-8") as f:
+        summary = json.load(f)
+    check(summary, SCHEMA, "")
+    if not summary["checksum"] or any(c not in "0123456789abcdef" for c in summary["checksum"]):
+        sys.exit(f"checksum is not hex: {summary['checksum']!r}")
+    if summary["peak_rss_bytes"] <= 0:
+        sys.exit("peak_rss_bytes must be positive")
+    for expectation in sys.argv[2:]:
+        key, expected = expectation.split("=", 1)
+        actual = summary[key]
+        same = (actual == float(expected)) if isinstance(actual, NUMBER) else str(actual) == expected
+        if not same:
+            sys.exit(f"{key}: expected {expected}, got {actual!r}")
+
+
+if __name__ == "__main__":
+    main()

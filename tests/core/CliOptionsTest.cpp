@@ -1,0 +1,70 @@
+// The command line shared by every app: parsing, errors, and how options edit the scene.
+#include "core/app/CliOptions.hpp"
+
+#include "tests/core/ConfigTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace regolith::core;
+using regolith::testing::inputErrorOf;
+
+namespace {
+
+CliOptions parse(std::vector<std::string> const& args) {
+    std::vector<std::string> all{"regolith"};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char const*> argv;
+    for (auto const& a : all)
+        argv.push_back(a.c_str());
+    return parseCommandLine(static_cast<int>(argv.size()), argv.data(), "regolith");
+}
+
+} // namespace
+
+TEST(CliOptions, EveryOption) {
+    auto const o = parse({"--set", "time.dt=1e-3", "gas.toml", "--set=sync.method=sos", "--json",
+                          "s.json", "--dump", "f.csv", "--steps", "12", "--output", "out dir",
+                          "--restart", "c.h5", "--quiet"});
+    EXPECT_EQ(o.scenePath, "gas.toml");
+    EXPECT_EQ(o.overrides, (std::vector<std::string>{"time.dt=1e-3", "sync.method=sos"}));
+    EXPECT_EQ(o.jsonPath, "s.json");
+    EXPECT_EQ(o.dumpPath, "f.csv");
+    EXPECT_EQ(o.steps, 12);
+    EXPECT_EQ(o.outputDir, "out dir");
+    EXPECT_EQ(o.restartPath, "c.h5");
+    EXPECT_TRUE(o.quiet);
+    EXPECT_FALSE(o.help);
+
+    auto const none = parse({});
+    EXPECT_TRUE(none.scenePath.empty());
+    EXPECT_FALSE(none.steps.has_value());
+    EXPECT_FALSE(none.quiet);
+    EXPECT_TRUE(parse({"--help"}).help);
+    EXPECT_NE(usage("regolith").find("--set"), std::string::npos);
+}
+
+TEST(CliOptions, BadCommandLinesAreInputErrors) {
+    auto err = [](std::vector<std::string> const& a) {
+        return inputErrorOf([&] { (void)parse(a); });
+    };
+    EXPECT_NE(err({"--bogus"}).find("--bogus"), std::string::npos);
+    EXPECT_NE(err({"--bogus"}).find("run 'regolith --help'"), std::string::npos);
+    EXPECT_NE(err({"a.toml", "b.toml"}).find("b.toml"), std::string::npos);
+    EXPECT_NE(err({"--steps", "many"}).find("--steps"), std::string::npos);
+    EXPECT_NE(err({"--json"}).find("--json"), std::string::npos);
+}
+
+TEST(CliOptions, SceneOptionsEditTheSceneWithTheirOwnOrigin) {
+    auto scene = ConfigTable::fromString("[time]\ndt = 0.1\nsteps = 10\n", "s.toml");
+    applySceneOptions(parse({"--set", "time.dt=0.5", "--steps", "-3", "--set", "time.steps=4",
+                             "--output", "a \"q\" dir"}),
+                      scene);
+    auto const time = scene.table("time");
+    EXPECT_EQ(time.get<double>("dt"), 0.5);
+    EXPECT_EQ(time.get<int>("steps"), -3); // --steps is applied after every --set
+    EXPECT_EQ(time.location("steps"), "--steps -3");
+    EXPECT_EQ(scene.table("output").getString("dir"), "a \"q\" dir");
+    EXPECT_EQ(scene.table("output").location("dir"), "--output a \"q\" dir");
+}

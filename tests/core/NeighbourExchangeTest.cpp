@@ -1,0 +1,218 @@
+// NeighbourExchange: random symmetric peer graphs with 0 B .. 1 MiB messages over several
+// rounds on one object, exact counters, delivery order, misuse and error paths.
+#include "core/mpi/NeighbourExchange.hpp"
+
+#include "core/Error.hpp"
+#include "tests/core/ExchangePattern.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+using namespace regolith::core;
+using regolith::testing::ExchangePattern;
+
+namespace {
+
+constexpr int kRounds = 5; // every (src, dst) meets an empty and a 1 MiB message (pattern)
+
+/// What this rank sends in `round`, as NeighbourExchange counts it (its header).
+CommStats expectedStats(ExchangePattern const& pat, int me, int round) {
+    CommStats s;
+    for (int const q : pat.peersOf(me)) {
+        if (q == me)
+            continue;
+        std::size_t const n = pat.size(me, q, round);
+        s.messages += 1 + (n > 0 ? 1 : 0);
+        s.bytes += sizeof(std::uint64_t) + n;
+        ++s.peers;
+    }
+    return s;
+}
+
+} // namespace
+
+TEST(NeighbourExchange, RandomPatternsArriveIntactWithExactCounters) {
+    Comm world;
+    int const me = world.rank();
+    for (std::uint64_t const seed : {11u, 12u}) {
+        ExchangePattern const pat{world.size(), seed};
+        auto const peers = pat.peersOf(me);
+        NeighbourExchange ex(world, peers);
+        EXPECT_TRUE(NeighbourExchange::peersAreSymmetric(world, peers));
+
+        CommStats total;
+        for (int round = 0; round < kRounds; ++round) {
+            for (int const q : peers)
+                pat.pack(ex.sendBuffer(q), me, q, round);
+            ex.start();
+            EXPECT_TRUE(ex.inFlight());
+            std::vector<int> order;
+            ex.wait([&](int from, RecvBuffer& in) {
+                order.push_back(from);
+                EXPECT_EQ(pat.verify(in, from, me, round), "") << "seed " << seed;
+            });
+            EXPECT_FALSE(ex.inFlight());
+            EXPECT_EQ(order, peers) << "every peer delivered once, ascending";
+
+            CommStats const expected = expectedStats(pat, me, round);
+            EXPECT_EQ(ex.counters().last(), expected) << "round " << round;
+            total.messages += expected.messages;
+            total.bytes += expected.bytes;
+            total.peers = std::max(total.peers, expected.peers);
+        }
+        EXPECT_EQ(ex.counters().calls(), static_cast<std::uint64_t>(kRounds));
+        EXPECT_EQ(ex.counters().totalMessages(), total.messages);
+        EXPECT_EQ(ex.counters().totalBytes(), total.bytes);
+        EXPECT_EQ(ex.counters().maxPeers(), total.peers);
+
+        // Over all ranks, from the pattern alone.
+        std::uint64_t allMessages = 0;
+        std::uint64_t allBytes = 0;
+        int maxPeers = 0;
+        for (int r = 0; r < world.size(); ++r)
+            for (int round = 0; round < kRounds; ++round) {
+                CommStats const s = expectedStats(pat, r, round);
+                allMessages += s.messages;
+                allBytes += s.bytes;
+                maxPeers = std::max(maxPeers, s.peers);
+            }
+        CommTotals const g = ex.counters().reduce(world);
+        EXPECT_EQ(g.messages, allMessages);
+        EXPECT_EQ(g.bytes, allBytes);
+        EXPECT_EQ(g.calls, static_cast<std::uint64_t>(kRounds));
+        EXPECT_EQ(g.maxPeers, maxPeers);
+    }
+}
+
+TEST(NeighbourExchange, AllToAllManyQuickRoundsKeepRoundsApart) {
+    // Small messages in rapid succession: a fast rank's next round must never be mistaken
+    // for the current one. Each message carries (source, round, a size varying by round).
+    Comm world;
+    int const me = world.rank();
+    std::vector<int> all(static_cast<std::size_t>(world.size()));
+    for (int r = 0; r < world.size(); ++r)
+        all[static_cast<std::size_t>(r)] = r;
+    NeighbourExchange ex(world, all);
+    for (int round = 0; round < 60; ++round) {
+        for (int const q : all) {
+            auto& b = ex.sendBuffer(q);
+            if ((round + me + q) % 3 != 0) // some rounds send nothing to q
+                b << me << round << std::vector<int>(static_cast<std::size_t>(round % 7), q);
+        }
+        ex.start();
+        for (auto& m : ex.wait()) {
+            if ((round + m.rank + me) % 3 == 0) {
+                EXPECT_TRUE(m.buffer.exhausted());
+                continue;
+            }
+            EXPECT_EQ(read<int>(m.buffer), m.rank);
+            EXPECT_EQ(read<int>(m.buffer), round);
+            EXPECT_EQ(read<std::vector<int>>(m.buffer),
+                      std::vector<int>(static_cast<std::size_t>(round % 7), me));
+            EXPECT_TRUE(m.buffer.exhausted());
+        }
+    }
+}
+
+TEST(NeighbourExchange, SelfOnlyNeedsNoMpiAndIsNotCounted) {
+    Comm world;
+    NeighbourExchange ex(world, {world.rank()});
+    ex.sendBuffer(world.rank()) << 42.5 << std::string("self");
+    ex.start();
+    auto msgs = ex.wait();
+    ASSERT_EQ(msgs.size(), 1u);
+    EXPECT_EQ(msgs[0].rank, world.rank());
+    EXPECT_EQ(read<double>(msgs[0].buffer), 42.5);
+    EXPECT_EQ(read<std::string>(msgs[0].buffer), "self");
+    EXPECT_EQ(ex.counters().last(), CommStats{});
+    EXPECT_EQ(ex.counters().calls(), 1u);
+}
+
+TEST(NeighbourExchange, MisuseThrows) {
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    // A ring without myself: the next rank is a peer, I am not (for p == 1 nothing is).
+    std::vector<int> ring;
+    if (p > 1) {
+        ring = {(me + p - 1) % p, (me + 1) % p};
+        std::sort(ring.begin(), ring.end());
+        ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    }
+    NeighbourExchange ex(world, ring);
+    EXPECT_THROW(ex.sendBuffer(me), Error) << "self is not a peer here";
+    EXPECT_THROW(ex.sendBuffer(-1), Error);
+    EXPECT_THROW(ex.sendBuffer(p), Error);
+    EXPECT_THROW(static_cast<void>(ex.wait()), Error) << "wait without start";
+
+    for (int const q : ring)
+        ex.sendBuffer(q) << me;
+    ex.start();
+    if (!ring.empty()) {
+        EXPECT_THROW(ex.sendBuffer(ring.front()), Error) << "buffer in flight";
+    }
+    EXPECT_THROW(ex.start(), Error) << "start twice";
+    auto msgs = ex.wait();
+    EXPECT_EQ(msgs.size(), ring.size());
+    for (auto& m : msgs)
+        EXPECT_EQ(read<int>(m.buffer), m.rank);
+
+    // Every rank throws (after the collective duplicate), so nobody is left waiting.
+    EXPECT_THROW(static_cast<void>(NeighbourExchange(world, std::vector<int>{p})), Error)
+        << "out of range";
+    EXPECT_THROW(static_cast<void>(NeighbourExchange(world, std::vector<int>{0, 0})), Error)
+        << "not strictly ascending";
+}
+
+TEST(NeighbourExchange, SymmetryCheckSeesOneWayLinks) {
+    Comm world;
+    int const p = world.size();
+    // Directed ring me -> me+1: symmetric only if p <= 2.
+    std::vector<int> const next{(world.rank() + 1) % p};
+    EXPECT_EQ(NeighbourExchange::peersAreSymmetric(world, next), p <= 2);
+    std::vector<int> const bad{p};
+    EXPECT_FALSE(NeighbourExchange::peersAreSymmetric(world, bad));
+}
+
+TEST(NeighbourExchange, ThrowingCallbackCompletesTheCallAndLeavesItUsable) {
+    Comm world;
+    ExchangePattern const pat{world.size(), 99};
+    auto const peers = pat.peersOf(world.rank());
+    NeighbourExchange ex(world, peers);
+    for (int round = 0; round < 2; ++round) {
+        for (int const q : peers)
+            pat.pack(ex.sendBuffer(q), world.rank(), q, round);
+        ex.start();
+        if (round == 0 && !peers.empty()) {
+            EXPECT_THROW(ex.wait([](int, RecvBuffer&) { throw std::runtime_error("user"); }),
+                         std::runtime_error);
+            EXPECT_FALSE(ex.inFlight());
+        } else {
+            ex.wait([&](int from, RecvBuffer& in) {
+                EXPECT_EQ(pat.verify(in, from, world.rank(), round), "");
+            });
+        }
+    }
+}
+
+TEST(NeighbourExchange, DestroyedInFlightCompletesItsCall) {
+    Comm world;
+    ExchangePattern const pat{world.size(), 7};
+    auto const peers = pat.peersOf(world.rank());
+    {
+        NeighbourExchange ex(world, peers);
+        for (int const q : peers)
+            pat.pack(ex.sendBuffer(q), world.rank(), q, 0);
+        ex.start();
+    } // destructor drains
+    NeighbourExchange ex(world, peers);
+    for (int const q : peers)
+        pat.pack(ex.sendBuffer(q), world.rank(), q, 1);
+    ex.start();
+    for (auto& m : ex.wait())
+        EXPECT_EQ(pat.verify(m.buffer, m.rank, world.rank(), 1), "");
+}

@@ -1,0 +1,137 @@
+// The Hilbert curve (bijective, continuous) and the cut of a weighted curve into per-rank
+// chunks (contiguous, balanced within one maximum weight).
+#include "core/Error.hpp"
+#include "domain/HilbertCurve.hpp"
+#include "domain/SfcPartition.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+using namespace regolith;
+using namespace regolith::domain;
+
+TEST(HilbertCurve, VisitsEveryCellOnceThroughFaceNeighbours) {
+    for (int bits = 1; bits <= 4; ++bits) {
+        std::uint64_t const cells = std::uint64_t{1} << (3 * bits);
+        std::set<std::array<std::uint32_t, 3>> seen;
+        std::array<std::uint32_t, 3> previous{};
+        for (std::uint64_t i = 0; i < cells; ++i) {
+            auto const c = hilbertCell(i, bits);
+            for (std::uint32_t const x : c)
+                EXPECT_LT(x, std::uint32_t{1} << bits);
+            EXPECT_EQ(hilbertIndex(c, bits), i) << "bits " << bits;
+            EXPECT_TRUE(seen.insert(c).second) << "cell visited twice";
+            if (i > 0) {
+                int manhattan = 0;
+                for (int a = 0; a < 3; ++a)
+                    manhattan += std::abs(static_cast<int>(c[a]) - static_cast<int>(previous[a]));
+                EXPECT_EQ(manhattan, 1) << "jump at " << i << " (bits " << bits << ")";
+            }
+            previous = c;
+        }
+        EXPECT_EQ(seen.size(), cells);
+        EXPECT_EQ(hilbertCell(0, bits), (std::array<std::uint32_t, 3>{0, 0, 0}));
+    }
+}
+
+TEST(HilbertCurve, RoundTripsOnLargeGrids) {
+    std::mt19937_64 rng(5);
+    for (int bits : {10, 21}) {
+        std::uniform_int_distribution<std::uint32_t> coord(0, (std::uint32_t{1} << bits) - 1);
+        for (int i = 0; i < 1000; ++i) {
+            std::array<std::uint32_t, 3> const c{coord(rng), coord(rng), coord(rng)};
+            std::uint64_t const h = hilbertIndex(c, bits);
+            EXPECT_LT(h, std::uint64_t{1} << (3 * bits));
+            EXPECT_EQ(hilbertCell(h, bits), c);
+        }
+    }
+}
+
+TEST(HilbertCurve, EnclosingGridAndLimits) {
+    EXPECT_EQ(hilbertBitsFor({1, 1, 1}), 0);
+    EXPECT_EQ(hilbertBitsFor({2, 1, 1}), 1);
+    EXPECT_EQ(hilbertBitsFor({3, 1, 1}), 2);
+    EXPECT_EQ(hilbertBitsFor({4, 4, 4}), 2);
+    EXPECT_EQ(hilbertBitsFor({1, 1, 100}), 7);
+    EXPECT_EQ(hilbertIndex({0, 0, 0}, 0), 0U);
+    EXPECT_THROW((void)hilbertIndex({0, 0, 0}, kMaxHilbertBits + 1), core::Error);
+    EXPECT_THROW((void)hilbertCell(0, -1), core::Error);
+}
+
+namespace {
+
+/// Checks owners are contiguous, in range, and every load is within the maximum weight of the
+/// mean. Returns the number of ranks that got at least one element.
+int checkPartition(std::vector<double> const& w, std::vector<int> const& owner, int parts) {
+    EXPECT_EQ(owner.size(), w.size());
+    double total = 0.0;
+    double wmax = 0.0;
+    for (double const x : w) {
+        total += x;
+        wmax = std::max(wmax, x);
+    }
+    std::vector<double> load(static_cast<std::size_t>(parts), 0.0);
+    std::set<int> used;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        EXPECT_GE(owner[i], 0);
+        EXPECT_LT(owner[i], parts);
+        if (i > 0) {
+            EXPECT_LE(owner[i - 1], owner[i]) << "not contiguous at " << i;
+        }
+        load[static_cast<std::size_t>(owner[i])] += w[i];
+        used.insert(owner[i]);
+    }
+    if (total > 0.0) {
+        for (int r = 0; r < parts; ++r) {
+            EXPECT_LE(std::abs(load[static_cast<std::size_t>(r)] - total / parts),
+                      wmax * (1.0 + 1e-12))
+                << "rank " << r << " of " << parts << ", " << w.size() << " elements";
+        }
+    }
+    return static_cast<int>(used.size());
+}
+
+} // namespace
+
+TEST(SfcPartition, RandomWeightsAreBalancedWithinOneMaximumWeight) {
+    std::mt19937_64 rng(99);
+    for (int trial = 0; trial < 300; ++trial) {
+        int const n = std::uniform_int_distribution<int>(0, 400)(rng);
+        int const parts = std::uniform_int_distribution<int>(1, 33)(rng);
+        double const spread = std::pow(10.0, std::uniform_real_distribution<double>(0, 4)(rng));
+        std::vector<double> w(static_cast<std::size_t>(n));
+        for (double& x : w) // some zeros, the rest spanning `spread`
+            x = std::uniform_int_distribution<int>(0, 9)(rng) == 0
+                    ? 0.0
+                    : std::uniform_real_distribution<double>(1.0, spread)(rng);
+        checkPartition(w, partitionCurve(w, parts), parts);
+    }
+}
+
+TEST(SfcPartition, EqualWeightsAndIdleRanks) {
+    std::vector<double> const ten(10, 2.5);
+    auto const owner = partitionCurve(ten, 3); // 10 / 3: chunks of 3 or 4
+    EXPECT_EQ(checkPartition(ten, owner, 3), 3);
+    std::vector<double> const two(2, 1.0);
+    EXPECT_EQ(checkPartition(two, partitionCurve(two, 8), 8), 2); // six ranks idle
+    std::vector<double> const zeros(5, 0.0); // no load information: count the blocks
+    auto const z = partitionCurve(zeros, 5);
+    EXPECT_EQ(z, (std::vector<int>{0, 1, 2, 3, 4}));
+    std::vector<double> const heavy{1, 1, 100, 1, 1}; // one block outweighs the rest
+    EXPECT_EQ(checkPartition(heavy, partitionCurve(heavy, 4), 4), 3);
+}
+
+TEST(SfcPartition, RejectsBadWeightsAndRankCounts) {
+    std::vector<double> const negative{1.0, -1.0};
+    EXPECT_THROW((void)partitionCurve(negative, 2), core::InputError);
+    std::vector<double> const nan{1.0, std::numeric_limits<double>::quiet_NaN()};
+    EXPECT_THROW((void)partitionCurve(nan, 2), core::InputError);
+    std::vector<double> const inf{std::numeric_limits<double>::infinity()};
+    EXPECT_THROW((void)partitionCurve(inf, 2), core::InputError);
+    EXPECT_THROW((void)partitionCurve(negative, 0), core::InputError);
+}

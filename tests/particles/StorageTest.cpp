@@ -1,0 +1,200 @@
+// Particle storage: uids, flags, contact history and the SoA container with its uid map.
+#include "particles/storage/ParticleStorage.hpp"
+#include "particles/storage/WallList.hpp"
+#include "tests/particles/ParticleTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+#include <vector>
+
+using namespace regolith::particles;
+using namespace regolith::particles::test;
+using regolith::core::Error;
+using regolith::core::InputError;
+
+TEST(Uid, PacksRankAndCounterAndRejectsOverflow) {
+    Uid const u = makeUid(123, 456789);
+    EXPECT_EQ(uidRank(u), 123);
+    EXPECT_EQ(uidCounter(u), 456789U);
+    EXPECT_EQ(makeUid(1, 0), Uid{1} << 40);
+    EXPECT_LT(makeUid(0, kUidCounterMask), makeUid(1, 0)); // orders by rank, then counter
+    EXPECT_THROW((void)makeUid(-1, 0), Error);
+    EXPECT_THROW((void)makeUid(kGlobalObjectRank + 1, 0), Error);
+    EXPECT_THROW((void)makeUid(0, kUidCounterMask + 1), Error);
+    EXPECT_THROW((void)makeUid(kGlobalObjectRank, kUidCounterMask), Error); // == kInvalidUid
+
+    UidGenerator gen(5, 10);
+    EXPECT_EQ(gen.next(), makeUid(5, 10));
+    EXPECT_EQ(gen.next(), makeUid(5, 11));
+    EXPECT_EQ(gen.nextCounter(), 12U);
+    // Walls live in the reserved rank field: never equal to a particle's uid.
+    EXPECT_EQ(uidRank(wallUid(3)), kGlobalObjectRank);
+}
+
+TEST(Flags, SetAndTest) {
+    Flags f;
+    EXPECT_TRUE(f.isMaster());
+    f.set(Flag::Shadow).set(Flag::Fixed);
+    EXPECT_TRUE(f.isShadow() && f.isFixed() && !f.isGlobal());
+    f.set(Flag::Shadow, false);
+    EXPECT_TRUE(f.isMaster() && f.isFixed());
+    EXPECT_EQ(Flag::Fixed | Flag::Global, Flags(Flag::Global).set(Flag::Fixed));
+}
+
+TEST(ContactHistory, SortedByPartnerAndPrunedByStamp) {
+    ContactHistory h;
+    h.touch(30, 1).spring = Vec3(1, 0, 0);
+    h.touch(10, 1).spring = Vec3(2, 0, 0);
+    h.touch(20, 1);
+    ASSERT_EQ(h.size(), 3U);
+    std::vector<Uid> order;
+    for (auto const& e : h)
+        order.push_back(e.partner);
+    EXPECT_EQ(order, (std::vector<Uid>{10, 20, 30}));
+    EXPECT_EQ(h.find(10)->spring.x(), 2.0);
+    EXPECT_EQ(h.find(15), nullptr);
+    // Next pass: 10 and 30 touched again (30 keeps its spring), 20 broke.
+    EXPECT_EQ(h.touch(30, 2).spring.x(), 1.0);
+    h.touch(10, 2);
+    EXPECT_EQ(h.keepOnly(2), 1U);
+    EXPECT_EQ(h.find(20), nullptr);
+    EXPECT_TRUE(h.erase(10));
+    EXPECT_FALSE(h.erase(10));
+    h.set(HistoryEntry{5, Vec3(0, 3, 0), 2});
+    EXPECT_EQ(h.entries().front().partner, 5U);
+    EXPECT_EQ(h.keepOnly(3), 2U);
+    EXPECT_TRUE(h.empty());
+    EXPECT_EQ(h.heapBytes(), 0U);
+}
+
+TEST(ParticleStorage, InversesFollowMassRadiusAndFixedFlag) {
+    ParticleStorage ps;
+    auto const i = ps.add(sphere(7, Vec3::Zero(), 0.5, 2.0));
+    EXPECT_DOUBLE_EQ(ps.invMass(i), 0.5);
+    EXPECT_DOUBLE_EQ(ps.invInertia(i), 1.0 / (0.4 * 2.0 * 0.25));
+    ps.setMass(i, 4.0);
+    ps.setRadius(i, 1.0);
+    EXPECT_DOUBLE_EQ(ps.invInertia(i), 1.0 / (0.4 * 4.0));
+    ps.setFlags(i, Flag::Fixed);
+    EXPECT_EQ(ps.invMass(i), 0.0);
+    EXPECT_EQ(ps.invInertia(i), 0.0);
+    EXPECT_THROW(ps.add(sphere(7, Vec3::Zero(), 1.0, 1.0)), Error);
+    EXPECT_THROW(ps.add(sphere(kInvalidUid, Vec3::Zero(), 1.0, 1.0)), Error);
+    EXPECT_EQ(ps.size(), 1U);
+}
+
+TEST(ParticleStorage, RandomAddRemoveKeepsUidMapConsistent) {
+    // A std::map from uid to the particle's data is the model; 20,000 random operations
+    // (add, remove by index, remove by uid, also of absent uids), full comparison every 50.
+    struct Record {
+        Vec3 position;
+        double mass;
+        Flags flags;
+        Uid partner; // one history entry per particle travels with it too
+    };
+    std::map<Uid, Record> model;
+    ParticleStorage ps;
+    std::mt19937_64 rng(2024);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    UidGenerator gen(3);
+
+    auto check = [&] {
+        ASSERT_EQ(ps.size(), model.size());
+        std::size_t masters = 0;
+        for (auto const& [uid, rec] : model) {
+            auto const i = ps.find(uid);
+            ASSERT_NE(i, ParticleStorage::kNotFound);
+            EXPECT_EQ(ps.uid(i), uid);
+            EXPECT_EQ(ps.position(i), rec.position);
+            EXPECT_EQ(ps.mass(i), rec.mass);
+            EXPECT_EQ(ps.invMass(i), rec.flags.isFixed() ? 0.0 : 1.0 / rec.mass);
+            EXPECT_EQ(ps.flags(i), rec.flags);
+            ASSERT_EQ(ps.history(i).size(), 1U);
+            EXPECT_EQ(ps.history(i).entries()[0].partner, rec.partner);
+            masters += rec.flags.isMaster() ? 1 : 0;
+        }
+        for (std::size_t i = 0; i < ps.size(); ++i)
+            EXPECT_EQ(ps.find(ps.uid(i)), i);
+        EXPECT_EQ(ps.countMasters(), masters);
+        std::size_t visited = 0;
+        ps.forEachMaster([&](std::size_t i) {
+            EXPECT_TRUE(ps.flags(i).isMaster());
+            ++visited;
+        });
+        EXPECT_EQ(visited, masters);
+    };
+
+    for (int op = 0; op < 20000; ++op) {
+        double const r = u(rng);
+        if (r < 0.5 || ps.empty()) {
+            Uid const uid = gen.next();
+            ParticleInit p = sphere(uid, Vec3(u(rng), u(rng), u(rng)), 0.1, 1.0 + u(rng));
+            if (u(rng) < 0.3)
+                p.flags = Flag::Shadow;
+            if (u(rng) < 0.1)
+                p.flags = p.flags | Flag::Fixed;
+            auto const i = ps.add(p);
+            Uid const partner = uid + 1000000;
+            ps.history(i).touch(partner, 1);
+            model[uid] = Record{p.position, p.mass, p.flags, partner};
+        } else if (r < 0.8) {
+            auto const i = static_cast<std::size_t>(u(rng) * static_cast<double>(ps.size()));
+            model.erase(ps.uid(i));
+            ps.remove(i);
+        } else {
+            // Remove by uid: an existing one, or one never added.
+            bool const existing = u(rng) < 0.7;
+            Uid const uid = existing ? std::next(model.begin(),
+                                                 static_cast<std::ptrdiff_t>(u(rng) * model.size()))
+                                           ->first
+                                     : makeUid(4, op);
+            EXPECT_EQ(ps.removeUid(uid), existing);
+            model.erase(uid);
+        }
+        if (op % 50 == 0)
+            check();
+    }
+    check();
+    EXPECT_GT(ps.bytes(), ps.size() * (6 * sizeof(Vec3)));
+    ps.clear();
+    EXPECT_TRUE(ps.empty());
+    EXPECT_EQ(ps.find(model.begin()->first), ParticleStorage::kNotFound);
+}
+
+TEST(ParticleStorage, PermuteMovesEveryPropertyAndTheMap) {
+    ParticleStorage ps;
+    for (Uid u = 0; u < 6; ++u) {
+        auto const i =
+            ps.add(sphere(100 + u, Vec3(static_cast<double>(u), 0, 0), 0.1 * (u + 1), 1.0 + u));
+        ps.history(i).touch(200 + u, 1);
+        ps.shadowHolders(i).push_back(BlockRef{static_cast<int>(u), u});
+    }
+    std::vector<std::size_t> const order{3, 0, 5, 1, 4, 2};
+    ps.permute(order);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        Uid const u = order[k];
+        EXPECT_EQ(ps.uid(k), 100 + u);
+        EXPECT_EQ(ps.find(100 + u), k);
+        EXPECT_EQ(ps.position(k).x(), static_cast<double>(u));
+        EXPECT_DOUBLE_EQ(ps.radius(k), 0.1 * (u + 1));
+        EXPECT_DOUBLE_EQ(ps.invMass(k), 1.0 / (1.0 + u));
+        EXPECT_EQ(ps.history(k).entries().at(0).partner, 200 + u);
+        EXPECT_EQ(ps.shadowHolders(k).at(0).block, u);
+    }
+    EXPECT_THROW(ps.permute(std::vector<std::size_t>{0, 1, 2}), Error);
+    EXPECT_THROW(ps.permute(std::vector<std::size_t>{0, 1, 2, 3, 4, 4}), Error);
+    EXPECT_EQ(ps.uid(0), 103U); // unchanged by the refused calls
+}
+
+TEST(WallList, NormalisesAndRejectsBadNormals) {
+    WallList walls;
+    auto const k = walls.add(Vec3(0, 0, 1), Vec3(0, 0, 2));
+    EXPECT_EQ(walls[k].normal, Vec3::UnitZ());
+    EXPECT_EQ(walls[k].uid, wallUid(0));
+    EXPECT_DOUBLE_EQ(walls[k].distance(Vec3(5, 5, 3)), 2.0);
+    EXPECT_THROW(walls.add(Vec3::Zero(), Vec3::Zero()), InputError);
+    EXPECT_THROW(walls.add(Vec3::Zero(), Vec3(std::nan(""), 0, 1)), InputError);
+    EXPECT_EQ(walls.size(), 1U);
+}
