@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Runs every benchmark and writes its raw output under bench/out/. The figures quoted in
+# docs/results.md come from this script (`make bench`). Benchmarks are not tests.
+set -euo pipefail
+build=${1:-build/default}
+out=bench/out
+mkdir -p "$out"
+echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+
+# Detection + contact cost per particle-step (sparse gas vs. the same with a radius-30 sphere)
+# and bytes per particle for 1,000,000 grains.
+"$build/bin/particles_bench" --benchmark_out="$out/particles_bench.json" \
+    --benchmark_out_format=json | tee "$out/particles_bench.txt"
