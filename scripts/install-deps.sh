@@ -14,6 +14,7 @@ packages=(
   libbenchmark-dev                   # bench/
   libtomlplusplus-dev libcli11-dev   # scene files and command line
   libfmt-dev libspdlog-dev           # formatting and logging
+  python3                            # tests/apps scripts (summary checks, run comparisons)
 )
 
 missing=()

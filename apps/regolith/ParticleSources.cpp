@@ -1,168 +1,149 @@
-// [[particles]] entries: the four kinds of particle source (DESIGN.md, "Scene file").
+// [[particles]] entries: the four kinds of particle source (DESIGN.md, "Scene file"), read into
+// the generators' input types. Only what TOML decides is checked here (key names, types,
+// choices, integer ranges that the target types cannot hold); the value rules live in one
+// place, particles::validateParticleSpecs, which parseScene runs on the result.
 #include "apps/regolith/SceneSections.hpp"
-#include "core/config/ValueChecks.hpp"
 
-#include <fmt/format.h>
-
-#include <algorithm>
 #include <array>
-#include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <string_view>
+#include <vector>
 
 namespace regolith::apps {
-
-using core::isFiniteVec3;
-using core::isPositiveFinite;
 
 namespace {
 
 using namespace std::string_view_literals;
 
 constexpr std::array kKindNames{"lattice"sv, "list"sv, "agglomerate"sv, "file"sv};
-constexpr std::array kLatticeNames{"sc"sv, "bcc"sv, "fcc"sv, "hcp"sv};
-constexpr char const* kPositive = "a positive finite number";
+/// In the order of particles::LatticeKind.
+constexpr std::array kLatticeNames{"sc"sv, "hcp"sv};
 
-VelocitySpec parseVelocity(core::ConfigTable const& t) {
-    VelocitySpec v;
-    switch (t.kindOf("velocity")) {
-    case core::ConfigKind::Missing:
-        return v;
-    case core::ConfigKind::Table:
-        break;
-    default:
-        v.mean = t.getIf<core::Vec3>("velocity", isFiniteVec3,
-                                     "an array of 3 finite numbers or a table { mean, random, "
-                                     "seed }");
-        return v;
-    }
-    auto const table = t.table("velocity");
-    v.mean =
-        table.getOrIf<core::Vec3>("mean", v.mean, isFiniteVec3, "an array of 3 finite numbers");
-    auto const range = table.getOrIf<std::array<double, 2>>(
-        "random", {0.0, 0.0},
-        [](auto const& r) { return std::isfinite(r[0]) && std::isfinite(r[1]) && r[0] <= r[1]; },
-        "an array [min, max] of finite numbers with min <= max");
-    v.randomMin = range[0];
-    v.randomMax = range[1];
-    v.seed = static_cast<std::uint64_t>(
-        table.getOrIf<std::int64_t>("seed", 0, core::isNonNegative, "a non-negative integer"));
-    return v;
+/// seed = n: a non-negative integer (TOML integers are signed 64-bit).
+std::uint64_t seedOr(core::ConfigTable const& t, std::string_view key, std::uint64_t fallback) {
+    if (!t.has(key))
+        return fallback;
+    return static_cast<std::uint64_t>(t.getIf<std::int64_t>(
+        key, [](std::int64_t s) { return s >= 0; }, "a non-negative integer"));
 }
 
-LatticeSource parseLattice(core::ConfigTable const& t, core::AABB const& domain) {
-    LatticeSource s;
-    s.lattice = static_cast<LatticeKind>(t.getChoice("lattice", kLatticeNames));
-    s.spacing = t.getIf<double>("spacing", isPositiveFinite, kPositive);
-    s.radius = t.getIf<double>("radius", isPositiveFinite, kPositive);
-    if (2.0 * s.radius > s.spacing)
-        t.fail("radius", fmt::format("grains of radius {} overlap on a lattice with spacing {} "
-                                     "(need 2 * radius <= spacing)",
-                                     s.radius, s.spacing));
-    s.density = t.getIf<double>("density", isPositiveFinite, kPositive);
+/// velocity = [vx, vy, vz] (every grain) or velocity = { random = [lo, hi], seed = s }.
+particles::VelocitySpec parseVelocity(core::ConfigTable const& t) {
+    auto const kind = t.kindOf("velocity");
+    if (kind == core::ConfigKind::Missing)
+        return core::Vec3(0.0, 0.0, 0.0);
+    if (kind == core::ConfigKind::Table) {
+        auto const table = t.table("velocity");
+        auto const range = table.get<std::array<double, 2>>("random");
+        return particles::RandomVelocity{range[0], range[1], seedOr(table, "seed", 0)};
+    }
+    if (kind != core::ConfigKind::Array)
+        t.failExpected("velocity", "[vx, vy, vz] or a table { random = [lo, hi], seed = n }");
+    return t.get<core::Vec3>("velocity");
+}
+
+particles::LatticeSpec parseLattice(core::ConfigTable const& t, core::AABB const& domain) {
+    particles::LatticeSpec s;
+    s.lattice = static_cast<particles::LatticeKind>(t.getChoice("lattice", kLatticeNames));
+    s.spacing = t.get<double>("spacing");
+    s.radius = t.get<double>("radius");
+    s.density = t.get<double>("density");
     s.region = domain;
     if (auto const region = t.findTable("region")) {
-        s.region.min =
-            region->getIf<core::Vec3>("min", isFiniteVec3, "an array of 3 finite numbers");
-        s.region.max =
-            region->getIf<core::Vec3>("max", isFiniteVec3, "an array of 3 finite numbers");
-        if (!(s.region.max.array() > s.region.min.array()).all())
-            region->failExpected("max", "a corner above region.min on every axis");
+        s.region.min = region->get<core::Vec3>("min");
+        s.region.max = region->get<core::Vec3>("max");
     }
     s.velocity = parseVelocity(t);
     return s;
 }
 
-ListSource parseList(core::ConfigTable const& t) {
-    ListSource s;
-    s.position = t.getIf<std::vector<core::Vec3>>(
-        "position",
-        [](auto const& ps) {
-            return !ps.empty() && std::all_of(ps.begin(), ps.end(), isFiniteVec3);
-        },
-        "a non-empty array of [x, y, z] positions");
-    std::size_t const n = s.position.size();
-    auto const allPositive = [](std::vector<double> const& rs) {
-        return std::all_of(rs.begin(), rs.end(), isPositiveFinite);
-    };
+/// List velocities: [vx, vy, vz] for every grain, or [[vx, vy, vz], ...] (one, or one per
+/// position), or none (at rest). The forms differ in the type of the first element.
+std::vector<core::Vec3> parseListVelocity(core::ConfigTable const& t) {
+    if (!t.has("velocity") || t.describe("velocity") == "[]")
+        return {};
+    if (t.describe("velocity").starts_with("[["))
+        return t.get<std::vector<core::Vec3>>("velocity");
+    if (t.kindOf("velocity") != core::ConfigKind::Array)
+        t.failExpected("velocity", "[vx, vy, vz] or an array of them, one per position");
+    return {t.get<core::Vec3>("velocity")};
+}
+
+particles::ListSpec parseList(core::ConfigTable const& t) {
+    particles::ListSpec s;
+    s.position = t.get<std::vector<core::Vec3>>("position");
     if (t.kindOf("radius") == core::ConfigKind::Array)
-        s.radius = t.getIf<std::vector<double>>(
-            "radius", [&](auto const& rs) { return rs.size() == n && allPositive(rs); },
-            fmt::format("one positive finite radius per position ({})", n));
+        s.radius = t.get<std::vector<double>>("radius");
     else
-        s.radius.assign(n, t.getIf<double>("radius", isPositiveFinite,
-                                           "a positive finite number or an array of them"));
-    if (t.has("velocity"))
-        s.velocity = t.getIf<std::vector<core::Vec3>>(
-            "velocity",
-            [&](auto const& vs) {
-                return vs.size() == n && std::all_of(vs.begin(), vs.end(), isFiniteVec3);
-            },
-            fmt::format("one finite [vx, vy, vz] per position ({})", n));
-    else
-        s.velocity.assign(n, core::Vec3::Zero());
-    s.density = t.getIf<double>("density", isPositiveFinite, kPositive);
+        s.radius = {t.get<double>("radius")};
+    s.velocity = parseListVelocity(t);
+    s.density = t.get<double>("density");
     return s;
 }
 
-AgglomerateSource parseAgglomerate(core::ConfigTable const& t) {
-    AgglomerateSource s;
-    s.center = t.getIf<core::Vec3>("center", isFiniteVec3, "an array of 3 finite numbers");
-    s.radius = t.getIf<double>("radius", isPositiveFinite, kPositive);
+particles::AgglomerateSpec parseAgglomerate(core::ConfigTable const& t) {
+    particles::AgglomerateSpec s;
+    s.center = t.get<core::Vec3>("center");
+    s.radius = t.get<double>("radius");
     if (t.kindOf("grain_radius") == core::ConfigKind::Array) {
-        auto const r = t.getIf<std::array<double, 2>>(
-            "grain_radius",
-            [](auto const& g) {
-                return isPositiveFinite(g[0]) && std::isfinite(g[1]) && g[0] <= g[1];
-            },
-            "an array [min, max] of positive finite numbers with min <= max, or one number");
+        auto const r = t.get<std::array<double, 2>>("grain_radius");
         s.grainRadiusMin = r[0];
         s.grainRadiusMax = r[1];
     } else {
-        s.grainRadiusMin = s.grainRadiusMax =
-            t.getIf<double>("grain_radius", isPositiveFinite, kPositive);
+        s.grainRadiusMin = s.grainRadiusMax = t.get<double>("grain_radius");
     }
-    if (s.grainRadiusMax >= s.radius)
-        t.fail("grain_radius", fmt::format("the largest grain ({}) must be smaller than the "
-                                           "agglomerate radius ({})",
-                                           s.grainRadiusMax, s.radius));
-    s.count = t.getIf<std::int64_t>(
-        "count", [](std::int64_t c) { return c > 0; }, "a positive integer");
-    s.velocity = parseVelocity(t);
-    s.density = t.getIf<double>("density", isPositiveFinite, kPositive);
-    s.seed = static_cast<std::uint64_t>(
-        t.getOrIf<std::int64_t>("seed", 0, core::isNonNegative, "a non-negative integer"));
+    s.count = t.get<std::int64_t>("count");
+    s.velocity = t.getOr<core::Vec3>("velocity", core::Vec3::Zero());
+    s.density = t.get<double>("density");
+    s.seed = seedOr(t, "seed", s.seed);
+    s.maxAttempts = t.getOr<std::int64_t>("max_attempts", s.maxAttempts);
     return s;
 }
 
-FileSource parseFile(core::ConfigTable const& t, std::string const& sceneDir) {
-    FileSource s;
-    s.path = t.getIf<std::string>(
-        "path", [](std::string const& p) { return !p.empty(); }, "a non-empty file name");
+particles::FileSpec parseFile(core::ConfigTable const& t, std::string const& sceneDir) {
+    particles::FileSpec s;
+    s.path = t.get<std::string>("path");
+    // Relative to the scene file; an empty path stays empty for the validation to reject.
     std::filesystem::path const p(s.path);
-    s.resolvedPath = p.is_absolute() || sceneDir.empty()
-                         ? s.path
-                         : (std::filesystem::path(sceneDir) / p).lexically_normal().string();
+    if (!s.path.empty() && !p.is_absolute() && !sceneDir.empty())
+        s.path = (std::filesystem::path(sceneDir) / p).lexically_normal().string();
+    if (t.has("density"))
+        s.density = t.get<double>("density");
     return s;
 }
 
 } // namespace
 
-ParticleSource parseParticleSource(core::ConfigTable const& entry, core::AABB const& domain,
-                                   std::string const& sceneDir) {
+particles::ParticleSpec parseParticleSource(core::ConfigTable const& entry,
+                                            core::AABB const& domain, std::string const& sceneDir) {
+    particles::ParticleSpec spec;
     switch (entry.getChoice("kind", kKindNames)) {
     case 0:
-        return parseLattice(entry, domain);
+        spec.kind = parseLattice(entry, domain);
+        break;
     case 1:
-        return parseList(entry);
+        spec.kind = parseList(entry);
+        break;
     case 2:
-        return parseAgglomerate(entry);
+        spec.kind = parseAgglomerate(entry);
+        break;
     default:
-        return parseFile(entry, sceneDir);
+        spec.kind = parseFile(entry, sceneDir);
+        break;
     }
+    spec.type = parseMaterialType(entry);
+    return spec;
 }
 
-std::string_view toString(LatticeKind k) {
-    return kLatticeNames[static_cast<std::size_t>(k)];
+std::uint32_t parseMaterialType(core::ConfigTable const& entry) {
+    return static_cast<std::uint32_t>(entry.getOrIf<std::int64_t>(
+        "type", 0,
+        [](std::int64_t n) {
+            return n >= 0 && n <= std::int64_t{std::numeric_limits<std::uint32_t>::max()};
+        },
+        "a material index (an integer in [0, 4294967295])"));
 }
 
 } // namespace regolith::apps

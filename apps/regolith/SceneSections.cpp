@@ -1,7 +1,10 @@
 #include "apps/regolith/SceneSections.hpp"
 
+#include "apps/regolith/SceneKeyLocation.hpp"
+#include "core/Error.hpp"
 #include "core/config/ValueChecks.hpp"
 #include "domain/ForestConfig.hpp"
+#include "particles/generators/ParticleSpecValidation.hpp"
 
 #include <array>
 #include <filesystem>
@@ -45,7 +48,7 @@ TimeSection parseTime(core::ConfigTable const& t) {
 SyncSection parseSync(core::ConfigTable const& t) {
     SyncSection s;
     s.method = static_cast<SyncMethod>(
-        t.getChoiceOr("method", kSyncNames, static_cast<std::size_t>(SyncMethod::Sos)));
+        t.getChoiceOr("method", kSyncNames, static_cast<std::size_t>(SyncMethod::Hybrid)));
     s.reproducible = t.getOr<bool>("reproducible", false);
     return s;
 }
@@ -56,12 +59,15 @@ ContactSection parseContact(core::ConfigTable const& t) {
     s.stiffness =
         t.getOrIf<double>("stiffness", s.stiffness, isPositiveFinite, "a positive finite number");
     s.restitution = t.getOrIf<double>(
-        "restitution", s.restitution, [](double e) { return e >= 0.0 && e <= 1.0; },
-        "a number in [0, 1]");
+        "restitution", s.restitution, [](double e) { return e > 0.0 && e <= 1.0; },
+        "a number in (0, 1]");
     s.friction = t.getOrIf<double>("friction", s.friction, isNonNegativeFinite,
                                    "a non-negative finite number");
     s.rollingFriction = t.getOrIf<double>("rolling_friction", s.rollingFriction,
                                           isNonNegativeFinite, "a non-negative finite number");
+    s.initialOverlap = t.getOrIf<double>(
+        "initial_overlap", s.initialOverlap, [](double f) { return f >= 0.0 && f < 1.0; },
+        "a fraction of the smaller radius in [0, 1)");
     return s;
 }
 
@@ -81,13 +87,15 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     return s;
 }
 
-WallSpec parseWall(core::ConfigTable const& t) {
-    WallSpec w;
+particles::Wall parseWall(core::ConfigTable const& t, std::size_t index) {
+    particles::Wall w;
     w.point = t.getIf<core::Vec3>("point", isFiniteVec3, "an array of 3 finite numbers");
     w.normal = t.getIf<core::Vec3>(
         "normal", [](core::Vec3 const& n) { return isFiniteVec3(n) && n.norm() > 0.0; },
         "a non-zero vector of 3 finite numbers");
     w.normal.normalize();
+    w.type = parseMaterialType(t);
+    w.uid = particles::wallUid(index);
     return w;
 }
 
@@ -116,9 +124,19 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     std::string const sceneDir = source.parent_path().string();
     for (auto const& entry : root.tableArray("particles"))
         scene.particles.push_back(parseParticleSource(entry, scene.forest.domain, sceneDir));
-    for (auto const& entry : root.tableArray("walls"))
-        scene.walls.push_back(parseWall(entry));
+    auto const walls = root.tableArray("walls");
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        scene.walls.push_back(parseWall(walls[i], i));
     root.rejectUnknownKeys();
+    // The value rules of [[particles]] are the generators' (one place); checked here too so a
+    // bad entry fails before anything is built, with the line it was written on.
+    try {
+        particles::validateParticleSpecs(
+            scene.particles,
+            particles::GeneratorDomain{scene.forest.domain, scene.forest.periodic});
+    } catch (core::InputError const& e) {
+        throw core::InputError(locateSceneKey(root, e.what()));
+    }
     return scene;
 }
 

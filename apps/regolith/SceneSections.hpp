@@ -1,20 +1,24 @@
 #pragma once
 /// The sections of a scene file (DESIGN.md, "Scene file") as plain structs, parsed and
-/// validated. [domain] is parsed by its module (domain/ForestConfig.hpp); the other sections
-/// are parsed here until their modules (time stepping, synchronisation, contacts, gravity,
-/// particle generators, walls, output) exist and take them over, so that every contract key
-/// is known and typo-checked today. Units are those of the scene (SI or dimensionless).
+/// validated. [domain] is parsed by its module (domain/ForestConfig.hpp); [[particles]] and
+/// [[walls]] are read straight into the particles module's types (particles::ParticleSpec,
+/// particles::Wall); the other sections are parsed here until their modules (time stepping,
+/// synchronisation, contacts, gravity, output) exist and take them over, so that every
+/// contract key is known and typo-checked today. Units are those of the scene (SI or
+/// dimensionless).
 ///
 /// Every parse function throws core::InputError naming file, line and key; none is
 /// collective (every rank parses the same scene and gets the same result or error).
 #include "core/config/ConfigTable.hpp"
 #include "core/math/AABB.hpp"
 #include "domain/ForestSpec.hpp"
+#include "particles/generators/GeneratorSpec.hpp"
+#include "particles/storage/WallList.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
-#include <variant>
 #include <vector>
 
 namespace regolith::apps {
@@ -33,9 +37,10 @@ struct TimeSection {
 
 enum class SyncMethod { Nns, Sos, Hybrid };
 
-/// [sync] method ("nns" | "sos" | "hybrid", default "sos"), reproducible (default false).
+/// [sync] method ("nns" | "sos" | "hybrid"; default "hybrid", the scenes' default),
+/// reproducible (default false).
 struct SyncSection {
-    SyncMethod method = SyncMethod::Sos;
+    SyncMethod method = SyncMethod::Hybrid;
     bool reproducible = false;
 };
 
@@ -43,13 +48,16 @@ enum class ContactModel { SpringDashpot, Hertz };
 
 /// [contact] model ("spring-dashpot" | "hertz"), stiffness (> 0; N/m for spring-dashpot,
 /// the effective modulus in Pa for Hertz), restitution in [0, 1], friction >= 0 (Coulomb
-/// coefficient), rolling_friction >= 0. Defaults as in DESIGN.md: 1e4, 0.9, 0.5, 0.
+/// coefficient), rolling_friction >= 0, initial_overlap (how far two grains may overlap at
+/// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry).
+/// Defaults as in DESIGN.md: 1e4, 0.9, 0.5, 0; initial_overlap 1e-6.
 struct ContactSection {
     ContactModel model = ContactModel::SpringDashpot;
     double stiffness = 1e4;
     double restitution = 0.9;
     double friction = 0.5;
     double rollingFriction = 0.0;
+    double initialOverlap = 1e-6;
 };
 
 enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes };
@@ -68,69 +76,6 @@ struct GravitySection {
     std::string petscOptions;
 };
 
-/// An initial velocity: every component is mean + a uniform random number in
-/// [randomMin, randomMax], to be drawn from a counter-based generator keyed by (seed, uid).
-/// Written `velocity = [vx, vy, vz]` or `velocity = { mean = [..], random = [lo, hi],
-/// seed = n }` (every key of the table optional).
-struct VelocitySpec {
-    core::Vec3 mean = core::Vec3::Zero();
-    double randomMin = 0.0;
-    double randomMax = 0.0;
-    std::uint64_t seed = 0;
-};
-
-enum class LatticeKind { Sc, Bcc, Fcc, Hcp };
-
-/// kind = "lattice": grains on a lattice filling `region` (default: the whole domain).
-/// `spacing` is the nearest-neighbour distance of the lattice (so hcp with spacing 1 and
-/// radius 0.5 is a touching close packing); 2 * radius <= spacing.
-struct LatticeSource {
-    LatticeKind lattice = LatticeKind::Sc;
-    double spacing = 1.0;
-    double radius = 0.5;
-    double density = 1.0;
-    core::AABB region;
-    VelocitySpec velocity;
-};
-
-/// kind = "list": explicit grains. `radius` is one number for all or one per grain;
-/// `velocity` (optional) one per grain.
-struct ListSource {
-    std::vector<double> radius;
-    std::vector<core::Vec3> position;
-    std::vector<core::Vec3> velocity;
-    double density = 1.0;
-};
-
-/// kind = "agglomerate": `count` grains with radii uniform in [grainRadiusMin,
-/// grainRadiusMax] packed into a sphere of `radius` around `center` (placement from `seed`).
-struct AgglomerateSource {
-    core::Vec3 center = core::Vec3::Zero();
-    double radius = 1.0;
-    double grainRadiusMin = 0.1;
-    double grainRadiusMax = 0.1;
-    std::int64_t count = 1;
-    VelocitySpec velocity;
-    double density = 1.0;
-    std::uint64_t seed = 0;
-};
-
-/// kind = "file": grains read from a CSV file (the --dump format). `path` as written;
-/// `resolvedPath` relative to the scene file's directory.
-struct FileSource {
-    std::string path;
-    std::string resolvedPath;
-};
-
-using ParticleSource = std::variant<LatticeSource, ListSource, AgglomerateSource, FileSource>;
-
-/// [[walls]] an infinite plane through `point`; `normal` (unit length after parsing) points
-/// into the half-space where the grains are.
-struct WallSpec {
-    core::Vec3 point = core::Vec3::Zero();
-    core::Vec3 normal = core::Vec3::UnitZ();
-};
-
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never).
 struct OutputSection {
     std::string dir = "out";
@@ -146,8 +91,10 @@ struct SceneDescription {
     SyncSection sync;
     ContactSection contact;
     GravitySection gravity;
-    std::vector<ParticleSource> particles;
-    std::vector<WallSpec> walls;
+    /// The [[particles]] entries in scene order, checked with
+    /// particles::validateParticleSpecs against [domain] (files are read only when generated).
+    std::vector<particles::ParticleSpec> particles;
+    std::vector<particles::Wall> walls; ///< [[walls]], uid = particles::wallUid(index)
     OutputSection output;
 };
 
@@ -155,25 +102,36 @@ struct SceneDescription {
 [[nodiscard]] SyncSection parseSync(core::ConfigTable const& section);
 [[nodiscard]] ContactSection parseContact(core::ConfigTable const& section);
 [[nodiscard]] GravitySection parseGravity(core::ConfigTable const& section);
-[[nodiscard]] WallSpec parseWall(core::ConfigTable const& entry);
+/// One [[walls]] entry: point, normal (non-zero; unit length after parsing, pointing into the
+/// half-space where the grains are), type (material index, default 0); uid = wallUid(index).
+[[nodiscard]] particles::Wall parseWall(core::ConfigTable const& entry, std::size_t index);
 [[nodiscard]] OutputSection parseOutput(core::ConfigTable const& section);
-/// One [[particles]] entry. `domain` is the default lattice region; `sceneDir` the directory
-/// relative paths are resolved against ("" for the current directory).
-[[nodiscard]] ParticleSource parseParticleSource(core::ConfigTable const& entry,
-                                                 core::AABB const& domain,
-                                                 std::string const& sceneDir);
+/// One [[particles]] entry, read into the generators' input (particles/generators/
+/// GeneratorSpec.hpp, which documents the keys). Checks what TOML decides: key names, value
+/// types, choices (kind: lattice | list | agglomerate | file; lattice: sc | hcp) and integers
+/// that must be non-negative (seed, type); the value rules (positive radius, region inside
+/// the domain, ...) are particles::validateParticleSpecs', run by parseScene. `domain` is the
+/// default lattice region; `sceneDir` is the directory a relative file path is resolved
+/// against ("" for the current directory).
+[[nodiscard]] particles::ParticleSpec parseParticleSource(core::ConfigTable const& entry,
+                                                          core::AABB const& domain,
+                                                          std::string const& sceneDir);
+/// The optional key `type` of a [[particles]] or [[walls]] entry: the material index of its
+/// grains or wall (contact model), an integer in [0, 2^32), default 0.
+[[nodiscard]] std::uint32_t parseMaterialType(core::ConfigTable const& entry);
 
 /// Parses every section of `root` ([domain] and [time] required, the others optional with
-/// the defaults above), then rejects any key that no section asked for. `scenePath` is the
-/// file the scene came from ("" for an embedded scene): it gives the default name and the
-/// directory that relative particle-file paths start from.
+/// the defaults above), rejects any key that no section asked for, then validates the
+/// [[particles]] entries (particles::validateParticleSpecs), whose message is prefixed with
+/// where the offending key was written (locateSceneKey). `scenePath` is the file the scene
+/// came from ("" for an embedded scene): it gives the default name and the directory that
+/// relative particle-file paths start from.
 [[nodiscard]] SceneDescription parseScene(core::ConfigTable const& root,
                                           std::string const& scenePath);
 
 [[nodiscard]] std::string_view toString(SyncMethod m);
 [[nodiscard]] std::string_view toString(ContactModel m);
 [[nodiscard]] std::string_view toString(SelfGravity g);
-[[nodiscard]] std::string_view toString(LatticeKind k);
 [[nodiscard]] std::string_view toString(Integrator i);
 
 } // namespace regolith::apps

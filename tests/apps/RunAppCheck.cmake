@@ -1,7 +1,8 @@
 # Runs an app under mpiexec and checks the outcome; used by tests/apps/CMakeLists.txt as
 #   cmake -DMPIEXEC=.. -DNP=.. -DAPP=.. -DARGS="a|b|c" [-DEXPECT_FAIL=1 -DMESSAGE=..]
-#         [-DSTDOUT_HAS=..] [-DQUIET_STDOUT=1] [-DJSON=file -DJSON_EXPECT="k=v|k=v"
-#         -DPYTHON=python3 -DCHECK_SUMMARY=check_summary.py] [-DDUMP=file -DDUMP_TEXT=line]
+#         [-DSTDOUT_HAS="text|text"] [-DQUIET_STDOUT=1] [-DJSON=file -DJSON_EXPECT="k=v|k=v"
+#         -DPYTHON=python3 -DCHECK_SUMMARY=check_summary.py]
+#         [-DDUMP=file -DDUMP_HEADER=line [-DDUMP_LINES=n]]
 #         -P RunAppCheck.cmake
 # A failing run must exit non-zero, print MESSAGE exactly once on stderr (one rank reports,
 # not every rank) and no sign of a crash or an abort. A successful run must exit 0.
@@ -63,10 +64,13 @@ if(NOT rc STREQUAL "0")
   fail("expected exit code 0")
 endif()
 if(STDOUT_HAS)
-  string(FIND "${out}" "${STDOUT_HAS}" pos)
-  if(pos EQUAL -1)
-    fail("expected on stdout: ${STDOUT_HAS}")
-  endif()
+  string(REPLACE "|" ";" texts "${STDOUT_HAS}")
+  foreach(text IN LISTS texts)
+    string(FIND "${out}" "${text}" pos)
+    if(pos EQUAL -1)
+      fail("expected on stdout: ${text}")
+    endif()
+  endforeach()
 endif()
 if(QUIET_STDOUT AND NOT out STREQUAL "")
   fail("expected no output on stdout with --quiet")
@@ -97,8 +101,13 @@ if(DUMP)
   if(NOT EXISTS "${DUMP}")
     fail("the dump ${DUMP} was not written")
   endif()
-  file(READ "${DUMP}" dump_text)
-  if(NOT dump_text STREQUAL "${DUMP_TEXT}\n") # an empty state: the header line only
-    fail("unexpected dump content:\n${dump_text}")
+  file(STRINGS "${DUMP}" dump_lines)
+  list(GET dump_lines 0 header)
+  if(NOT header STREQUAL "${DUMP_HEADER}")
+    fail("the dump's first line is '${header}', expected '${DUMP_HEADER}'")
+  endif()
+  list(LENGTH dump_lines n)
+  if(DUMP_LINES AND NOT n EQUAL DUMP_LINES)
+    fail("the dump has ${n} lines, expected ${DUMP_LINES}")
   endif()
 endif()

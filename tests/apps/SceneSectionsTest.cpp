@@ -1,7 +1,10 @@
 // Scene sections: the default scene parses to what it says; every validation rule of every
-// section rejects a bad value with a message naming where it came from.
+// section rejects a bad value with a message naming where it came from. [[particles]] entries
+// are read into the generators' particles::ParticleSpec; their value rules are the generators'
+// (validateParticleSpecs), reported with the scene location.
 #include "apps/regolith/SceneSections.hpp"
 
+#include "apps/regolith/SceneKeyLocation.hpp"
 #include "core/Error.hpp"
 #include "core/config/ConfigFile.hpp"
 
@@ -9,6 +12,7 @@
 
 #include <initializer_list>
 #include <string>
+#include <variant>
 
 using namespace regolith;
 using apps::SceneDescription;
@@ -67,9 +71,12 @@ seed = 3
 [[particles]]
 kind = "file"
 path = "initial.csv"
+density = 2.5
+type = 2
 [[walls]]
 point = [0, 0, 0]
 normal = [0, 0, 2]
+type = 1
 [output]
 dir = "results"
 vtk_every = 10
@@ -114,23 +121,38 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(s.gravity.external, core::Vec3(0, 0, -9.81));
     EXPECT_EQ(s.gravity.petscOptions, "-pc_type gamg");
     ASSERT_EQ(s.particles.size(), 4u);
-    auto const& lattice = std::get<apps::LatticeSource>(s.particles[0]);
-    EXPECT_EQ(lattice.lattice, apps::LatticeKind::Hcp);
-    EXPECT_EQ(lattice.region.max, s.forest.domain.max); // default region: the domain
-    EXPECT_EQ(lattice.velocity.randomMin, -0.1);
-    EXPECT_EQ(lattice.velocity.seed, 7u);
-    auto const& list = std::get<apps::ListSource>(s.particles[1]);
+    auto const& lattice = std::get<particles::LatticeSpec>(s.particles[0].kind);
+    EXPECT_EQ(lattice.lattice, particles::LatticeKind::HexagonalClosePacked);
+    EXPECT_EQ(lattice.spacing, 1.0);
+    EXPECT_EQ(lattice.density, 2.0);
+    EXPECT_EQ(lattice.region.min, s.forest.domain.min); // default region: the domain
+    EXPECT_EQ(lattice.region.max, s.forest.domain.max);
+    auto const& random = std::get<particles::RandomVelocity>(lattice.velocity);
+    EXPECT_EQ(random.lo, -0.1);
+    EXPECT_EQ(random.hi, 0.1);
+    EXPECT_EQ(random.seed, 7u);
+    EXPECT_EQ(s.particles[0].type, 0u);
+    auto const& list = std::get<particles::ListSpec>(s.particles[1].kind);
     EXPECT_EQ(list.radius, (std::vector<double>{1.0, 2.0}));
-    ASSERT_EQ(list.velocity.size(), 2u); // defaulted to rest, one per grain
-    EXPECT_EQ(list.velocity[1], core::Vec3::Zero());
-    auto const& agg = std::get<apps::AgglomerateSource>(s.particles[2]);
+    EXPECT_EQ(list.position[1], core::Vec3(5, 5, 2));
+    EXPECT_TRUE(list.velocity.empty()); // at rest
+    EXPECT_EQ(list.density, 3.0);
+    auto const& agg = std::get<particles::AgglomerateSpec>(s.particles[2].kind);
+    EXPECT_EQ(agg.center, core::Vec3(4, 4, 2));
     EXPECT_EQ(agg.count, 100);
-    EXPECT_EQ(agg.velocity.mean, core::Vec3(0, 1, 0));
+    EXPECT_EQ(agg.velocity, core::Vec3(0, 1, 0));
+    EXPECT_EQ(agg.grainRadiusMin, 0.1);
     EXPECT_EQ(agg.grainRadiusMax, 0.2);
-    auto const& file = std::get<apps::FileSource>(s.particles[3]);
-    EXPECT_EQ(file.resolvedPath, "scenes/initial.csv");
+    EXPECT_EQ(agg.seed, 3u);
+    EXPECT_EQ(agg.maxAttempts, particles::AgglomerateSpec{}.maxAttempts);
+    auto const& file = std::get<particles::FileSpec>(s.particles[3].kind);
+    EXPECT_EQ(file.path, "scenes/initial.csv"); // relative to the scene file
+    EXPECT_EQ(file.density, 2.5);
+    EXPECT_EQ(s.particles[3].type, 2u);
     ASSERT_EQ(s.walls.size(), 1u);
     EXPECT_EQ(s.walls[0].normal, core::Vec3(0, 0, 1)); // normalised
+    EXPECT_EQ(s.walls[0].type, 1u);
+    EXPECT_EQ(s.walls[0].uid, particles::wallUid(0));
     EXPECT_EQ(s.output.dir, "results");
     EXPECT_EQ(s.output.checkpointEvery, 100);
 }
@@ -141,7 +163,7 @@ TEST(SceneSections, DefaultsForOptionalSections) {
     auto const s = apps::parseScene(root, "");
     EXPECT_EQ(s.name, "default");
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{1, 1, 1}));
-    EXPECT_EQ(s.sync.method, apps::SyncMethod::Sos);
+    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid); // the scenes' default
     EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
     EXPECT_EQ(s.contact.stiffness, 1e4);
     EXPECT_EQ(s.gravity.self, apps::SelfGravity::None);
@@ -154,8 +176,16 @@ TEST(SceneSections, DefaultSceneFileIsValid) {
     auto const s = apps::parseScene(root, "scenes/default.toml");
     EXPECT_EQ(s.name, "sparse-gas-small");
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 2}));
-    ASSERT_EQ(s.particles.size(), 1u);
-    EXPECT_EQ(std::get<apps::LatticeSource>(s.particles[0]).radius, 0.4);
+    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid);
+    ASSERT_EQ(s.particles.size(), 2u);
+    // The boulder first, so that the lattice fills the space around it.
+    EXPECT_EQ(std::get<particles::ListSpec>(s.particles[0].kind).radius,
+              (std::vector<double>{3.0}));
+    auto const& gas = std::get<particles::LatticeSpec>(s.particles[1].kind);
+    EXPECT_EQ(gas.lattice, particles::LatticeKind::SimpleCubic);
+    EXPECT_EQ(gas.radius, 0.4);
+    EXPECT_EQ(gas.spacing, 1.0);
+    EXPECT_TRUE(std::holds_alternative<particles::RandomVelocity>(gas.velocity));
 }
 
 TEST(SceneSections, DomainRules) {
@@ -205,7 +235,7 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "--set contact.model=hooke: contact.model: expected one of \"spring-dashpot\", "
               "\"hertz\", got \"hooke\"");
     EXPECT_EQ(errorWith("contact.restitution=1.5"),
-              "--set contact.restitution=1.5: contact.restitution: expected a number in [0, 1], "
+              "--set contact.restitution=1.5: contact.restitution: expected a number in (0, 1], "
               "got 1.5");
     EXPECT_EQ(errorWith("contact.friction=-0.1"),
               "--set contact.friction=-0.1: contact.friction: expected a non-negative finite "
@@ -232,34 +262,93 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "finite numbers, got [0, 0, 0]");
 }
 
-TEST(SceneSections, ParticleRules) {
+TEST(SceneSections, ParticleTomlRules) {
     EXPECT_EQ(errorWith("particles.0.kind=lattise"),
               "--set particles.0.kind=lattise: particles[0].kind: expected one of \"lattice\", "
               "\"list\", \"agglomerate\", \"file\", got \"lattise\" \u2014 did you mean "
               "\"lattice\"?");
-    EXPECT_EQ(errorWith("particles.0.radius=0.6"),
-              "--set particles.0.radius=0.6: particles[0].radius: grains of radius 0.6 overlap on "
-              "a lattice with spacing 1 (need 2 * radius <= spacing)");
+    // sc and hcp are the generators' lattices.
+    EXPECT_EQ(errorWith("particles.0.lattice=fcc"),
+              "--set particles.0.lattice=fcc: particles[0].lattice: expected one of \"sc\", "
+              "\"hcp\", got \"fcc\"");
+    EXPECT_EQ(errorWith("particles.0.spacing=\"wide\""),
+              "--set particles.0.spacing=\"wide\": particles[0].spacing: expected a number, got "
+              "\"wide\" (a string)");
+    EXPECT_EQ(errorWith("particles.0.velocity=7"),
+              "--set particles.0.velocity=7: particles[0].velocity: expected [vx, vy, vz] or a "
+              "table { random = [lo, hi], seed = n }, got 7");
+    EXPECT_EQ(errorWith("particles.0.velocity.seed=-1"),
+              "--set particles.0.velocity.seed=-1: particles[0].velocity.seed: expected a "
+              "non-negative integer, got -1");
+    EXPECT_EQ(errorWith("particles.1.radius=[1.0,\"x\"]"),
+              "--set particles.1.radius=[1.0,\"x\"]: particles[1].radius: expected an array of "
+              "numbers, got [1, \"x\"]");
+    EXPECT_EQ(errorWith("particles.2.count=1.5"),
+              "--set particles.2.count=1.5: particles[2].count: expected an integer, got 1.5 (a "
+              "number)");
+    EXPECT_EQ(errorWith("particles.3.type=-1"),
+              "--set particles.3.type=-1: particles[3].type: expected a material index (an "
+              "integer in [0, 4294967295]), got -1");
+    EXPECT_EQ(errorWith("walls.0.type=4294967296"),
+              "--set walls.0.type=4294967296: walls[0].type: expected a material index (an "
+              "integer in [0, 4294967295]), got 4294967296");
+}
+
+TEST(SceneSections, ParticleValueRulesAreTheGenerators) {
     EXPECT_EQ(errorWith("particles.0.density=0"),
-              "--set particles.0.density=0: particles[0].density: expected a positive finite "
-              "number, got 0");
+              "--set particles.0.density=0: particles[0].density: must be positive, got 0");
+    EXPECT_EQ(errorWith("particles.1.radius=[1.0,1.0,1.0]"),
+              "--set particles.1.radius=[1.0,1.0,1.0]: particles[1].radius: expected 1 value or "
+              "one per position (2), got 3");
+    EXPECT_EQ(errorWith("particles.1.radius=-2"),
+              "--set particles.1.radius=-2: particles[1].radius[0]: must be positive, got -2");
     EXPECT_EQ(errorWith("particles.0.velocity.random=[1,-1]"),
               "--set particles.0.velocity.random=[1,-1]: particles[0].velocity.random: expected "
-              "an array [min, max] of finite numbers with min <= max, got [1, -1]");
-    EXPECT_EQ(errorWith("particles.1.radius=[1.0]"),
-              "--set particles.1.radius=[1.0]: particles[1].radius: expected one positive finite "
-              "radius per position (2), got [1]");
-    EXPECT_EQ(errorWith("particles.1.radius=inf"),
-              "--set particles.1.radius=inf: particles[1].radius: expected a positive finite "
-              "number or an array of them, got inf");
+              "[lo, hi] with lo <= hi, both finite, got [1, -1]");
     EXPECT_EQ(errorWith("particles.2.grain_radius=[0.1,2.0]"),
-              "--set particles.2.grain_radius=[0.1,2.0]: particles[2].grain_radius: the largest "
-              "grain (2) must be smaller than the agglomerate radius (1.5)");
-    EXPECT_EQ(errorWith("particles.2.count=0"),
-              "--set particles.2.count=0: particles[2].count: expected a positive integer, got 0");
+              "--set particles.2.grain_radius=[0.1,2.0]: particles[2].grain_radius: max (2) must "
+              "be below the agglomerate radius (1.5)");
+    EXPECT_EQ(errorWith("particles.2.max_attempts=0"),
+              "--set particles.2.max_attempts=0: particles[2].max_attempts: must be >= 1, got 0");
     EXPECT_EQ(errorWith("particles.3.path=\"\""),
-              "--set particles.3.path=\"\": particles[3].path: expected a non-empty file name, "
-              "got \"\"");
+              "--set particles.3.path=\"\": particles[3].path: must name a CSV file, got an "
+              "empty string");
+    EXPECT_EQ(errorWith("particles.3.density=-1"),
+              "--set particles.3.density=-1: particles[3].density: must be positive, got -1");
+    // A key written in the file gets the file's line; an absent key its table's.
+    auto const root = core::ConfigTable::fromString(
+        "[domain]\nmin = [0, 0, 0]\nmax = [4, 4, 4]\n[time]\ndt = 1\nsteps = 0\n"
+        "[[particles]]\nkind = \"list\"\nposition = [[1, 1, 1], [9, 1, 1]]\nradius = 0.5\n"
+        "density = 1\n",
+        "l.toml");
+    try {
+        (void)apps::parseScene(root, "l.toml");
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_STREQ(e.what(), "l.toml:9: particles[0].position[1]: centre [9, 1, 1] lies outside "
+                               "the domain (min = [0, 0, 0], max = [4, 4, 4])");
+    }
+}
+
+TEST(SceneSections, OverlappingLatticeIsAccepted) {
+    // MESA-PD's GranularGas geometry: sc spacing 1, radius 0.6, neighbours overlap.
+    auto const s = parse({"particles.0.lattice=sc", "particles.0.radius=0.6"});
+    EXPECT_EQ(std::get<particles::LatticeSpec>(s.particles[0].kind).radius, 0.6);
+}
+
+TEST(SceneSections, VelocityForms) {
+    auto const s = parse({"particles.0.velocity=[1,2,3]", "particles.1.velocity=[0,0,-1]"});
+    EXPECT_EQ(std::get<core::Vec3>(std::get<particles::LatticeSpec>(s.particles[0].kind).velocity),
+              core::Vec3(1, 2, 3));
+    EXPECT_EQ(std::get<particles::ListSpec>(s.particles[1].kind).velocity,
+              (std::vector<core::Vec3>{core::Vec3(0, 0, -1)})); // one for every grain
+    auto const t = parse({"particles.1.velocity=[[1,0,0],[0,1,0]]", "particles.2.grain_radius=0.2",
+                          "particles.2.max_attempts=50"});
+    EXPECT_EQ(std::get<particles::ListSpec>(t.particles[1].kind).velocity.size(), 2u);
+    auto const& agg = std::get<particles::AgglomerateSpec>(t.particles[2].kind);
+    EXPECT_EQ(agg.grainRadiusMin, 0.2);
+    EXPECT_EQ(agg.grainRadiusMax, 0.2);
+    EXPECT_EQ(agg.maxAttempts, 50);
 }
 
 TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
@@ -268,7 +357,7 @@ TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
               "'seed'?");
     EXPECT_EQ(errorWith("particles.1.spacing=1.0"),
               "--set particles.1.spacing=1.0: unknown key 'particles[1].spacing' (known keys "
-              "here: density, kind, position, radius, velocity)");
+              "here: density, kind, position, radius, type, velocity)");
     EXPECT_EQ(errorWith("gravity.petsc.option=\"-ksp_view\""),
               "--set gravity.petsc.option=\"-ksp_view\": unknown key 'gravity.petsc.option' "
               "\u2014 did you mean 'options'?");
@@ -284,4 +373,25 @@ TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
     } catch (core::InputError const& e) {
         EXPECT_STREQ(e.what(), "t.toml:7: unknown key 'time.stesp' \u2014 did you mean 'steps'?");
     }
+}
+
+TEST(SceneKeyLocation, DeepestWrittenKeyOfTheNamedEntry) {
+    auto const root = core::ConfigTable::fromString(kScene, "s.toml");
+    auto const at = [&](std::string_view m) { return apps::locateSceneKey(root, m); };
+    // particles[0] starts on line 28 of kScene; its velocity table is written inline on 34.
+    EXPECT_EQ(at("particles[0].spacing: must be positive, got 0"),
+              "s.toml:31: particles[0].spacing: must be positive, got 0");
+    EXPECT_EQ(at("particles[0].velocity.random: bad"),
+              "s.toml:34: particles[0].velocity.random: bad");
+    EXPECT_EQ(at("particles[1].position[1]: outside"),
+              "s.toml:38: particles[1].position[1]: outside");
+    // A key the entry does not have: the entry's own line.
+    EXPECT_EQ(at("particles[0].region: outside"), "s.toml:28: particles[0].region: outside");
+    EXPECT_EQ(at("particles[2]: cannot pack"), "s.toml:40: particles[2]: cannot pack");
+    EXPECT_EQ(at("walls[0].normal: zero"), "s.toml:56: walls[0].normal: zero");
+    // Not an entry of this scene, or not a key: unchanged.
+    EXPECT_EQ(at("particles[9].radius: bad"), "particles[9].radius: bad");
+    EXPECT_EQ(at("particles: too many entries"), "particles: too many entries");
+    EXPECT_EQ(at("particles[x].radius: bad"), "particles[x].radius: bad");
+    EXPECT_EQ(at("no key here"), "no key here");
 }

@@ -1,0 +1,27 @@
+#pragma once
+/// The `conserved` block of the run summary, computed from the masters of all ranks.
+#include "apps/common/MasterRecord.hpp"
+#include "apps/common/RunSummary.hpp"
+#include "core/mpi/Comm.hpp"
+
+#include <span>
+
+namespace regolith::apps {
+
+/// For solid homogeneous spheres (moment of inertia I = 2/5 m r^2):
+///  - momentum             sum m v;
+///  - angular_momentum     sum (x cross m v + I w), about the origin;
+///  - kinetic_energy       sum (1/2 m |v|^2 + 1/2 I |w|^2);
+///  - potential_energy     sum -m g.x in the uniform external field `gravity` (self-gravity
+///                         energy is not included: it belongs to the gravity module);
+///  - center_of_mass       sum m x / sum m (zero when there is no mass).
+/// Positions are taken as stored, i.e. wrapped into the domain on periodic axes (where the
+/// angular momentum and centre of mass are frame quantities, not conserved ones). Summed
+/// locally in storage order, then over ranks with MPI_Allreduce: equal for any rank count to
+/// rounding (relative ~1e-15 per term), not bitwise. Same result on every rank.
+/// COLLECTIVE over `comm`.
+[[nodiscard]] RunSummary::Conserved conservedQuantities(core::Comm const& comm,
+                                                        std::span<MasterRecord const> local,
+                                                        core::Vec3 const& gravity);
+
+} // namespace regolith::apps

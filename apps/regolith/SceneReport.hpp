@@ -1,0 +1,27 @@
+#pragma once
+/// The one-paragraph report `regolith` prints on rank 0 before the run.
+#include "apps/regolith/SceneSections.hpp"
+#include "core/app/RunApp.hpp"
+#include "domain/BlockForest.hpp"
+
+#include <cstdint>
+
+namespace regolith::apps {
+
+/// The particle counts of the initial state, over all ranks.
+struct ParticleCounts {
+    std::int64_t total = 0; ///< masters over all ranks
+    std::int64_t minPerRank = 0;
+    std::int64_t maxPerRank = 0;
+};
+
+/// The particle counts of all ranks from this rank's `local` count. COLLECTIVE over `comm`.
+[[nodiscard]] ParticleCounts countParticles(core::Comm const& comm, std::int64_t local);
+
+/// Prints the scene, domain, blocks, time/sync/contact/gravity settings and the particle
+/// counts to stdout, and says what runs (initial state only until time stepping exists).
+/// Call on one rank (rank 0). Not collective.
+void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene,
+                      domain::BlockForest const& forest, ParticleCounts const& particles);
+
+} // namespace regolith::apps

@@ -1,0 +1,145 @@
+"""Runs one scene with `regolith` on several rank counts and checks that the runs agree.
+
+usage: compare_runs.py --mpiexec M --app APP --out DIR --name NAME --np 1 4
+                       [--same KEY ...] [--expect KEY=VALUE ...] [--dump]
+                       [--reload SCENE] -- [app arguments]
+
+Every run must exit 0 and write a summary (--json); the summaries must agree on every --same
+key (e.g. particles, checksum) and satisfy every --expect. With --dump every run also writes
+the dump, which must be byte-identical across the runs, follow the contract (header, one line
+per particle sorted by uid, 12 fields) and hash to the summary's checksum (the checksum is
+recomputed here from the dumped numbers: the MSet-Add-Hash of apps/common/StateChecksum.hpp).
+--reload SCENE (needs --dump) runs SCENE, whose first [[particles]] entry is a `kind = "file"`
+entry, on the largest rank count with its path set to the dump: the state read back must
+have the same particle count and checksum (the dump is a lossless restart).
+Exit code 1 with the reason on the first failed check.
+"""
+import argparse
+import json
+import os
+import struct
+import subprocess
+import sys
+
+HEADER = "uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass"
+MASK = (1 << 64) - 1
+
+
+def fail(message):
+    sys.exit(f"compare_runs: {message}")
+
+
+def run(mpiexec, np, app, app_args, json_path, dump_path=None):
+    command = [mpiexec, "-n", str(np), "--oversubscribe", app, *app_args, "--quiet",
+               "--json", json_path]
+    if dump_path:
+        command += ["--dump", dump_path]
+    for path in (json_path, dump_path):
+        if path and os.path.exists(path):
+            os.remove(path)
+    done = subprocess.run(command, capture_output=True, text=True, timeout=60, check=False)
+    if done.returncode != 0:
+        fail(f"{' '.join(command)} exited with {done.returncode}\n--- stdout:\n{done.stdout}"
+             f"\n--- stderr:\n{done.stderr}")
+    with open(json_path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def fnv1a(data):
+    h = 0xCBF29CE484222325
+    for byte in data:
+        h = ((h ^ byte) * 0x100000001B3) & MASK
+    return h
+
+
+def fmix64(k):
+    k ^= k >> 33
+    k = (k * 0xFF51AFD7ED558CCD) & MASK
+    k ^= k >> 33
+    k = (k * 0xC4CEB9FE1A85EC53) & MASK
+    k ^= k >> 33
+    return k
+
+
+def check_dump(path, summary):
+    """Checks the dump's format and returns the checksum recomputed from it."""
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    if lines[0] != HEADER or lines[-1] != "":
+        fail(f"{path}: expected the header line {HEADER!r} and a final newline")
+    rows = lines[1:-1]
+    if len(rows) != summary["particles"]:
+        fail(f"{path}: {len(rows)} particles, the summary says {summary['particles']}")
+    total, previous = 0, -1
+    for number, row in enumerate(rows, start=2):
+        fields = row.split(",")
+        if len(fields) != 12:
+            fail(f"{path}:{number}: expected 12 fields, got {len(fields)}")
+        uid = int(fields[0])
+        if uid <= previous:
+            fail(f"{path}:{number}: uid {uid} after {previous}: not sorted by uid")
+        previous = uid
+        data = struct.pack("<Q", uid) + b"".join(struct.pack("<d", float(x)) for x in fields[1:])
+        total = (total + fmix64(fnv1a(data))) & MASK
+    return f"{fnv1a(struct.pack('<QQ', len(rows), total)):016x}"
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--mpiexec", required=True)
+    parser.add_argument("--app", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--name", required=True)
+    parser.add_argument("--np", type=int, nargs="+", required=True)
+    parser.add_argument("--same", nargs="*", default=[])
+    parser.add_argument("--expect", nargs="*", default=[])
+    parser.add_argument("--dump", action="store_true")
+    parser.add_argument("--reload")
+    parser.add_argument("app_args", nargs="*")
+    args = parser.parse_args()
+
+    runs = []
+    for np in args.np:
+        stem = os.path.join(args.out, f"{args.name}.np{np}")
+        dump = stem + ".csv" if args.dump else None
+        summary = run(args.mpiexec, np, args.app, args.app_args, stem + ".json", dump)
+        if summary["ranks"] != np:
+            fail(f"np {np}: the summary says ranks = {summary['ranks']}")
+        for expectation in args.expect:
+            key, expected = expectation.split("=", 1)
+            if str(summary[key]) != expected:
+                fail(f"np {np}: {key} = {summary[key]!r}, expected {expected}")
+        if dump:
+            recomputed = check_dump(dump, summary)
+            if recomputed != summary["checksum"]:
+                fail(f"np {np}: the checksum recomputed from the dump is {recomputed}, the "
+                     f"summary says {summary['checksum']}")
+        runs.append((np, summary, dump))
+
+    first_np, first, first_dump = runs[0]
+    for np, summary, dump in runs[1:]:
+        for key in args.same:
+            if summary[key] != first[key]:
+                fail(f"{key}: {first[key]!r} on {first_np} ranks but {summary[key]!r} on {np}")
+        if dump:
+            with open(first_dump, "rb") as a, open(dump, "rb") as b:
+                if a.read() != b.read():
+                    fail(f"the dumps of {first_np} and {np} ranks differ: {first_dump} {dump}")
+    print(f"{args.name}: " + ", ".join(f"{k} = {first[k]}" for k in args.same) +
+          f" on {args.np} ranks")
+
+    if args.reload:
+        np, summary, dump = runs[-1]
+        stem = os.path.join(args.out, f"{args.name}.reload.np{np}")
+        again = run(args.mpiexec, np, args.app,
+                    [args.reload, "--set", f'particles.0.path="{os.path.abspath(dump)}"'],
+                    stem + ".json")
+        for key in ("particles", "checksum"):
+            if again[key] != summary[key]:
+                fail(f"reloaded dump: {key} = {again[key]!r}, the dumped state had "
+                     f"{summary[key]!r}")
+        print(f"{args.name}: the dump read back as a particle file gives the same state")
+
+
+if __name__ == "__main__":
+    main()
