@@ -52,6 +52,8 @@ public:
     void readBytes(void* out, std::size_t n, char const* what) {
         if (n > remaining())
             throwShort(n, what);
+        if (n == 0) // an empty vector or string: memcpy with a null pointer is undefined
+            return;
         std::memcpy(out, m_data.data() + m_pos, n);
         m_pos += n;
     }
