@@ -1,6 +1,8 @@
 #pragma once
 /// RAII PETSc initialisation on MPI_COMM_WORLD (MPI must already be initialised; PETSc then
-/// leaves MPI_Finalize to the caller). No PETSc header leaks out of gravity/.
+/// leaves MPI_Finalize to the caller). Only the outermost session initialises and finalises
+/// PETSc, so a library may open one where an app already has. No PETSc header leaks out of
+/// gravity/.
 namespace regolith::gravity {
 
 class PetscSession {
@@ -11,8 +13,13 @@ public:
     PetscSession(PetscSession const&) = delete;
     PetscSession& operator=(PetscSession const&) = delete;
 
+    /// Is PETSc initialised (by any session) and not yet finalised?
+    [[nodiscard]] static bool isInitialised();
     /// PETSc's version string, e.g. "Petsc Release Version 3.18.5".
     [[nodiscard]] static char const* version();
+
+private:
+    bool m_owner = false; ///< this session initialised PETSc and finalises it
 };
 
 } // namespace regolith::gravity
