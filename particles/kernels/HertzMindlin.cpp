@@ -37,31 +37,17 @@ HertzMindlinParams HertzMindlinParams::fromMaterials(double youngsA, double pois
 HertzMindlin::HertzMindlin(MaterialTable<HertzMindlinParams> materials)
     : m_materials(std::move(materials))
     , m_beta(m_materials.numTypes(), 0.0) {
-    auto const n = static_cast<std::uint32_t>(m_materials.numTypes());
-    for (std::uint32_t a = 0; a < n; ++a)
-        for (std::uint32_t b = a; b < n; ++b) {
-            auto const& p = m_materials(a, b);
-            auto bad = [&](char const* what, double v, char const* expected) {
-                return core::InputError(
-                    fmt::format("contact.{} = {} for material types ({}, {}): expected {}", what, v,
-                                a, b, expected));
-            };
-            if (!(p.effectiveYoungsModulus > 0.0) || !std::isfinite(p.effectiveYoungsModulus))
-                throw bad("youngs_modulus (effective)", p.effectiveYoungsModulus,
-                          "a positive finite value");
-            if (!(p.effectiveShearModulus >= 0.0) || !std::isfinite(p.effectiveShearModulus))
-                throw bad("shear_modulus (effective)", p.effectiveShearModulus,
-                          "a finite value >= 0");
-            if (!(p.restitution > 0.0 && p.restitution <= 1.0))
-                throw bad("restitution", p.restitution, "a value in (0, 1]");
-            if (!(p.friction >= 0.0) || !std::isfinite(p.friction))
-                throw bad("friction", p.friction, "a finite value >= 0");
-            if (!(p.rollingFriction >= 0.0) || !std::isfinite(p.rollingFriction))
-                throw bad("rolling_friction", p.rollingFriction, "a finite value >= 0");
-            double const l = std::log(p.restitution);
-            double const beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
-            m_beta.set(a, b, -2.0 * std::sqrt(5.0 / 6.0) * beta);
-        }
+    m_materials.forEachPair([this](std::uint32_t a, std::uint32_t b, HertzMindlinParams const& p) {
+        MaterialCheck const check{a, b};
+        check.positive("youngs_modulus (effective)", p.effectiveYoungsModulus);
+        check.nonNegative("shear_modulus (effective)", p.effectiveShearModulus);
+        check.restitution(p.restitution);
+        check.nonNegative("friction", p.friction);
+        check.nonNegative("rolling_friction", p.rollingFriction);
+        double const l = std::log(p.restitution);
+        double const beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+        m_beta.set(a, b, -2.0 * std::sqrt(5.0 / 6.0) * beta);
+    });
 }
 
 ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec3& spring,

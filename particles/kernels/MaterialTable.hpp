@@ -9,6 +9,17 @@ namespace regolith::particles {
 /// Throws core::InputError: material type `type` is not below `numTypes`.
 [[noreturn]] void throwBadMaterialType(std::uint32_t type, std::size_t numTypes);
 
+/// Range checks shared by the contact models, for the pair of types (a, b). Each throws
+/// core::InputError "contact.<key> = <value> for material types (a, b): expected ..." when the
+/// value is out of range.
+struct MaterialCheck {
+    std::uint32_t a;
+    std::uint32_t b;
+    void positive(char const* key, double value) const;    ///< finite and > 0
+    void nonNegative(char const* key, double value) const; ///< finite and >= 0
+    void restitution(double value) const;                  ///< in (0, 1]
+};
+
 /// A symmetric `numTypes x numTypes` table of contact parameters `P`. Type indices are the
 /// `type` of particles and walls.
 template <class P>
@@ -34,6 +45,13 @@ public:
         return m_params[a * m_numTypes + b];
     }
     [[nodiscard]] std::size_t numTypes() const { return m_numTypes; }
+    /// Calls f(a, b, params) once per unordered pair a <= b.
+    template <class F>
+    void forEachPair(F&& f) const {
+        for (std::uint32_t a = 0; a < m_numTypes; ++a)
+            for (std::uint32_t b = a; b < m_numTypes; ++b)
+                f(a, b, (*this)(a, b));
+    }
 
 private:
     std::size_t m_numTypes;

@@ -18,30 +18,16 @@ double dampingRatioFromRestitution(double e) {
 SpringDashpot::SpringDashpot(MaterialTable<LinearContactParams> materials)
     : m_materials(std::move(materials))
     , m_dampingRatio(m_materials.numTypes(), 0.0) {
-    auto const n = static_cast<std::uint32_t>(m_materials.numTypes());
-    for (std::uint32_t a = 0; a < n; ++a)
-        for (std::uint32_t b = a; b < n; ++b) {
-            auto const& p = m_materials(a, b);
-            auto bad = [&](char const* what, double v, char const* expected) {
-                return core::InputError(
-                    fmt::format("contact.{} = {} for material types ({}, {}): expected {}", what, v,
-                                a, b, expected));
-            };
-            if (!(p.stiffness > 0.0) || !std::isfinite(p.stiffness))
-                throw bad("stiffness", p.stiffness, "a positive finite value");
-            if (!(p.tangentialStiffness >= 0.0) || !std::isfinite(p.tangentialStiffness))
-                throw bad("tangential_stiffness", p.tangentialStiffness, "a finite value >= 0");
-            if (!(p.restitution > 0.0 && p.restitution <= 1.0))
-                throw bad("restitution", p.restitution, "a value in (0, 1]");
-            if (!(p.friction >= 0.0) || !std::isfinite(p.friction))
-                throw bad("friction", p.friction, "a finite value >= 0");
-            if (!(p.tangentialDampingRatio >= 0.0) || !std::isfinite(p.tangentialDampingRatio))
-                throw bad("tangential_damping_ratio", p.tangentialDampingRatio,
-                          "a finite value >= 0");
-            if (!(p.rollingFriction >= 0.0) || !std::isfinite(p.rollingFriction))
-                throw bad("rolling_friction", p.rollingFriction, "a finite value >= 0");
-            m_dampingRatio.set(a, b, dampingRatioFromRestitution(p.restitution));
-        }
+    m_materials.forEachPair([this](std::uint32_t a, std::uint32_t b, LinearContactParams const& p) {
+        MaterialCheck const check{a, b};
+        check.positive("stiffness", p.stiffness);
+        check.nonNegative("tangential_stiffness", p.tangentialStiffness);
+        check.restitution(p.restitution);
+        check.nonNegative("friction", p.friction);
+        check.nonNegative("tangential_damping_ratio", p.tangentialDampingRatio);
+        check.nonNegative("rolling_friction", p.rollingFriction);
+        m_dampingRatio.set(a, b, dampingRatioFromRestitution(p.restitution));
+    });
 }
 
 ContactResponse SpringDashpot::operator()(ContactState const& s, core::Vec3& spring,
