@@ -18,6 +18,8 @@ constexpr int kExitInputError = 2;
 
 void printInputError(std::string_view appName, std::string_view message) {
     // One "app: error:" prefix per line, so a list of unknown keys reads like compiler output.
+    while (!message.empty() && message.back() == '\n')
+        message.remove_suffix(1);
     std::size_t start = 0;
     while (start <= message.size()) {
         auto end = message.find('\n', start);

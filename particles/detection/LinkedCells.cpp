@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <string>
 
@@ -41,14 +42,19 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     // Cell ids are stored as 32-bit integers.
     maxCells = std::clamp<std::size_t>(maxCells, 1, std::numeric_limits<std::uint32_t>::max() - 1);
     for (;;) {
+        // Count in double and convert only once the grid is known to fit: a runaway grain can
+        // make extent / edge exceed any integer type.
+        std::array<double, 3> n{};
         double cells = 1.0;
         for (int d = 0; d < 3; ++d) {
-            double const n = std::floor(extent[d] / edge) + 1.0;
-            m_dims[static_cast<std::size_t>(d)] = static_cast<std::int64_t>(n);
-            cells *= n;
+            n[static_cast<std::size_t>(d)] = std::floor(extent[d] / edge) + 1.0;
+            cells *= n[static_cast<std::size_t>(d)];
         }
-        if (cells <= static_cast<double>(maxCells))
+        if (cells <= static_cast<double>(maxCells)) {
+            for (std::size_t d = 0; d < 3; ++d)
+                m_dims[d] = static_cast<std::int64_t>(n[d]);
             break;
+        }
         edge *= std::cbrt(cells / static_cast<double>(maxCells)) * (1.0 + 1e-12);
     }
     m_origin = lo;
