@@ -11,6 +11,9 @@ enum class Flag : std::uint8_t {
     Fixed = 1U << 1U,
     /// Known on every rank (e.g. a boulder larger than the domain); not migrated.
     Global = 1U << 2U,
+    /// The grain's copies spread shadows to their neighbours (SOS class, see
+    /// particles/sync/ParticleSync.hpp); absent: its master alone manages its shadows (NNS).
+    Spreads = 1U << 3U,
 };
 
 /// A set of `Flag`s in one byte.

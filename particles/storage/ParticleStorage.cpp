@@ -24,6 +24,7 @@ void ParticleStorage::forEachArray(F&& f) {
     f(m_flags);
     f(m_type);
     f(m_owner);
+    f(m_image);
     f(m_shadowHolders);
     f(m_history);
 }
@@ -32,10 +33,10 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     if (p.uid == kInvalidUid)
         throw core::Error("ParticleStorage::add: invalid uid");
     Index const i = size();
-    auto const [it, inserted] = m_index.try_emplace(p.uid, i);
+    auto const [it, inserted] = m_index.try_emplace(CopyKey{p.uid, p.image}, i);
     if (!inserted)
         throw core::Error("ParticleStorage::add: uid " + std::to_string(p.uid) +
-                          " is already stored");
+                          (isZero(p.image) ? "" : " (periodic image)") + " is already stored");
     (void)it;
     m_uid.push_back(p.uid);
     m_position.push_back(p.position);
@@ -51,6 +52,7 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_flags.push_back(p.flags);
     m_type.push_back(p.type);
     m_owner.push_back(p.owner);
+    m_image.push_back(p.image);
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
     updateInverses(i);
@@ -59,25 +61,37 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
 
 void ParticleStorage::remove(Index i) {
     Index const last = size() - 1;
-    m_index.erase(m_uid[i]);
+    m_index.erase(key(i));
     if (i != last) {
         forEachArray([i, last](auto& v) { v[i] = std::move(v[last]); });
-        m_index[m_uid[i]] = i;
+        m_index[key(i)] = i;
     }
     forEachArray([](auto& v) { v.pop_back(); });
 }
 
-bool ParticleStorage::removeUid(Uid uid) {
-    Index const i = find(uid);
+bool ParticleStorage::removeUid(Uid uid, CopyImage const& image) {
+    Index const i = find(uid, image);
     if (i == kNotFound)
         return false;
     remove(i);
     return true;
 }
 
-ParticleStorage::Index ParticleStorage::find(Uid uid) const {
-    auto it = m_index.find(uid);
+ParticleStorage::Index ParticleStorage::find(Uid uid, CopyImage const& image) const {
+    auto it = m_index.find(CopyKey{uid, image});
     return it == m_index.end() ? kNotFound : it->second;
+}
+
+void ParticleStorage::setImage(Index i, CopyImage const& image) {
+    if (image == m_image[i])
+        return;
+    auto const [it, inserted] = m_index.try_emplace(CopyKey{m_uid[i], image}, i);
+    if (!inserted)
+        throw core::Error("ParticleStorage::setImage: uid " + std::to_string(m_uid[i]) +
+                          " is already stored at that periodic image");
+    (void)it;
+    m_index.erase(key(i));
+    m_image[i] = image;
 }
 
 void ParticleStorage::permute(std::span<Index const> newToOld) {
@@ -99,7 +113,7 @@ void ParticleStorage::permute(std::span<Index const> newToOld) {
         v.swap(out);
     });
     for (Index k = 0; k < n; ++k)
-        m_index[m_uid[k]] = k;
+        m_index[key(k)] = k;
 }
 
 void ParticleStorage::reserve(std::size_t n) {
@@ -171,17 +185,18 @@ std::size_t ParticleStorage::bytes() const {
     add(m_flags);
     add(m_type);
     add(m_owner);
+    add(m_image);
     add(m_shadowHolders);
     add(m_history);
     for (auto const& h : m_shadowHolders)
-        b += h.capacity() * sizeof(BlockRef);
+        b += h.capacity() * sizeof(CopyRef);
     for (auto const& h : m_history)
         b += h.heapBytes();
     // libstdc++ unordered_map: one bucket pointer per bucket and one heap node per entry
     // (next pointer plus key/value; integer keys do not cache their hash). Allocator
     // overhead per node is not counted.
     b += m_index.bucket_count() * sizeof(void*);
-    b += m_index.size() * (sizeof(void*) + sizeof(std::pair<Uid const, Index>));
+    b += m_index.size() * (sizeof(void*) + sizeof(std::pair<CopyKey const, Index>));
     return b;
 }
 

@@ -3,6 +3,7 @@
 /// one contiguous array per property, so kernels stream only what they touch.
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ContactHistory.hpp"
+#include "particles/storage/CopyImage.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/Uid.hpp"
 
@@ -20,6 +21,17 @@ struct BlockRef {
     int rank = -1;
     std::uint64_t block = 0;
     friend bool operator==(BlockRef const&, BlockRef const&) = default;
+    friend auto operator<=>(BlockRef const&, BlockRef const&) = default;
+};
+
+/// One copy of a particle somewhere: the block holding it and the copy's periodic image.
+struct CopyRef {
+    int rank = -1;
+    std::uint64_t block = 0;
+    CopyImage image = kNoImage;
+    [[nodiscard]] BlockRef blockRef() const { return {rank, block}; }
+    friend bool operator==(CopyRef const&, CopyRef const&) = default;
+    friend auto operator<=>(CopyRef const&, CopyRef const&) = default;
 };
 
 /// Everything needed to create a particle. Force, torque and history start empty.
@@ -34,11 +46,13 @@ struct ParticleInit {
     std::uint32_t type = 0; ///< material index into the contact model's MaterialTable
     Flags flags{};
     BlockRef owner{};
+    CopyImage image = kNoImage; ///< see CopyImage.hpp; a master's is always kNoImage
 };
 
-/// SoA particle storage with a uid -> index map.
+/// SoA particle storage with a (uid, image) -> index map.
 ///
-/// Invariants: `find(uid(i)) == i` for every index, uids are unique; `invMass` and
+/// Invariants: `find(uid(i), image(i)) == i` for every index, (uid, image) keys are unique (a
+/// block that is its own periodic neighbour may hold one particle at several images); `invMass` and
 /// `invInertia` follow mass, radius and the Fixed flag (zero when fixed; a sphere's inertia
 /// is 2/5 m r^2). Adding is amortised O(1); removing is O(1) by moving the last particle into
 /// the freed slot, which changes that particle's index (never its uid). Indices are therefore
@@ -49,15 +63,18 @@ public:
     static constexpr Index kNotFound = std::numeric_limits<Index>::max();
 
     /// Appends a particle and returns its index. Throws core::Error if the uid is kInvalidUid
-    /// or already stored. Values are not checked here (see validateParticles).
+    /// or (uid, image) is already stored. Values are not checked here (see validateParticles).
     Index add(ParticleInit const& p);
     /// Removes the particle at `i` (< size()) by swap-with-last.
     void remove(Index i);
-    /// Removes the particle with `uid`; returns false if there is none.
-    bool removeUid(Uid uid);
-    /// Index of `uid`, or kNotFound.
-    [[nodiscard]] Index find(Uid uid) const;
-    [[nodiscard]] bool contains(Uid uid) const { return find(uid) != kNotFound; }
+    /// Removes the copy (uid, image); returns false if there is none.
+    bool removeUid(Uid uid, CopyImage const& image = kNoImage);
+    /// Index of the copy (uid, image), or kNotFound. Without an image: the unshifted copy (a
+    /// master, or a shadow that needs no periodic shift).
+    [[nodiscard]] Index find(Uid uid, CopyImage const& image = kNoImage) const;
+    [[nodiscard]] bool contains(Uid uid, CopyImage const& image = kNoImage) const {
+        return find(uid, image) != kNotFound;
+    }
 
     /// Reorders the particles: new index k holds the particle that had index `newToOld[k]`
     /// (mesa_pd's ParticleStorage::sort). Used to restore spatial locality, e.g. with
@@ -92,8 +109,11 @@ public:
     [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
     [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
     [[nodiscard]] BlockRef owner(Index i) const { return m_owner[i]; }
-    [[nodiscard]] std::vector<BlockRef>& shadowHolders(Index i) { return m_shadowHolders[i]; }
-    [[nodiscard]] std::vector<BlockRef> const& shadowHolders(Index i) const {
+    [[nodiscard]] CopyImage const& image(Index i) const { return m_image[i]; }
+    [[nodiscard]] CopyKey key(Index i) const { return {m_uid[i], m_image[i]}; }
+    /// Where the master knows its shadows to be (masters only; sorted, unique).
+    [[nodiscard]] std::vector<CopyRef>& shadowHolders(Index i) { return m_shadowHolders[i]; }
+    [[nodiscard]] std::vector<CopyRef> const& shadowHolders(Index i) const {
         return m_shadowHolders[i];
     }
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
@@ -105,6 +125,8 @@ public:
     void setFlags(Index i, Flags flags);
     void setType(Index i, std::uint32_t type) { m_type[i] = type; }
     void setOwner(Index i, BlockRef owner) { m_owner[i] = owner; }
+    /// Re-keys copy i to `image`; throws core::Error if (uid, image) is held already.
+    void setImage(Index i, CopyImage const& image);
 
     // ---- bulk access ---------------------------------------------------------------------
     [[nodiscard]] std::vector<Uid> const& uids() const { return m_uid; }
@@ -152,9 +174,10 @@ private:
     std::vector<Flags> m_flags;
     std::vector<std::uint32_t> m_type;
     std::vector<BlockRef> m_owner;
-    std::vector<std::vector<BlockRef>> m_shadowHolders;
+    std::vector<CopyImage> m_image;
+    std::vector<std::vector<CopyRef>> m_shadowHolders;
     std::vector<ContactHistory> m_history;
-    std::unordered_map<Uid, Index> m_index;
+    std::unordered_map<CopyKey, Index, CopyKeyHash> m_index;
 };
 
 } // namespace regolith::particles

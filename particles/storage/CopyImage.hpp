@@ -1,0 +1,68 @@
+#pragma once
+/// Which periodic copy of a particle a stored copy is. Every copy stores the master's
+/// canonical state bit for bit (position inside the domain); `image` says where the copy sits
+/// in the frame of the block that holds it: local position = position + imageOffset(image).
+/// Keeping the canonical bits and an integer image (instead of a shifted position) makes
+/// contact geometry independent of the block that evaluates it (reproducible mode), and lets
+/// a block that is its own periodic neighbour hold a particle and its image side by side.
+#include "core/math/Vec3.hpp"
+#include "particles/storage/Uid.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+
+namespace regolith::particles {
+
+/// Whole domain periods per axis; 0 on a non-periodic axis.
+using CopyImage = std::array<std::int8_t, 3>;
+
+inline constexpr CopyImage kNoImage{0, 0, 0};
+/// Images beyond +-kMaxImage are refused (a grain would reach several periods away).
+inline constexpr int kMaxImage = 7;
+
+[[nodiscard]] constexpr bool isZero(CopyImage const& k) {
+    return k[0] == 0 && k[1] == 0 && k[2] == 0;
+}
+
+/// k * period per axis [length]; `period` is the domain extent on periodic axes (any value on
+/// the others: their image is 0).
+[[nodiscard]] inline core::Vec3 imageOffset(CopyImage const& k, core::Vec3 const& period) {
+    return {k[0] * period[0], k[1] * period[1], k[2] * period[2]};
+}
+
+/// The copy's position in the frame of its holder. Always computed this way (never as a
+/// shifted local position), so that every rank predicts the same bits.
+[[nodiscard]] inline core::Vec3 localPosition(core::Vec3 const& canonical, CopyImage const& k,
+                                              core::Vec3 const& period) {
+    return isZero(k) ? canonical : core::Vec3(canonical + imageOffset(k, period));
+}
+
+/// a + b per axis; throws core::Error beyond +-kMaxImage.
+CopyImage addImages(CopyImage const& a, CopyImage const& b);
+/// a - b per axis; throws core::Error beyond +-kMaxImage.
+CopyImage subtractImages(CopyImage const& a, CopyImage const& b);
+/// The image of a copy made through a block link with periodic image `linkImage` (see
+/// domain::BlockLink: shift = -image * extent) from a copy with image `from`.
+CopyImage imageThroughLink(CopyImage const& from, std::array<int, 3> const& linkImage);
+
+/// Key of one copy in a block: a uid may be held several times at different images.
+struct CopyKey {
+    Uid uid = kInvalidUid;
+    CopyImage image = kNoImage;
+    friend bool operator==(CopyKey const&, CopyKey const&) = default;
+    friend auto operator<=>(CopyKey const&, CopyKey const&) = default;
+};
+
+struct CopyKeyHash {
+    std::size_t operator()(CopyKey const& k) const noexcept {
+        auto const packed =
+            static_cast<std::uint64_t>(static_cast<std::uint8_t>(k.image[0])) |
+            (static_cast<std::uint64_t>(static_cast<std::uint8_t>(k.image[1])) << 8U) |
+            (static_cast<std::uint64_t>(static_cast<std::uint8_t>(k.image[2])) << 16U);
+        return std::hash<std::uint64_t>{}(k.uid ^ (packed * 0x9E3779B97F4A7C15ULL));
+    }
+};
+
+} // namespace regolith::particles

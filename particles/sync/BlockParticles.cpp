@@ -1,0 +1,62 @@
+#include "particles/sync/BlockParticles.hpp"
+
+#include "core/Error.hpp"
+
+#include <string>
+
+namespace regolith::particles {
+
+LocalParticles::LocalParticles(domain::BlockForest const& forest)
+    : m_forest(&forest) {
+    m_blocks.reserve(forest.blocks().size());
+    for (domain::Block const& b : forest.blocks())
+        m_blocks.push_back(BlockParticles{&b, ParticleStorage{}, {}});
+}
+
+BlockParticles* LocalParticles::find(std::uint64_t blockId) {
+    for (BlockParticles& b : m_blocks)
+        if (b.block->id.raw() == blockId)
+            return &b;
+    return nullptr;
+}
+
+BlockParticles const* LocalParticles::find(std::uint64_t blockId) const {
+    for (BlockParticles const& b : m_blocks)
+        if (b.block->id.raw() == blockId)
+            return &b;
+    return nullptr;
+}
+
+bool LocalParticles::addMaster(ParticleInit p) {
+    if (!m_forest->insideDomain(p.position))
+        return false;
+    p.position = m_forest->wrap(p.position);
+    domain::Block const* block = m_forest->localBlockContaining(p.position);
+    if (block == nullptr)
+        return false;
+    BlockParticles* bp = find(block->id.raw());
+    p.flags.set(Flag::Shadow, false);
+    p.image = kNoImage;
+    p.owner = BlockRef{m_forest->rank(), block->id.raw()};
+    if (bp->particles.contains(p.uid))
+        throw core::Error("particle uid " + std::to_string(p.uid) +
+                          " inserted twice in the same block");
+    bp->particles.add(p);
+    return true;
+}
+
+std::size_t LocalParticles::countMasters() const {
+    std::size_t n = 0;
+    for (BlockParticles const& b : m_blocks)
+        n += b.particles.countMasters();
+    return n;
+}
+
+std::size_t LocalParticles::countCopies() const {
+    std::size_t n = 0;
+    for (BlockParticles const& b : m_blocks)
+        n += b.particles.size();
+    return n;
+}
+
+} // namespace regolith::particles

@@ -1,0 +1,155 @@
+// ParticleSync::reduceForces: shadow -> master reduction of forces, torques and contact
+// history ("reduce forces/torques shadow->master" of the time step in DESIGN.md).
+#include "core/Error.hpp"
+#include "particles/sync/ParticleSync.hpp"
+#include "particles/sync/SyncEngine.hpp"
+#include "particles/sync/SyncMessages.hpp"
+
+#include <algorithm>
+#include <string>
+#include <tuple>
+
+namespace regolith::particles {
+
+using namespace sync_detail;
+
+namespace {
+
+/// One contribution to a master's force in reproducible mode.
+struct Contribution {
+    std::size_t block = 0; ///< index into local.blocks()
+    std::size_t master = 0;
+    Uid partner = kInvalidUid;
+    core::Vec3 force = core::Vec3::Zero();
+    core::Vec3 torque = core::Vec3::Zero();
+};
+
+/// History entries of copy i evaluated in this pass.
+std::vector<HistoryEntry> touched(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp) {
+    std::vector<HistoryEntry> out;
+    for (HistoryEntry const& e : ps.history(i))
+        if (e.stamp == stamp)
+            out.push_back(e);
+    return out;
+}
+
+std::size_t masterIndex(LocalParticles& local, std::uint64_t block, Uid uid, std::size_t& b) {
+    auto const blocks = local.blocks();
+    for (b = 0; b < blocks.size(); ++b)
+        if (blocks[b].block->id.raw() == block)
+            break;
+    std::size_t const i =
+        b < blocks.size() ? blocks[b].particles.find(uid) : ParticleStorage::kNotFound;
+    if (i == ParticleStorage::kNotFound || !blocks[b].particles.flags(i).isMaster())
+        throw core::Error("sync: force for uid " + std::to_string(uid) + " sent to block " +
+                          std::to_string(block) + ", which does not hold its master");
+    return i;
+}
+
+/// Sends each shadow's history entries of this pass (and, unless `records`, its force and
+/// torque) to its master; applies what arrives. Returns the reproducible contributions.
+std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, LocalParticles& local,
+                                               std::vector<std::vector<ForceRecord>>* records,
+                                               std::uint32_t stamp, core::CommStats& stats) {
+    auto blocks = local.blocks();
+    std::vector<Contribution> contributions;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        ParticleStorage& ps = blocks[b].particles;
+        for (std::size_t i = 0; i < ps.size(); ++i) {
+            if (ps.flags(i).isMaster())
+                continue;
+            auto const hist = touched(ps, i, stamp);
+            bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
+            if (hist.empty() && (records != nullptr || !hasForce))
+                continue;
+            BlockRef const owner = ps.owner(i);
+            core::SendBuffer& out = engine.out(owner.rank);
+            writeHeader(out, RecordKind::Force, owner.block);
+            out << ps.uid(i) << ps.force(i) << ps.torque(i) << hist;
+            ps.force(i).setZero();
+            ps.torque(i).setZero();
+        }
+        if (records == nullptr)
+            continue;
+        for (ForceRecord const& r : (*records)[b]) {
+            if (ps.flags(r.copy).isMaster()) {
+                contributions.push_back(Contribution{b, r.copy, r.partner, r.force, r.torque});
+                continue;
+            }
+            BlockRef const owner = ps.owner(r.copy);
+            core::SendBuffer& out = engine.out(owner.rank);
+            writeHeader(out, RecordKind::ForceRecords, owner.block);
+            out << ps.uid(r.copy) << r.partner << r.force << r.torque;
+        }
+    }
+    engine.exchange(stats, [&](int from, core::RecvBuffer& in) {
+        while (!in.exhausted()) {
+            RecordKind kind{};
+            std::uint64_t block = 0;
+            Uid uid = kInvalidUid;
+            in >> kind >> block >> uid;
+            std::size_t b = 0;
+            std::size_t const i = masterIndex(local, block, uid, b);
+            ParticleStorage& ps = blocks[b].particles;
+            if (kind == RecordKind::Force) {
+                core::Vec3 f, t;
+                std::vector<HistoryEntry> hist;
+                in >> f >> t >> hist;
+                ps.force(i) += f;
+                ps.torque(i) += t;
+                for (HistoryEntry const& e : hist)
+                    ps.history(i).set(e);
+            } else if (kind == RecordKind::ForceRecords) {
+                Contribution c{b, i, kInvalidUid, {}, {}};
+                in >> c.partner >> c.force >> c.torque;
+                contributions.push_back(c);
+            } else {
+                throw core::Error("sync: malformed force message from rank " +
+                                  std::to_string(from));
+            }
+        }
+    });
+    for (BlockParticles& bp : blocks)
+        bp.particles.forEachMaster([&](std::size_t i) { bp.particles.history(i).keepOnly(stamp); });
+    return contributions;
+}
+
+} // namespace
+
+void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp) {
+    core::CommStats stats;
+    exchangeShadowShares(*m_impl, local, nullptr, stamp, stats);
+    m_counters.record(stats);
+}
+
+void ParticleSync::reduceForces(LocalParticles& local,
+                                std::vector<std::vector<ForceRecord>>& records,
+                                std::uint32_t stamp) {
+    if (records.size() != local.blocks().size())
+        throw core::Error("reduceForces: one record list per local block expected");
+    core::CommStats stats;
+    auto contributions = exchangeShadowShares(*m_impl, local, &records, stamp, stats);
+    // Every master's force summed from zero in ascending partner uid: the same sum whatever
+    // block evaluated each contact (DESIGN.md, reproducible mode).
+    std::sort(contributions.begin(), contributions.end(),
+              [](Contribution const& a, Contribution const& b) {
+                  return std::tie(a.block, a.master, a.partner) <
+                         std::tie(b.block, b.master, b.partner);
+              });
+    auto blocks = local.blocks();
+    for (BlockParticles& bp : blocks)
+        bp.particles.forEachMaster([&](std::size_t i) {
+            bp.particles.force(i).setZero();
+            bp.particles.torque(i).setZero();
+        });
+    for (Contribution const& c : contributions) {
+        ParticleStorage& ps = blocks[c.block].particles;
+        ps.force(c.master) += c.force;
+        ps.torque(c.master) += c.torque;
+    }
+    for (auto& r : records)
+        r.clear();
+    m_counters.record(stats);
+}
+
+} // namespace regolith::particles

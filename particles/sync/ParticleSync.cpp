@@ -1,0 +1,342 @@
+#include "particles/sync/ParticleSync.hpp"
+
+#include "core/Error.hpp"
+#include "particles/sync/SyncEngine.hpp"
+#include "particles/sync/SyncInbox.hpp"
+#include "particles/sync/SyncMessages.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace regolith::particles {
+
+using namespace sync_detail;
+
+bool copyNeeded(core::AABB const& box, core::Vec3 const& x, CopyImage const& k, double r,
+                core::Vec3 const& period) {
+    return box.intersectsSphere(localPosition(x, k, period),
+                                r * (1.0 + ParticleSync::kOverlapMargin));
+}
+
+// ---- Impl: forest view and exchange ---------------------------------------------------------
+
+ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& forest,
+                         SyncConfig config)
+    : m_comm(comm.duplicate())
+    , m_forest(&forest) {
+    core::Vec3 const extent = forest.domain().extent();
+    for (int a = 0; a < 3; ++a)
+        m_period[a] = forest.periodic()[static_cast<std::size_t>(a)] ? extent[a] : 0.0;
+    if (config.method == SyncMethod::NextNeighbour) {
+        std::vector<int> peers = forest.neighbourRanks();
+        peers.push_back(comm.rank());
+        std::sort(peers.begin(), peers.end());
+        m_neighbour = std::make_unique<core::NeighbourExchange>(m_comm, std::move(peers));
+    } else {
+        m_sparse = std::make_unique<core::SparseExchange>(m_comm);
+    }
+    for (domain::Block const& b : forest.blocks()) {
+        double edge = b.aabb.minEdge();
+        std::vector<BlockRef> nbs;
+        for (domain::BlockLink const& l : b.neighbours) {
+            edge = std::min(edge, l.aabb.minEdge());
+            nbs.push_back(BlockRef{l.owner, l.id.raw()});
+        }
+        std::sort(nbs.begin(), nbs.end());
+        nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
+        m_edgeAround[b.id.raw()] = edge;
+        m_neighbourBlocks[b.id.raw()] = std::move(nbs);
+    }
+}
+
+core::SendBuffer& ParticleSync::Impl::out(int rank) {
+    if (rank != m_comm.rank())
+        m_destinations.insert(rank);
+    return m_neighbour ? m_neighbour->sendBuffer(rank) : m_sparse->sendBuffer(rank);
+}
+
+std::uint64_t ParticleSync::Impl::messages() const {
+    return m_neighbour ? m_neighbour->counters().totalMessages()
+                       : m_sparse->counters().totalMessages();
+}
+
+std::uint64_t ParticleSync::Impl::bytes() const {
+    return m_neighbour ? m_neighbour->counters().totalBytes() : m_sparse->counters().totalBytes();
+}
+
+// ---- the public class -----------------------------------------------------------------------
+
+ParticleSync::ParticleSync(core::Comm const& comm, domain::BlockForest const& forest,
+                           SyncConfig config)
+    : m_impl(std::make_unique<Impl>(comm, forest, config))
+    , m_config(config) {}
+
+ParticleSync::~ParticleSync() = default;
+
+namespace {
+
+/// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`.
+/// Returns true if the master leaves this block (transferred or out of the domain).
+bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i, bool nnsClass,
+                   SyncStats& stats) {
+    ParticleStorage& ps = bp.particles;
+    domain::Block const& block = *bp.block;
+    int const me = engine.rank();
+    core::Vec3 const& period = engine.period();
+    Uid const uid = ps.uid(i);
+    core::Vec3 const x = ps.position(i);
+    double const r = ps.radius(i);
+    ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, !nnsClass));
+
+    // Ownership (Alg. 1 l. 16-24, Alg. 2 l. 4-12): the block whose box holds the centre.
+    bool transfer = false;
+    BlockRef newOwner{me, block.id.raw()};
+    CopyImage kN = kNoImage; // image of the new owner's copy in the current frame
+    std::vector<CopyRef>& holders = ps.shadowHolders(i);
+    if (!block.aabb.contains(x)) {
+        auto const loc = engine.forest().blockContaining(block, x);
+        if (!loc && engine.forest().insideDomain(x))
+            throw core::Error("sync: particle uid " + std::to_string(uid) +
+                              " moved farther than the neighbour blocks of its block in one "
+                              "step; reduce time.dt");
+        if (!loc) { // left an open domain: remove the grain and all its shadows
+            for (CopyRef const& h : holders) {
+                writeHeader(engine.out(h.rank), RecordKind::Remove, h.block);
+                engine.out(h.rank) << uid << h.image;
+            }
+            ++stats.leftDomain;
+            return true;
+        }
+        kN = imageThroughLink(kNoImage, loc->image);
+        transfer = !(loc->id == block.id && isZero(kN));
+        newOwner = BlockRef{loc->owner, loc->id.raw()};
+    }
+
+    // Where copies go, in the current frame.
+    std::vector<CopyRef> targets;
+    if (nnsClass) {
+        for (domain::BlockLink const& l : block.neighbours) {
+            CopyImage const k = imageThroughLink(kNoImage, l.image);
+            if (copyNeeded(l.aabb, x, k, r, period))
+                targets.push_back(CopyRef{l.owner, l.id.raw(), k});
+        }
+    } else {
+        targets = holders;
+    }
+    if (transfer && (!nnsClass || copyNeeded(block.aabb, x, kNoImage, r, period)))
+        targets.push_back(CopyRef{me, block.id.raw(), kNoImage}); // the old master's block
+    std::sort(targets.begin(), targets.end());
+
+    // The frame after a transfer across a periodic boundary moves every image by -kN.
+    CopyRef const ownerCopy{newOwner.rank, newOwner.block, kN};
+    core::Vec3 const newPosition = transfer ? localPosition(x, kN, period) : x;
+    std::vector<CopyRef> newHolders;
+    for (CopyRef const& t : targets)
+        if (!(transfer && t == ownerCopy))
+            newHolders.push_back(CopyRef{t.rank, t.block, subtractImages(t.image, kN)});
+    std::sort(newHolders.begin(), newHolders.end());
+
+    for (CopyRef const& t : targets) {
+        if (transfer && t == ownerCopy)
+            continue;
+        CopyImage const k = subtractImages(t.image, kN);
+        core::SendBuffer& b = engine.out(t.rank);
+        if (std::binary_search(holders.begin(), holders.end(), t)) {
+            writeHeader(b, RecordKind::Update, t.block);
+            writeUpdate(b, ps, i, newPosition, t.image, k, newOwner);
+        } else {
+            writeHeader(b, RecordKind::Copy, t.block);
+            writeFull(b, ps, i, newPosition, k, newOwner, {});
+        }
+    }
+    if (nnsClass) {
+        for (CopyRef const& h : holders) {
+            if (!std::binary_search(targets.begin(), targets.end(), h)) {
+                writeHeader(engine.out(h.rank), RecordKind::Remove, h.block);
+                engine.out(h.rank) << uid << h.image;
+            }
+        }
+    }
+    if (transfer) {
+        core::SendBuffer& b = engine.out(newOwner.rank);
+        writeHeader(b, RecordKind::Promote, newOwner.block);
+        b << kN;
+        writeFull(b, ps, i, newPosition, kNoImage, newOwner, newHolders);
+        return true;
+    }
+    holders = std::move(newHolders);
+    return false;
+}
+
+/// Whether the ball (x, r) of a master of `block` lies inside the block grown by `edge` (the
+/// smallest edge around it), i.e. inside the block and its neighbours: the condition under
+/// which the master alone can reach every block its grain overlaps (NNS). After a step the
+/// centre may have left the block, so this is stricter than r < edge. Beyond an open domain
+/// face there is nothing to reach.
+bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& block, double edge,
+                         core::Vec3 const& x, double r) {
+    core::AABB const& domain = engine.forest().domain();
+    auto const& periodic = engine.forest().periodic();
+    double const reach = r * (1.0 + ParticleSync::kOverlapMargin);
+    for (int a = 0; a < 3; ++a) {
+        bool const open = !periodic[static_cast<std::size_t>(a)];
+        bool const lowOk =
+            (open && block.aabb.min[a] <= domain.min[a]) || x[a] - reach > block.aabb.min[a] - edge;
+        bool const highOk =
+            (open && block.aabb.max[a] >= domain.max[a]) || x[a] + reach < block.aabb.max[a] + edge;
+        if (!lowOk || !highOk)
+            return false;
+    }
+    return true;
+}
+
+/// Alg. 2 lines 15-28 for every SOS-class copy of `bp`: create missing shadows on the
+/// neighbour blocks (one layer per call), drop shadows that no longer touch the block.
+void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
+    ParticleStorage& ps = bp.particles;
+    domain::Block const& block = *bp.block;
+    int const me = engine.rank();
+    std::uint64_t const self = block.id.raw();
+    core::Vec3 const& period = engine.period();
+    std::vector<CopyKey> drop;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+        if (!ps.flags(i).has(Flag::Spreads))
+            continue;
+        Uid const uid = ps.uid(i);
+        CopyImage const k = ps.image(i);
+        core::Vec3 const& x = ps.position(i);
+        double const r = ps.radius(i);
+        BlockRef const owner = ps.owner(i);
+        bool const master = ps.flags(i).isMaster();
+        if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
+            drop.push_back(ps.key(i));
+            core::SendBuffer& b = engine.out(owner.rank);
+            writeHeader(b, RecordKind::HolderRemoved, owner.block);
+            b << uid << CopyRef{me, self, k};
+            for (BlockRef const& nb : engine.neighbourBlocks(self)) {
+                writeHeader(engine.out(nb.rank), RecordKind::ForgetSent, nb.block);
+                engine.out(nb.rank) << SentEntry{self, uid, k};
+            }
+            continue;
+        }
+        for (domain::BlockLink const& l : block.neighbours) {
+            CopyImage const kt = imageThroughLink(k, l.image);
+            if (!copyNeeded(l.aabb, x, kt, r, period))
+                continue;
+            if (l.id.raw() == owner.block && isZero(kt))
+                continue; // the master itself
+            CopyRef const t{l.owner, l.id.raw(), kt};
+            if (master) {
+                auto& h = ps.shadowHolders(i);
+                auto const at = std::lower_bound(h.begin(), h.end(), t);
+                if (at != h.end() && *at == t)
+                    continue;
+                h.insert(at, t);
+            } else {
+                if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}).second)
+                    continue;
+                core::SendBuffer& b = engine.out(owner.rank);
+                writeHeader(b, RecordKind::HolderAdded, owner.block);
+                b << uid << t;
+            }
+            core::SendBuffer& b = engine.out(l.owner);
+            writeHeader(b, RecordKind::Copy, l.id.raw());
+            writeFull(b, ps, i, x, kt, owner, {});
+        }
+    }
+    for (CopyKey const& key : drop) {
+        ps.removeUid(key.uid, key.image);
+        forgetSent(bp, key.uid);
+        ++stats.removed;
+    }
+}
+
+} // namespace
+
+void ParticleSync::sync(LocalParticles& local) {
+    Impl& engine = *m_impl;
+    m_last = SyncStats{};
+    bool const twoRounds = m_config.method != SyncMethod::NextNeighbour;
+    for (BlockParticles& bp : local.blocks()) {
+        ParticleStorage& ps = bp.particles;
+        double const edge = engine.edgeAround(bp.block->id.raw());
+        std::vector<Uid> leaving;
+        for (std::size_t i = 0; i < ps.size(); ++i) {
+            if (!ps.flags(i).isMaster())
+                continue;
+            double const r = ps.radius(i);
+            bool const small = r < edge;
+            bool const reachable =
+                small && withinNeighbourhood(engine, *bp.block, edge, ps.position(i), r);
+            if (m_config.method == SyncMethod::NextNeighbour && !reachable) {
+                std::ostringstream msg;
+                msg << "NNS cannot synchronise particle uid " << ps.uid(i) << ": its radius " << r
+                    << (small ? " plus its displacement in one step reach" : " is not below")
+                    << " the smallest block edge " << edge
+                    << " it may touch; set sync.method = \"sos\" or \"hybrid\""
+                    << (small ? ", or reduce time.dt" : "");
+                throw core::Error(msg.str());
+            }
+            bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
+                                  (m_config.method == SyncMethod::Hybrid && reachable);
+            if (processMaster(engine, bp, i, nnsClass, m_last))
+                leaving.push_back(ps.uid(i));
+        }
+        for (Uid uid : leaving)
+            ps.removeUid(uid);
+    }
+    receiveRound(engine, local, m_last);
+    if (twoRounds) {
+        for (BlockParticles& bp : local.blocks())
+            spread(engine, bp, m_last);
+        receiveRound(engine, local, m_last);
+    }
+    m_counters.record(m_last.comm);
+}
+
+int ParticleSync::syncUntilConverged(LocalParticles& local, int maxCalls) {
+    for (int calls = 1; calls <= maxCalls; ++calls) {
+        sync(local);
+        if (m_impl->comm().allReduce(m_last.created, core::ReduceOp::Sum) == 0)
+            return calls;
+    }
+    throw core::Error("shadow synchronisation did not converge in " + std::to_string(maxCalls) +
+                      " calls");
+}
+
+std::optional<NnsViolation> ParticleSync::findNnsViolation(LocalParticles const& local) const {
+    std::optional<NnsViolation> worst;
+    for (BlockParticles const& bp : local.blocks()) {
+        double const edge = m_impl->edgeAround(bp.block->id.raw());
+        ParticleStorage const& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) {
+            if (ps.radius(i) >= edge && (!worst || ps.uid(i) < worst->uid))
+                worst = NnsViolation{ps.uid(i), ps.radius(i), edge};
+        });
+    }
+    return worst;
+}
+
+void ParticleSync::requireNnsApplicable(LocalParticles const& local) const {
+    if (m_config.method != SyncMethod::NextNeighbour)
+        return;
+    auto const v = findNnsViolation(local);
+    core::Comm const& comm = m_impl->comm();
+    auto const uids = comm.allGather<std::uint64_t>(v ? v->uid : kInvalidUid);
+    auto const radii = comm.allGather<double>(v ? v->radius : 0.0);
+    auto const edges = comm.allGather<double>(v ? v->blockEdge : 0.0);
+    auto const first = std::min_element(uids.begin(), uids.end());
+    if (*first == kInvalidUid)
+        return;
+    auto const at = static_cast<std::size_t>(first - uids.begin());
+    std::ostringstream msg;
+    msg << "sync.method = \"nns\" cannot simulate this scene: particle uid " << *first
+        << " has radius " << radii[at] << ", not below the smallest edge " << edges[at]
+        << " of the blocks it may touch (NNS only reaches next neighbours); use "
+        << "sync.method = \"sos\" or \"hybrid\", or larger blocks";
+    throw core::InputError(msg.str());
+}
+
+} // namespace regolith::particles

@@ -1,0 +1,108 @@
+#pragma once
+/// Shadow synchronisation between the blocks of a forest: next-neighbour (NNS, Eibl & Ruede
+/// 2018 Alg. 1), shadow-owner (SOS, Alg. 2) and a per-grain hybrid of both, plus the
+/// reduction of shadow forces, torques and contact history to the masters.
+#include "core/mpi/Comm.hpp"
+#include "core/mpi/CommCounters.hpp"
+#include "core/mpi/NeighbourExchange.hpp"
+#include "core/mpi/SparseExchange.hpp"
+#include "particles/kernels/ForceRecord.hpp"
+#include "particles/sync/BlockParticles.hpp"
+#include "particles/sync/SyncMethod.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace regolith::particles {
+
+/// What one call did on this rank (for tests, counters and the run summary).
+struct SyncStats {
+    std::uint64_t created = 0;     ///< shadows created here
+    std::uint64_t updated = 0;     ///< shadows updated here
+    std::uint64_t removed = 0;     ///< shadows removed here
+    std::uint64_t transferred = 0; ///< masters that moved to another block (received here)
+    std::uint64_t leftDomain = 0;  ///< masters removed from this rank: they left an open domain
+    std::uint64_t duplicates = 0;  ///< creation orders discarded as duplicates (SOS)
+    core::CommStats comm;          ///< messages, bytes and peers of this call's exchanges
+};
+
+/// A grain too large for NNS, found by `findNnsViolation`.
+struct NnsViolation {
+    Uid uid = kInvalidUid;
+    double radius = 0.0;
+    double blockEdge = 0.0; ///< the smallest edge of the blocks the grain may touch
+};
+
+/// One object per run (it keeps the exchanges and counters). Every member function that
+/// communicates is COLLECTIVE over the communicator given to the constructor.
+class ParticleSync {
+public:
+    /// COLLECTIVE over `comm` (duplicates it for its exchanges).
+    ParticleSync(core::Comm const& comm, domain::BlockForest const& forest, SyncConfig config);
+    ~ParticleSync();
+    ParticleSync(ParticleSync const&) = delete;
+    ParticleSync& operator=(ParticleSync const&) = delete;
+
+    /// One synchronisation call with the configured method. Post (NNS-class grains): every
+    /// block the grain overlaps holds exactly one copy per overlapping image, no other block
+    /// holds one, masters sit in the block containing their centre. SOS-class grains spread one
+    /// block layer further per call; once converged one call per step keeps all consistent.
+    /// Throws core::Error (one rank; the app aborts) if NNS meets a grain too large for it or
+    /// a message is malformed. COLLECTIVE.
+    void sync(LocalParticles& local);
+
+    /// Calls sync() until no shadow was created anywhere (at most `maxCalls` calls; one
+    /// all-reduce per call). For set-up: a large grain spanning k block layers needs k calls.
+    /// Returns the number of calls made. COLLECTIVE.
+    int syncUntilConverged(LocalParticles& local, int maxCalls = 1000);
+
+    /// Sends the forces and torques accumulated on shadows to their masters and adds them
+    /// there, together with the contact-history entries stamped `stamp` (a shadow may evaluate
+    /// a contact whose spring lives on its master); then drops on masters every history entry
+    /// not stamped `stamp`. Shadows' forces are zeroed. COLLECTIVE.
+    void reduceForces(LocalParticles& local, std::uint32_t stamp);
+
+    /// Reproducible variant: `records[b]` holds the per-contact force records of local block
+    /// b (ContactEvaluation's evaluateContactsRecorded); records of shadows travel to the
+    /// master, and every master's force and torque are summed from zero in ascending partner
+    /// uid, so the result does not depend on which block evaluated which contact. COLLECTIVE.
+    void reduceForces(LocalParticles& local, std::vector<std::vector<ForceRecord>>& records,
+                      std::uint32_t stamp);
+
+    /// The first grain on this rank (lowest uid) too large for NNS in its block, if any:
+    /// radius >= the smallest edge of its block and of the neighbour blocks it overlaps. Local.
+    [[nodiscard]] std::optional<NnsViolation> findNnsViolation(LocalParticles const& local) const;
+    /// Throws core::InputError on every rank, naming the uid, its radius, the block edge and
+    /// the remedy, if the configured method is NNS and any rank holds such a grain. COLLECTIVE.
+    void requireNnsApplicable(LocalParticles const& local) const;
+
+    [[nodiscard]] SyncConfig const& config() const { return m_config; }
+    [[nodiscard]] SyncStats const& lastStats() const { return m_last; }
+    /// Totals over all calls of sync() and reduceForces() since construction or reset.
+    [[nodiscard]] core::CommCounters const& counters() const { return m_counters; }
+    void resetCounters() { m_counters.reset(); }
+
+    /// Relative safety margin of the overlap test that decides where copies are needed: a
+    /// copy exists where dist(centre, box) < r (1 + kOverlapMargin), so that rounding can never
+    /// hide a copy from the block that must evaluate a contact.
+    static constexpr double kOverlapMargin = 1e-9;
+
+    /// Internals (SyncEngine.hpp), shared by the implementation files only.
+    class Impl;
+
+private:
+    std::unique_ptr<Impl> m_impl;
+    SyncConfig m_config;
+    SyncStats m_last;
+    core::CommCounters m_counters;
+};
+
+/// The overlap predicate of the synchronisation (see kOverlapMargin): does the ball at
+/// canonical position `x`, image `k`, radius `r` reach into `box`? Invariant checks use it.
+[[nodiscard]] bool copyNeeded(core::AABB const& box, core::Vec3 const& x, CopyImage const& k,
+                              double r, core::Vec3 const& period);
+
+} // namespace regolith::particles

@@ -1,0 +1,68 @@
+#pragma once
+/// Internals of ParticleSync shared by its source files: the per-rank view of the forest the
+/// algorithms need and the exchange that carries one round of records.
+#include "core/mpi/Buffer.hpp"
+#include "core/mpi/Comm.hpp"
+#include "core/mpi/CommCounters.hpp"
+#include "core/mpi/NeighbourExchange.hpp"
+#include "core/mpi/SparseExchange.hpp"
+#include "particles/sync/BlockParticles.hpp"
+#include "particles/sync/ParticleSync.hpp"
+
+#include <memory>
+#include <set>
+#include <unordered_map>
+#include <vector>
+
+namespace regolith::particles {
+
+class ParticleSync::Impl {
+public:
+    Impl(core::Comm const& comm, domain::BlockForest const& forest, SyncConfig config);
+
+    /// The buffer for `rank` in the current round.
+    core::SendBuffer& out(int rank);
+    /// Sends the round's buffers and hands every received buffer to `f(from, buffer)` in
+    /// ascending source rank; adds the traffic to `stats`. COLLECTIVE.
+    template <class F>
+    void exchange(core::CommStats& stats, F&& f) {
+        std::uint64_t const m0 = messages(), b0 = bytes();
+        if (m_neighbour) {
+            m_neighbour->start();
+            m_neighbour->wait(f);
+        } else {
+            m_sparse->start();
+            m_sparse->wait(f);
+        }
+        stats.messages += messages() - m0;
+        stats.bytes += bytes() - b0;
+        stats.peers = std::max(stats.peers, static_cast<int>(m_destinations.size()));
+        m_destinations.clear();
+    }
+
+    /// Smallest edge of block `id` and of all its neighbours (NNS limit), by raw id.
+    [[nodiscard]] double edgeAround(std::uint64_t id) const { return m_edgeAround.at(id); }
+    /// Distinct (rank, raw id) of the neighbour blocks of local block `id`.
+    [[nodiscard]] std::vector<BlockRef> const& neighbourBlocks(std::uint64_t id) const {
+        return m_neighbourBlocks.at(id);
+    }
+    [[nodiscard]] core::Vec3 const& period() const { return m_period; }
+    [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
+    [[nodiscard]] core::Comm const& comm() const { return m_comm; }
+    [[nodiscard]] int rank() const { return m_comm.rank(); }
+
+private:
+    [[nodiscard]] std::uint64_t messages() const;
+    [[nodiscard]] std::uint64_t bytes() const;
+
+    core::Comm m_comm;
+    domain::BlockForest const* m_forest;
+    core::Vec3 m_period;
+    std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
+    std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
+    std::set<int> m_destinations;                         ///< other ranks written this round
+    std::unordered_map<std::uint64_t, double> m_edgeAround;
+    std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
+};
+
+} // namespace regolith::particles

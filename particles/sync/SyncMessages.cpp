@@ -1,0 +1,74 @@
+#include "particles/sync/SyncMessages.hpp"
+
+namespace regolith::particles::sync_detail {
+
+void writeHeader(core::SendBuffer& b, RecordKind kind, std::uint64_t targetBlock) {
+    b << kind << targetBlock;
+}
+
+void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+               core::Vec3 const& position, CopyImage const& image, BlockRef owner,
+               std::vector<CopyRef> const& holders) {
+    b << ps.uid(i) << image << position << ps.velocity(i) << ps.angularVelocity(i)
+      << ps.orientation(i) << ps.radius(i) << ps.mass(i) << ps.type(i)
+      << Flags(ps.flags(i)).set(Flag::Shadow, false) << owner << ps.force(i) << ps.torque(i)
+      << ps.history(i).entries() << holders;
+}
+
+FullState readFull(core::RecvBuffer& b) {
+    FullState s;
+    ParticleInit& p = s.init;
+    b >> p.uid >> p.image >> p.position >> p.velocity >> p.angularVelocity >> p.orientation >>
+        p.radius >> p.mass >> p.type >> p.flags >> p.owner >> s.force >> s.torque >> s.history >>
+        s.holders;
+    return s;
+}
+
+void writeUpdate(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+                 core::Vec3 const& position, CopyImage const& oldImage, CopyImage const& newImage,
+                 BlockRef owner) {
+    b << ps.uid(i) << oldImage << newImage << position << ps.velocity(i) << ps.angularVelocity(i)
+      << ps.orientation(i) << Flags(ps.flags(i)).set(Flag::Shadow, false) << owner
+      << ps.history(i).entries();
+}
+
+UpdateState readUpdate(core::RecvBuffer& b) {
+    UpdateState u;
+    b >> u.uid >> u.oldImage >> u.newImage >> u.position >> u.velocity >> u.angularVelocity >>
+        u.orientation >> u.flags >> u.owner >> u.history;
+    return u;
+}
+
+namespace {
+
+void setHistory(ContactHistory& h, std::vector<HistoryEntry> const& entries) {
+    h.clear();
+    for (HistoryEntry const& e : entries)
+        h.set(e);
+}
+
+} // namespace
+
+std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master) {
+    ParticleInit p = s.init;
+    p.flags.set(Flag::Shadow, !master);
+    std::size_t const i = ps.add(p);
+    ps.force(i) = s.force;
+    ps.torque(i) = s.torque;
+    setHistory(ps.history(i), s.history);
+    if (master)
+        ps.shadowHolders(i) = s.holders;
+    return i;
+}
+
+void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
+    ps.position(i) = u.position;
+    ps.velocity(i) = u.velocity;
+    ps.angularVelocity(i) = u.angularVelocity;
+    ps.orientation(i) = u.orientation;
+    ps.setFlags(i, Flags(u.flags).set(Flag::Shadow, ps.flags(i).isShadow()));
+    ps.setOwner(i, u.owner);
+    setHistory(ps.history(i), u.history);
+}
+
+} // namespace regolith::particles::sync_detail

@@ -1,0 +1,77 @@
+#pragma once
+/// The records the synchronisation sends between blocks. Every record starts with its kind
+/// and the target block; records for one rank are aggregated into one message per exchange.
+#include "core/mpi/Buffer.hpp"
+#include "particles/storage/ParticleStorage.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace regolith::particles {
+
+/// Packing of a history entry (Eigen vectors are not trivially copyable).
+inline core::SendBuffer& operator<<(core::SendBuffer& b, HistoryEntry const& e) {
+    return b << e.partner << e.spring << e.stamp;
+}
+inline core::RecvBuffer& operator>>(core::RecvBuffer& b, HistoryEntry& e) {
+    return b >> e.partner >> e.spring >> e.stamp;
+}
+
+} // namespace regolith::particles
+
+namespace regolith::particles::sync_detail {
+
+enum class RecordKind : std::uint8_t {
+    Copy = 1,          ///< create a shadow: full state incl. contact history (Alg. 1/2 "create")
+    Update = 2,        ///< what changes each step, the (new) owner and image (Alg. 1/2 "update")
+    Promote = 3,       ///< ownership transfer: full state, force, torque and the shadow holders
+    Remove = 4,        ///< delete a shadow (master's order, or the grain left the domain)
+    HolderAdded = 5,   ///< SOS round 2 -> owner: a new shadow exists at `holder`
+    HolderRemoved = 6, ///< SOS round 2 -> owner: the shadow at `holder` was dropped
+    ForgetSent = 7,    ///< SOS round 2 -> neighbours: drop this copy from your sent-cache
+    Force = 8,         ///< shadow -> master: force, torque, touched history entries
+    ForceRecords = 9,  ///< shadow -> master, reproducible: per-contact force records
+};
+
+/// A particle's complete state as it travels (creation and promotion).
+struct FullState {
+    ParticleInit init;
+    core::Vec3 force = core::Vec3::Zero();
+    core::Vec3 torque = core::Vec3::Zero();
+    std::vector<HistoryEntry> history;
+    std::vector<CopyRef> holders;
+};
+
+/// What an update carries.
+struct UpdateState {
+    Uid uid = kInvalidUid;
+    CopyImage oldImage = kNoImage; ///< key of the copy at the receiver
+    CopyImage newImage = kNoImage;
+    core::Vec3 position = core::Vec3::Zero();
+    core::Vec3 velocity = core::Vec3::Zero();
+    core::Vec3 angularVelocity = core::Vec3::Zero();
+    core::Quat orientation = core::Quat::Identity();
+    Flags flags{};
+    BlockRef owner{};
+    std::vector<HistoryEntry> history;
+};
+
+void writeHeader(core::SendBuffer& b, RecordKind kind, std::uint64_t targetBlock);
+
+/// Full state of copy `i` of `ps`, as a copy with `image` owned by `owner`.
+void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+               core::Vec3 const& position, CopyImage const& image, BlockRef owner,
+               std::vector<CopyRef> const& holders);
+FullState readFull(core::RecvBuffer& b);
+
+void writeUpdate(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+                 core::Vec3 const& position, CopyImage const& oldImage, CopyImage const& newImage,
+                 BlockRef owner);
+UpdateState readUpdate(core::RecvBuffer& b);
+
+/// Adds `s` to `ps` as a shadow (flags without Shadow get it set) or master; returns index.
+std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master);
+/// Overwrites the dynamic state of copy i with `u` (image is re-keyed by the caller).
+void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u);
+
+} // namespace regolith::particles::sync_detail

@@ -1,0 +1,33 @@
+#pragma once
+/// The three shadow-synchronisation methods and their scene names.
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace regolith::particles {
+
+enum class SyncMethod {
+    /// Eibl & Ruede 2018, Alg. 1 (NNS): the master alone creates, updates and removes its
+    /// shadows on the neighbour blocks it overlaps; one exchange. Needs every grain smaller
+    /// than the blocks it may touch.
+    NextNeighbour,
+    /// Eibl & Ruede 2018, Alg. 2 (SOS): the master updates its known shadows; then every copy
+    /// spreads shadows one block layer further (diffusively); two exchanges. Any grain size.
+    ShadowOwner,
+    /// Per grain: NNS for grains small enough, SOS for the others, in the same two exchanges.
+    Hybrid,
+};
+
+/// "nns", "sos", "hybrid".
+[[nodiscard]] std::string_view syncMethodName(SyncMethod m);
+/// The method named `name`, or nullopt.
+[[nodiscard]] std::optional<SyncMethod> parseSyncMethod(std::string_view name);
+
+struct SyncConfig {
+    SyncMethod method = SyncMethod::Hybrid;
+    /// Sum contact forces on masters in a canonical order (by partner uid), so that results
+    /// are bitwise identical for any rank count and block layout (DESIGN.md).
+    bool reproducible = false;
+};
+
+} // namespace regolith::particles
