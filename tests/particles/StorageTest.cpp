@@ -169,7 +169,7 @@ TEST(ParticleStorage, PermuteMovesEveryPropertyAndTheMap) {
         auto const i =
             ps.add(sphere(100 + u, Vec3(static_cast<double>(u), 0, 0), 0.1 * (u + 1), 1.0 + u));
         ps.history(i).touch(200 + u, 1);
-        ps.shadowHolders(i).push_back(BlockRef{static_cast<int>(u), u});
+        ps.shadowHolders(i).push_back(CopyRef{static_cast<int>(u), u, kNoImage});
     }
     std::vector<std::size_t> const order{3, 0, 5, 1, 4, 2};
     ps.permute(order);
@@ -198,3 +198,31 @@ TEST(WallList, NormalisesAndRejectsBadNormals) {
     EXPECT_THROW(walls.add(Vec3::Zero(), Vec3(std::nan(""), 0, 1)), InputError);
     EXPECT_EQ(walls.size(), 1U);
 }
+
+namespace regolith::particles {
+namespace {
+
+TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
+    ParticleStorage ps;
+    ParticleInit p;
+    p.uid = 7;
+    p.radius = 0.5;
+    p.mass = 1.0;
+    ps.add(p);
+    p.image = CopyImage{1, 0, 0};
+    p.flags = Flag::Shadow;
+    std::size_t const image = ps.add(p);
+    EXPECT_EQ(ps.find(7), 0U);
+    EXPECT_EQ(ps.find(7, CopyImage{1, 0, 0}), image);
+    EXPECT_THROW(ps.add(p), core::Error); // the same (uid, image) twice
+    EXPECT_THROW(ps.setImage(image, kNoImage), core::Error);
+    ps.setImage(image, CopyImage{0, -1, 0});
+    EXPECT_EQ(ps.find(7, CopyImage{0, -1, 0}), image);
+    EXPECT_FALSE(ps.contains(7, CopyImage{1, 0, 0}));
+    ps.remove(0);
+    EXPECT_EQ(ps.find(7, CopyImage{0, -1, 0}), 0U);
+    EXPECT_FALSE(ps.contains(7));
+}
+
+} // namespace
+} // namespace regolith::particles
