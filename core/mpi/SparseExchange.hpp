@@ -6,11 +6,13 @@
 #include "core/mpi/Comm.hpp"
 #include "core/mpi/CommCounters.hpp"
 
+#include <climits>
 #include <mpi.h>
 
 #include <concepts>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -25,21 +27,46 @@ namespace regolith::core {
 ///
 /// A destination receives a message iff its `sendBuffer()` was called in this call, even if
 /// the buffer stayed empty: an empty message arrives as an empty RecvBuffer (a notification).
-/// A message to oneself is moved locally, without MPI.
+/// A message to oneself is moved locally, without MPI and without size limit.
 ///
 /// NBX: synchronous sends (MPI_Issend) to every destination; then a loop that receives any
-/// message with this call's tag (MPI_Improbe/MPI_Mrecv) and, once all own sends have been
-/// matched, joins a non-blocking barrier (MPI_Ibarrier); the call ends when the barrier
-/// completes, which proves that every message to this rank has been received. The two tags
-/// alternate between consecutive calls: a rank that has left the barrier may already send its
-/// next call's messages while a slower rank still probes for the current ones.
+/// message with this call's tag (MPI_Iprobe/MPI_Recv) and, once all own sends have been
+/// matched, joins a non-blocking reduction (MPI_Iallreduce, where the paper uses an
+/// MPI_Ibarrier: its completion proves the same, that every rank has entered it, so every
+/// message to this rank has been received); the call ends when the reduction completes. The
+/// reduction carries an error word, so an error found on one rank (a message over the limit)
+/// reaches every rank at no extra latency. The two tags alternate between consecutive calls:
+/// a rank that has left the reduction may already send its next call's messages while a
+/// slower rank still probes for the current ones.
 ///
 /// Counters (`counters()`): per call, messages = payload messages to other ranks (empty ones
 /// included); bytes = their payload bytes; peers = number of other destination ranks. The
-/// barrier's internal traffic is not counted.
+/// reduction's internal traffic is not counted, nor is a message over the limit (not sent).
 ///
 /// Collectivity: the constructor, start() and wait() are COLLECTIVE over `comm` (every rank
 /// calls them the same number of times, even with nothing to send). Not thread-safe.
+///
+/// Failure paths (none leaves another rank waiting while the run goes on):
+///  - Misuse (sendBuffer() out of range or while in flight, start() twice, wait() without
+///    start()): core::Error on the misusing rank only, before any MPI call; the object is
+///    unchanged (a call in flight can still be completed by wait()). The other ranks wait in
+///    the call until core::runApp aborts the job on that error.
+///  - A buffer to another rank above maxMessageBytes(): start() does not send it and does
+///    not throw; wait() completes the call and then throws core::Error on EVERY rank with the
+///    same message, naming the lowest such (sender, destination) pair. The call's messages
+///    are discarded everywhere; the object is usable afterwards.
+///  - The callback of wait() throws: the call is already complete (messages are delivered
+///    after the reduction), so the exception propagates, the remaining messages of this call
+///    are dropped and the object is usable afterwards (asserted by the tests).
+///  - Out of memory while receiving: wait() frees what this call received and completes the
+///    call (still receiving, so that the other ranks' sends complete), then rethrows. If that
+///    fails too, the object is unusable as after an MPI error.
+///  - An MPI call fails (core::Error from Comm::check): MPI's state is then undefined; the
+///    object frees its send requests without waiting (core/mpi/Requests.hpp), drops the
+///    reduction request (MPI forbids freeing a nonblocking collective) and becomes unusable:
+///    every later member call throws core::Error and the destructor makes no MPI call.
+/// When an exception leaves start() or wait(), this object holds no active point-to-point
+/// request, and no collective request except after an MPI error.
 class SparseExchange {
 public:
     /// A received message: source rank and its payload.
@@ -48,10 +75,16 @@ public:
         RecvBuffer buffer;
     };
 
-    /// COLLECTIVE over `comm` (duplicates it).
-    explicit SparseExchange(Comm const& comm);
+    /// The largest message MPI can send with an `int` count (no MPI-4 "_c" calls), in bytes.
+    static constexpr std::uint64_t kMaxMessageBytes = INT_MAX;
+
+    /// `maxMessageBytes`: the largest payload in bytes sent to another rank, in
+    /// [1, kMaxMessageBytes] and equal on every rank (a lower limit catches runaway packing);
+    /// throws core::Error on every rank, with the same message, otherwise.
+    /// COLLECTIVE over `comm` (duplicates it, then one all-reduce).
+    explicit SparseExchange(Comm const& comm, std::uint64_t maxMessageBytes = kMaxMessageBytes);
     /// If a call is in flight, completes it (discarding what arrived), so that no rank waits
-    /// forever in the barrier; this rank then still takes part in the call.
+    /// forever in the reduction; this rank then still takes part in the call. Never throws.
     ~SparseExchange();
     SparseExchange(SparseExchange const&) = delete;
     SparseExchange& operator=(SparseExchange const&) = delete;
@@ -61,12 +94,13 @@ public:
     SendBuffer& sendBuffer(int dest);
 
     /// Starts the synchronous sends; returns at once. Throws core::Error if a call is already
-    /// in flight or a buffer exceeds INT_MAX bytes.
+    /// in flight (see the failure paths above).
     void start();
 
-    /// Runs the NBX receive loop until the barrier completes, then hands every received
+    /// Runs the NBX receive loop until the reduction completes, then hands every received
     /// message to `onMessage(rank, RecvBuffer&)` in ascending source rank. Throws core::Error
-    /// without start(). COLLECTIVE over the communicator.
+    /// without start(), or on every rank for a message over the limit. COLLECTIVE over the
+    /// communicator.
     template <class F>
     requires std::invocable<F&, int, RecvBuffer&>
     void wait(F&& onMessage) {
@@ -78,20 +112,41 @@ public:
     [[nodiscard]] std::vector<Message> wait();
 
     /// True between start() and wait().
-    [[nodiscard]] bool inFlight() const { return m_inFlight; }
+    [[nodiscard]] bool inFlight() const { return m_phase != Phase::Idle; }
+    /// The limit given to the constructor, in bytes.
+    [[nodiscard]] std::uint64_t maxMessageBytes() const { return m_maxMessageBytes; }
     [[nodiscard]] CommCounters const& counters() const { return m_counters; }
     /// Resets the counters (e.g. after set-up).
     void resetCounters() { m_counters.reset(); }
 
 private:
+    /// Where the call in flight is: sends not all matched yet, or in the closing reduction.
+    enum class Phase { Idle, Sending, Closing };
+
     [[nodiscard]] int currentTag() const;
+    /// Throws core::Error if an MPI error made this object unusable.
+    void requireUsable() const;
+    /// Comm::check, but on failure first gives up on every request (abandon()).
+    void mpiCheck(int mpiResult, char const* what);
+    /// After an MPI error: frees the sends, drops the reduction, marks the object unusable.
+    void abandon(std::string const& why) noexcept;
+    /// Runs the NBX loop from the current phase until the call is complete (Phase::Idle),
+    /// appending what arrives to m_received. Resumable after an exception.
+    void progress();
+    /// Completes the call after an exception or in the destructor, discarding messages.
+    void completeDiscarding() noexcept;
 
     Comm m_comm;
+    std::uint64_t m_maxMessageBytes = kMaxMessageBytes;
     std::map<int, SendBuffer> m_send; ///< destinations of the current call, ascending
     std::vector<MPI_Request> m_sendRequests;
-    std::vector<Message> m_self; ///< the self message of the current call, if any
-    std::uint64_t m_call = 0;    ///< calls started so far; its parity selects the tag
-    bool m_inFlight = false;
+    MPI_Request m_closing = MPI_REQUEST_NULL; ///< the Iallreduce that ends a call
+    std::int64_t m_localError = 0;            ///< Iallreduce input: error key or kNoError
+    std::int64_t m_globalError = 0;           ///< Iallreduce output: lowest error key
+    std::vector<Message> m_received;          ///< this call's messages so far (self included)
+    std::uint64_t m_call = 0;                 ///< calls started so far; parity selects the tag
+    Phase m_phase = Phase::Idle;
+    std::string m_mpiError; ///< non-empty once an MPI call failed: the object is unusable
     CommCounters m_counters;
 };
 

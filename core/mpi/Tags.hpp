@@ -6,6 +6,7 @@ namespace regolith::core {
 enum class Tag : int {
     ExchangeSizes = 101,     ///< NeighbourExchange: byte counts per peer
     ExchangeData = 102,      ///< NeighbourExchange: payload
+    ExchangePeerCheck = 103, ///< NeighbourExchange: peer-list census (empty messages)
     SparseExchange = 201,    ///< SparseExchange (NBX): payload, receivers do not know senders
     SparseExchangeAlt = 202, ///< SparseExchange: payload of odd-numbered calls (see there)
     TestTraffic = 901,       ///< tests only

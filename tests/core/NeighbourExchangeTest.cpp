@@ -1,5 +1,7 @@
 // NeighbourExchange: random symmetric peer graphs with 0 B .. 1 MiB messages over several
-// rounds on one object, exact counters, delivery order, misuse and error paths.
+// rounds on one object, exact counters, delivery order, misuse and error paths: asymmetric or
+// invalid peer lists (every rank throws the same message), a message over the limit (its two
+// ends throw, nobody hangs), callbacks that throw (the object stays usable).
 #include "core/mpi/NeighbourExchange.hpp"
 
 #include "core/Error.hpp"
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace regolith::core;
@@ -215,4 +218,170 @@ TEST(NeighbourExchange, DestroyedInFlightCompletesItsCall) {
     ex.start();
     for (auto& m : ex.wait())
         EXPECT_EQ(pat.verify(m.buffer, m.rank, world.rank(), 1), "");
+}
+
+namespace {
+
+/// The message of the core::Error the constructor throws on this rank, "" if it does not.
+std::string constructionError(Comm const& world, std::vector<int> peers,
+                              std::uint64_t limit = NeighbourExchange::kMaxMessageBytes) {
+    try {
+        NeighbourExchange const ex(world, std::move(peers), limit);
+    } catch (Error const& e) {
+        return e.what();
+    }
+    return {};
+}
+
+std::string asymmetry(int lister, int other) {
+    return "NeighbourExchange: asymmetric peer lists: rank " + std::to_string(lister) +
+           " lists rank " + std::to_string(other) + ", but rank " + std::to_string(other) +
+           " does not list rank " + std::to_string(lister);
+}
+
+} // namespace
+
+// Every rank checks its own message against the same expected text, so a pass at every rank
+// count proves that all ranks threw and agree on the pair.
+TEST(NeighbourExchange, AsymmetricPeerListsThrowOnEveryRankNamingOnePair) {
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    std::vector<int> all(static_cast<std::size_t>(p));
+    for (int r = 0; r < p; ++r)
+        all[static_cast<std::size_t>(r)] = r;
+
+    // Everyone lists everyone, except that the last rank leaves out rank 0.
+    std::vector<int> dropped = all;
+    if (p >= 2 && me == p - 1)
+        dropped.erase(dropped.begin());
+    std::string const expectDropped = p >= 2 ? asymmetry(0, p - 1) : "";
+    EXPECT_EQ(constructionError(world, dropped), expectDropped);
+    EXPECT_EQ(NeighbourExchange::peersAreSymmetric(world, dropped), p < 2);
+
+    // A directed ring (plus self): every rank is listed exactly as often as it lists, so a
+    // count of listers alone would pass it; symmetric only for p <= 2.
+    std::vector<int> ring{me, (me + 1) % p};
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    EXPECT_EQ(constructionError(world, ring), p >= 3 ? asymmetry(0, 1) : "");
+    EXPECT_EQ(NeighbourExchange::peersAreSymmetric(world, ring), p <= 2);
+
+    // Rank 0 is listed by everyone but lists only itself: found by the census on rank 0.
+    std::vector<int> star{0};
+    if (me != 0)
+        star.push_back(me);
+    EXPECT_EQ(constructionError(world, star), p >= 2 ? asymmetry(1, 0) : "");
+
+    // One rank's list is invalid: everybody reports that rank's problem.
+    std::vector<int> invalid{me};
+    if (me == p - 1)
+        invalid.push_back(p);
+    EXPECT_EQ(constructionError(world, invalid),
+              "NeighbourExchange: rank " + std::to_string(p - 1) + ": peer " + std::to_string(p) +
+                  " out of range [0, " + std::to_string(p) + ")");
+
+    // The lists that pass construct an exchange that works.
+    EXPECT_EQ(constructionError(world, all), "");
+}
+
+TEST(NeighbourExchange, LimitMustBeValidAndEqualOnEveryRank) {
+    Comm world;
+    int const p = world.size();
+    EXPECT_EQ(constructionError(world, {world.rank()}, 0),
+              "NeighbourExchange: rank 0: maxMessageBytes 0 not in [1, 2147483647]");
+    if (p >= 2) {
+        EXPECT_EQ(constructionError(world, {world.rank()}, world.rank() == 0 ? 100 : 200),
+                  "NeighbourExchange: maxMessageBytes differs between ranks (100 to 200)");
+    }
+}
+
+TEST(NeighbourExchange, OversizedMessageFailsTheCallOnItsTwoEndsOnly) {
+    // Rank 1 has a message over the limit for rank 0. Both throw from wait() with the same
+    // message and nobody hangs; the other ranks receive everything; then the object works.
+    constexpr std::uint64_t kLimit = 256;
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    std::vector<int> all(static_cast<std::size_t>(p));
+    for (int r = 0; r < p; ++r)
+        all[static_cast<std::size_t>(r)] = r;
+    NeighbourExchange ex(world, all, kLimit);
+    EXPECT_EQ(ex.maxMessageBytes(), kLimit);
+    int const sender = 1;
+    int const receiver = 0;
+    std::string const expected = "NeighbourExchange: rank 1 has a 257-byte message for rank 0, "
+                                 "above the limit of 256 bytes";
+    for (int round = 0; round < 4; ++round) {
+        bool const failing = round == 0 && p >= 2;
+        for (int const q : all) {
+            auto& b = ex.sendBuffer(q);
+            b << me << round;
+            if (failing && me == sender && q == receiver)
+                b.writeBytes(std::vector<std::byte>(257 - 2 * sizeof(int)).data(),
+                             257 - 2 * sizeof(int));
+            if (q == me) // self messages have no limit
+                b << std::vector<char>(1000, 's');
+        }
+        EXPECT_NO_THROW(ex.start());
+        std::vector<int> from;
+        std::string error;
+        try {
+            ex.wait([&](int src, RecvBuffer& in) {
+                from.push_back(src);
+                EXPECT_EQ(read<int>(in), src);
+                EXPECT_EQ(read<int>(in), round);
+                if (src == me) {
+                    EXPECT_EQ(read<std::vector<char>>(in), std::vector<char>(1000, 's'));
+                }
+                EXPECT_TRUE(in.exhausted());
+            });
+        } catch (Error const& e) {
+            error = e.what();
+        }
+        EXPECT_FALSE(ex.inFlight());
+        bool const end = failing && (me == sender || me == receiver);
+        EXPECT_EQ(error, end ? expected : "") << "round " << round;
+        std::vector<int> expectFrom = all;
+        if (end)
+            expectFrom = me == sender ? std::vector<int>{} : std::vector<int>{0};
+        EXPECT_EQ(from, expectFrom) << "round " << round;
+        if (failing && me == sender) { // sizes to all others, payloads to all but rank 0
+            EXPECT_EQ(ex.counters().last().messages, static_cast<std::uint64_t>(2 * p - 3));
+        }
+    }
+}
+
+TEST(NeighbourExchange, CallbackThrowingOnOneRankLeavesEveryRankUsable) {
+    // In round r, rank r % p throws from its second delivery; the others are unaffected, and
+    // every later round still delivers exactly the right data to every rank.
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    ExchangePattern const pat{p, 1234};
+    auto const peers = pat.peersOf(me);
+    NeighbourExchange ex(world, peers);
+    int const rounds = std::min(p, 4) + 2;
+    for (int round = 0; round < rounds; ++round) {
+        for (int const q : peers)
+            pat.pack(ex.sendBuffer(q), me, q, round);
+        ex.start();
+        bool const thrower = round < rounds - 2 && me == round % p;
+        std::size_t delivered = 0;
+        auto onMessage = [&](int from, RecvBuffer& in) {
+            if (thrower && delivered == std::min<std::size_t>(1, peers.size() - 1))
+                throw std::runtime_error("callback failed");
+            ++delivered;
+            EXPECT_EQ(pat.verify(in, from, me, round), "") << "round " << round;
+        };
+        if (thrower && !peers.empty()) {
+            EXPECT_THROW(ex.wait(onMessage), std::runtime_error);
+            EXPECT_EQ(delivered, std::min<std::size_t>(1, peers.size() - 1));
+        } else {
+            ex.wait(onMessage);
+            EXPECT_EQ(delivered, peers.size()) << "round " << round;
+        }
+        EXPECT_FALSE(ex.inFlight());
+    }
+    EXPECT_EQ(ex.counters().calls(), static_cast<std::uint64_t>(rounds));
 }

@@ -1,5 +1,7 @@
 // SparseExchange (NBX): random directed patterns with 0 B .. 1 MiB messages over several
-// rounds on one object, a silent round, exact counters, ordering, misuse.
+// rounds on one object, a silent round, exact counters, ordering, misuse; callbacks that
+// throw and a message over the limit (every rank throws the same error), each followed by
+// calls on the same object that must deliver exactly their own data.
 #include "core/mpi/SparseExchange.hpp"
 
 #include "core/Error.hpp"
@@ -9,6 +11,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace regolith::core;
@@ -169,4 +173,126 @@ TEST(SparseExchange, DestroyedInFlightStillTakesPart) {
     EXPECT_EQ(msgs.size(), 1u);
     for (auto& m : msgs)
         EXPECT_EQ(read<int>(m.buffer), (world.rank() + 2 * p - 2) % p);
+}
+
+TEST(SparseExchange, CallbackThrowingLeavesTheObjectUsable) {
+    // Round 0: every rank's callback throws at its first message; rounds 1..: rank r % p
+    // throws. Each later round must deliver exactly that round's data on every rank: nothing
+    // of an interrupted round may remain for the next one.
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    ExchangePattern const pat{p, 31};
+    SparseExchange ex(world);
+    int const rounds = 6;
+    for (int round = 0; round < rounds; ++round) {
+        for (int q = 0; q < p; ++q)
+            if (pat.sends(me, q, round))
+                pat.pack(ex.sendBuffer(q), me, q, round);
+        ex.start();
+        std::vector<int> expectedFrom;
+        for (int src = 0; src < p; ++src)
+            if (pat.sends(src, me, round))
+                expectedFrom.push_back(src);
+        bool const thrower = round < rounds - 2 && (round == 0 || me == round % p);
+        std::vector<int> from;
+        auto onMessage = [&](int src, RecvBuffer& in) {
+            if (thrower)
+                throw std::runtime_error("callback failed");
+            from.push_back(src);
+            EXPECT_EQ(pat.verify(in, src, me, round), "");
+        };
+        if (thrower && !expectedFrom.empty()) {
+            EXPECT_THROW(ex.wait(onMessage), std::runtime_error) << "round " << round;
+        } else {
+            ex.wait(onMessage);
+            EXPECT_EQ(from, expectedFrom) << "round " << round;
+        }
+        EXPECT_FALSE(ex.inFlight());
+    }
+    EXPECT_EQ(ex.counters().calls(), static_cast<std::uint64_t>(rounds));
+}
+
+TEST(SparseExchange, OversizedMessageFailsTheCallOnEveryRank) {
+    // Over the limit: rank 1 -> (p >= 3 ? p - 1 : 0) and, for p >= 3, rank p - 1 -> 0. Every
+    // rank throws the same message naming the lowest pair; the next call works.
+    constexpr std::uint64_t kLimit = 256;
+    Comm world;
+    int const me = world.rank();
+    int const p = world.size();
+    SparseExchange ex(world, kLimit);
+    EXPECT_EQ(ex.maxMessageBytes(), kLimit);
+    auto const oversized = [p](int src, int dst) {
+        return (src == 1 && dst == (p >= 3 ? p - 1 : 0)) || (p >= 3 && src == p - 1 && dst == 0);
+    };
+    std::vector<std::byte> const big(kLimit + 1, std::byte{7});
+    for (int round = 0; round < 3; ++round) {
+        bool const failing = round == 0 && p >= 2;
+        std::vector<int> dests{(me + 1) % p, 0};
+        if (p >= 3)
+            dests.push_back(p - 1);
+        std::sort(dests.begin(), dests.end());
+        dests.erase(std::unique(dests.begin(), dests.end()), dests.end());
+        CommStats sent;
+        for (int const q : dests) {
+            auto& b = ex.sendBuffer(q);
+            if (failing && oversized(me, q)) {
+                b.writeBytes(big.data(), big.size());
+                continue;
+            }
+            b << me << round;
+            if (q == me) // self messages have no limit
+                b.writeBytes(big.data(), big.size());
+            else {
+                sent.messages += 1;
+                sent.bytes += 2 * sizeof(int);
+                ++sent.peers;
+            }
+        }
+        EXPECT_NO_THROW(ex.start());
+        EXPECT_EQ(ex.counters().last(), sent) << "a message over the limit is not sent";
+        std::string error;
+        std::vector<int> from;
+        try {
+            ex.wait([&](int src, RecvBuffer& in) {
+                from.push_back(src);
+                EXPECT_EQ(read<int>(in), src);
+                EXPECT_EQ(read<int>(in), round);
+                EXPECT_EQ(in.remaining(), src == me ? big.size() : 0u);
+            });
+        } catch (Error const& e) {
+            error = e.what();
+        }
+        EXPECT_FALSE(ex.inFlight());
+        if (failing) {
+            EXPECT_EQ(error, "SparseExchange: rank 1 has a message for rank " +
+                                 std::to_string(p >= 3 ? p - 1 : 0) +
+                                 " larger than the limit of 256 bytes");
+            EXPECT_TRUE(from.empty()) << "nothing of a failed call is delivered";
+        } else {
+            EXPECT_EQ(error, "") << "round " << round;
+            std::vector<int> expectedFrom;
+            for (int src = 0; src < p; ++src)
+                if (src == (me + p - 1) % p || me == 0 || (me == p - 1 && p >= 3))
+                    expectedFrom.push_back(src);
+            EXPECT_EQ(from, expectedFrom) << "round " << round;
+        }
+    }
+}
+
+TEST(SparseExchange, LimitMustBeValidAndEqualOnEveryRank) {
+    Comm world;
+    auto const constructionError = [&world](std::uint64_t limit) -> std::string {
+        try {
+            SparseExchange const ex(world, limit);
+        } catch (Error const& e) {
+            return e.what();
+        }
+        return {};
+    };
+    EXPECT_EQ(constructionError(0), "SparseExchange: maxMessageBytes 0 not in [1, 2147483647]");
+    if (world.size() >= 2) {
+        EXPECT_EQ(constructionError(world.rank() == 0 ? 100 : 200),
+                  "SparseExchange: maxMessageBytes differs between ranks (100 to 200)");
+    }
 }
