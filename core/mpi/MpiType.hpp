@@ -21,7 +21,9 @@ MPI_Datatype mpiType() {
     else if constexpr (std::is_same_v<U, long>)
         return MPI_LONG;
     else if constexpr (std::is_same_v<U, unsigned long>)
-        return MPI_UNSIGNED_LONG;
+        // Open MPI 4.1 compares MPI_UNSIGNED_LONG as signed in MIN/MAX (open-mpi/ompi#10525);
+        // the fixed-width type is right.
+        return sizeof(unsigned long) == 8 ? MPI_UINT64_T : MPI_UNSIGNED_LONG;
     else if constexpr (std::is_same_v<U, long long>)
         return MPI_LONG_LONG;
     else if constexpr (std::is_same_v<U, unsigned long long>)

@@ -9,22 +9,32 @@ namespace regolith::particles {
 
 /// Two overlapping spheres. `i` and `j` are storage indices in canonical order:
 /// uid(i) < uid(j), so the pair and its history key do not depend on where it was found.
+///
+/// Frames. Every stored copy keeps its master's canonical position (CopyImage.hpp), so the
+/// geometry is expressed in i's CANONICAL frame: j's centre there is
+/// `position(j) + shiftJ`, with shiftJ = imageOffset(image(j) - image(i), period) (zero
+/// without periodic images). Only the image difference enters, so every block that sees the
+/// pair computes the same bits.
 struct Contact {
     std::size_t i = 0;
     std::size_t j = 0;
-    /// Middle of the overlap: x_i + (r_i - penetration / 2) * normal [length].
+    /// Middle of the overlap in i's canonical frame: x_i + (r_i - penetration / 2) * normal
+    /// [length].
     core::Vec3 point = core::Vec3::Zero();
-    /// Unit vector from the centre of i towards the centre of j.
+    /// Unit vector from the centre of i towards the centre of j (+ shiftJ).
     core::Vec3 normal = core::Vec3::UnitZ();
-    /// r_i + r_j - |x_j - x_i| > 0 [length].
+    /// r_i + r_j - |x_j + shiftJ - x_i| > 0 [length].
     double penetration = 0.0;
+    /// Added to j's stored (canonical) position gives j in i's frame [length].
+    core::Vec3 shiftJ = core::Vec3::Zero();
 };
 
 /// A sphere overlapping a wall; the wall plays the role of `i` (infinite mass, at rest).
 struct WallContact {
     std::size_t particle = 0; ///< storage index of the sphere
     std::size_t wall = 0;     ///< index into the WallList
-    /// Middle of the overlap: x - (r - penetration / 2) * normal [length].
+    /// Middle of the overlap, in the sphere's canonical frame (walls are not periodic):
+    /// x - (r - penetration / 2) * normal [length].
     core::Vec3 point = core::Vec3::Zero();
     /// The wall's outward normal: from the wall towards the sphere.
     core::Vec3 normal = core::Vec3::UnitZ();

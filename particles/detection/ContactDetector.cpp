@@ -3,8 +3,11 @@
 #include "core/Error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <tuple>
 
 namespace regolith::particles {
 
@@ -12,24 +15,74 @@ namespace {
 
 using Index = ParticleStorage::Index;
 
-/// Appends the contact of overlapping spheres a and b if its point is in `region`.
-void emitPair(ParticleStorage const& ps, Index a, Index b, core::AABB const& region,
-              std::vector<Contact>& out) {
-    if (ps.flags(a).isFixed() && ps.flags(b).isFixed())
-        return;
-    Index const i = ps.uid(a) < ps.uid(b) ? a : b;
-    Index const j = i == a ? b : a;
-    core::Vec3 const d = ps.position(j) - ps.position(i);
-    double const dist = d.norm();
-    // Coincident centres have no direction; any unit normal is as good, this one is fixed.
-    core::Vec3 const n = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
-    double const delta = ps.radius(i) + ps.radius(j) - dist;
-    core::Vec3 const p = ps.position(i) + (ps.radius(i) - 0.5 * delta) * n;
-    if (region.contains(p))
-        out.push_back(Contact{i, j, p, n, delta});
+/// image(j) - image(i) per axis, unchecked (both are within +-kMaxImage, so it fits).
+CopyImage imageDifference(CopyImage const& kj, CopyImage const& ki) {
+    CopyImage out{};
+    for (std::size_t a = 0; a < 3; ++a)
+        out[a] = static_cast<std::int8_t>(kj[a] - ki[a]);
+    return out;
 }
 
 } // namespace
+
+/// The pair half of the class comment: canonical geometry and the contact-point rule for one
+/// candidate pair of copies.
+class ContactDetector::PairRule {
+public:
+    PairRule(ParticleStorage const& ps, core::AABB const& region, PeriodicFrame const& frame,
+             std::vector<Contact>& out, DetectorStats& stats)
+        : m_ps(ps)
+        , m_region(region)
+        , m_frame(frame)
+        , m_period(frame.period())
+        , m_out(out)
+        , m_stats(stats) {}
+
+    /// Tests candidate copies a and b (any order) and appends their contact if this block
+    /// evaluates it.
+    void operator()(Index a, Index b) {
+        ParticleStorage const& ps = m_ps;
+        if (ps.uid(a) == ps.uid(b))
+            return; // a grain and its own periodic image
+        Index const i = ps.uid(a) < ps.uid(b) ? a : b;
+        Index const j = i == a ? b : a;
+        CopyImage const& ki = ps.image(i);
+        core::Vec3 const shiftJ = imageOffset(imageDifference(ps.image(j), ki), m_period);
+        core::Vec3 const& xi = ps.position(i);
+        // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
+        core::Vec3 const xj = ps.position(j) + shiftJ;
+        double const ri = ps.radius(i), rj = ps.radius(j);
+        core::Vec3 const d = xj - xi;
+        double const dist = d.norm();
+        if (!(dist < ri + rj))
+            return;
+        ++m_stats.overlapsFound;
+        if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
+            return;
+        // Coincident centres have no direction; any unit normal is as good, this one is fixed.
+        core::Vec3 const n = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
+        double const delta = ri + rj - dist;
+        core::Vec3 const p = xi + (ri - 0.5 * delta) * n;
+
+        core::Vec3 q = p;
+        if (!((p - xi).norm() < ri && (p - xj).norm() < rj))
+            q = ri < rj ? xi : xj; // a swallowed centre: the smaller sphere's (ties: j)
+        auto const [w, o] = m_frame.wrap(q);
+        for (std::size_t ax = 0; ax < 3; ++ax)
+            if (ki[ax] != -o[ax])
+                return; // another image instance of this pair (or another block) evaluates it
+        if (m_region.contains(w))
+            m_out.push_back(Contact{i, j, p, n, delta, shiftJ});
+    }
+
+private:
+    ParticleStorage const& m_ps;
+    core::AABB const& m_region;
+    PeriodicFrame const& m_frame;
+    core::Vec3 m_period;
+    std::vector<Contact>& m_out;
+    DetectorStats& m_stats;
+};
 
 core::AABB everywhere() {
     double const inf = std::numeric_limits<double>::infinity();
@@ -53,8 +106,54 @@ double ContactDetector::largeThreshold(ParticleStorage const& ps) {
     return m_config.largeFactor * *mid;
 }
 
+std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
+                                                      PeriodicFrame const& frame, double& rSmallMax,
+                                                      double& scale) {
+    core::Vec3 const period = frame.period();
+    bool shifted = false;
+    for (Index k = 0, n = ps.size(); k < n; ++k) {
+        CopyImage const& image = ps.image(k);
+        if (isZero(image))
+            continue;
+        shifted = true;
+        for (std::size_t a = 0; a < 3; ++a)
+            if (image[a] != 0 && !frame.periodic[a])
+                throw core::Error("contact detection: uid " + std::to_string(ps.uid(k)) +
+                                  " has a periodic image on axis " + std::to_string(a) +
+                                  ", which is not periodic in the detection frame");
+    }
+    std::span<core::Vec3 const> positions = ps.positions();
+    if (shifted) {
+        m_local.resize(ps.size());
+        for (Index k = 0, n = ps.size(); k < n; ++k)
+            m_local[k] = localPosition(ps.position(k), ps.image(k), period);
+        positions = m_local;
+    }
+
+    double const cut = largeThreshold(ps);
+    rSmallMax = 0.0;
+    double rMax = 0.0, xMax = 0.0;
+    for (Index k = 0, n = ps.size(); k < n; ++k) {
+        double const r = ps.radius(k);
+        rMax = std::max(rMax, r);
+        xMax = std::max(xMax, positions[k].cwiseAbs().maxCoeff());
+        if (r > cut) {
+            m_large.push_back(k);
+        } else {
+            m_small.push_back(k);
+            rSmallMax = std::max(rSmallMax, r);
+        }
+    }
+    scale = xMax + 2.0 * rMax;
+    m_stats.largeThreshold = cut;
+    m_stats.smallSpheres = m_small.size();
+    m_stats.largeSpheres = m_large.size();
+    return positions;
+}
+
 void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
-                             core::AABB const& region, ContactList& out) {
+                             core::AABB const& region, PeriodicFrame const& frame,
+                             ContactList& out) {
     out.clear();
     m_stats = DetectorStats{};
     m_small.clear();
@@ -64,97 +163,80 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
         return;
     }
 
-    double const cut = largeThreshold(ps);
-    double rSmallMax = 0.0;
-    for (Index k = 0, n = ps.size(); k < n; ++k) {
-        double const r = ps.radius(k);
-        if (r > cut) {
-            m_large.push_back(k);
-        } else {
-            m_small.push_back(k);
-            rSmallMax = std::max(rSmallMax, r);
-        }
-    }
-    m_stats.largeThreshold = cut;
-    m_stats.smallSpheres = m_small.size();
-    m_stats.largeSpheres = m_large.size();
+    double rSmallMax = 0.0, scale = 0.0;
+    std::span<core::Vec3 const> const positions = classify(ps, frame, rSmallMax, scale);
+    // Local positions (x + k * period) differ from the canonical geometry of PairRule by a few
+    // roundings of numbers up to `scale`, and so does the cell assignment: 64 ulps of the
+    // largest coordinate cover both, so the candidates include every canonical overlap.
+    double const slack = 64.0 * std::numeric_limits<double>::epsilon() * scale;
+    m_stats.slack = slack;
 
     double edge = 2.0 * rSmallMax + m_config.skin;
     if (!(edge > 0.0)) // only zero radii: any positive edge is right
         edge = 1.0;
-    m_cells.build(ps.positions(), ps.radii(), m_small, edge,
-                  m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1));
+    m_cells.build(positions, ps.radii(), m_small, edge + 2.0 * slack,
+                  m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1), slack);
     m_stats.cellEdge = m_cells.edge();
     m_stats.cells = m_cells.numCells();
 
-    m_cells.forEachOverlap([&](Index a, Index b) {
-        ++m_stats.overlapsFound;
-        emitPair(ps, a, b, region, out.pairs);
-    });
-    largePass(ps, region, out);
-    wallPass(ps, walls, region, out);
+    PairRule rule(ps, region, frame, out.pairs, m_stats);
+    m_cells.forEachOverlap(rule);
+    largePass(positions, ps, rule);
+    wallPass(ps, walls, out);
 
-    if (m_config.sortByUid) {
-        std::sort(out.pairs.begin(), out.pairs.end(), [&ps](Contact const& x, Contact const& y) {
-            return std::pair(ps.uid(x.i), ps.uid(x.j)) < std::pair(ps.uid(y.i), ps.uid(y.j));
-        });
-        std::sort(out.walls.begin(), out.walls.end(),
-                  [&ps](WallContact const& x, WallContact const& y) {
-                      return std::pair(ps.uid(x.particle), x.wall) <
-                             std::pair(ps.uid(y.particle), y.wall);
-                  });
-    }
+    if (m_config.sortByUid)
+        sortByUid(ps, out);
 }
 
-void ContactDetector::largePass(ParticleStorage const& ps, core::AABB const& region,
-                                ContactList& out) {
+void ContactDetector::largePass(std::span<core::Vec3 const> pos, ParticleStorage const& ps,
+                                PairRule& rule) {
     if (m_large.empty())
         return;
+    double const slack = m_stats.slack;
     // Large against small: the cells of the ball.
     for (Index a : m_large) {
-        m_stats.largeCellVisits +=
-            m_cells.forEachOverlapWith(ps.position(a), ps.radius(a), [&](Index b) {
-                ++m_stats.largeCandidates;
-                ++m_stats.overlapsFound;
-                emitPair(ps, a, b, region, out.pairs);
-            });
+        m_stats.largeCellVisits += m_cells.forEachOverlapWith(pos[a], ps.radius(a), [&](Index b) {
+            ++m_stats.largeCandidates;
+            rule(a, b);
+        });
     }
     // Large against large: sort by the lower bound along the axis where the large centres
     // spread most (fewest overlapping intervals), sweep while the next lower bound is below
     // the current upper bound.
-    core::Vec3 lo = ps.position(m_large[0]), hi = lo;
+    core::Vec3 lo = pos[m_large[0]], hi = lo;
     for (Index k : m_large) {
-        lo = lo.cwiseMin(ps.position(k));
-        hi = hi.cwiseMax(ps.position(k));
+        lo = lo.cwiseMin(pos[k]);
+        hi = hi.cwiseMax(pos[k]);
     }
     Eigen::Index axis = 0;
     (hi - lo).maxCoeff(&axis);
-    auto lower = [&ps, axis](Index k) { return ps.position(k)[axis] - ps.radius(k); };
+    auto lower = [&](Index k) { return pos[k][axis] - ps.radius(k); };
     std::sort(m_large.begin(), m_large.end(), [&](Index x, Index y) {
-        return lower(x) < lower(y) || (lower(x) == lower(y) && ps.uid(x) < ps.uid(y));
+        return std::tuple(lower(x), ps.uid(x), ps.image(x)) <
+               std::tuple(lower(y), ps.uid(y), ps.image(y));
     });
     for (std::size_t s = 0; s < m_large.size(); ++s) {
         Index const a = m_large[s];
-        double const upper = ps.position(a)[axis] + ps.radius(a);
+        double const upper = pos[a][axis] + ps.radius(a) + slack;
         for (std::size_t t = s + 1; t < m_large.size() && lower(m_large[t]) < upper; ++t) {
             Index const b = m_large[t];
             ++m_stats.largeCandidates;
-            double const reach = ps.radius(a) + ps.radius(b);
-            if ((ps.position(b) - ps.position(a)).squaredNorm() < reach * reach) {
-                ++m_stats.overlapsFound;
-                emitPair(ps, a, b, region, out.pairs);
-            }
+            double const reach = ps.radius(a) + ps.radius(b) + slack;
+            if ((pos[b] - pos[a]).squaredNorm() < reach * reach)
+                rule(a, b);
         }
     }
 }
 
-void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
-                               core::AABB const& region, ContactList& out) {
+void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls, ContactList& out) {
     if (walls.empty())
         return;
     for (Index k = 0, n = ps.size(); k < n; ++k) {
-        if (ps.flags(k).isFixed())
+        Flags const flags = ps.flags(k);
+        if (flags.isFixed())
             continue; // walls are fixed too
+        if (!flags.isMaster() || !isZero(ps.image(k)))
+            continue; // the master, in exactly one block, evaluates the sphere's wall contacts
         core::Vec3 const& x = ps.position(k);
         double const r = ps.radius(k);
         for (std::size_t w = 0; w < walls.size(); ++w) {
@@ -164,10 +246,21 @@ void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
                 continue;
             ++m_stats.overlapsFound;
             core::Vec3 const p = x - (r - 0.5 * delta) * wall.normal;
-            if (region.contains(p))
-                out.walls.push_back(WallContact{k, w, p, wall.normal, delta});
+            out.walls.push_back(WallContact{k, w, p, wall.normal, delta});
         }
     }
+}
+
+void ContactDetector::sortByUid(ParticleStorage const& ps, ContactList& out) const {
+    auto pairKey = [&ps](Contact const& c) {
+        return std::tuple(ps.uid(c.i), ps.uid(c.j), imageDifference(ps.image(c.j), ps.image(c.i)));
+    };
+    std::sort(out.pairs.begin(), out.pairs.end(),
+              [&](Contact const& x, Contact const& y) { return pairKey(x) < pairKey(y); });
+    std::sort(
+        out.walls.begin(), out.walls.end(), [&ps](WallContact const& x, WallContact const& y) {
+            return std::pair(ps.uid(x.particle), x.wall) < std::pair(ps.uid(y.particle), y.wall);
+        });
 }
 
 std::vector<std::size_t> ContactDetector::spatialOrder() const {
@@ -179,7 +272,7 @@ std::vector<std::size_t> ContactDetector::spatialOrder() const {
 
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + (m_small.capacity() + m_large.capacity()) * sizeof(std::size_t) +
-           m_scratch.capacity() * sizeof(double);
+           m_scratch.capacity() * sizeof(double) + m_local.capacity() * sizeof(core::Vec3);
 }
 
 } // namespace regolith::particles

@@ -4,10 +4,12 @@
 #include "core/math/AABB.hpp"
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/LinkedCells.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace regolith::particles {
@@ -22,8 +24,9 @@ struct DetectorConfig {
     double largeFactor = 2.0;
     /// The cell grid has at most this many cells per small sphere (the edge grows otherwise).
     std::size_t maxCellsPerSphere = 8;
-    /// Sort the output by (uid_i, uid_j) and (uid, wall), so that forces are summed in an
-    /// order independent of storage order (reproducible mode). Costs O(C log C).
+    /// Sort the output by (uid_i, uid_j, image(j) - image(i)) and (uid, wall), so that forces
+    /// are summed in an order independent of storage order (reproducible mode). Costs
+    /// O(C log C).
     bool sortByUid = false;
 };
 
@@ -36,11 +39,14 @@ struct DetectorStats {
     std::size_t cells = 0;
     std::size_t largeCellVisits = 0; ///< cells visited by the large pass in total
     std::size_t largeCandidates = 0; ///< sphere pairs the large pass tested
-    std::size_t overlapsFound = 0;   ///< overlaps (Fixed pairs too) before the region filter
+    /// Overlaps (Fixed pairs too) before the ownership rule, every image instance counted.
+    std::size_t overlapsFound = 0;
+    /// Spread of the candidate tests beyond r_a + r_b, against rounding of local positions.
+    double slack = 0.0;
 };
 
-/// A region "this block evaluates contacts whose point lies in [min, max)" that contains
-/// every point: for a single block.
+/// A region "this block evaluates contacts whose ownership point lies in [min, max)" that
+/// contains every point: for a single block.
 core::AABB everywhere();
 
 /// Finds the overlapping sphere pairs and sphere–wall contacts of a ParticleStorage.
@@ -65,16 +71,49 @@ core::AABB everywhere();
 /// large, the cells are sized for it and hold many small grains each; set
 /// DetectorConfig::largeRadius for such mixtures.
 ///
-/// Contact-point rule: only contacts whose point lies in `evaluationRegion` (half-open, see
-/// core::AABB::contains) are returned, so blocks tiling space evaluate each contact once.
+/// Periodic copies. Each stored copy has its master's canonical position x and an image k
+/// (CopyImage.hpp); binning and the candidate search use local positions x + k * period
+/// (copied to a scratch array only if some image is non-zero), with a slack of a few ulps of
+/// the coordinates so that rounding there can only add candidates. Whether a candidate pair
+/// overlaps is then decided in the CANONICAL frame of i (lower uid): shiftJ =
+/// imageOffset(k_j - k_i), d = (x_j + shiftJ) - x_i, overlap iff |d| < r_i + r_j; normal,
+/// penetration and point follow from d (Contact.hpp). These bits depend on the two canonical
+/// states and the image difference only, so every block that sees the pair, at any image,
+/// finds the same contact. A grain's contact with its own periodic image (possible only for a
+/// grain wider than the period) is ignored.
+///
+/// Contact-point rule (which block evaluates a pair). The ownership point q is the contact
+/// point if it lies strictly inside both balls (|point - x_i| < r_i and |point - (x_j +
+/// shiftJ)| < r_j), else -- one sphere has swallowed the other's centre -- the centre of the
+/// smaller sphere (ties: j), in i's canonical frame. Either way q is strictly inside both balls,
+/// so the block containing q holds both copies (ParticleSync's overlap margin covers rounding).
+/// With (w, o) = frame.wrap(q), the copy pair is emitted iff image(i) == -o (q seen from this copy
+/// of i lies in the domain image the block tiles) and `evaluationRegion` (half-open,
+/// core::AABB::contains) contains w. Among blocks tiling the domain, and among the several image
+/// instances of the pair inside one block, one instance is therefore emitted, once. Without
+/// periodic axes this is region.contains(q).
+///
+/// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
+/// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
+/// zero), which exists in exactly one block. (The contact point lies behind the wall, outside
+/// every block for a wall on a domain face, so it cannot decide.) `evaluationRegion` does not
+/// filter wall contacts.
 class ContactDetector {
 public:
     explicit ContactDetector(DetectorConfig config = {});
 
-    /// Replaces `out` with the contacts of `particles` (masters and shadows) among themselves
-    /// and with `walls`, in canonical order (uid(i) < uid(j)). Not collective.
+    /// Replaces `out` with the contacts of `particles` (masters and shadows, at any periodic
+    /// image) among themselves and with `walls` that this block evaluates (see the class
+    /// comment), in canonical order (uid(i) < uid(j)). `evaluationRegion` is the block's box
+    /// in domain coordinates. Throws core::Error if a copy has a non-zero image on an axis
+    /// that is not periodic in `frame`. Not collective.
     void detect(ParticleStorage const& particles, WallList const& walls,
-                core::AABB const& evaluationRegion, ContactList& out);
+                core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out);
+    /// The same without periodicity (default PeriodicFrame).
+    void detect(ParticleStorage const& particles, WallList const& walls,
+                core::AABB const& evaluationRegion, ContactList& out) {
+        detect(particles, walls, evaluationRegion, PeriodicFrame{}, out);
+    }
 
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
     /// then the large ones: a permutation for ParticleStorage::permute that puts neighbours
@@ -87,10 +126,17 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
+    class PairRule;
+
     double largeThreshold(ParticleStorage const& particles);
-    void largePass(ParticleStorage const& particles, core::AABB const& region, ContactList& out);
-    void wallPass(ParticleStorage const& particles, WallList const& walls, core::AABB const& region,
-                  ContactList& out);
+    /// The positions binning uses: ps.positions() or m_local. Fills m_small, m_large, stats.
+    std::span<core::Vec3 const> classify(ParticleStorage const& particles,
+                                         PeriodicFrame const& frame, double& rSmallMax,
+                                         double& scale);
+    void largePass(std::span<core::Vec3 const> positions, ParticleStorage const& particles,
+                   PairRule& rule);
+    void wallPass(ParticleStorage const& particles, WallList const& walls, ContactList& out);
+    void sortByUid(ParticleStorage const& particles, ContactList& out) const;
 
     DetectorConfig m_config;
     DetectorStats m_stats;
@@ -98,6 +144,7 @@ private:
     std::vector<std::size_t> m_small;
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
+    std::vector<core::Vec3> m_local; ///< local positions, when some image is non-zero
 };
 
 } // namespace regolith::particles

@@ -10,12 +10,13 @@
 namespace regolith::particles {
 
 void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double const> radii,
-                        std::span<std::size_t const> members, double minEdge,
-                        std::size_t maxCells) {
+                        std::span<std::size_t const> members, double minEdge, std::size_t maxCells,
+                        double slack) {
     m_member.clear();
     m_sphere.clear();
     m_start.clear();
     m_maxRadius = 0.0;
+    m_slack = slack;
     m_dims = {0, 0, 0};
     if (members.empty())
         return;
@@ -31,6 +32,9 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     }
     if (!lo.allFinite() || !hi.allFinite())
         throw core::Error("LinkedCells: a sphere centre is not finite");
+    if (!(slack >= 0.0) || !std::isfinite(slack))
+        throw core::Error("LinkedCells: slack " + std::to_string(slack) +
+                          " is not non-negative and finite");
     if (!(minEdge > 0.0) || !std::isfinite(minEdge))
         throw core::Error("LinkedCells: cell edge " + std::to_string(minEdge) +
                           " is not positive and finite");

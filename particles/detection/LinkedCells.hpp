@@ -20,20 +20,26 @@ public:
     /// cells of edge >= `minEdge` [length] covering the bounding box of those centres. If that
     /// would take more than `maxCells` cells (sparse or far-flung sets), the edge grows until
     /// it does not, so memory and the empty-cell sweep stay O(members).
-    /// Precondition: every member radius <= minEdge / 2, so that overlapping members are in
-    /// the same or adjacent cells; `minEdge` > 0 and finite centres.
+    /// `slack` >= 0 [length] widens every overlap test below (|x_a - x_b| < r_a + r_b + slack):
+    /// callers that decide overlaps exactly in another frame use it so that rounding in this
+    /// one can only add candidates, never lose one.
+    /// Precondition: 2 * (max member radius) + slack <= minEdge, so that candidate members are
+    /// in the same or adjacent cells; `minEdge` > 0 and finite centres.
     void build(std::span<core::Vec3 const> positions, std::span<double const> radii,
-               std::span<std::size_t const> members, double minEdge, std::size_t maxCells);
+               std::span<std::size_t const> members, double minEdge, std::size_t maxCells,
+               double slack = 0.0);
 
     /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
-    /// spheres overlap (|x_a - x_b| < r_a + r_b): same cell, then the 13 forward neighbours
-    /// of the half shell, so each pair is visited exactly once. Order: by cell, then slot.
+    /// spheres overlap (|x_a - x_b| < r_a + r_b + slack): same cell, then the 13 forward
+    /// neighbours of the half shell, so each pair is visited exactly once. Order: by cell,
+    /// then slot.
     template <class F>
     void forEachOverlap(F&& f) const;
 
-    /// Calls `f(b)` for every member whose sphere overlaps the sphere (`centre`, `radius`).
-    /// Visits only cells intersecting the ball of radius `radius + maxMemberRadius` about
-    /// `centre`, row by row; returns the number of cells visited.
+    /// Calls `f(b)` for every member whose sphere overlaps the sphere (`centre`, `radius`)
+    /// (within slack). Visits only cells intersecting the ball of radius
+    /// `radius + maxMemberRadius + slack` about `centre`, row by row; returns the number of
+    /// cells visited.
     template <class F>
     std::size_t forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const;
 
@@ -71,6 +77,7 @@ private:
     core::Vec3 m_origin = core::Vec3::Zero();
     double m_edge = 1.0;
     double m_maxRadius = 0.0;
+    double m_slack = 0.0;
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
     std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
     std::vector<std::size_t> m_member;   ///< original index of each slot
@@ -86,7 +93,7 @@ void LinkedCells::forEachOverlap(F&& f) const {
     auto test = [&](std::uint32_t s, std::uint32_t t) {
         Sphere const& a = m_sphere[s];
         Sphere const& b = m_sphere[t];
-        double const reach = a.radius + b.radius;
+        double const reach = a.radius + b.radius + m_slack;
         if ((b.centre - a.centre).squaredNorm() < reach * reach)
             f(m_member[s], m_member[t]);
     };
@@ -126,7 +133,8 @@ template <class F>
 std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const {
     if (m_member.empty())
         return 0;
-    double const reach = radius + m_maxRadius; // a member centre beyond this cannot touch
+    // A member centre beyond this cannot touch.
+    double const reach = radius + m_maxRadius + m_slack;
     for (int d = 0; d < 3; ++d) {
         double const end =
             m_origin[d] + static_cast<double>(m_dims[static_cast<std::size_t>(d)]) * m_edge;
@@ -158,7 +166,7 @@ std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double rad
             // Cells of one row are consecutive, so the row is one contiguous slot range.
             for (std::uint32_t t = begin; t < end; ++t) {
                 Sphere const& b = m_sphere[t];
-                double const touch = radius + b.radius;
+                double const touch = radius + b.radius + m_slack;
                 if ((b.centre - centre).squaredNorm() < touch * touch)
                     f(m_member[t]);
             }

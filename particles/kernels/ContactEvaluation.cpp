@@ -1,10 +1,13 @@
 #include "particles/kernels/ContactEvaluation.hpp"
 
+#include <algorithm>
+#include <tuple>
+
 namespace regolith::particles {
 
 ContactState pairState(ParticleStorage const& ps, Contact const& c) {
     core::Vec3 const ri = c.point - ps.position(c.i);
-    core::Vec3 const rj = c.point - ps.position(c.j);
+    core::Vec3 const rj = c.point - partnerCentre(ps, c);
     core::Vec3 const vi = ps.velocity(c.i) + ps.angularVelocity(c.i).cross(ri);
     core::Vec3 const vj = ps.velocity(c.j) + ps.angularVelocity(c.j).cross(rj);
     double const a = ps.radius(c.i), b = ps.radius(c.j);
@@ -31,6 +34,24 @@ ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallCon
                         ps.invInertia(k),
                         walls[c.wall].type,
                         ps.type(k)};
+}
+
+bool recordOrder(ParticleStorage const& ps, ForceRecord const& a, ForceRecord const& b) {
+    if (a.copy != b.copy) {
+        auto const ka = ps.key(a.copy), kb = ps.key(b.copy);
+        if (ka != kb)
+            return ka < kb;
+    }
+    return partnerOrder(a, b);
+}
+
+void sumRecords(std::vector<ForceRecord>& records, ParticleStorage& ps) {
+    std::sort(records.begin(), records.end(),
+              [&ps](ForceRecord const& a, ForceRecord const& b) { return recordOrder(ps, a, b); });
+    for (ForceRecord const& r : records) {
+        ps.force(r.copy) += r.force;
+        ps.torque(r.copy) += r.torque;
+    }
 }
 
 void pruneHistory(ParticleStorage& ps, std::uint32_t stamp) {

@@ -1,47 +1,141 @@
 #pragma once
 /// Applies a contact model to the contacts found by detection: forces and torques on both
 /// partners (shadows included; reducing shadow forces to masters is the synchronisation's
-/// job), history updated and stamped.
+/// job), history updated and stamped. Two sinks for the same per-contact code: accumulate in
+/// place (evaluateContacts), or keep one ForceRecord per participant and sum them later in a
+/// canonical order (evaluateContactsRecorded + sumRecords, reproducible mode).
 #include "particles/detection/Contact.hpp"
 #include "particles/kernels/ContactState.hpp"
+#include "particles/kernels/ForceRecord.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
+#include <compare>
+#include <concepts>
 #include <cstdint>
+#include <vector>
 
 namespace regolith::particles {
 
-/// The ContactState of the pair contact `c` (i, j in canonical order).
+/// The ContactState of the pair contact `c` (i, j in canonical order; j's lever arm taken
+/// from partnerCentre).
 ContactState pairState(ParticleStorage const& ps, Contact const& c);
 /// The ContactState of the sphere–wall contact `c` (the wall is i).
 ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallContact const& c);
 
-/// Evaluates every contact of `contacts` with `model` and adds the forces and torques to
-/// `ps` (and the reaction on each wall to `walls.force`). A pair's tangential spring is the
-/// history entry on i keyed by uid(j); a wall contact's is on the sphere keyed by the wall's
-/// uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps, stamp)` afterwards
-/// drops the contacts that broke. Forces are accumulated: reset them before. Not collective.
-template <ContactModel M>
-void evaluateContacts(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
-                      M const& model, double dt, std::uint32_t stamp) {
+/// j's centre in i's canonical frame: position(j) + shiftJ (Contact.hpp) [length].
+[[nodiscard]] inline core::Vec3 partnerCentre(ParticleStorage const& ps, Contact const& c) {
+    return ps.position(c.j) + c.shiftJ;
+}
+
+/// Something that receives one participant's share of one contact:
+/// `sink(copy, partnerUid, force, torque)` with `copy` a storage index.
+template <class S>
+concept ContactSink = requires(S& s, std::size_t copy, Uid partner, core::Vec3 const& f,
+                               core::Vec3 const& t) {
+    s(copy, partner, f, t);
+};
+
+/// The per-contact code both evaluations share: evaluates every contact of `contacts` with
+/// `model` and hands each participant's force and torque to `sink` -- for a pair first j's
+/// (partner uid(i)), then i's (partner uid(j)); for a wall contact the sphere's (partner the
+/// wall's uid) -- and subtracts the sphere's force from `walls.force`. A pair's tangential
+/// spring is the history entry on i keyed by uid(j); a wall contact's is on the sphere keyed by
+/// the wall's uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps, stamp)`
+/// afterwards drops the contacts that broke. Torques use the lever arms point - x_i and
+/// point - partnerCentre(j): the same bits whichever block (image) evaluates. Not collective.
+template <ContactModel M, ContactSink S>
+void evaluateContactsWith(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
+                          M const& model, double dt, std::uint32_t stamp, S&& sink) {
     for (Contact const& c : contacts.pairs) {
         ContactState const s = pairState(ps, c);
         core::Vec3& spring = ps.history(c.i).touch(ps.uid(c.j), stamp).spring;
         ContactResponse const r = model(s, spring, dt);
-        ps.force(c.j) += r.force;
-        ps.force(c.i) -= r.force;
-        ps.torque(c.j) += (c.point - ps.position(c.j)).cross(r.force) + r.torque;
-        ps.torque(c.i) -= (c.point - ps.position(c.i)).cross(r.force) + r.torque;
+        core::Vec3 const torqueJ = (c.point - partnerCentre(ps, c)).cross(r.force) + r.torque;
+        core::Vec3 const torqueI = (c.point - ps.position(c.i)).cross(r.force) + r.torque;
+        sink(c.j, ps.uid(c.i), r.force, torqueJ);
+        sink(c.i, ps.uid(c.j), core::Vec3(-r.force), core::Vec3(-torqueI));
     }
     for (WallContact const& c : contacts.walls) {
         ContactState const s = wallState(ps, walls, c);
-        core::Vec3& spring = ps.history(c.particle).touch(walls[c.wall].uid, stamp).spring;
+        Uid const wall = walls[c.wall].uid;
+        core::Vec3& spring = ps.history(c.particle).touch(wall, stamp).spring;
         ContactResponse const r = model(s, spring, dt);
-        ps.force(c.particle) += r.force;
-        ps.torque(c.particle) += (c.point - ps.position(c.particle)).cross(r.force) + r.torque;
+        sink(c.particle, wall, r.force,
+             core::Vec3((c.point - ps.position(c.particle)).cross(r.force) + r.torque));
         walls.force(c.wall) -= r.force;
     }
 }
+
+/// Evaluates `contacts` (see evaluateContactsWith) and adds the forces and torques to
+/// `ps.force` / `ps.torque` in contact order. Forces are accumulated: reset them before.
+/// Not collective.
+template <ContactModel M>
+void evaluateContacts(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
+                      M const& model, double dt, std::uint32_t stamp) {
+    evaluateContactsWith(ps, walls, contacts, model, dt, stamp,
+                         [&ps](std::size_t k, Uid, core::Vec3 const& f, core::Vec3 const& t) {
+                             ps.force(k) += f;
+                             ps.torque(k) += t;
+                         });
+}
+
+/// Evaluates `contacts` like evaluateContacts (history touched and stamped, wall reactions
+/// accumulated) but leaves ps.force / ps.torque alone and appends one ForceRecord per
+/// participant to `out`: two per pair (on i with partner uid(j), on j with partner uid(i)),
+/// one per wall contact (partner = the wall's uid). Sum them with sumRecords (one block) or
+/// send shadows' records to their masters (ParticleSync's reproducible reduceForces).
+/// Not collective.
+template <ContactModel M>
+void evaluateContactsRecorded(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
+                              M const& model, double dt, std::uint32_t stamp,
+                              std::vector<ForceRecord>& out) {
+    out.reserve(out.size() + 2 * contacts.pairs.size() + contacts.walls.size());
+    evaluateContactsWith(
+        ps, walls, contacts, model, dt, stamp,
+        [&out](std::size_t k, Uid partner, core::Vec3 const& f, core::Vec3 const& t) {
+            out.push_back(ForceRecord{k, partner, f, t});
+        });
+}
+
+/// Anything that is one contribution to one body's force: a partner uid, a force and a torque
+/// (ForceRecord, or the synchronisation's records of shadows sent to a master).
+template <class R>
+concept PartnerShare = requires(R const& r) {
+    { r.partner } -> std::convertible_to<Uid>;
+    { r.force } -> std::convertible_to<core::Vec3>;
+    { r.torque } -> std::convertible_to<core::Vec3>;
+};
+
+/// Total order of the contributions to ONE body, the order in which a reproducible sum adds
+/// them: ascending partner uid; ties (a pair touching through several periodic images, so the
+/// same partner twice) by the IEEE total order of force, then torque components, so that the
+/// order -- hence the sum -- depends only on the set of contributions, never on where they
+/// came from or in which order they arrived.
+template <PartnerShare A, PartnerShare B>
+[[nodiscard]] bool partnerOrder(A const& a, B const& b) {
+    if (a.partner != b.partner)
+        return a.partner < b.partner;
+    auto compare = [](core::Vec3 const& x, core::Vec3 const& y) {
+        for (int d = 0; d < 3; ++d)
+            if (auto const o = std::strong_order(x[d], y[d]); o != 0)
+                return o;
+        return std::strong_ordering::equal;
+    };
+    if (auto const o = compare(a.force, b.force); o != 0)
+        return o < 0;
+    return compare(a.torque, b.torque) < 0;
+}
+
+/// Order of the records of one storage for sumRecords: by (uid(copy), image(copy)), then
+/// partnerOrder. Pre: a.copy, b.copy < ps.size().
+[[nodiscard]] bool recordOrder(ParticleStorage const& ps, ForceRecord const& a,
+                               ForceRecord const& b);
+
+/// Sorts `records` with recordOrder and adds them, in that order, to ps.force / ps.torque of
+/// their copies. Every copy therefore receives its contributions in ascending partner uid,
+/// whatever the order of the contact list; reset forces first to sum from zero. Not collective.
+void sumRecords(std::vector<ForceRecord>& records, ParticleStorage& ps);
 
 /// Drops, on every particle, the history entries not stamped with `stamp` (contacts that
 /// were not evaluated in that pass have broken). Not collective.

@@ -1,6 +1,7 @@
 // ParticleSync::reduceForces: shadow -> master reduction of forces, torques and contact
 // history ("reduce forces/torques shadow->master" of the time step in DESIGN.md).
 #include "core/Error.hpp"
+#include "particles/kernels/ContactEvaluation.hpp"
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncMessages.hpp"
@@ -133,8 +134,9 @@ void ParticleSync::reduceForces(LocalParticles& local,
     // block evaluated each contact (DESIGN.md, reproducible mode).
     std::sort(contributions.begin(), contributions.end(),
               [](Contribution const& a, Contribution const& b) {
-                  return std::tie(a.block, a.master, a.partner) <
-                         std::tie(b.block, b.master, b.partner);
+                  if (std::tie(a.block, a.master) != std::tie(b.block, b.master))
+                      return std::tie(a.block, a.master) < std::tie(b.block, b.master);
+                  return partnerOrder(a, b);
               });
     auto blocks = local.blocks();
     for (BlockParticles& bp : blocks)

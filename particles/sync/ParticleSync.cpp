@@ -131,7 +131,9 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
 
     // The frame after a transfer across a periodic boundary moves every image by -kN.
     CopyRef const ownerCopy{newOwner.rank, newOwner.block, kN};
-    core::Vec3 const newPosition = transfer ? localPosition(x, kN, period) : x;
+    // Wrapped like blockContaining decides (clamped: x + kN * period may round onto the
+    // upper domain face when x crossed the lower one by less than an ulp).
+    core::Vec3 const newPosition = transfer && !isZero(kN) ? engine.forest().wrap(x) : x;
     std::vector<CopyRef> newHolders;
     for (CopyRef const& t : targets)
         if (!(transfer && t == ownerCopy))

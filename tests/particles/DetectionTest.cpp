@@ -1,5 +1,6 @@
 // Contact detection against an O(N^2) reference, the large-sphere pass, and the rule that
-// exactly one block evaluates a contact.
+// exactly one block evaluates a contact (without periodic images; PeriodicDetectionTest.cpp
+// has those).
 #include "particles/detection/ContactDetector.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
 
@@ -22,10 +23,18 @@ namespace {
 
 using PairKey = std::pair<Uid, Uid>;
 
+/// A reference pair contact and the point that decides which block evaluates it.
+struct OwnedContact {
+    Contact contact;
+    Vec3 owner;
+};
+
 /// Brute force: every pair i < j by index, the same geometric definitions as the detector's
-/// documentation (written out independently here).
-std::map<PairKey, Contact> bruteForcePairs(ParticleStorage const& ps, AABB const& region) {
-    std::map<PairKey, Contact> out;
+/// documentation (written out independently here), kept if the ownership point -- the contact
+/// point, or the smaller sphere's centre if the contact point is not inside both balls -- is
+/// in `region`.
+std::map<PairKey, OwnedContact> bruteForcePairs(ParticleStorage const& ps, AABB const& region) {
+    std::map<PairKey, OwnedContact> out;
     for (std::size_t a = 0; a < ps.size(); ++a)
         for (std::size_t b = a + 1; b < ps.size(); ++b) {
             if (ps.flags(a).isFixed() && ps.flags(b).isFixed())
@@ -37,23 +46,28 @@ std::map<PairKey, Contact> bruteForcePairs(ParticleStorage const& ps, AABB const
                 continue;
             Vec3 const n = d.normalized();
             Vec3 const p = ps.position(i) + (ps.radius(i) - delta / 2) * n;
-            if (region.contains(p))
-                out[{ps.uid(i), ps.uid(j)}] = Contact{i, j, p, n, delta};
+            bool const inBoth = (p - ps.position(i)).norm() < ps.radius(i) &&
+                                (p - ps.position(j)).norm() < ps.radius(j);
+            Vec3 const owner =
+                inBoth ? p : (ps.radius(i) < ps.radius(j) ? ps.position(i) : ps.position(j));
+            if (region.contains(owner))
+                out[{ps.uid(i), ps.uid(j)}] = OwnedContact{Contact{i, j, p, n, delta}, owner};
         }
     return out;
 }
 
-std::map<std::pair<Uid, std::size_t>, WallContact>
-bruteForceWalls(ParticleStorage const& ps, WallList const& walls, AABB const& region) {
+/// Sphere-wall contacts of the masters (the wall rule does not look at any region).
+std::map<std::pair<Uid, std::size_t>, WallContact> bruteForceWalls(ParticleStorage const& ps,
+                                                                   WallList const& walls) {
     std::map<std::pair<Uid, std::size_t>, WallContact> out;
     for (std::size_t k = 0; k < ps.size(); ++k)
         for (std::size_t w = 0; w < walls.size(); ++w) {
-            if (ps.flags(k).isFixed())
+            if (ps.flags(k).isFixed() || ps.flags(k).isShadow())
                 continue;
             double const dist = (ps.position(k) - walls[w].point).dot(walls[w].normal);
             double const delta = ps.radius(k) - dist;
             Vec3 const p = ps.position(k) - (dist + delta / 2) * walls[w].normal;
-            if (delta > 0.0 && region.contains(p))
+            if (delta > 0.0)
                 out[{ps.uid(k), w}] = WallContact{k, w, p, walls[w].normal, delta};
         }
     return out;
@@ -61,17 +75,16 @@ bruteForceWalls(ParticleStorage const& ps, WallList const& walls, AABB const& re
 
 /// The brute-force contacts of a set, keyed by uids.
 struct Reference {
-    std::map<PairKey, Contact> pairs;
+    std::map<PairKey, OwnedContact> pairs;
     std::map<std::pair<Uid, std::size_t>, WallContact> walls;
 
     Reference(ParticleStorage const& ps, WallList const& w, AABB const& region = everywhere())
         : pairs(bruteForcePairs(ps, region))
-        , walls(bruteForceWalls(ps, w, region)) {}
-    /// The subset whose contact point lies in `region`.
+        , walls(bruteForceWalls(ps, w)) {}
+    /// The pairs whose ownership point lies in `region` (all the wall contacts).
     [[nodiscard]] Reference within(AABB const& region) const {
         Reference r = *this;
-        std::erase_if(r.pairs, [&](auto const& kv) { return !region.contains(kv.second.point); });
-        std::erase_if(r.walls, [&](auto const& kv) { return !region.contains(kv.second.point); });
+        std::erase_if(r.pairs, [&](auto const& kv) { return !region.contains(kv.second.owner); });
         return r;
     }
 };
@@ -91,9 +104,11 @@ void expectSameContacts(ParticleStorage const& ps, Reference const& reference,
             ADD_FAILURE() << "pair " << key.first << "," << key.second << " is not a contact";
             continue;
         }
-        EXPECT_NEAR(c.penetration, it->second.penetration, 1e-12);
-        EXPECT_LT((c.point - it->second.point).norm(), 1e-12);
-        EXPECT_LT((c.normal - it->second.normal).norm(), 1e-12);
+        Contact const& r = it->second.contact;
+        EXPECT_NEAR(c.penetration, r.penetration, 1e-12);
+        EXPECT_LT((c.point - r.point).norm(), 1e-12);
+        EXPECT_LT((c.normal - r.normal).norm(), 1e-12);
+        EXPECT_EQ(c.shiftJ, Vec3::Zero());
     }
     EXPECT_EQ(found.pairs.size(), ref.size());
     for (auto const& [key, c] : ref)
@@ -274,7 +289,9 @@ TEST(Detection, OneHugeSphereNeitherBlowsUpCellsNorIsCheckedByEveryCell) {
     detector.detect(ps, WallList{}, everywhere(), found);
     auto const& s = detector.stats();
     EXPECT_EQ(s.largeSpheres, 1U);
-    EXPECT_DOUBLE_EQ(s.cellEdge, 0.8);
+    // 2 r plus twice the rounding slack (64 ulps of the largest coordinate + 2 r_max, ~1.6e-12).
+    EXPECT_DOUBLE_EQ(s.cellEdge, 0.8 + 2.0 * s.slack);
+    EXPECT_LT(s.slack, 2e-12);
     double const ballCells = 4.0 / 3.0 * std::numbers::pi * std::pow(25.4 + 0.8, 3) / 0.512;
     EXPECT_LT(static_cast<double>(s.largeCellVisits), 1.2 * ballCells);
     EXPECT_LT(static_cast<double>(s.largeCellVisits), 0.5 * static_cast<double>(s.cells));
@@ -288,11 +305,24 @@ TEST(Detection, OneHugeSphereNeitherBlowsUpCellsNorIsCheckedByEveryCell) {
     EXPECT_EQ(found.pairs.size(), touching); // lattice grains do not touch each other
 }
 
+/// The copies a block with box `box` would hold of `all`: the same particles, those whose
+/// centre is outside `box` marked Shadow (this test does not care which ones the block would
+/// not hold at all: their contacts are not in `box` either).
+ParticleStorage asBlock(ParticleStorage const& all, AABB const& box) {
+    ParticleStorage part = all;
+    for (std::size_t k = 0; k < part.size(); ++k)
+        if (!box.contains(part.position(k)))
+            part.setFlags(k, part.flags(k) | Flag::Shadow);
+    return part;
+}
+
 TEST(Detection, EachContactIsKeptByExactlyOneOfAdjacentBoxes) {
     // Spheres of radius 0.75 on a unit lattice: axis neighbours touch at points exactly on the
     // box faces x, y, z = 2.5 (r - delta/2 = 0.5 exactly), diagonal neighbours elsewhere. Eight
     // half-open boxes tile space around (2.5, 2.5, 2.5); together with the random set they
-    // must keep every contact exactly once, and a point on a face goes to the upper box.
+    // must keep every contact exactly once, and a point on a face goes to the upper box. Each
+    // box sees the particles whose centre it contains as masters, the others as shadows, and
+    // evaluates the wall contacts of its masters only.
     double const inf = std::numeric_limits<double>::infinity();
     std::vector<AABB> boxes;
     for (int b = 0; b < 8; ++b) {
@@ -313,48 +343,56 @@ TEST(Detection, EachContactIsKeptByExactlyOneOfAdjacentBoxes) {
     WallList walls;
     walls.add(Vec3(0, 0, 0.25), Vec3::UnitZ()); // wall contacts too
     {
-        ParticleStorage const* ps = &lattice;
-        Reference const reference(lattice, walls);
         ContactDetector detector;
         ContactList all;
-        detector.detect(*ps, walls, everywhere(), all);
+        detector.detect(lattice, walls, everywhere(), all);
         std::map<PairKey, int> count;
         std::size_t wallTotal = 0;
         for (AABB const& box : boxes) {
+            ParticleStorage const ps = asBlock(lattice, box);
             ContactList part;
-            detector.detect(*ps, walls, box, part);
-            expectSameContacts(*ps, reference.within(box), part);
+            detector.detect(ps, walls, box, part);
+            expectSameContacts(ps, Reference(ps, walls).within(box), part);
             for (Contact const& c : part.pairs) {
-                ++count[{ps->uid(c.i), ps->uid(c.j)}];
+                ++count[{ps.uid(c.i), ps.uid(c.j)}];
                 for (int d = 0; d < 3; ++d) {
                     if (c.point[d] == 2.5) {
                         EXPECT_EQ(box.min[d], 2.5) << "a face point belongs to the upper box";
                     }
                 }
             }
+            for (WallContact const& c : part.walls)
+                EXPECT_TRUE(box.contains(ps.position(c.particle)));
             wallTotal += part.walls.size();
         }
         EXPECT_EQ(count.size(), all.pairs.size());
         for (auto const& [key, n] : count)
             EXPECT_EQ(n, 1) << key.first << "," << key.second;
         EXPECT_EQ(wallTotal, all.walls.size());
+        EXPECT_EQ(all.walls.size(), 25U); // the bottom layer, r 0.75 against the wall at 0.25
     }
-    // The random polydisperse set, split the same way around its middle.
-    ParticleStorage const ps = randomPolydisperse(11, 1500);
+    // The random polydisperse set, split the same way around its middle. Its radius-6 sphere
+    // swallows the centres of small ones: their contact point lies outside the small sphere,
+    // so the small centre decides (Reference computes that independently).
+    ParticleStorage const all = randomPolydisperse(11, 1500);
     WallList const w = someWalls();
-    Reference const reference(ps, w);
     ContactDetector detector;
-    ContactList all;
-    detector.detect(ps, w, everywhere(), all);
+    ContactList found;
+    detector.detect(all, w, everywhere(), found);
     std::size_t pairs = 0, wallContacts = 0;
     for (AABB box : boxes) {
         box = box.shifted(Vec3::Constant(7.5)); // faces at 10
+        ParticleStorage const ps = asBlock(all, box);
         ContactList part;
         detector.detect(ps, w, box, part);
-        expectSameContacts(ps, reference.within(box), part);
+        expectSameContacts(ps, Reference(ps, w).within(box), part);
         pairs += part.pairs.size();
         wallContacts += part.walls.size();
     }
-    EXPECT_EQ(pairs, all.pairs.size());
-    EXPECT_EQ(wallContacts, all.walls.size());
+    EXPECT_EQ(pairs, found.pairs.size());
+    EXPECT_EQ(wallContacts, found.walls.size());
+    std::size_t swallowed = 0;
+    for (auto const& [key, c] : Reference(all, w).pairs)
+        swallowed += c.owner != c.contact.point ? 1 : 0;
+    EXPECT_GT(swallowed, 0U) << "the set exercises the swallowed-centre rule";
 }

@@ -1,0 +1,51 @@
+#pragma once
+/// The periodic frame contact detection works in: the domain box, which axes wrap, and the
+/// one rule (domain::ForestGeometry's) that maps a point to its domain image.
+#include "core/math/AABB.hpp"
+#include "core/math/Vec3.hpp"
+#include "particles/storage/CopyImage.hpp"
+
+#include <array>
+#include <limits>
+#include <utility>
+
+namespace regolith::domain {
+class ForestGeometry;
+}
+
+namespace regolith::particles {
+
+/// The domain and its periodic axes as contact detection sees them. A default-constructed
+/// frame is non-periodic and infinite: every point is in image 0 and `wrap` is the identity.
+struct PeriodicFrame {
+    /// The whole domain (not a block) [length]; only its periodic axes matter, and those must
+    /// be finite with max > min.
+    core::AABB domain{core::Vec3::Constant(-std::numeric_limits<double>::infinity()),
+                      core::Vec3::Constant(std::numeric_limits<double>::infinity())};
+    std::array<bool, 3> periodic{false, false, false};
+
+    /// Non-periodic and infinite.
+    PeriodicFrame() = default;
+    /// `domain` with the periodic axes `periodic` (their extent must be finite and > 0).
+    PeriodicFrame(core::AABB const& domainBox, std::array<bool, 3> periodicAxes)
+        : domain(domainBox)
+        , periodic(periodicAxes) {}
+    /// The frame of a block forest: its domain and periodicity.
+    explicit PeriodicFrame(domain::ForestGeometry const& geometry);
+
+    /// Domain extent on periodic axes, 0 on the others [length] (the `period` of
+    /// CopyImage.hpp's imageOffset / localPosition).
+    [[nodiscard]] core::Vec3 period() const;
+    [[nodiscard]] bool anyPeriodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+
+    /// (w, o) with w in [min, max) on every periodic axis (p unchanged on the others) and
+    /// p ~ w + o * extent, o = 0 on non-periodic axes. The image is decided against the
+    /// boundaries min + o * extent and w is clamped so it never equals max: exactly
+    /// domain::ForestGeometry::locate / wrap, which this calls (one implementation). Points
+    /// already inside the domain on every periodic axis are returned as they are, image 0
+    /// (as ForestGeometry does). Throws core::Error if p is not finite on a periodic axis or
+    /// the image lies beyond +-kMaxImage periods.
+    [[nodiscard]] std::pair<core::Vec3, CopyImage> wrap(core::Vec3 const& p) const;
+};
+
+} // namespace regolith::particles
