@@ -1,0 +1,118 @@
+#include "particles/simulation/DemStep.hpp"
+
+#include "core/Error.hpp"
+#include "particles/kernels/ContactEvaluation.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace regolith::particles {
+
+DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& local,
+                 AnyContactModel model, AnyIntegrator integrator, WallList walls,
+                 DemStepConfig config, core::TimerTree& timers)
+    : m_comm(&comm)
+    , m_sync(&sync)
+    , m_local(&local)
+    , m_model(std::move(model))
+    , m_integrator(integrator)
+    , m_walls(std::move(walls))
+    , m_config(config)
+    , m_timers(&timers)
+    , m_frame(local.forest().geometry()) {
+    if (!(config.dt > 0.0) || !std::isfinite(config.dt))
+        throw core::Error("DemStep: the time step must be positive and finite");
+    std::size_t const blocks = local.blocks().size();
+    m_detectors.assign(blocks, ContactDetector(config.detector));
+    m_contacts.resize(blocks);
+    m_records.resize(blocks);
+}
+
+int DemStep::setUp() {
+    m_sync->requireNnsApplicable(*m_local);
+    int calls = 0;
+    {
+        auto const t = m_timers->scope(kSyncTimer);
+        // Nothing has moved yet: every master sits in the block that contains it
+        // (LocalParticles::addMaster), so no master is transferred or leaves here.
+        calls = m_sync->syncUntilConverged(*m_local);
+    }
+    if (m_config.checkInvariants)
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up");
+    computeForces(0);
+    return calls;
+}
+
+void DemStep::step() {
+    double const dt = m_config.dt;
+    core::Vec3 const& g = m_config.gravity;
+    {
+        auto const t = m_timers->scope(kIntegrateTimer);
+        std::visit(
+            [&](auto const& integrator) {
+                for (BlockParticles& bp : m_local->blocks())
+                    integrator.preForce(bp.particles, dt, g);
+            },
+            m_integrator);
+    }
+    syncParticles();
+    ++m_steps;
+    computeForces(static_cast<std::uint32_t>(m_steps));
+    {
+        auto const t = m_timers->scope(kIntegrateTimer);
+        std::visit(
+            [&](auto const& integrator) {
+                for (BlockParticles& bp : m_local->blocks())
+                    integrator.postForce(bp.particles, dt, g);
+            },
+            m_integrator);
+    }
+}
+
+void DemStep::syncParticles() {
+    {
+        auto const t = m_timers->scope(kSyncTimer);
+        m_sync->sync(*m_local);
+        m_leftDomain += m_sync->lastStats().leftDomain;
+    }
+    // One call per step keeps SOS-class grains converged after set-up.
+    if (m_config.checkInvariants)
+        requireSyncInvariants(*m_local, *m_comm, true,
+                              "DemStep step " + std::to_string(m_steps + 1));
+}
+
+void DemStep::computeForces(std::uint32_t stamp) {
+    bool const reproducible = m_sync->config().reproducible;
+    {
+        auto const t = m_timers->scope(kContactTimer);
+        auto blocks = m_local->blocks();
+        m_walls.resetForces();
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+            ParticleStorage& ps = blocks[b].particles;
+            ps.resetForces();
+            m_records[b].clear();
+            // The block evaluates the pairs whose ownership point lies in its own box
+            // (DESIGN.md: exactly one block per contact). Walls are global: every block tests
+            // its copies against all of them, and the detector keeps a sphere-wall contact
+            // only for the sphere's master, so it too is evaluated once.
+            m_detectors[b].detect(ps, m_walls, blocks[b].block->aabb, m_frame, m_contacts[b]);
+            std::visit(
+                [&](auto const& model) {
+                    if (reproducible)
+                        evaluateContactsRecorded(ps, m_walls, m_contacts[b], model, m_config.dt,
+                                                 stamp, m_records[b]);
+                    else
+                        evaluateContacts(ps, m_walls, m_contacts[b], model, m_config.dt, stamp);
+                },
+                m_model);
+        }
+    }
+    auto const t = m_timers->scope(kSyncTimer);
+    if (reproducible)
+        m_sync->reduceForces(*m_local, m_records, stamp);
+    else
+        m_sync->reduceForces(*m_local, stamp);
+}
+
+} // namespace regolith::particles

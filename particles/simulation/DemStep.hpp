@@ -1,0 +1,136 @@
+#pragma once
+/// The DEM time step of one rank over all its local blocks (DESIGN.md, "The time step"):
+/// velocity Verlet (or semi-implicit Euler) split around the force computation, the shadow
+/// synchronisation between the moves and the contacts, contact detection and evaluation per
+/// block, and the reduction of shadow forces to the masters.
+#include "core/math/Vec3.hpp"
+#include "core/mpi/Comm.hpp"
+#include "core/timing/TimerTree.hpp"
+#include "particles/detection/Contact.hpp"
+#include "particles/detection/ContactDetector.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
+#include "particles/integration/SemiImplicitEuler.hpp"
+#include "particles/integration/VelocityVerlet.hpp"
+#include "particles/kernels/ForceRecord.hpp"
+#include "particles/kernels/HertzMindlin.hpp"
+#include "particles/kernels/SpringDashpot.hpp"
+#include "particles/storage/WallList.hpp"
+#include "particles/sync/BlockParticles.hpp"
+#include "particles/sync/ParticleSync.hpp"
+#include "particles/sync/SyncInvariants.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace regolith::particles {
+
+/// The contact models a run may choose (scene key contact.model).
+using AnyContactModel = std::variant<SpringDashpot, HertzMindlin>;
+/// The integrators a run may choose (scene key time.integrator).
+using AnyIntegrator = std::variant<VelocityVerlet, SemiImplicitEuler>;
+
+struct DemStepConfig {
+    double dt = 0.0;                         ///< time step [time], > 0 and finite
+    core::Vec3 gravity = core::Vec3::Zero(); ///< uniform external acceleration [length/time^2]
+    DetectorConfig detector{};               ///< contact detection of every block
+    /// Check the synchronisation invariants (particles/sync/SyncInvariants.hpp) over all
+    /// ranks after every sync call and throw core::Error on every rank if one fails. A
+    /// debugging aid (it gathers every copy on rank 0); on by default in builds with
+    /// REGOLITH_CHECK_INVARIANTS.
+    bool checkInvariants = kCheckSyncInvariants;
+};
+
+/// One DEM run's time stepping over the blocks of `LocalParticles`. It holds one contact
+/// detector per local block, the contact model, the integrator and the walls; the caller owns
+/// the communicator, the particles, the synchronisation and the timers (which must outlive
+/// this object).
+///
+/// The step (every member below that says so is COLLECTIVE over the communicator of `sync`):
+///
+///     integrator.preForce    on every block          (timer "integrate"; moves masters only)
+///     sync.sync(local)                               (timer "sync")
+///     per block: resetForces, detect (region = block box, periodic frame of the forest),
+///                evaluate with stamp = step number   (timer "contact")
+///     sync.reduceForces(local[, records], stamp)     (timer "sync")
+///     integrator.postForce   on every block          (timer "integrate")
+///
+/// In reproducible mode (sync.config().reproducible) every block evaluates with
+/// evaluateContactsRecorded and the reduction sums every master's force from its records in
+/// ascending partner uid, so that the trajectory does not depend on the number of ranks or
+/// blocks (DESIGN.md, "Reproducible mode"); otherwise forces are accumulated in place and the
+/// shadows' shares added to the masters.
+///
+/// With DemStepConfig::checkInvariants (the default in builds with REGOLITH_CHECK_INVARIANTS)
+/// the synchronisation invariants are checked over all ranks after every sync call, where
+/// they hold (postForce then changes the masters' velocities, not their shadows').
+///
+/// Walls are global: every block tests its copies against every wall, and the detector keeps
+/// a sphere-wall contact only for the sphere's master, so exactly one block evaluates it. The
+/// walls' reaction forces (walls().force) are this rank's share of the last evaluation, not
+/// reduced over ranks.
+class DemStep {
+public:
+    /// Timer names (children of whatever scope is open when step() is called).
+    static constexpr std::string_view kSyncTimer = "sync";
+    static constexpr std::string_view kContactTimer = "contact";
+    static constexpr std::string_view kIntegrateTimer = "integrate";
+
+    /// Pre: `comm` is the communicator `sync` was built from (or a duplicate), `local`
+    /// belongs to the forest `sync` was built for; config.dt > 0 and finite (throws
+    /// core::Error otherwise). Not collective.
+    DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& local,
+            AnyContactModel model, AnyIntegrator integrator, WallList walls, DemStepConfig config,
+            core::TimerTree& timers);
+
+    /// Before the first step, after the masters were added: refuses a scene NNS cannot
+    /// simulate (ParticleSync::requireNnsApplicable: core::InputError on every rank, naming
+    /// the uid, its radius, the block edge and the remedy), synchronises until every shadow
+    /// exists (syncUntilConverged; returns the number of calls), and computes the forces of
+    /// the initial state with stamp 0, so that the first half kick of velocity Verlet sees
+    /// them. COLLECTIVE.
+    int setUp();
+
+    /// One time step (see the class comment); the step number (stamp) is stepsDone() + 1.
+    /// Throws what the synchronisation throws (core::Error: a grain too fast or too large
+    /// for NNS, a malformed message). COLLECTIVE.
+    void step();
+
+    /// Steps done since construction.
+    [[nodiscard]] std::uint64_t stepsDone() const { return m_steps; }
+    /// Masters this rank removed because they left an open domain, over all steps (set-up
+    /// removes none: every master starts in the block containing it). Local: sum over ranks
+    /// for the run's total.
+    [[nodiscard]] std::uint64_t leftDomain() const { return m_leftDomain; }
+    /// The contacts each local block evaluated in the last force computation (indices into
+    /// that block's storage; valid until the next synchronisation), in the order of
+    /// LocalParticles::blocks().
+    [[nodiscard]] std::span<ContactList const> contacts() const { return m_contacts; }
+    [[nodiscard]] WallList const& walls() const { return m_walls; }
+    [[nodiscard]] DemStepConfig const& config() const { return m_config; }
+    [[nodiscard]] PeriodicFrame const& frame() const { return m_frame; }
+
+private:
+    void syncParticles();
+    /// Detection, evaluation and reduction with stamp `stamp`. COLLECTIVE.
+    void computeForces(std::uint32_t stamp);
+
+    core::Comm const* m_comm;
+    ParticleSync* m_sync;
+    LocalParticles* m_local;
+    AnyContactModel m_model;
+    AnyIntegrator m_integrator;
+    WallList m_walls;
+    DemStepConfig m_config;
+    core::TimerTree* m_timers;
+    PeriodicFrame m_frame;
+    std::vector<ContactDetector> m_detectors;        ///< one per local block
+    std::vector<ContactList> m_contacts;             ///< one per local block
+    std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
+    std::uint64_t m_steps = 0;
+    std::uint64_t m_leftDomain = 0;
+};
+
+} // namespace regolith::particles
