@@ -22,6 +22,7 @@ std::string toJson(RunSummary const& s) {
         .member("sync", s.sync)
         .member("particles", s.particles)
         .member("shadows", s.shadows)
+        .member("left_domain", s.leftDomain)
         .member("steps", s.steps)
         .member("wall_s", s.wallSeconds)
         .member("pupcs", pupcs(s))

@@ -16,6 +16,9 @@ struct RunSummary {
     std::string sync;
     std::int64_t particles = 0; ///< masters at the end, over all ranks
     std::int64_t shadows = 0;   ///< shadow copies at the end, over all ranks
+    /// Masters removed during the run because they left a non-periodic domain, over all
+    /// ranks (JSON key "left_domain", beyond the contract's keys).
+    std::int64_t leftDomain = 0;
     std::int64_t steps = 0;
     double wallSeconds = 0.0; ///< the time-step loop only (set-up and output excluded)
     std::uint64_t peakRssBytes = 0;
@@ -48,7 +51,8 @@ struct RunSummary {
 /// was timed (wall_s <= 0), so the JSON never holds an infinity.
 [[nodiscard]] double pupcs(RunSummary const& s);
 
-/// The summary as a JSON document (keys in the order of DESIGN.md).
+/// The summary as a JSON document (keys in the order of DESIGN.md; "left_domain" follows
+/// "shadows").
 [[nodiscard]] std::string toJson(RunSummary const& s);
 
 /// The largest peak resident set size of any rank, in bytes (getrusage ru_maxrss, which

@@ -6,10 +6,37 @@
 #include "particles/kernels/SpringDashpot.hpp"
 #include "particles/validation/ParticleValidation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <variant>
 
 namespace regolith::apps {
+
+namespace {
+
+particles::ParticleInit particleOf(particles::GrainInit const& g) {
+    particles::ParticleInit p;
+    p.uid = g.uid;
+    p.position = g.position;
+    p.velocity = g.velocity;
+    p.angularVelocity = g.angularVelocity;
+    p.radius = g.radius;
+    p.mass = g.mass;
+    p.type = g.type;
+    return p;
+}
+
+[[noreturn]] void notLocal(particles::GrainInit const& g) {
+    throw core::Error(fmt::format("grain uid {} at [{}, {}, {}] was generated on a rank that "
+                                  "owns no block containing it",
+                                  g.uid, g.position.x(), g.position.y(), g.position.z()));
+}
+
+} // namespace
 
 particles::ParticleStorage makeMasters(std::span<particles::GrainInit const> grains,
                                        domain::BlockForest const& forest, int rank) {
@@ -17,20 +44,18 @@ particles::ParticleStorage makeMasters(std::span<particles::GrainInit const> gra
     for (auto const& g : grains) {
         domain::Block const* block = forest.localBlockContaining(g.position);
         if (block == nullptr)
-            throw core::Error("grain uid " + std::to_string(g.uid) +
-                              " was generated on a rank that owns no block containing it");
-        particles::ParticleInit p;
-        p.uid = g.uid;
-        p.position = g.position;
-        p.velocity = g.velocity;
-        p.angularVelocity = g.angularVelocity;
-        p.radius = g.radius;
-        p.mass = g.mass;
-        p.type = g.type;
+            notLocal(g);
+        particles::ParticleInit p = particleOf(g);
         p.owner = {rank, block->id.raw()};
         ps.add(p);
     }
     return ps;
+}
+
+void addMasters(particles::LocalParticles& local, std::span<particles::GrainInit const> grains) {
+    for (auto const& g : grains)
+        if (!local.addMaster(particleOf(g)))
+            notLocal(g);
 }
 
 namespace {
@@ -62,6 +87,17 @@ double impactVelocityEstimate(core::Comm const& comm, particles::ParticleStorage
 particles::ContactTimeEstimate contactTime(core::Comm const& comm,
                                            particles::ParticleStorage const& ps,
                                            SceneDescription const& scene) {
+    auto const model = makeContactModel(scene);
+    if (auto const* linear = std::get_if<particles::SpringDashpot>(&model))
+        return particles::shortestContactTime(comm, particles::estimateContactTime(ps, *linear));
+    double const v = impactVelocityEstimate(comm, ps, scene);
+    return particles::shortestContactTime(
+        comm, particles::estimateContactTime(ps, std::get<particles::HertzMindlin>(model), v));
+}
+
+} // namespace
+
+particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
     ContactSection const& c = scene.contact;
     std::size_t const types = materialTypeCount(scene);
     if (c.model == ContactModel::SpringDashpot) {
@@ -72,9 +108,8 @@ particles::ContactTimeEstimate contactTime(core::Comm const& comm,
         p.restitution = c.restitution;
         p.friction = c.friction;
         p.rollingFriction = c.rollingFriction;
-        particles::SpringDashpot const model(
+        return particles::SpringDashpot(
             particles::MaterialTable<particles::LinearContactParams>(types, p));
-        return particles::shortestContactTime(comm, particles::estimateContactTime(ps, model));
     }
     // Hertz: contact.stiffness is the effective Young's modulus E*; G* follows for a
     // Poisson ratio of 0.3 (G*/E* = (1 - nu) / (2 (2 - nu)) for like materials).
@@ -84,13 +119,22 @@ particles::ContactTimeEstimate contactTime(core::Comm const& comm,
     p.restitution = c.restitution;
     p.friction = c.friction;
     p.rollingFriction = c.rollingFriction;
-    particles::HertzMindlin const model(
+    return particles::HertzMindlin(
         particles::MaterialTable<particles::HertzMindlinParams>(types, p));
-    double const v = impactVelocityEstimate(comm, ps, scene);
-    return particles::shortestContactTime(comm, particles::estimateContactTime(ps, model, v));
 }
 
-} // namespace
+particles::AnyIntegrator makeIntegrator(SceneDescription const& scene) {
+    if (scene.time.integrator == Integrator::Euler)
+        return particles::SemiImplicitEuler{};
+    return particles::VelocityVerlet{};
+}
+
+particles::WallList makeWalls(SceneDescription const& scene) {
+    particles::WallList walls;
+    for (particles::Wall const& w : scene.walls)
+        walls.add(w.point, w.normal, w.type);
+    return walls;
+}
 
 void checkInitialState(core::Comm const& comm, particles::ParticleStorage const& ps,
                        SceneDescription const& scene) {
@@ -101,6 +145,44 @@ void checkInitialState(core::Comm const& comm, particles::ParticleStorage const&
     options.numTypes = materialTypeCount(scene);
     particles::validateParticles(comm, ps, options);
     particles::checkTimeStep(scene.time.dt, contactTime(comm, ps, scene), scene.time.allowUnstable);
+}
+
+void checkOverlapsAcrossBlocks(core::Comm const& comm, particles::LocalParticles const& local,
+                               std::span<particles::ContactList const> contacts,
+                               double overlapTolerance) {
+    // The pair with the smallest (uid_i, uid_j) on this rank, then over all ranks, so the
+    // message does not depend on the layout. Each contact is in exactly one block's list.
+    using Key = std::pair<particles::Uid, particles::Uid>;
+    Key worst{particles::kInvalidUid, particles::kInvalidUid};
+    std::string message;
+    auto const blocks = local.blocks();
+    for (std::size_t b = 0; b < blocks.size() && b < contacts.size(); ++b) {
+        particles::ParticleStorage const& ps = blocks[b].particles;
+        for (particles::Contact const& c : contacts[b].pairs) {
+            if (ps.flags(c.i).isFixed() && ps.flags(c.j).isFixed())
+                continue;
+            double const rMin = std::min(ps.radius(c.i), ps.radius(c.j));
+            Key const key{ps.uid(c.i), ps.uid(c.j)};
+            if (!(c.penetration > overlapTolerance * rMin) || !(key < worst))
+                continue;
+            worst = key;
+            // The wording of particles::validateParticles, which finds the same pairs when
+            // both grains are on one rank.
+            message = fmt::format("particles uid {} and uid {} overlap by {:.6g} (more than {:g} "
+                                  "of the smaller radius {:.6g}); initial grains must not overlap",
+                                  key.first, key.second, c.penetration, overlapTolerance, rMin);
+        }
+    }
+    auto const firsts = comm.allGather<std::uint64_t>(worst.first);
+    auto const seconds = comm.allGather<std::uint64_t>(worst.second);
+    std::size_t reporter = 0;
+    for (std::size_t r = 1; r < firsts.size(); ++r)
+        if (Key{firsts[r], seconds[r]} < Key{firsts[reporter], seconds[reporter]})
+            reporter = r;
+    if (firsts[reporter] == particles::kInvalidUid)
+        return;
+    comm.broadcast(message, static_cast<int>(reporter));
+    throw core::InputError(message);
 }
 
 } // namespace regolith::apps

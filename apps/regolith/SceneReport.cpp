@@ -36,15 +36,30 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
     text += fmt::format("  {} blocks ({} x {} x {} root, deepest level {}) on {} ranks, {} idle\n",
                         forest.globalBlockCount(), n[0], n[1], n[2], forest.maxLevel(),
                         ctx.world.size(), forest.idleRankCount());
-    text += fmt::format("  {} steps of dt = {} requested, sync {}, contact {}, self-gravity {}, "
-                        "{} walls\n",
-                        scene.time.steps, scene.time.dt, toString(scene.sync.method),
-                        toString(scene.contact.model), toString(scene.gravity.self),
-                        scene.walls.size());
+    text +=
+        fmt::format("  {} steps of dt = {}, sync {}{}, contact {}, self-gravity {}, "
+                    "{} walls\n",
+                    scene.time.steps, scene.time.dt, toString(scene.sync.method),
+                    scene.sync.reproducible ? " (reproducible)" : "", toString(scene.contact.model),
+                    toString(scene.gravity.self), scene.walls.size());
     text += fmt::format("  {} particles from {} [[particles]] entries ({} to {} per rank)\n",
                         particles.total, scene.particles.size(), particles.minPerRank,
                         particles.maxPerRank);
-    text += "  initial state only: time stepping arrives with synchronisation (0 steps run)\n";
+    std::fputs(text.c_str(), stdout);
+    std::fflush(stdout);
+}
+
+void printRunReport(RunSummary const& summary, std::int64_t leftDomain,
+                    core::TimerReport const& timers) {
+    std::string text = fmt::format(
+        "  {} steps in {:.4g} s ({:.4g} particle updates per core-second): {} particles, {} "
+        "shadows at the end, {} left the domain\n",
+        summary.steps, summary.wallSeconds, pupcs(summary), summary.particles, summary.shadows,
+        leftDomain);
+    text +=
+        fmt::format("  messages per step {:.4g}, bytes per step {:.4g}, at most {} peers\n",
+                    summary.comm.messagesPerStep, summary.comm.bytesPerStep, summary.comm.maxPeers);
+    text += timers.format();
     std::fputs(text.c_str(), stdout);
     std::fflush(stdout);
 }

@@ -1,7 +1,9 @@
 #pragma once
-/// The one-paragraph report `regolith` prints on rank 0 before the run.
+/// The reports `regolith` prints on rank 0: the scene before the run, the outcome after it.
+#include "apps/common/RunSummary.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "core/app/RunApp.hpp"
+#include "core/timing/TimerReport.hpp"
 #include "domain/BlockForest.hpp"
 
 #include <cstdint>
@@ -19,9 +21,14 @@ struct ParticleCounts {
 [[nodiscard]] ParticleCounts countParticles(core::Comm const& comm, std::int64_t local);
 
 /// Prints the scene, domain, blocks, time/sync/contact/gravity settings and the particle
-/// counts to stdout, and says what runs (initial state only until time stepping exists).
-/// Call on one rank (rank 0). Not collective.
+/// counts to stdout. Call on one rank (rank 0). Not collective.
 void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene,
                       domain::BlockForest const& forest, ParticleCounts const& particles);
+
+/// Prints what the time loop did: steps, loop time and PUpCS, final particle and shadow
+/// counts, masters that left the domain, traffic per step, and the phase timers reduced over
+/// ranks. Call on one rank (rank 0). Not collective.
+void printRunReport(RunSummary const& summary, std::int64_t leftDomain,
+                    core::TimerReport const& timers);
 
 } // namespace regolith::apps

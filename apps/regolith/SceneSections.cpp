@@ -20,6 +20,8 @@ namespace {
 
 using namespace std::string_view_literals;
 
+/// In the order of particles::SyncMethod (NextNeighbour, ShadowOwner, Hybrid); the names are
+/// particles::syncMethodName's.
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
 constexpr std::array kSelfNames{"none"sv, "direct"sv,         "tree"sv,      "pm"sv,
@@ -47,8 +49,8 @@ TimeSection parseTime(core::ConfigTable const& t) {
 
 SyncSection parseSync(core::ConfigTable const& t) {
     SyncSection s;
-    s.method = static_cast<SyncMethod>(
-        t.getChoiceOr("method", kSyncNames, static_cast<std::size_t>(SyncMethod::Hybrid)));
+    s.method = static_cast<particles::SyncMethod>(t.getChoiceOr(
+        "method", kSyncNames, static_cast<std::size_t>(particles::SyncMethod::Hybrid)));
     s.reproducible = t.getOr<bool>("reproducible", false);
     return s;
 }
@@ -140,8 +142,8 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     return scene;
 }
 
-std::string_view toString(SyncMethod m) {
-    return kSyncNames[static_cast<std::size_t>(m)];
+std::string_view toString(particles::SyncMethod m) {
+    return particles::syncMethodName(m);
 }
 std::string_view toString(ContactModel m) {
     return kContactNames[static_cast<std::size_t>(m)];

@@ -14,6 +14,7 @@
 #include "domain/ForestSpec.hpp"
 #include "particles/generators/GeneratorSpec.hpp"
 #include "particles/storage/WallList.hpp"
+#include "particles/sync/SyncMethod.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -35,14 +36,10 @@ struct TimeSection {
     Integrator integrator = Integrator::Verlet;
 };
 
-enum class SyncMethod { Nns, Sos, Hybrid };
-
 /// [sync] method ("nns" | "sos" | "hybrid"; default "hybrid", the scenes' default),
-/// reproducible (default false).
-struct SyncSection {
-    SyncMethod method = SyncMethod::Hybrid;
-    bool reproducible = false;
-};
+/// reproducible (a boolean, default false): the synchronisation's own settings
+/// (particles/sync/SyncMethod.hpp).
+using SyncSection = particles::SyncConfig;
 
 enum class ContactModel { SpringDashpot, Hertz };
 
@@ -129,7 +126,7 @@ struct SceneDescription {
 [[nodiscard]] SceneDescription parseScene(core::ConfigTable const& root,
                                           std::string const& scenePath);
 
-[[nodiscard]] std::string_view toString(SyncMethod m);
+[[nodiscard]] std::string_view toString(particles::SyncMethod m);
 [[nodiscard]] std::string_view toString(ContactModel m);
 [[nodiscard]] std::string_view toString(SelfGravity g);
 [[nodiscard]] std::string_view toString(Integrator i);

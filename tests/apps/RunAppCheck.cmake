@@ -1,11 +1,13 @@
 # Runs an app under mpiexec and checks the outcome; used by tests/apps/CMakeLists.txt as
-#   cmake -DMPIEXEC=.. -DNP=.. -DAPP=.. -DARGS="a|b|c" [-DEXPECT_FAIL=1 -DMESSAGE=..]
+#   cmake -DMPIEXEC=.. -DNP=.. -DAPP=.. -DARGS="a|b|c" [-DEXPECT_FAIL=1 -DMESSAGE=..
+#         [-DEXIT_CODE=n]]
 #         [-DSTDOUT_HAS="text|text"] [-DQUIET_STDOUT=1] [-DJSON=file -DJSON_EXPECT="k=v|k=v"
 #         -DPYTHON=python3 -DCHECK_SUMMARY=check_summary.py]
 #         [-DDUMP=file -DDUMP_HEADER=line [-DDUMP_LINES=n]]
 #         -P RunAppCheck.cmake
-# A failing run must exit non-zero, print MESSAGE exactly once on stderr (one rank reports,
-# not every rank) and no sign of a crash or an abort. A successful run must exit 0.
+# A failing run must exit non-zero (EXIT_CODE exactly, if given), print MESSAGE exactly once
+# on stderr (one rank reports, not every rank) and no sign of a crash or an abort. A
+# successful run must exit 0.
 cmake_minimum_required(VERSION 3.25)
 
 function(fail what)
@@ -52,6 +54,9 @@ if(EXPECT_FAIL)
   endif()
   if(rc EQUAL 0)
     fail("expected a non-zero exit code")
+  endif()
+  if(DEFINED EXIT_CODE AND NOT rc EQUAL EXIT_CODE)
+    fail("expected exit code ${EXIT_CODE}")
   endif()
   count_occurrences("${err}" "${MESSAGE}" n)
   if(NOT n EQUAL 1)

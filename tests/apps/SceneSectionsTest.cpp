@@ -31,7 +31,7 @@ cells_per_block = [8, 8, 8]
 dt = 0.01
 steps = 10
 [sync]
-method = "hybrid"
+method = "sos"
 [contact]
 model = "hertz"
 stiffness = 1e7
@@ -114,7 +114,9 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(s.time.dt, 0.01);
     EXPECT_EQ(s.time.steps, 10);
     EXPECT_EQ(s.time.integrator, apps::Integrator::Verlet);
-    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid);
+    EXPECT_EQ(s.sync.method, particles::SyncMethod::ShadowOwner);
+    EXPECT_FALSE(s.sync.reproducible); // the default
+    EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
     EXPECT_EQ(s.contact.rollingFriction, 0.01);
     EXPECT_EQ(s.gravity.self, apps::SelfGravity::Tree);
@@ -163,7 +165,8 @@ TEST(SceneSections, DefaultsForOptionalSections) {
     auto const s = apps::parseScene(root, "");
     EXPECT_EQ(s.name, "default");
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{1, 1, 1}));
-    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid); // the scenes' default
+    EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid); // the scenes' default
+    EXPECT_FALSE(s.sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
     EXPECT_EQ(s.contact.stiffness, 1e4);
     EXPECT_EQ(s.gravity.self, apps::SelfGravity::None);
@@ -176,7 +179,7 @@ TEST(SceneSections, DefaultSceneFileIsValid) {
     auto const s = apps::parseScene(root, "scenes/default.toml");
     EXPECT_EQ(s.name, "sparse-gas-small");
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 2}));
-    EXPECT_EQ(s.sync.method, apps::SyncMethod::Hybrid);
+    EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid);
     ASSERT_EQ(s.particles.size(), 2u);
     // The boulder first, so that the lattice fills the space around it.
     EXPECT_EQ(std::get<particles::ListSpec>(s.particles[0].kind).radius,
@@ -231,6 +234,13 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
     EXPECT_EQ(errorWith("sync.method=sso"),
               "--set sync.method=sso: sync.method: expected one of \"nns\", \"sos\", \"hybrid\", "
               "got \"sso\" \u2014 did you mean \"sos\"?");
+    EXPECT_EQ(errorWith("sync.method=nns"), "(no error)");
+    EXPECT_EQ(errorWith("sync.reproducible=yes"),
+              "--set sync.reproducible=yes: sync.reproducible: expected a boolean, got \"yes\" "
+              "(a string)");
+    EXPECT_EQ(errorWith("sync.reproducable=true"),
+              "--set sync.reproducable=true: unknown key 'sync.reproducable' \u2014 did you mean "
+              "'reproducible'?");
     EXPECT_EQ(errorWith("contact.model=hooke"),
               "--set contact.model=hooke: contact.model: expected one of \"spring-dashpot\", "
               "\"hertz\", got \"hooke\"");

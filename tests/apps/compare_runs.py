@@ -1,14 +1,23 @@
-"""Runs one scene with `regolith` on several rank counts and checks that the runs agree.
+"""Runs one scene with `regolith` on several rank counts and layouts and checks that the runs
+agree.
 
-usage: compare_runs.py --mpiexec M --app APP --out DIR --name NAME --np 1 4
+usage: compare_runs.py --mpiexec M --app APP --out DIR --name NAME [--np 1 4]
+                       [--case "NP [ARGS...]" ...] [--reference STEM]
                        [--same KEY ...] [--expect KEY=VALUE ...] [--dump]
-                       [--reload SCENE] -- [app arguments]
+                       [--final "UID COLUMN OP VALUE" ...] [--reload SCENE] -- [app arguments]
 
 Every run must exit 0 and write a summary (--json); the summaries must agree on every --same
-key (e.g. particles, checksum) and satisfy every --expect. With --dump every run also writes
-the dump, which must be byte-identical across the runs, follow the contract (header, one line
-per particle sorted by uid, 12 fields) and hash to the summary's checksum (the checksum is
-recomputed here from the dumped numbers: the MSet-Add-Hash of apps/common/StateChecksum.hpp).
+key (e.g. particles, checksum) and satisfy every --expect. Runs: one per --np value with the
+app arguments, then one per --case, a string holding the rank count and further arguments
+for that run only (split like a shell would), e.g. --case "4 --set domain.blocks=[2,2,1]".
+With --reference STEM the runs are compared with STEM.json (and STEM.csv with --dump), the
+output of an earlier run, instead of with the first run of this call; a call that makes the
+reference for others lists it as its first run.
+With --dump every run also writes the dump, which must be byte-identical across the runs,
+follow the contract (header, one line per particle sorted by uid, 12 fields) and hash to the
+summary's checksum (the checksum is recomputed here from the dumped numbers: the
+MSet-Add-Hash of apps/common/StateChecksum.hpp). --final checks a value of the dumped final
+state, e.g. --final "0 x < 5" (OP one of < <= > >= ==; needs --dump).
 --reload SCENE (needs --dump) runs SCENE, whose first [[particles]] entry is a `kind = "file"`
 entry, on the largest rank count with its path set to the dump: the state read back must
 have the same particle count and checksum (the dump is a lossless restart).
@@ -16,7 +25,9 @@ Exit code 1 with the reason on the first failed check.
 """
 import argparse
 import json
+import operator
 import os
+import shlex
 import struct
 import subprocess
 import sys
@@ -84,52 +95,98 @@ def check_dump(path, summary):
     return f"{fnv1a(struct.pack('<QQ', len(rows), total)):016x}"
 
 
+def check_final(path, check):
+    """One --final check "UID COLUMN OP VALUE" against the dump at `path`."""
+    ops = {"<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
+           "==": operator.eq}
+    parts = check.split()
+    if len(parts) != 4 or parts[2] not in ops:
+        fail(f"--final {check!r}: expected 'UID COLUMN OP VALUE' with OP one of {list(ops)}")
+    uid, column, op, value = parts
+    with open(path, encoding="utf-8") as f:
+        lines = f.read().split("\n")
+    header = lines[0].split(",")
+    if column not in header:
+        fail(f"--final {check!r}: no column {column!r} in {HEADER!r}")
+    for row in lines[1:]:
+        fields = row.split(",")
+        if fields[0] == uid:
+            actual = float(fields[header.index(column)])
+            if not ops[op](actual, float(value)):
+                fail(f"final state of uid {uid}: {column} = {actual!r}, expected {op} {value}")
+            return
+    fail(f"--final {check!r}: uid {uid} is not in the final state {path}")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mpiexec", required=True)
     parser.add_argument("--app", required=True)
     parser.add_argument("--out", required=True)
     parser.add_argument("--name", required=True)
-    parser.add_argument("--np", type=int, nargs="+", required=True)
+    parser.add_argument("--np", type=int, nargs="*", default=[])
+    parser.add_argument("--case", action="append", default=[])
+    parser.add_argument("--reference")
     parser.add_argument("--same", nargs="*", default=[])
     parser.add_argument("--expect", nargs="*", default=[])
     parser.add_argument("--dump", action="store_true")
+    parser.add_argument("--final", action="append", default=[])
     parser.add_argument("--reload")
     parser.add_argument("app_args", nargs="*")
     args = parser.parse_args()
 
+    plan = [(np, [], f"{args.name}.np{np}") for np in args.np]
+    for k, case in enumerate(args.case):
+        words = shlex.split(case)
+        if not words or not words[0].isdigit():
+            fail(f"--case {case!r}: expected the rank count first")
+        np = int(words[0])
+        plan.append((np, words[1:], f"{args.name}.case{k}.np{np}"))
+    if not plan:
+        fail("nothing to run: give --np or --case")
+
     runs = []
-    for np in args.np:
-        stem = os.path.join(args.out, f"{args.name}.np{np}")
+    if args.reference:
+        with open(args.reference + ".json", encoding="utf-8") as f:
+            reference = json.load(f)
+        runs.append((f"the reference {args.reference}", reference,
+                     args.reference + ".csv" if args.dump else None))
+    for np, extra, name in plan:
+        stem = os.path.join(args.out, name)
         dump = stem + ".csv" if args.dump else None
-        summary = run(args.mpiexec, np, args.app, args.app_args, stem + ".json", dump)
+        summary = run(args.mpiexec, np, args.app, [*args.app_args, *extra], stem + ".json",
+                      dump)
+        label = f"np {np}" + (f" ({' '.join(extra)})" if extra else "")
         if summary["ranks"] != np:
-            fail(f"np {np}: the summary says ranks = {summary['ranks']}")
+            fail(f"{label}: the summary says ranks = {summary['ranks']}")
         for expectation in args.expect:
             key, expected = expectation.split("=", 1)
             if str(summary[key]) != expected:
-                fail(f"np {np}: {key} = {summary[key]!r}, expected {expected}")
+                fail(f"{label}: {key} = {summary[key]!r}, expected {expected}")
         if dump:
             recomputed = check_dump(dump, summary)
             if recomputed != summary["checksum"]:
-                fail(f"np {np}: the checksum recomputed from the dump is {recomputed}, the "
+                fail(f"{label}: the checksum recomputed from the dump is {recomputed}, the "
                      f"summary says {summary['checksum']}")
-        runs.append((np, summary, dump))
+            for check in args.final:
+                check_final(dump, check)
+        runs.append((label, summary, dump))
 
-    first_np, first, first_dump = runs[0]
-    for np, summary, dump in runs[1:]:
+    first_label, first, first_dump = runs[0]
+    for label, summary, dump in runs[1:]:
         for key in args.same:
             if summary[key] != first[key]:
-                fail(f"{key}: {first[key]!r} on {first_np} ranks but {summary[key]!r} on {np}")
+                fail(f"{key}: {first[key]!r} on {first_label} but {summary[key]!r} on {label}")
         if dump:
             with open(first_dump, "rb") as a, open(dump, "rb") as b:
                 if a.read() != b.read():
-                    fail(f"the dumps of {first_np} and {np} ranks differ: {first_dump} {dump}")
+                    fail(f"the dumps of {first_label} and {label} differ: {first_dump} {dump}")
     print(f"{args.name}: " + ", ".join(f"{k} = {first[k]}" for k in args.same) +
-          f" on {args.np} ranks")
+          " on " + "; ".join(label for label, _, _ in runs))
 
     if args.reload:
-        np, summary, dump = runs[-1]
+        label, summary, dump = runs[-1]
+        np = plan[-1][0]
         stem = os.path.join(args.out, f"{args.name}.reload.np{np}")
         again = run(args.mpiexec, np, args.app,
                     [args.reload, "--set", f'particles.0.path="{os.path.abspath(dump)}"'],

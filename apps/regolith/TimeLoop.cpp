@@ -1,0 +1,77 @@
+#include "apps/regolith/TimeLoop.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <span>
+#include <string_view>
+
+namespace regolith::apps {
+
+LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
+                        particles::ParticleSync& sync, core::TimerTree& timers,
+                        std::int64_t steps) {
+    timers.reset();
+    sync.resetCounters();
+    std::uint64_t const leftBefore = dem.leftDomain();
+    comm.barrier(); // every rank starts the clock together
+    double const start = MPI_Wtime();
+    for (std::int64_t n = 0; n < steps; ++n)
+        dem.step();
+    double const elapsed = MPI_Wtime() - start;
+
+    LoopOutcome out;
+    out.steps = steps;
+    out.wallSeconds = comm.allReduce(elapsed, core::ReduceOp::Max);
+    out.timers = timers.reduce(comm);
+    out.comm = sync.counters().reduce(comm);
+    out.leftDomain =
+        comm.allReduce(static_cast<long long>(dem.leftDomain() - leftBefore), core::ReduceOp::Sum);
+    return out;
+}
+
+std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local) {
+    std::vector<MasterRecord> out;
+    out.reserve(local.countMasters());
+    for (particles::BlockParticles const& bp : local.blocks()) {
+        particles::ParticleStorage const& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) {
+            out.push_back({ps.uid(i), ps.position(i), ps.velocity(i), ps.angularVelocity(i),
+                           ps.radius(i), ps.mass(i)});
+        });
+    }
+    return out;
+}
+
+namespace {
+
+double averageSeconds(core::TimerReport const& report, std::string_view phase) {
+    core::TimerStats const* row = report.find(phase);
+    return row ? row->avg : 0.0;
+}
+
+} // namespace
+
+void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
+                     particles::LocalParticles const& local, RunSummary& summary) {
+    std::array<long long, 2> counts{static_cast<long long>(local.countMasters()),
+                                    static_cast<long long>(local.countCopies())};
+    comm.allReduceInPlace(std::span<long long>(counts), core::ReduceOp::Sum);
+    summary.particles = counts[0];
+    summary.shadows = counts[1] - counts[0];
+    summary.steps = loop.steps;
+    summary.wallSeconds = loop.wallSeconds;
+    summary.leftDomain = loop.leftDomain;
+    summary.timing.sync = averageSeconds(loop.timers, particles::DemStep::kSyncTimer);
+    summary.timing.contact = averageSeconds(loop.timers, particles::DemStep::kContactTimer);
+    summary.timing.gravity = 0.0;
+    summary.timing.integrate = averageSeconds(loop.timers, particles::DemStep::kIntegrateTimer);
+    if (loop.steps > 0) {
+        auto const steps = static_cast<double>(loop.steps);
+        summary.comm.messagesPerStep = static_cast<double>(loop.comm.messages) / steps;
+        summary.comm.bytesPerStep = static_cast<double>(loop.comm.bytes) / steps;
+    }
+    summary.comm.maxPeers = loop.comm.maxPeers;
+}
+
+} // namespace regolith::apps

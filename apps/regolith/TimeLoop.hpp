@@ -1,0 +1,48 @@
+#pragma once
+/// The time-step loop of `regolith` and what the run summary reports about it.
+#include "apps/common/MasterRecord.hpp"
+#include "apps/common/RunSummary.hpp"
+#include "core/mpi/Comm.hpp"
+#include "core/mpi/CommCounters.hpp"
+#include "core/timing/TimerReport.hpp"
+#include "core/timing/TimerTree.hpp"
+#include "particles/simulation/DemStep.hpp"
+#include "particles/sync/BlockParticles.hpp"
+#include "particles/sync/ParticleSync.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace regolith::apps {
+
+/// What the loop did, the same on every rank.
+struct LoopOutcome {
+    std::int64_t steps = 0;
+    /// The loop alone, from a barrier before the first step to the end of the slowest
+    /// rank's last step [s] (set-up and output excluded, like LAMMPS's "Loop time").
+    double wallSeconds = 0.0;
+    core::TimerReport timers;    ///< the step's phases (sync, contact, integrate), over ranks
+    core::CommTotals comm;       ///< the synchronisation's traffic during the loop
+    std::int64_t leftDomain = 0; ///< masters that left an open domain, over all ranks
+};
+
+/// Runs `steps` steps of `dem` after forgetting the set-up's timers and traffic (so both
+/// cover the loop only). Pre: dem.setUp() was called; `dem` uses `sync` and `timers`.
+/// COLLECTIVE over `comm` (the communicator `sync` was built from).
+[[nodiscard]] LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
+                                      particles::ParticleSync& sync, core::TimerTree& timers,
+                                      std::int64_t steps);
+
+/// The masters of every local block as reported records (block order, then storage order).
+/// Not collective.
+[[nodiscard]] std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local);
+
+/// Fills the loop's keys of `summary`: steps, wall_s, timing_s (average over ranks of each
+/// phase; gravity 0: no self-gravity yet), comm (messages and bytes summed over ranks per
+/// step, the largest number of peers of one exchange), left_domain, and the final global
+/// counts of masters (particles) and shadow copies (shadows) in `local`.
+/// COLLECTIVE over `comm`.
+void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
+                     particles::LocalParticles const& local, RunSummary& summary);
+
+} // namespace regolith::apps
