@@ -29,6 +29,10 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
     core::Vec3 const extent = forest.domain().extent();
     for (int a = 0; a < 3; ++a)
         m_period[a] = forest.periodic()[static_cast<std::size_t>(a)] ? extent[a] : 0.0;
+    // Rounding of x + k * period is a few ulps of the coordinates' magnitude; 1e-12 of it is
+    // far above that and far below any grain.
+    core::AABB const& d = forest.domain();
+    m_imageSlack = 1e-12 * std::max(d.min.cwiseAbs().maxCoeff(), d.max.cwiseAbs().maxCoeff());
     if (config.method == SyncMethod::NextNeighbour) {
         std::vector<int> peers = forest.neighbourRanks();
         peers.push_back(comm.rank());
@@ -212,6 +216,8 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
         double const r = ps.radius(i);
         BlockRef const owner = ps.owner(i);
         bool const master = ps.flags(i).isMaster();
+        if (master && engine.deepInside(block.aabb, x, r))
+            continue; // no neighbour block can need a copy
         if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
             drop.push_back(ps.key(i));
             core::SendBuffer& b = engine.out(owner.rank);
@@ -270,6 +276,14 @@ void ParticleSync::sync(LocalParticles& local) {
                 continue;
             double const r = ps.radius(i);
             bool const small = r < edge;
+            // The common case: a small grain deep inside its block, with no shadows to update
+            // or remove, needs nothing sent (Alg. 1/2 would find no target).
+            if (small && ps.shadowHolders(i).empty() &&
+                engine.deepInside(bp.block->aabb, ps.position(i), r)) {
+                ps.setFlags(i, Flags(ps.flags(i))
+                                   .set(Flag::Spreads, m_config.method == SyncMethod::ShadowOwner));
+                continue;
+            }
             bool const reachable =
                 small && withinNeighbourhood(engine, *bp.block, edge, ps.position(i), r);
             if (m_config.method == SyncMethod::NextNeighbour && !reachable) {

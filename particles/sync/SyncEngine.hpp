@@ -47,6 +47,16 @@ public:
         return m_neighbourBlocks.at(id);
     }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
+    /// Whether the ball (x, r) of a master lies so deep inside `box` that no other block can
+    /// need a copy of it: its distance to every face exceeds the copy criterion's reach plus
+    /// an absolute slack that covers the rounding of periodic images (x + k * period). The
+    /// common case of a small grain; lets the sync skip the link loop (copyNeeded would be
+    /// false for every link).
+    [[nodiscard]] bool deepInside(core::AABB const& box, core::Vec3 const& x, double r) const {
+        double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
+        return (x.array() - box.min.array() > reach).all() &&
+               (box.max.array() - x.array() > reach).all();
+    }
     [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
@@ -58,6 +68,7 @@ private:
     core::Comm m_comm;
     domain::BlockForest const* m_forest;
     core::Vec3 m_period;
+    double m_imageSlack = 0.0; ///< see deepInside
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
     std::set<int> m_destinations;                         ///< other ranks written this round

@@ -1,0 +1,141 @@
+#!/usr/bin/python3
+"""Synchronisation figures (issue 4) from `regolith` run summaries, on the sparse granular gas
+of scenes/granular-gas.toml:
+
+  pupcs  PUpCS of NNS, SOS and hybrid on the same scene and rank count, runs alternating
+         (nns, sos, hybrid, nns, ...) so that a change of machine load hits every method alike;
+         reported as the median over the repeats and as ratios to NNS.
+  comm   messages, bytes and distinct peers per rank per step of the synchronisation for
+         1, 2, 3, 4, 8 (and 27) ranks, one block of 10^3 grains per rank (weak scaling).
+
+usage: sync_bench.py --build build/default --out bench/out [--repeats 3] [--steps 200]
+                     [--ranks 2] [--box 40] [--comm-ranks 1 2 3 4 8 27]
+
+Writes <out>/sync_pupcs.csv, <out>/sync_comm.csv and prints Markdown tables for
+docs/results.md. Not a test: it asserts nothing about time.
+"""
+import argparse
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+SCENE = os.path.join(ROOT, "scenes", "granular-gas.toml")
+METHODS = ("nns", "sos", "hybrid")
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
+
+
+def run(app, ranks, args):
+    """Runs regolith on `ranks` ranks and returns its run summary."""
+    with tempfile.TemporaryDirectory() as tmp:
+        summary = os.path.join(tmp, "summary.json")
+        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", app,
+                   SCENE, *args, "--quiet", "--json", summary]
+        done = subprocess.run(command, capture_output=True, text=True, check=False,
+                              env={**os.environ, **MPI_ENV})
+        if done.returncode != 0:
+            sys.exit(f"sync_bench: {' '.join(command)} exited with {done.returncode}\n"
+                     f"{done.stdout}\n{done.stderr}")
+        with open(summary, encoding="utf-8") as f:
+            return json.load(f)
+
+
+def layout(ranks):
+    """One block per rank in the most cubic grid of `ranks` blocks."""
+    best = (ranks, 1, 1)
+    for x in range(1, ranks + 1):
+        for y in range(1, ranks + 1):
+            if ranks % (x * y) == 0:
+                z = ranks // (x * y)
+                if max(x, y, z) - min(x, y, z) < max(best) - min(best):
+                    best = (x, y, z)
+    return sorted(best, reverse=True)
+
+
+def bench_pupcs(app, a, out):
+    box = a.box
+    blocks = layout(a.ranks) if a.blocks is None else a.blocks
+    common = ["--steps", str(a.steps), "--set", f"domain.max=[{box},{box},{box}]",
+              "--set", f"domain.blocks=[{blocks[0]},{blocks[1]},{blocks[2]}]"]
+    samples = {m: [] for m in METHODS}
+    rows = []
+    for repeat in range(a.repeats):
+        for method in METHODS:
+            s = run(app, a.ranks, common + ["--set", f"sync.method={method}"])
+            samples[method].append(s["pupcs"])
+            rows.append([repeat, method, a.ranks, "x".join(map(str, blocks)), s["particles"],
+                         s["steps"], s["wall_s"], s["pupcs"], s["timing_s"]["sync"],
+                         s["timing_s"]["contact"], s["timing_s"]["integrate"]])
+    with open(os.path.join(out, "sync_pupcs.csv"), "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["repeat", "method", "ranks", "blocks", "particles", "steps", "wall_s",
+                    "pupcs", "sync_s", "contact_s", "integrate_s"])
+        w.writerows(rows)
+    nns = statistics.median(samples["nns"])
+    print(f"\nPUpCS, sparse gas {box}^3 = {rows[0][4]} grains, {a.ranks} ranks, blocks "
+          f"{'x'.join(map(str, blocks))}, {a.steps} steps, median of {a.repeats} alternating "
+          "runs\n")
+    print("| method | PUpCS (median) | min | max | ratio to NNS (median of per-repeat ratios) |")
+    print("|---|---|---|---|---|")
+    for m in METHODS:
+        ratios = [p / n for p, n in zip(samples[m], samples["nns"])]
+        print(f"| {m} | {statistics.median(samples[m]):.3e} | {min(samples[m]):.3e} | "
+              f"{max(samples[m]):.3e} | {statistics.median(ratios):.3f} "
+              f"(range {min(ratios):.3f}–{max(ratios):.3f}) |")
+    return nns
+
+
+def bench_comm(app, a, out):
+    rows = []
+    for ranks in a.comm_ranks:
+        bx, by, bz = layout(ranks)
+        edge = 10
+        args = ["--steps", "50", "--set", f"domain.max=[{bx * edge},{by * edge},{bz * edge}]",
+                "--set", f"domain.blocks=[{bx},{by},{bz}]"]
+        for method in METHODS:
+            s = run(app, ranks, args + ["--set", f"sync.method={method}"])
+            c = s["comm"]
+            rows.append([ranks, f"{bx}x{by}x{bz}", method, s["particles"],
+                         c["messages_per_step"] / ranks, c["bytes_per_step"] / ranks,
+                         c["max_peers"], s["shadows"]])
+    with open(os.path.join(out, "sync_comm.csv"), "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["ranks", "blocks", "method", "particles", "messages_per_rank_step",
+                    "bytes_per_rank_step", "max_peers", "shadows"])
+        w.writerows(rows)
+    print("\nSynchronisation traffic per rank and step, sparse gas, one block of 10^3 grains "
+          "per rank, periodic, 50 steps\n")
+    print("| ranks | blocks | method | messages / rank / step | bytes / rank / step | "
+          "max peers | shadows |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r[0]} | {r[1]} | {r[2]} | {r[4]:.1f} | {r[5]:.0f} | {r[6]} | {r[7]} |")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--steps", type=int, default=200)
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--box", type=int, default=40)
+    p.add_argument("--blocks", type=int, nargs=3, default=None)
+    p.add_argument("--comm-ranks", type=int, nargs="*", default=[1, 2, 3, 4, 8, 27])
+    p.add_argument("--only", choices=("pupcs", "comm"), default=None)
+    a = p.parse_args()
+    app = os.path.join(a.build, "bin", "regolith")
+    os.makedirs(a.out, exist_ok=True)
+    if a.only in (None, "pupcs"):
+        bench_pupcs(app, a, a.out)
+    if a.only in (None, "comm"):
+        bench_comm(app, a, a.out)
+
+
+if __name__ == "__main__":
+    main()
