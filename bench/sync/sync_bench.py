@@ -57,11 +57,20 @@ def layout(ranks):
     return sorted(best, reverse=True)
 
 
+def lattice(a, extent):
+    """The lattice region: shifted by --offset so that one layer of grains straddles every
+    block face from the start (sites at offset + 0.5 + i; the paper's gas has none there)."""
+    o = a.offset
+    return ["--set", f"particles[0].region={{min=[{o},{o},{o}],max=[{extent[0]},{extent[1]},"
+            f"{extent[2]}]}}"]
+
+
 def bench_pupcs(app, a, out):
     box = a.box
     blocks = layout(a.ranks) if a.blocks is None else a.blocks
     common = ["--steps", str(a.steps), "--set", f"domain.max=[{box},{box},{box}]",
-              "--set", f"domain.blocks=[{blocks[0]},{blocks[1]},{blocks[2]}]"]
+              "--set", f"domain.blocks=[{blocks[0]},{blocks[1]},{blocks[2]}]",
+              *lattice(a, (box, box, box))]
     samples = {m: [] for m in METHODS}
     rows = []
     for repeat in range(a.repeats):
@@ -77,7 +86,7 @@ def bench_pupcs(app, a, out):
                     "pupcs", "sync_s", "contact_s", "integrate_s"])
         w.writerows(rows)
     nns = statistics.median(samples["nns"])
-    print(f"\nPUpCS, sparse gas {box}^3 = {rows[0][4]} grains, {a.ranks} ranks, blocks "
+    print(f"\nPUpCS, sparse gas (lattice offset {a.offset}) {box}^3 = {rows[0][4]} grains, {a.ranks} ranks, blocks "
           f"{'x'.join(map(str, blocks))}, {a.steps} steps, median of {a.repeats} alternating "
           "runs\n")
     print("| method | PUpCS (median) | min | max | ratio to NNS (median of per-repeat ratios) |")
@@ -95,8 +104,9 @@ def bench_comm(app, a, out):
     for ranks in a.comm_ranks:
         bx, by, bz = layout(ranks)
         edge = 10
-        args = ["--steps", "50", "--set", f"domain.max=[{bx * edge},{by * edge},{bz * edge}]",
-                "--set", f"domain.blocks=[{bx},{by},{bz}]"]
+        extent = (bx * edge, by * edge, bz * edge)
+        args = ["--steps", "50", "--set", f"domain.max=[{extent[0]},{extent[1]},{extent[2]}]",
+                "--set", f"domain.blocks=[{bx},{by},{bz}]", *lattice(a, extent)]
         for method in METHODS:
             s = run(app, ranks, args + ["--set", f"sync.method={method}"])
             c = s["comm"]
@@ -108,8 +118,9 @@ def bench_comm(app, a, out):
         w.writerow(["ranks", "blocks", "method", "particles", "messages_per_rank_step",
                     "bytes_per_rank_step", "max_peers", "shadows"])
         w.writerows(rows)
-    print("\nSynchronisation traffic per rank and step, sparse gas, one block of 10^3 grains "
-          "per rank, periodic, 50 steps\n")
+    print(f"\nSynchronisation traffic per rank and step, sparse gas, one block of 10^3 grains "
+          f"per rank, periodic, lattice offset {a.offset} (a layer of grains on every block face), "
+          f"50 steps\n")
     print("| ranks | blocks | method | messages / rank / step | bytes / rank / step | "
           "max peers | shadows |")
     print("|---|---|---|---|---|---|---|")
@@ -127,6 +138,7 @@ def main():
     p.add_argument("--box", type=int, default=40)
     p.add_argument("--blocks", type=int, nargs=3, default=None)
     p.add_argument("--comm-ranks", type=int, nargs="*", default=[1, 2, 3, 4, 8, 27])
+    p.add_argument("--offset", type=float, default=0.3)
     p.add_argument("--only", choices=("pupcs", "comm"), default=None)
     a = p.parse_args()
     app = os.path.join(a.build, "bin", "regolith")

@@ -56,18 +56,7 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
 }
 
 core::SendBuffer& ParticleSync::Impl::out(int rank) {
-    if (rank != m_comm.rank())
-        m_destinations.insert(rank);
     return m_neighbour ? m_neighbour->sendBuffer(rank) : m_sparse->sendBuffer(rank);
-}
-
-std::uint64_t ParticleSync::Impl::messages() const {
-    return m_neighbour ? m_neighbour->counters().totalMessages()
-                       : m_sparse->counters().totalMessages();
-}
-
-std::uint64_t ParticleSync::Impl::bytes() const {
-    return m_neighbour ? m_neighbour->counters().totalBytes() : m_sparse->counters().totalBytes();
 }
 
 // ---- the public class -----------------------------------------------------------------------

@@ -10,7 +10,6 @@
 #include "particles/sync/ParticleSync.hpp"
 
 #include <memory>
-#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -26,7 +25,6 @@ public:
     /// ascending source rank; adds the traffic to `stats`. COLLECTIVE.
     template <class F>
     void exchange(core::CommStats& stats, F&& f) {
-        std::uint64_t const m0 = messages(), b0 = bytes();
         if (m_neighbour) {
             m_neighbour->start();
             m_neighbour->wait(f);
@@ -34,10 +32,13 @@ public:
             m_sparse->start();
             m_sparse->wait(f);
         }
-        stats.messages += messages() - m0;
-        stats.bytes += bytes() - b0;
-        stats.peers = std::max(stats.peers, static_cast<int>(m_destinations.size()));
-        m_destinations.clear();
+        // The exchange's own count of this call: NNS sends its size messages to every
+        // neighbour rank, SOS (NBX) only to ranks with records.
+        core::CommStats const& call =
+            m_neighbour ? m_neighbour->counters().last() : m_sparse->counters().last();
+        stats.messages += call.messages;
+        stats.bytes += call.bytes;
+        stats.peers = std::max(stats.peers, call.peers);
     }
 
     /// Smallest edge of block `id` and of all its neighbours (NNS limit), by raw id.
@@ -62,16 +63,12 @@ public:
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
 private:
-    [[nodiscard]] std::uint64_t messages() const;
-    [[nodiscard]] std::uint64_t bytes() const;
-
     core::Comm m_comm;
     domain::BlockForest const* m_forest;
     core::Vec3 m_period;
-    double m_imageSlack = 0.0; ///< see deepInside
+    double m_imageSlack = 0.0;                            ///< see deepInside
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
-    std::set<int> m_destinations;                         ///< other ranks written this round
     std::unordered_map<std::uint64_t, double> m_edgeAround;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
 };
