@@ -11,3 +11,8 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 # and bytes per particle for 1,000,000 grains.
 "$build/bin/particles_bench" --benchmark_out="$out/particles_bench.json" \
     --benchmark_out_format=json | tee "$out/particles_bench.txt"
+
+# Shadow synchronisation: PUpCS of NNS / SOS / hybrid side by side on 2 ranks, and traffic per
+# rank and step from 1 to 27 ranks (docs/results.md, issue 4).
+/usr/bin/python3 bench/sync/sync_bench.py --build "$build" --out "$out" --repeats 5 \
+    | tee "$out/sync_bench.txt"
