@@ -111,6 +111,8 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
     std::vector<CopyRef> targets;
     if (nnsClass) {
         for (domain::BlockLink const& l : block.neighbours) {
+            if (!engine.mayReach(l, x, r))
+                continue;
             CopyImage const k = imageThroughLink(kNoImage, l.image);
             if (copyNeeded(l.aabb, x, k, r, period))
                 targets.push_back(CopyRef{l.owner, l.id.raw(), k});
@@ -218,7 +220,10 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
             }
             continue;
         }
+        core::Vec3 const local = localPosition(x, k, period);
         for (domain::BlockLink const& l : block.neighbours) {
+            if (!engine.mayReach(l, local, r))
+                continue;
             CopyImage const kt = imageThroughLink(k, l.image);
             if (!copyNeeded(l.aabb, x, kt, r, period))
                 continue;

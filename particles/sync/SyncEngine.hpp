@@ -58,6 +58,16 @@ public:
         return (x.array() - box.min.array() > reach).all() &&
                (box.max.array() - x.array() > reach).all();
     }
+    /// A cheap pre-test for copyNeeded through a link: false only if the ball at local
+    /// position `x` (the holder's frame) certainly misses the link's image box (box against
+    /// box, with the same slack as deepInside).
+    [[nodiscard]] bool mayReach(domain::BlockLink const& link, core::Vec3 const& x,
+                                double r) const {
+        double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
+        core::AABB const box = link.imageBox();
+        return (x.array() + reach > box.min.array()).all() &&
+               (x.array() - reach < box.max.array()).all();
+    }
     [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }

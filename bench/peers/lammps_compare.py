@@ -1,0 +1,164 @@
+#!/usr/bin/python3
+"""Regolith side by side with LAMMPS (issue 5): the same grains, contact model, time step and
+steps on one core, runs alternating (regolith, lmp, regolith, lmp, ...) so that a change of
+machine load hits both alike. Reports PUpCS (particle updates per core-second of the time-step
+loop: Regolith's wall_s, LAMMPS's "Loop time") and the ratio Regolith / LAMMPS.
+
+Cases:
+  sparse   the sparse granular gas of scenes/granular-gas.toml (sc spacing 1, r = 0.4,
+           velocities uniform in [-0.1, 0.1], periodic), --box^3 grains
+  mesapd   MESA-PD's static "GranularGas" geometry: sc spacing 1, r = 0.6, every sphere
+           overlapping its six neighbours, at rest, periodic
+
+The initial state comes from Regolith itself (--steps 0 --dump) and is written as a LAMMPS
+data file, so both codes start from the same bits. Contact: Regolith's spring-dashpot with
+k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k_t = 2/7 k_n,
+c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
+(gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
+nve/sphere). LAMMPS uses Verlet lists with a skin (--skin); Regolith rebuilds its cells every
+step.
+
+usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd]
+                         [--box 30] [--steps 500] [--repeats 3] [--skin 0.1]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SCENE = os.path.join(ROOT, "scenes", "granular-gas.toml")
+DECK = os.path.join(HERE, "granular.in")
+ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+
+STIFFNESS = 50.0
+RESTITUTION = 0.9
+FRICTION = 0.5
+DT = 0.01
+
+
+def case_args(case, box):
+    """Regolith --set arguments of a case."""
+    common = ["--set", f"domain.max=[{box},{box},{box}]", "--set", "domain.blocks=[1,1,1]",
+              "--set", f"contact.stiffness={STIFFNESS}", "--set", f"contact.restitution={RESTITUTION}",
+              "--set", f"contact.friction={FRICTION}", "--set", f"time.dt={DT}"]
+    if case == "sparse":
+        return common
+    if case == "mesapd":
+        return common + ["--set", "particles[0].radius=0.6", "--set",
+                         "particles[0].velocity={random=[0.0,0.0],seed=1}",
+                         "--set", "contact.initial_overlap=0.5"]
+    sys.exit(f"lammps_compare: unknown case {case}")
+
+
+def regolith(app, args, json_path, extra=()):
+    command = [app, SCENE, *args, *extra, "--quiet", "--json", json_path]
+    done = subprocess.run(command, capture_output=True, text=True, env=ENV, check=False)
+    if done.returncode != 0:
+        sys.exit(f"lammps_compare: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
+    with open(json_path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def write_data(dump_csv, box, path):
+    """LAMMPS data file (atom_style sphere: id type diameter density x y z) from a dump."""
+    with open(dump_csv, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(f"Regolith initial state\n\n{len(rows)} atoms\n1 atom types\n\n")
+        f.write(f"0 {box} xlo xhi\n0 {box} ylo yhi\n0 {box} zlo zhi\n\nAtoms # sphere\n\n")
+        for r in rows:
+            radius, mass = float(r["radius"]), float(r["mass"])
+            density = mass / (4.0 / 3.0 * math.pi * radius ** 3)
+            f.write(f"{int(r['uid']) + 1} 1 {2 * radius!r} {density!r} {r['x']} {r['y']} "
+                    f"{r['z']}\n")
+        f.write("\nVelocities\n\n")
+        for r in rows:
+            f.write(f"{int(r['uid']) + 1} {r['vx']} {r['vy']} {r['vz']} {r['wx']} {r['wy']} "
+                    f"{r['wz']}\n")
+    return rows
+
+
+def lammps_params(mass):
+    """gran/hooke/history parameters equal to Regolith's spring-dashpot for equal grains."""
+    m_eff = mass / 2.0
+    ln_e = math.log(RESTITUTION)
+    gamma = -ln_e * math.sqrt(STIFFNESS / m_eff) / math.sqrt(math.pi ** 2 + ln_e ** 2)
+    gamma_n = 2.0 * gamma  # c_n = 2 m_eff gamma = m_eff gamma_n
+    return {"kn": STIFFNESS, "kt": 2.0 / 7.0 * STIFFNESS, "gamman": gamma_n,
+            "gammat": gamma_n / 2.0, "xmu": FRICTION}
+
+
+def lammps(data, params, steps, skin, workdir):
+    log = os.path.join(workdir, "lmp.log")
+    command = ["lmp", "-in", DECK, "-log", log, "-screen", "none", "-var", "data", data,
+               "-var", "dt", str(DT), "-var", "steps", str(steps), "-var", "skin", str(skin)]
+    for k, v in params.items():
+        command += ["-var", k, repr(v)]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=workdir, check=False)
+    if done.returncode != 0:
+        sys.exit(f"lammps_compare: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
+    with open(log, encoding="utf-8") as f:
+        text = f.read()
+    m = re.search(r"Loop time of ([0-9.eE+-]+) on 1 procs for (\d+) steps with (\d+) atoms", text)
+    if not m:
+        sys.exit(f"lammps_compare: no loop time in {log}")
+    return float(m.group(1)), int(m.group(2)), int(m.group(3)), text
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
+    p.add_argument("--cases", nargs="*", default=["sparse", "mesapd"])
+    p.add_argument("--box", type=int, default=30)
+    p.add_argument("--steps", type=int, default=500)
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--skin", type=float, default=0.1)
+    a = p.parse_args()
+    app = os.path.join(a.build, "bin", "regolith")
+    os.makedirs(a.out, exist_ok=True)
+    rows = []
+    print("| case | grains | steps | Regolith PUpCS (median) | LAMMPS PUpCS (median) | "
+          "ratio (median) | ratio range |")
+    print("|---|---|---|---|---|---|---|")
+    for case in a.cases:
+        with tempfile.TemporaryDirectory() as tmp:
+            args = case_args(case, a.box)
+            dump = os.path.join(tmp, "init.csv")
+            regolith(app, args, os.path.join(tmp, "init.json"), ["--steps", "0", "--dump", dump])
+            data = os.path.join(tmp, "grains.data")
+            grains = write_data(dump, a.box, data)
+            params = lammps_params(float(grains[0]["mass"]))
+            ours, theirs, ratios = [], [], []
+            for repeat in range(a.repeats):
+                s = regolith(app, args, os.path.join(tmp, "run.json"), ["--steps", str(a.steps)])
+                loop, steps, atoms, _ = lammps(data, params, a.steps, a.skin, tmp)
+                if atoms != s["particles"] or steps != s["steps"]:
+                    sys.exit(f"lammps_compare: LAMMPS ran {atoms} atoms x {steps} steps, Regolith "
+                             f"{s['particles']} x {s['steps']}")
+                lmp_pupcs = steps * atoms / loop
+                ours.append(s["pupcs"])
+                theirs.append(lmp_pupcs)
+                ratios.append(s["pupcs"] / lmp_pupcs)
+                rows.append([case, repeat, atoms, steps, s["wall_s"], s["pupcs"], loop, lmp_pupcs,
+                             s["pupcs"] / lmp_pupcs, s["conserved"]["kinetic_energy"]])
+            print(f"| {case} | {len(grains)} | {a.steps} | {statistics.median(ours):.3e} | "
+                  f"{statistics.median(theirs):.3e} | {statistics.median(ratios):.2f} | "
+                  f"{min(ratios):.2f}–{max(ratios):.2f} |", flush=True)
+    with open(os.path.join(a.out, "lammps_compare.csv"), "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["case", "repeat", "grains", "steps", "regolith_wall_s", "regolith_pupcs",
+                    "lammps_loop_s", "lammps_pupcs", "ratio", "regolith_kinetic_energy"])
+        w.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()
