@@ -64,8 +64,11 @@ public:
         double const delta = ri + rj - dist;
         core::Vec3 const p = xi + (ri - 0.5 * delta) * n;
 
+        // p = x_i + (r_i - delta/2) n lies at distance |r_i - delta/2| from x_i and
+        // |r_j - delta/2| from x_j along the normal: strictly inside both balls unless one has
+        // swallowed the other's centre (no square roots needed).
         core::Vec3 q = p;
-        if (!((p - xi).norm() < ri && (p - xj).norm() < rj))
+        if (!(std::abs(ri - 0.5 * delta) < ri && std::abs(rj - 0.5 * delta) < rj))
             q = ri < rj ? xi : xj; // a swallowed centre: the smaller sphere's (ties: j)
         auto const [w, o] = m_frame.wrap(q);
         for (std::size_t ax = 0; ax < 3; ++ax)

@@ -20,17 +20,7 @@ core::Vec3 PeriodicFrame::period() const {
     return out;
 }
 
-std::pair<core::Vec3, CopyImage> PeriodicFrame::wrap(core::Vec3 const& p) const {
-    // Fast path, the common case: inside on every periodic axis (ForestGeometry answers
-    // image 0 and p itself there too).
-    bool inside = true;
-    for (int a = 0; a < 3; ++a)
-        if (periodic[static_cast<std::size_t>(a)] &&
-            !(p[a] >= domain.min[a] && p[a] < domain.max[a]))
-            inside = false;
-    if (inside)
-        return {p, kNoImage};
-
+std::pair<core::Vec3, CopyImage> PeriodicFrame::wrapOutside(core::Vec3 const& p) const {
     // A geometry that agrees with the forest's on the periodic axes (the image and wrapped
     // value depend only on min, max and the coordinate) and has a unit box on the others, at
     // whose origin the query is put so that `locate` never rejects it.

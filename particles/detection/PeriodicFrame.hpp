@@ -45,7 +45,20 @@ struct PeriodicFrame {
     /// already inside the domain on every periodic axis are returned as they are, image 0
     /// (as ForestGeometry does). Throws core::Error if p is not finite on a periodic axis or
     /// the image lies beyond +-kMaxImage periods.
-    [[nodiscard]] std::pair<core::Vec3, CopyImage> wrap(core::Vec3 const& p) const;
+    [[nodiscard]] std::pair<core::Vec3, CopyImage> wrap(core::Vec3 const& p) const {
+        // The common case inline: inside on every periodic axis (ForestGeometry answers image
+        // 0 and p itself there too).
+        for (std::size_t a = 0; a < 3; ++a)
+            if (periodic[a] && !(p[static_cast<int>(a)] >= domain.min[static_cast<int>(a)] &&
+                                 p[static_cast<int>(a)] < domain.max[static_cast<int>(a)]))
+                return wrapOutside(p);
+        return {p, kNoImage};
+    }
+
+private:
+    [[nodiscard]] std::pair<core::Vec3, CopyImage> wrapOutside(core::Vec3 const& p) const;
+
+public:
 };
 
 } // namespace regolith::particles

@@ -44,7 +44,7 @@ bool ContactHistory::erase(Uid partner) {
     return true;
 }
 
-std::size_t ContactHistory::keepOnly(std::uint32_t stamp) {
+std::size_t ContactHistory::keepOnlySlow(std::uint32_t stamp) {
     auto const before = m_entries.size();
     std::erase_if(m_entries, [stamp](HistoryEntry const& e) { return e.stamp != stamp; });
     if (m_entries.empty())

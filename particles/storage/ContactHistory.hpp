@@ -39,7 +39,9 @@ public:
     bool erase(Uid partner);
     /// Drops every entry whose stamp differs from `stamp`: the contacts not evaluated in the
     /// current pass are broken. Returns how many were dropped.
-    std::size_t keepOnly(std::uint32_t stamp);
+    std::size_t keepOnly(std::uint32_t stamp) {
+        return m_entries.empty() ? 0 : keepOnlySlow(stamp); // most grains: no contact
+    }
 
     [[nodiscard]] std::size_t size() const { return m_entries.size(); }
     [[nodiscard]] bool empty() const { return m_entries.empty(); }
@@ -54,6 +56,8 @@ public:
     [[nodiscard]] std::vector<HistoryEntry> const& entries() const { return m_entries; }
 
 private:
+    std::size_t keepOnlySlow(std::uint32_t stamp);
+
     std::vector<HistoryEntry> m_entries;
 };
 

@@ -274,8 +274,9 @@ void ParticleSync::sync(LocalParticles& local) {
             // or remove, needs nothing sent (Alg. 1/2 would find no target).
             if (small && ps.shadowHolders(i).empty() &&
                 engine.deepInside(bp.block->aabb, ps.position(i), r)) {
-                ps.setFlags(i, Flags(ps.flags(i))
-                                   .set(Flag::Spreads, m_config.method == SyncMethod::ShadowOwner));
+                bool const spreads = m_config.method == SyncMethod::ShadowOwner;
+                if (ps.flags(i).has(Flag::Spreads) != spreads)
+                    ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, spreads));
                 continue;
             }
             bool const reachable =
