@@ -46,7 +46,7 @@ DT = 0.01
 
 def case_args(case, box):
     """Regolith --set arguments of a case."""
-    common = ["--set", f"domain.max=[{box},{box},{box}]", "--set", "domain.blocks=[1,1,1]",
+    common = ["--set", "granular_gas.scaling=strong", "--set", f"granular_gas.box=[{box},{box},{box}]",
               "--set", f"contact.stiffness={STIFFNESS}", "--set", f"contact.restitution={RESTITUTION}",
               "--set", f"contact.friction={FRICTION}", "--set", f"time.dt={DT}"]
     if case == "sparse":

@@ -46,7 +46,8 @@ def run(app, ranks, args):
 
 
 def layout(ranks):
-    """One block per rank in the most cubic grid of `ranks` blocks."""
+    """One block per rank in the most cubic grid of `ranks` blocks (as apps/scenarios/RankGrid
+    lays out the granular gas)."""
     best = (ranks, 1, 1)
     for x in range(1, ranks + 1):
         for y in range(1, ranks + 1):
@@ -67,9 +68,12 @@ def lattice(a, extent):
 
 def bench_pupcs(app, a, out):
     box = a.box
-    blocks = layout(a.ranks) if a.blocks is None else a.blocks
-    common = ["--steps", str(a.steps), "--set", f"domain.max=[{box},{box},{box}]",
-              "--set", f"domain.blocks=[{blocks[0]},{blocks[1]},{blocks[2]}]",
+    blocks = layout(a.ranks)
+    per_rank = [1, 1, 1] if a.blocks is None else [b // g for b, g in zip(a.blocks, blocks)]
+    blocks = [g * p for g, p in zip(blocks, per_rank)]
+    common = ["--steps", str(a.steps), "--set", "granular_gas.scaling=strong",
+              "--set", f"granular_gas.box=[{box},{box},{box}]",
+              "--set", f"granular_gas.blocks_per_rank=[{per_rank[0]},{per_rank[1]},{per_rank[2]}]",
               *lattice(a, (box, box, box))]
     samples = {m: [] for m in METHODS}
     rows = []
@@ -105,8 +109,8 @@ def bench_comm(app, a, out):
         bx, by, bz = layout(ranks)
         edge = 10
         extent = (bx * edge, by * edge, bz * edge)
-        args = ["--steps", "50", "--set", f"domain.max=[{extent[0]},{extent[1]},{extent[2]}]",
-                "--set", f"domain.blocks=[{bx},{by},{bz}]", *lattice(a, extent)]
+        args = ["--steps", "50", "--set", f"granular_gas.per_rank=[{edge},{edge},{edge}]",
+                *lattice(a, extent)]
         for method in METHODS:
             s = run(app, ranks, args + ["--set", f"sync.method={method}"])
             c = s["comm"]

@@ -1,0 +1,65 @@
+# The reference-scene apps (issue 5): granular_gas, dense_ramp and bidisperse, each at CI size,
+# run end to end. Weak scaling must give the per-rank grain count times the rank count; strong
+# scaling in reproducible mode must give the serial checksum on every rank count; the
+# bidisperse scene must run with SOS and hybrid and be refused by NNS. Included by
+# tests/apps/CMakeLists.txt (needs Python).
+
+# regolith_reference_app_test(<name> APP <target> NP <n...> [SAME | PER_RANK <grains>]
+#                             EXPECT <key=value...> ARGS <app arguments...>)
+# Registers apps.<name>.np<n> (or, with SAME, one test apps.<name> comparing the runs on all
+# NP): runs the app with compare_runs.py and checks the summaries; @NP@ in EXPECT is the rank
+# count; PER_RANK adds particles = grains x ranks (weak scaling).
+function(regolith_reference_app_test name)
+  cmake_parse_arguments(ARG "SAME" "APP;PER_RANK" "NP;EXPECT;ARGS" ${ARGN})
+  set(runner ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/compare_runs.py
+      --mpiexec ${REGOLITH_MPIEXEC} --app $<TARGET_FILE:${ARG_APP}> --out ${app_test_out})
+  if(ARG_SAME)
+    set(tests apps.${name})
+    list(GET ARG_NP -1 most)
+    add_test(NAME apps.${name}
+             COMMAND ${runner} --name apps_${name} --np ${ARG_NP} --same particles checksum
+                     --expect ${ARG_EXPECT} -- ${ARG_ARGS})
+  else()
+    set(tests)
+    set(most 1)
+    foreach(np IN LISTS ARG_NP)
+      string(REPLACE "@NP@" ${np} expect "${ARG_EXPECT}")
+      if(ARG_PER_RANK)
+        math(EXPR grains "${ARG_PER_RANK} * ${np}")
+        list(APPEND expect particles=${grains})
+      endif()
+      add_test(NAME apps.${name}.np${np}
+               COMMAND ${runner} --name apps_${name}_np${np} --np ${np} --expect ${expect} --
+                       ${ARG_ARGS})
+      list(APPEND tests apps.${name}.np${np})
+      set(most ${np})
+    endforeach()
+  endif()
+  set_tests_properties(${tests} PROPERTIES ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                       LABELS "scene;mpi" TIMEOUT 120 PROCESSORS ${most})
+endfunction()
+
+# Granular gas: weak scaling, a 6^3 box (216 grains) per rank on the 3-D rank grid.
+regolith_reference_app_test(granular_gas_weak APP granular_gas NP 1 2 4 PER_RANK 216
+  EXPECT scene=granular-gas ranks=@NP@ blocks=@NP@ steps=20 left_domain=0
+  ARGS --steps 20 --set granular_gas.per_rank=[6,6,6])
+# ... strong scaling: the fixed 12^3 box, two blocks per rank, equal to the serial run.
+regolith_reference_app_test(granular_gas_strong APP granular_gas NP 1 2 4 SAME
+  EXPECT particles=1728 steps=40
+  ARGS --steps 40 --set sync.reproducible=true --set granular_gas.scaling=strong
+       --set granular_gas.box=[12,12,12] --set granular_gas.blocks_per_rank=[2,1,1])
+
+# Dense ramp: strong scaling on the 2-D rank grid (8 hcp rows: the y period 4 sqrt(3)).
+regolith_reference_app_test(dense_ramp_strong APP dense_ramp NP 1 2 4 SAME
+  EXPECT particles=240 steps=40 left_domain=0
+  ARGS --steps 40 --set sync.reproducible=true --set dense_ramp.scaling=strong
+       --set dense_ramp.box=[8,6.928203230275509,4])
+
+# Bidisperse: two building blocks of edge 20, each with a sphere of radius 6 over blocks of
+# edge 5 (NNS cannot), hybrid and SOS equal to the serial hybrid run.
+set(bidisperse_small --steps 30 --set sync.reproducible=true --set bidisperse.edge=20
+    --set bidisperse.large_radius=6 --set bidisperse.building_blocks=[2,1,1])
+regolith_reference_app_test(bidisperse_hybrid APP bidisperse NP 1 2 4 SAME
+  EXPECT particles=13826 steps=30 left_domain=0 ARGS ${bidisperse_small})
+regolith_reference_app_test(bidisperse_sos APP bidisperse NP 1 3 SAME
+  EXPECT particles=13826 steps=30 sync=sos ARGS ${bidisperse_small} --set sync.method=sos)
