@@ -51,6 +51,17 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         std::sort(nbs.begin(), nbs.end());
         nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
         m_edgeAround[b.id.raw()] = edge;
+        auto& groups = m_linksByDirection[b.id.raw()];
+        for (std::size_t k = 0; k < b.neighbours.size(); ++k) {
+            core::AABB const box = b.neighbours[k].imageBox();
+            int code = 0;
+            for (int a = 0, weight = 1; a < 3; ++a, weight *= 3) {
+                int const dir =
+                    box.max[a] <= b.aabb.min[a] ? -1 : (box.min[a] >= b.aabb.max[a] ? 1 : 0);
+                code += (dir + 1) * weight;
+            }
+            groups[static_cast<std::size_t>(code)].push_back(static_cast<std::uint32_t>(k));
+        }
         m_neighbourBlocks[b.id.raw()] = std::move(nbs);
     }
 }
@@ -110,13 +121,13 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
     // Where copies go, in the current frame.
     std::vector<CopyRef> targets;
     if (nnsClass) {
-        for (domain::BlockLink const& l : block.neighbours) {
+        engine.forEachReachableLink(block, x, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, x, r))
-                continue;
+                return;
             CopyImage const k = imageThroughLink(kNoImage, l.image);
             if (copyNeeded(l.aabb, x, k, r, period))
                 targets.push_back(CopyRef{l.owner, l.id.raw(), k});
-        }
+        });
     } else {
         targets = holders;
     }
@@ -221,24 +232,24 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
             continue;
         }
         core::Vec3 const local = localPosition(x, k, period);
-        for (domain::BlockLink const& l : block.neighbours) {
+        engine.forEachReachableLink(block, local, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, local, r))
-                continue;
+                return;
             CopyImage const kt = imageThroughLink(k, l.image);
             if (!copyNeeded(l.aabb, x, kt, r, period))
-                continue;
+                return;
             if (l.id.raw() == owner.block && isZero(kt))
-                continue; // the master itself
+                return; // the master itself
             CopyRef const t{l.owner, l.id.raw(), kt};
             if (master) {
                 auto& h = ps.shadowHolders(i);
                 auto const at = std::lower_bound(h.begin(), h.end(), t);
                 if (at != h.end() && *at == t)
-                    continue;
+                    return;
                 h.insert(at, t);
             } else {
                 if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}).second)
-                    continue;
+                    return;
                 core::SendBuffer& b = engine.out(owner.rank);
                 writeHeader(b, RecordKind::HolderAdded, owner.block);
                 b << uid << t;
@@ -246,7 +257,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
             core::SendBuffer& b = engine.out(l.owner);
             writeHeader(b, RecordKind::Copy, l.id.raw());
             writeFull(b, ps, i, x, kt, owner, {});
-        }
+        });
     }
     for (CopyKey const& key : drop) {
         ps.removeUid(key.uid, key.image);

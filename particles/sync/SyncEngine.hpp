@@ -9,6 +9,7 @@
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
+#include <array>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -47,6 +48,34 @@ public:
     [[nodiscard]] std::vector<BlockRef> const& neighbourBlocks(std::uint64_t id) const {
         return m_neighbourBlocks.at(id);
     }
+    /// Indices into block(id).neighbours of the links in each direction (dx, dy, dz) in
+    /// {-1, 0, 1}^3 from the block, at (dx + 1) + 3 (dy + 1) + 9 (dz + 1). A link is filed
+    /// under 0 on an axis unless its image box lies wholly beyond a face there, so the
+    /// grouping errs on the inclusive side.
+    [[nodiscard]] std::array<std::vector<std::uint32_t>, 27> const&
+    linksByDirection(std::uint64_t id) const {
+        return m_linksByDirection.at(id);
+    }
+    /// Calls f(link) for every link of `block` whose direction the ball (x, r) may reach:
+    /// only the faces the ball crosses (with deepInside's slack) can lead to a neighbour it
+    /// overlaps, so a grain near one face visits a few links, not all 26 or more.
+    template <class F>
+    void forEachReachableLink(domain::Block const& block, core::Vec3 const& x, double r,
+                              F&& f) const {
+        double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
+        std::array<int, 3> lo{}, hi{};
+        for (int a = 0; a < 3; ++a) {
+            lo[static_cast<std::size_t>(a)] = x[a] - reach < block.aabb.min[a] ? -1 : 0;
+            hi[static_cast<std::size_t>(a)] = x[a] + reach > block.aabb.max[a] ? 1 : 0;
+        }
+        auto const& groups = linksByDirection(block.id.raw());
+        for (int dz = lo[2]; dz <= hi[2]; ++dz)
+            for (int dy = lo[1]; dy <= hi[1]; ++dy)
+                for (int dx = lo[0]; dx <= hi[0]; ++dx)
+                    for (std::uint32_t l :
+                         groups[static_cast<std::size_t>((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1))])
+                        f(block.neighbours[l]);
+    }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
     /// Whether the ball (x, r) of a master lies so deep inside `box` that no other block can
     /// need a copy of it: its distance to every face exceeds the copy criterion's reach plus
@@ -80,6 +109,8 @@ private:
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
     std::unordered_map<std::uint64_t, double> m_edgeAround;
+    std::unordered_map<std::uint64_t, std::array<std::vector<std::uint32_t>, 27>>
+        m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
 };
 

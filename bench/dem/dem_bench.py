@@ -1,0 +1,187 @@
+#!/usr/bin/python3
+"""DEM benchmark suite (issue 5) on the apps of the first paper's scenes, from their run
+summaries. Benchmarks, not tests: nothing here asserts a time.
+
+  methods  PUpCS of NNS, SOS and hybrid for granular_gas, dense_ramp and bidisperse on 1 and 2
+           ranks, the three methods run alternating (nns, sos, hybrid, nns, ...) so that a
+           change of machine load hits all alike; ratios to the NNS run next to each.
+  radius   the paper's Fig. 7/8 analogue: PUpCS against the radius of the large sphere in one
+           building block, sparse (sc, r = 0.4) and dense (hcp, r = 0.4) surroundings, 4x4x4 and
+           8x8x8 blocks per building block; NNS points stop where NNS refuses. CSV + PNG.
+  memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
+
+usage: dem_bench.py [methods|radius|memory ...] [--build build/default] [--out bench/out]
+                    [--repeats 3] [--ranks 1 2] [--edge 40] [--radii 4 8 12 16 20 24]
+"""
+import argparse
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+METHODS = ("nns", "sos", "hybrid")
+ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+
+# Per scene: app, arguments for a benchmark-sized run on one rank's share (weak scaling: the
+# paper's per-process boxes), steps.
+SCENES = {
+    "granular_gas": ("granular_gas", ["--set", "granular_gas.per_rank=[30,30,30]"], 200),
+    "dense_ramp": ("dense_ramp", ["--set", "dense_ramp.per_rank=[30,25.98076211353316,8]"], 200),
+    "bidisperse": ("bidisperse", ["--set", "bidisperse.edge=40", "--set",
+                                  "bidisperse.large_radius=8"], 100),
+}
+
+
+def run(build, app, ranks, args, allow_refusal=False):
+    """Runs an app; returns its run summary, or None if it refused the scene (exit 2) and
+    `allow_refusal`."""
+    with tempfile.TemporaryDirectory() as tmp:
+        summary = os.path.join(tmp, "summary.json")
+        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none",
+                   os.path.join(build, "bin", app), *args, "--quiet", "--json", summary]
+        done = subprocess.run(command, capture_output=True, text=True, env=ENV, check=False)
+        if done.returncode == 2 and allow_refusal:
+            return None
+        if done.returncode != 0:
+            sys.exit(f"dem_bench: {' '.join(command)} exited with {done.returncode}\n"
+                     f"{done.stdout}\n{done.stderr}")
+        with open(summary, encoding="utf-8") as f:
+            return json.load(f)
+
+
+def methods(a):
+    rows = []
+    print("\n| scene | ranks | grains | NNS PUpCS | SOS / NNS | hybrid / NNS |")
+    print("|---|---|---|---|---|---|")
+    for scene, (app, args, steps) in SCENES.items():
+        for ranks in a.ranks:
+            pupcs = {m: [] for m in METHODS}
+            grains = 0
+            for repeat in range(a.repeats):
+                for m in METHODS:
+                    s = run(a.build, app, ranks,
+                            args + ["--steps", str(steps), "--set", f"sync.method={m}"])
+                    pupcs[m].append(s["pupcs"])
+                    grains = s["particles"]
+                    rows.append([scene, ranks, repeat, m, grains, steps, s["wall_s"], s["pupcs"],
+                                 s["timing_s"]["sync"], s["timing_s"]["contact"],
+                                 s["timing_s"]["integrate"], s["comm"]["bytes_per_step"]])
+            ratio = {m: statistics.median(p / n for p, n in zip(pupcs[m], pupcs["nns"]))
+                     for m in METHODS}
+            spread = {m: (min(p / n for p, n in zip(pupcs[m], pupcs["nns"])),
+                          max(p / n for p, n in zip(pupcs[m], pupcs["nns"]))) for m in METHODS}
+            print(f"| {scene} | {ranks} | {grains} | {statistics.median(pupcs['nns']):.3e} | "
+                  f"{ratio['sos']:.3f} ({spread['sos'][0]:.2f}–{spread['sos'][1]:.2f}) | "
+                  f"{ratio['hybrid']:.3f} ({spread['hybrid'][0]:.2f}–{spread['hybrid'][1]:.2f}) |",
+                  flush=True)
+    write_csv(a.out, "dem_methods.csv",
+              ["scene", "ranks", "repeat", "method", "grains", "steps", "wall_s", "pupcs",
+               "sync_s", "contact_s", "integrate_s", "bytes_per_step"], rows)
+
+
+def radius(a):
+    rows = []
+    surroundings = {
+        "sparse": ["--set", "particles[1].lattice=sc", "--set", "particles[1].radius=0.4"],
+        "dense": ["--set", "particles[1].lattice=hcp", "--set", "particles[1].radius=0.4"],
+    }
+    for name, extra in surroundings.items():
+        for split in (4, 8):
+            for r in a.radii:
+                for m in METHODS:
+                    args = ["--steps", str(a.radius_steps), "--set", f"bidisperse.edge={a.edge}",
+                            "--set", f"bidisperse.large_radius={r}", "--set",
+                            f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
+                            "--set", f"sync.method={m}", *extra]
+                    s = run(a.build, "bidisperse", a.radius_ranks, args, allow_refusal=True)
+                    block_edge = a.edge / split
+                    rows.append([name, split, block_edge, r, m,
+                                 "" if s is None else s["particles"],
+                                 "" if s is None else s["pupcs"],
+                                 "refused" if s is None else "ran"])
+                    print(f"{name} {split}^3 r={r} {m}: "
+                          f"{'refused' if s is None else format(s['pupcs'], '.3e')}", flush=True)
+    write_csv(a.out, "dem_radius.csv", ["surroundings", "blocks_per_axis", "block_edge",
+                                        "large_radius", "method", "grains", "pupcs", "status"],
+              rows)
+    chart_radius(a, rows)
+
+
+def chart_radius(a, rows):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("dem_bench: no matplotlib (apt-get install python3-matplotlib): no chart")
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
+    styles = {"nns": "o-", "sos": "s--", "hybrid": "^-."}
+    for ax, name in zip(axes, ("sparse", "dense")):
+        for split in (4, 8):
+            for m in METHODS:
+                pts = [(r[3], r[6]) for r in rows
+                       if r[0] == name and r[1] == split and r[4] == m and r[7] == "ran"]
+                if pts:
+                    xs, ys = zip(*pts)
+                    ax.plot(xs, ys, styles[m], label=f"{m.upper()} edge {a.edge / split:g}")
+        ax.set_title(f"{name} surroundings, building block {a.edge:g}^3, "
+                     f"{a.radius_ranks} rank(s)")
+        ax.set_xlabel("radius of the large sphere")
+        ax.grid(True, alpha=0.3)
+    axes[0].set_ylabel("PUpCS")
+    axes[1].legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(a.out, "dem_radius.png")
+    fig.savefig(path, dpi=110)
+    print(f"chart: {path}")
+
+
+def memory(a):
+    rows = []
+    print("\n| grains | ranks | peak RSS of the largest rank [MB] | bytes per grain (max rank x "
+          "ranks / grains) |")
+    print("|---|---|---|---|")
+    for edge in a.memory_boxes:
+        s = run(a.build, "granular_gas", 2,
+                ["--steps", "10", "--set", "granular_gas.scaling=strong",
+                 "--set", f"granular_gas.box=[{edge},{edge},{edge}]"])
+        per_grain = s["peak_rss_bytes"] * s["ranks"] / s["particles"]
+        rows.append([s["particles"], s["ranks"], s["peak_rss_bytes"], per_grain])
+        print(f"| {s['particles']} | {s['ranks']} | {s['peak_rss_bytes'] / 1e6:.1f} | "
+              f"{per_grain:.0f} |", flush=True)
+    write_csv(a.out, "dem_memory.csv", ["grains", "ranks", "peak_rss_bytes_max_rank",
+                                        "bytes_per_grain"], rows)
+
+
+def write_csv(out, name, header, rows):
+    with open(os.path.join(out, name), "w", newline="", encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory"])
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--ranks", type=int, nargs="*", default=[1, 2])
+    p.add_argument("--edge", type=float, default=40.0)
+    p.add_argument("--radii", type=float, nargs="*", default=[4, 8, 12, 16, 18])
+    p.add_argument("--radius-steps", type=int, default=50)
+    p.add_argument("--radius-ranks", type=int, default=2)
+    p.add_argument("--memory-boxes", type=int, nargs="*", default=[100, 159])
+    a = p.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    for part in a.parts:
+        {"methods": methods, "radius": radius, "memory": memory}[part](a)
+
+
+if __name__ == "__main__":
+    main()
