@@ -16,3 +16,13 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 # rank and step from 1 to 27 ranks (docs/results.md, issue 4).
 /usr/bin/python3 bench/sync/sync_bench.py --build "$build" --out "$out" --repeats 5 \
     | tee "$out/sync_bench.txt"
+
+# DEM suite (issue 5): PUpCS of NNS / SOS / hybrid on the three reference scenes (1 and 2
+# ranks), PUpCS against the large radius (chart), memory per grain; and LAMMPS side by side.
+/usr/bin/python3 bench/dem/dem_bench.py --build "$build" --out "$out" | tee "$out/dem_bench.txt"
+if command -v lmp >/dev/null; then
+  /usr/bin/python3 bench/peers/lammps_compare.py --build "$build" --out "$out" \
+      | tee "$out/lammps_compare.txt"
+else
+  echo "lmp not found (apt-get install lammps): LAMMPS comparison skipped"
+fi

@@ -15,16 +15,15 @@ usage: dem_bench.py [methods|radius|memory ...] [--build build/default] [--out b
 """
 import argparse
 import csv
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from run_summary import run_app  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 METHODS = ("nns", "sos", "hybrid")
-ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 
 # Per scene: app, arguments for a benchmark-sized run on one rank's share (weak scaling: the
 # paper's per-process boxes), steps.
@@ -37,20 +36,7 @@ SCENES = {
 
 
 def run(build, app, ranks, args, allow_refusal=False):
-    """Runs an app; returns its run summary, or None if it refused the scene (exit 2) and
-    `allow_refusal`."""
-    with tempfile.TemporaryDirectory() as tmp:
-        summary = os.path.join(tmp, "summary.json")
-        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none",
-                   os.path.join(build, "bin", app), *args, "--quiet", "--json", summary]
-        done = subprocess.run(command, capture_output=True, text=True, env=ENV, check=False)
-        if done.returncode == 2 and allow_refusal:
-            return None
-        if done.returncode != 0:
-            sys.exit(f"dem_bench: {' '.join(command)} exited with {done.returncode}\n"
-                     f"{done.stdout}\n{done.stderr}")
-        with open(summary, encoding="utf-8") as f:
-            return json.load(f)
+    return run_app(os.path.join(build, "bin", app), ranks, args, allow_refusal)
 
 
 def methods(a):

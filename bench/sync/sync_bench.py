@@ -16,33 +16,21 @@ docs/results.md. Not a test: it asserts nothing about time.
 """
 import argparse
 import csv
-import json
 import os
 import statistics
-import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from run_summary import run_app  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 SCENE = os.path.join(ROOT, "scenes", "granular-gas.toml")
 METHODS = ("nns", "sos", "hybrid")
-MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
 
 
 def run(app, ranks, args):
-    """Runs regolith on `ranks` ranks and returns its run summary."""
-    with tempfile.TemporaryDirectory() as tmp:
-        summary = os.path.join(tmp, "summary.json")
-        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", app,
-                   SCENE, *args, "--quiet", "--json", summary]
-        done = subprocess.run(command, capture_output=True, text=True, check=False,
-                              env={**os.environ, **MPI_ENV})
-        if done.returncode != 0:
-            sys.exit(f"sync_bench: {' '.join(command)} exited with {done.returncode}\n"
-                     f"{done.stdout}\n{done.stderr}")
-        with open(summary, encoding="utf-8") as f:
-            return json.load(f)
+    """Runs the granular gas scene with `app` on `ranks` ranks; returns its run summary."""
+    return run_app(app, ranks, [SCENE, *args])
 
 
 def layout(ranks):

@@ -1,0 +1,28 @@
+"""Shared by the benchmark scripts: run a Regolith app under mpiexec and return its run summary
+(DESIGN.md, "Run summary")."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+
+
+def run_app(app, ranks, args, allow_refusal=False):
+    """Runs `app` (a path) on `ranks` ranks with `args`; returns the summary (--json), or None
+    when the app refused the scene (exit code 2) and `allow_refusal`. Any other failure ends
+    the calling script with the command and its output."""
+    with tempfile.TemporaryDirectory() as tmp:
+        summary = os.path.join(tmp, "summary.json")
+        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", app,
+                   *args, "--quiet", "--json", summary]
+        done = subprocess.run(command, capture_output=True, text=True, check=False,
+                              env={**os.environ, **MPI_ENV})
+        if done.returncode == 2 and allow_refusal:
+            return None
+        if done.returncode != 0:
+            sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)} exited with "
+                     f"{done.returncode}\n{done.stdout}\n{done.stderr}")
+        with open(summary, encoding="utf-8") as f:
+            return json.load(f)
