@@ -28,6 +28,7 @@ test: build
 	ctest --preset $(PRESET)
 
 bench: build
+	@bash scripts/install-deps.sh --bench
 	bash bench/run-all.sh $(BUILD)
 
 format:

@@ -17,6 +17,12 @@ packages=(
   python3                            # tests/apps scripts (summary checks, run comparisons)
 )
 
+# `install-deps.sh --bench` adds what only `make bench` needs: LAMMPS for the side-by-side runs
+# and matplotlib for the charts.
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(lammps python3-matplotlib)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
