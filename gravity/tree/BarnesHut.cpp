@@ -102,8 +102,8 @@ double BarnesHut::evaluate(PointMasses const& local, FieldOut out,
     validatePointMassesCollective(m_comm, local, "gravity");
     validateFieldOut(out, local.size());
     m_stats = {};
-    Octree const tree =
-        Octree::build(local, {m_options.leafSize, 0.0, m_options.theta, m_options.quadrupole});
+    Octree const tree = Octree::build(local, {m_options.leafSize, 0.0, m_options.theta,
+                                              m_options.quadrupole, m_options.criterion});
 
     // Locally essential trees: each rank sends every other rank the part it needs.
     auto const boxes = gatherBoxes(local, blockBoxes);

@@ -1,5 +1,7 @@
 #include "gravity/tree/InteractionList.hpp"
 
+#include "gravity/common/SimdClones.hpp"
+
 #include <cmath>
 
 namespace regolith::gravity::tree {
@@ -39,59 +41,77 @@ void InteractionList::addGrains(TreeView const& t, std::int32_t begin, std::int3
     m_pm.insert(m_pm.end(), t.m.begin() + static_cast<long>(b), t.m.begin() + static_cast<long>(e));
 }
 
-void InteractionList::evaluate(double const* tx, double const* ty, double const* tz, std::size_t n,
-                               double G, double eps2, double* ax, double* ay, double* az,
-                               double* phi) const {
-    for (std::size_t j = 0; j < m_px.size(); ++j) {
-        double const xj = m_px[j];
-        double const yj = m_py[j];
-        double const zj = m_pz[j];
-        double const gm = G * m_pm[j];
-        for (std::size_t i = 0; i < n; ++i) {
-            double const dx = xj - tx[i];
-            double const dy = yj - ty[i];
-            double const dz = zj - tz[i];
+namespace {
+
+/// The list kernel (see InteractionList::evaluate); compiled for AVX2 + FMA and baseline.
+REGOLITH_SIMD_CLONES
+void evaluateListKernel(double const* tx, double const* ty, double const* tz, std::size_t n,
+                        double G, double eps2, double* ax, double* ay, double* az, double* phi,
+                        double const* px, double const* py, double const* pz, double const* pm,
+                        std::size_t np, double const* cx, double const* cy, double const* cz,
+                        double const* cm, double const* qxx, double const* qyy, double const* qzz,
+                        double const* qxy, double const* qxz, double const* qyz, std::size_t nc) {
+    // One target at a time, the list streaming past: the sums stay in registers and the
+    // loop over the list vectorises as a SIMD reduction (-fopenmp-simd).
+    for (std::size_t i = 0; i < n; ++i) {
+        double const x = tx[i];
+        double const y = ty[i];
+        double const z = tz[i];
+        double sx = 0.0;
+        double sy = 0.0;
+        double sz = 0.0;
+        double sp = 0.0;
+#pragma omp simd reduction(+ : sx, sy, sz, sp)
+        for (std::size_t j = 0; j < np; ++j) {
+            double const dx = px[j] - x;
+            double const dy = py[j] - y;
+            double const dz = pz[j] - z;
             double const r2 = dx * dx + dy * dy + dz * dz;
-            bool const valid = r2 > 0.0;
-            double const inv = valid ? 1.0 / std::sqrt(r2 + eps2) : 0.0;
-            double const f = gm * inv * inv * inv;
-            ax[i] += f * dx;
-            ay[i] += f * dy;
-            az[i] += f * dz;
-            phi[i] -= gm * inv;
+            double const inv = r2 > 0.0 ? 1.0 / std::sqrt(r2 + eps2) : 0.0;
+            double const mi = pm[j] * inv;
+            double const f = mi * inv * inv;
+            sx += f * dx;
+            sy += f * dy;
+            sz += f * dz;
+            sp += mi;
         }
-    }
-    for (std::size_t j = 0; j < m_cx.size(); ++j) {
-        double const cx = m_cx[j];
-        double const cy = m_cy[j];
-        double const cz = m_cz[j];
-        double const gm = G * m_cm[j];
-        double const qxx = G * m_qxx[j];
-        double const qyy = G * m_qyy[j];
-        double const qzz = G * m_qzz[j];
-        double const qxy = G * m_qxy[j];
-        double const qxz = G * m_qxz[j];
-        double const qyz = G * m_qyz[j];
-        for (std::size_t i = 0; i < n; ++i) {
-            double const rx = tx[i] - cx;
-            double const ry = ty[i] - cy;
-            double const rz = tz[i] - cz;
+#pragma omp simd reduction(+ : sx, sy, sz, sp)
+        for (std::size_t j = 0; j < nc; ++j) {
+            // r = x - com; the sums hold a/G and -φ/G.
+            double const rx = x - cx[j];
+            double const ry = y - cy[j];
+            double const rz = z - cz[j];
             double const r2 = rx * rx + ry * ry + rz * rz + eps2;
             double const inv = 1.0 / std::sqrt(r2);
             double const inv2 = inv * inv;
             double const inv3 = inv * inv2;
             double const inv5 = inv3 * inv2;
-            double const qrx = qxx * rx + qxy * ry + qxz * rz;
-            double const qry = qxy * rx + qyy * ry + qyz * rz;
-            double const qrz = qxz * rx + qyz * ry + qzz * rz;
+            double const qrx = qxx[j] * rx + qxy[j] * ry + qxz[j] * rz;
+            double const qry = qxy[j] * rx + qyy[j] * ry + qyz[j] * rz;
+            double const qrz = qxz[j] * rx + qyz[j] * ry + qzz[j] * rz;
             double const rqr = rx * qrx + ry * qry + rz * qrz;
-            double const radial = gm * inv3 + 2.5 * rqr * inv5 * inv2;
-            ax[i] += qrx * inv5 - radial * rx;
-            ay[i] += qry * inv5 - radial * ry;
-            az[i] += qrz * inv5 - radial * rz;
-            phi[i] -= gm * inv + 0.5 * rqr * inv5;
+            double const radial = cm[j] * inv3 + 2.5 * rqr * inv5 * inv2;
+            sx += qrx * inv5 - radial * rx;
+            sy += qry * inv5 - radial * ry;
+            sz += qrz * inv5 - radial * rz;
+            sp += cm[j] * inv + 0.5 * rqr * inv5;
         }
+        ax[i] += G * sx;
+        ay[i] += G * sy;
+        az[i] += G * sz;
+        phi[i] -= G * sp;
     }
+}
+
+} // namespace
+
+void InteractionList::evaluate(double const* tx, double const* ty, double const* tz, std::size_t n,
+                               double G, double eps2, double* ax, double* ay, double* az,
+                               double* phi) const {
+    evaluateListKernel(tx, ty, tz, n, G, eps2, ax, ay, az, phi, m_px.data(), m_py.data(),
+                       m_pz.data(), m_pm.data(), m_px.size(), m_cx.data(), m_cy.data(), m_cz.data(),
+                       m_cm.data(), m_qxx.data(), m_qyy.data(), m_qzz.data(), m_qxy.data(),
+                       m_qxz.data(), m_qyz.data(), m_cx.size());
 }
 
 void collectInteractions(TreeView const& tree, core::AABB const& group, bool quadrupole,

@@ -240,8 +240,8 @@ double MutualTree::evaluate(PointMasses const& grains, FieldOut out) {
     validatePointMasses(grains, "gravity");
     validateFieldOut(out, grains.size());
     m_stats = {};
-    Octree const tree =
-        Octree::build(grains, {m_options.leafSize, 0.0, m_options.theta, m_options.quadrupole});
+    Octree const tree = Octree::build(grains, {m_options.leafSize, 0.0, m_options.theta,
+                                               m_options.quadrupole, m_options.criterion});
     DualWalk walk(tree, m_options, m_stats);
     walk.run();
     double energy = 0.0;

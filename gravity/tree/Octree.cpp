@@ -187,7 +187,17 @@ void Octree::computeMoments(OctreeBuildOptions const& options) {
         double const offset = std::sqrt(ox * ox + oy * oy + oz * oz);
         // No grain is farther from the com than the farthest corner of the cube.
         c.bmax = std::min(bmax, offset + std::sqrt(3.0) * c.half);
-        c.rcrit = 2.0 * c.half / options.theta + offset;
+        switch (options.criterion) {
+        case OpeningCriterion::BmaxPlusOffset:
+            c.rcrit = c.bmax / options.theta + offset;
+            break;
+        case OpeningCriterion::Bmax:
+            c.rcrit = c.bmax / options.theta;
+            break;
+        case OpeningCriterion::EdgePlusOffset:
+            c.rcrit = 2.0 * c.half / options.theta + offset;
+            break;
+        }
     }
 }
 

@@ -3,6 +3,7 @@
 /// every tree method here needs: mass, centre of mass, traceless quadrupole about the centre
 /// of mass, b_max (Salmon & Warren 1994, J. Comput. Phys. 111, 136) and the opening radius.
 #include "gravity/common/PointMasses.hpp"
+#include "gravity/tree/TreeOptions.hpp"
 
 #include <cstdint>
 #include <span>
@@ -20,10 +21,10 @@ struct TreeNode {
     /// xx, yy, zz, xy, xz, yz.
     double quad[6] = {0, 0, 0, 0, 0, 0};
     double bmax = 0.0; ///< largest distance from com to a grain centre of the cell, m
-    /// The cell acts as a multipole on points farther than rcrit from its com:
-    /// rcrit = l/θ + |com - centre| (l the edge). The offset term is the guard of Barnes
-    /// (1994) / Salmon & Warren (1994) against the "detonating galaxy" failure of the plain
-    /// l/d < θ test, where the com lies near a corner and a target inside the cell passes.
+    /// The cell acts as a multipole on points farther than rcrit from its com; rcrit from
+    /// the OpeningCriterion (TreeOptions.hpp). Each form guards against the "detonating
+    /// galaxy" failure of the plain l/d < θ test (Salmon & Warren 1994: a com near a corner
+    /// lets a target inside the cell pass), through b_max (measured from the com) or δ.
     double rcrit = 0.0;
     std::int32_t firstChild = -1; ///< children are contiguous: [firstChild, +childCount)
     std::int32_t childCount = 0;
@@ -50,6 +51,7 @@ struct OctreeBuildOptions {
     double minEdge = 0.0;   ///< ... unless their edge is at most this (m; tree-at-nodes)
     double theta = 0.5;     ///< for rcrit
     bool quadrupole = true; ///< compute quadrupoles (zero otherwise)
+    OpeningCriterion criterion = OpeningCriterion::BmaxPlusOffset; ///< for rcrit
 };
 
 /// An octree over a set of grains, owning copies of their data in tree order.

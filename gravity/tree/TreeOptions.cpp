@@ -31,4 +31,15 @@ void validate(TreeOptions const& o) {
             fmt::format("gravity.group_size = {}: a group holds at least 1 grain", o.groupSize));
 }
 
+OpeningCriterion parseOpeningCriterion(std::string const& name) {
+    if (name == "bmax-offset")
+        return OpeningCriterion::BmaxPlusOffset;
+    if (name == "bmax")
+        return OpeningCriterion::Bmax;
+    if (name == "edge-offset")
+        return OpeningCriterion::EdgePlusOffset;
+    throw core::InputError(fmt::format(
+        "gravity.opening = \"{}\": expected \"bmax-offset\", \"bmax\" or \"edge-offset\"", name));
+}
+
 } // namespace regolith::gravity::tree

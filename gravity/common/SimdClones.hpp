@@ -1,0 +1,11 @@
+#pragma once
+/// REGOLITH_SIMD_CLONES before a hot kernel compiles it twice, for x86-64-v3 (AVX2 + FMA,
+/// 4 doubles per vector) and for the baseline, and picks one at load time from the CPU
+/// (GCC function multi-versioning). The build needs no -march, and the binary still runs on
+/// any x86-64. Not for kernels whose bits must match across machines or builds (the direct
+/// sum): FMA contraction changes rounding.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define REGOLITH_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define REGOLITH_SIMD_CLONES
+#endif
