@@ -49,13 +49,16 @@ inline void accumulateDirectTile(double const* tx, double const* ty, double cons
         double const yj = sy[j];
         double const zj = sz[j];
         double const gm = G * sm[j];
+#pragma omp simd
         for (std::size_t i = 0; i < nt; ++i) {
             double const dx = xj - tx[i];
             double const dy = yj - ty[i];
             double const dz = zj - tz[i];
             double const r2 = dx * dx + dy * dy + dz * dz;
             bool const valid = r2 > 0.0;
-            double const inv = valid ? 1.0 / std::sqrt(r2 + eps2) : 0.0;
+            // Branch-free (vectorisable): always divide, then select.
+            double const invAll = 1.0 / std::sqrt(valid ? r2 + eps2 : 1.0);
+            double const inv = valid ? invAll : 0.0;
             double const f = gm * (inv * inv * inv);
             twoSumAdd(acc.hx[i], acc.lx[i], f * dx);
             twoSumAdd(acc.hy[i], acc.ly[i], f * dy);

@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 #include "core/mpi/Requests.hpp"
 #include "core/mpi/Tags.hpp"
+#include "gravity/common/SimdClones.hpp"
 #include "gravity/direct/DirectKernel.hpp"
 
 #include <fmt/format.h>
@@ -56,7 +57,9 @@ private:
     std::size_t m_n;
 };
 
-/// Adds the field of sources (SoA pointers, ns grains) to every target.
+/// Adds the field of sources (SoA pointers, ns grains) to every target. This file is
+/// compiled without FMA contraction, so both clones make the same IEEE operations.
+REGOLITH_SIMD_CLONES
 void accumulateAll(PointMasses const& targets, double const* sx, double const* sy, double const* sz,
                    double const* sm, std::size_t ns, DirectOptions const& options,
                    Accumulators& acc) {
