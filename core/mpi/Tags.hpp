@@ -9,6 +9,7 @@ enum class Tag : int {
     ExchangePeerCheck = 103, ///< NeighbourExchange: peer-list census (empty messages)
     SparseExchange = 201,    ///< SparseExchange (NBX): payload, receivers do not know senders
     SparseExchangeAlt = 202, ///< SparseExchange: payload of odd-numbered calls (see there)
+    DirectGravityRing = 301, ///< gravity::DirectSum: blocks of grains passed round the ring
     TestTraffic = 901,       ///< tests only
 };
 

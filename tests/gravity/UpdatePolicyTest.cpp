@@ -1,0 +1,119 @@
+// The update policy: recompute only after a grain moved more than the threshold (global
+// over ranks), count updates, warn when the threshold exceeds the grain spacing, and a lazy
+// threshold gives a visibly worse field than a careful one.
+#include "gravity/update/UpdatePolicy.hpp"
+
+#include "core/Error.hpp"
+#include "gravity/tree/BarnesHut.hpp"
+#include "tests/gravity/GravityTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace regolith;
+using namespace regolith::testing;
+
+namespace {
+
+core::Comm const& world() {
+    static core::Comm const comm(MPI_COMM_WORLD);
+    return comm;
+}
+
+} // namespace
+
+TEST(UpdatePolicy, TriggersOnTheLargestDisplacementOfAnyRank) {
+    gravity::UpdatePolicy policy(1.0);
+    std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(world().rank())};
+    std::vector<double> x{0.0}, y{0.0}, z{0.0};
+    EXPECT_TRUE(policy.due(world(), uid, x, y, z)); // never updated
+    policy.markUpdated(uid, x, y, z);
+    x[0] = 0.5;
+    EXPECT_FALSE(policy.due(world(), uid, x, y, z));
+    // Only the last rank's grain moves past the threshold: every rank must agree.
+    if (world().rank() == world().size() - 1)
+        x[0] = 1.5;
+    EXPECT_TRUE(policy.due(world(), uid, x, y, z));
+    EXPECT_DOUBLE_EQ(policy.lastMaxDisplacement(), 1.5);
+    policy.markUpdated(uid, x, y, z);
+    EXPECT_EQ(policy.updates(), 2);
+    // A grain this rank did not hold at the update counts as moved.
+    uid[0] += 1000;
+    EXPECT_TRUE(policy.due(world(), uid, x, y, z));
+}
+
+TEST(UpdatePolicy, WarnsWhenTheThresholdExceedsTheSpacing) {
+    EXPECT_TRUE(gravity::UpdatePolicy::thresholdWarning(50.0, 80.0).empty());
+    std::string const w = gravity::UpdatePolicy::thresholdWarning(160.0, 80.0);
+    EXPECT_NE(w.find("gravity.update_threshold"), std::string::npos) << w;
+    EXPECT_NE(w.find("400%"), std::string::npos) << w;
+    EXPECT_THROW(gravity::UpdatePolicy(-1.0), core::InputError);
+}
+
+TEST(UpdatePolicy, LazyThresholdGivesLargeErrors) {
+    // Grains drifting at up to 1 m/s for 40 s; the field is refreshed by the tree when the
+    // policy says so, then compared with the exact field at the final positions.
+    auto const body = testAgglomerate(2000, 17);
+    auto const run = [&](double threshold, long long& updates) {
+        auto local = localSlab(world(), body);
+        std::vector<std::uint64_t> uid(local.size());
+        std::mt19937_64 rng(99 + static_cast<std::uint64_t>(world().rank()));
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        std::vector<double> vx(local.size()), vy(local.size()), vz(local.size());
+        for (std::size_t i = 0; i < local.size(); ++i) {
+            uid[i] = i;
+            vx[i] = u(rng);
+            vy[i] = u(rng);
+            vz[i] = u(rng);
+        }
+        gravity::UpdatePolicy policy(threshold);
+        gravity::tree::BarnesHut tree(world(), {});
+        Field f(local.size());
+        for (int step = 0; step <= 40; ++step) {
+            if (step > 0)
+                for (std::size_t i = 0; i < local.size(); ++i) {
+                    local.x[i] += vx[i];
+                    local.y[i] += vy[i];
+                    local.z[i] += vz[i];
+                }
+            if (policy.due(world(), uid, local.x, local.y, local.z)) {
+                tree.evaluate(local.view(), f.out());
+                policy.markUpdated(uid, local.x, local.y, local.z);
+            }
+        }
+        updates = policy.updates();
+        // The exact field at the final positions of all grains.
+        gravity::samples::Body moved;
+        for (int r = 0; r < world().size(); ++r) {
+            // every rank rebuilds every slab's final positions from the same recipe
+            auto slab = gravity::samples::slabOf(body, r, world().size());
+            std::mt19937_64 g(99 + static_cast<std::uint64_t>(r));
+            for (std::size_t i = 0; i < slab.size(); ++i) {
+                double const v[3] = {u(g), u(g), u(g)};
+                for (int step = 0; step < 40; ++step) { // the same sums as above, bit for bit
+                    slab.x[i] += v[0];
+                    slab.y[i] += v[1];
+                    slab.z[i] += v[2];
+                }
+                moved.push(slab, i);
+            }
+        }
+        Field const ref = referenceField(local, moved, gravity::kNewtonG);
+        return gravity::errorStats(world(), gravity::relativeErrors(f.view(), ref.view()));
+    };
+    double const spacing = 80.0; // mean grain diameter ~80 m, packing 0.3
+    long long lazyUpdates = 0;
+    long long goodUpdates = 0;
+    auto const lazy = run(200.0, lazyUpdates);
+    auto const good = run(2.0, goodUpdates);
+    if (world().rank() == 0)
+        std::printf("threshold 200 m: %lld updates, median error %.3e; threshold 2 m: %lld "
+                    "updates, median error %.3e\n",
+                    lazyUpdates, lazy.median, goodUpdates, good.median);
+    EXPECT_FALSE(gravity::UpdatePolicy::thresholdWarning(200.0, spacing).empty());
+    EXPECT_EQ(lazyUpdates, 1);
+    EXPECT_GT(goodUpdates, 10);
+    EXPECT_GT(lazy.median, 10.0 * good.median);
+    EXPECT_GT(lazy.median, 1e-2);
+}
