@@ -34,6 +34,11 @@ std::string toJson(RunSummary const& s) {
         .member("gravity", s.timing.gravity)
         .member("integrate", s.timing.integrate)
         .endObject();
+    w.key("gravity")
+        .beginObject()
+        .member("method", s.gravity.method)
+        .member("updates", s.gravity.updates)
+        .endObject();
     w.key("comm")
         .beginObject()
         .member("messages_per_step", s.comm.messagesPerStep)

@@ -30,6 +30,13 @@ struct RunSummary {
         double integrate = 0.0;
     } timing;
 
+    /// Self-gravity (JSON key "gravity", beyond the contract's keys): the method and how
+    /// often the field was computed (update policy, gravity.update_threshold).
+    struct Gravity {
+        std::string method = "none";
+        long long updates = 0;
+    } gravity;
+
     struct Communication {
         double messagesPerStep = 0.0;
         double bytesPerStep = 0.0;

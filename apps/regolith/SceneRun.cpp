@@ -8,6 +8,7 @@
 #include "apps/common/RunSummary.hpp"
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
+#include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/SceneReport.hpp"
@@ -45,6 +46,8 @@ int runScene(core::AppContext& ctx) {
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
     domain::BlockForest const forest(world, scene.forest);
+    // Before the grains: a bad gravity parameter fails fast.
+    auto const selfGravity = makeSelfGravity(world, forest, scene);
     auto const grains = generateLocalGrains(world, ctx.scene, scene, forest);
     checkInitialState(world, makeMasters(grains, forest, world.rank()), scene);
     auto const counts = countParticles(world, static_cast<std::int64_t>(grains.size()));
@@ -72,6 +75,10 @@ int runScene(core::AppContext& ctx) {
     stepConfig.gravity = scene.gravity.external;
     particles::DemStep dem(world, sync, local, makeContactModel(scene), makeIntegrator(scene),
                            makeWalls(scene), stepConfig, timers);
+    // Self-gravity as the step's body forces (after contacts and their reduction).
+    if (selfGravity)
+        dem.setBodyForces(
+            [g = selfGravity.get()](particles::LocalParticles& l) { g->addForces(l); });
     dem.setUp();
     checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
 
@@ -89,6 +96,13 @@ int runScene(core::AppContext& ctx) {
     fillLoopSummary(world, loop, local, summary);
     summary.peakRssBytes = peakRssBytes(world);
     summary.conserved = conservedQuantities(world, masters, scene.gravity.external);
+    summary.gravity.method = std::string(toString(scene.gravity.self));
+    if (selfGravity) {
+        // ½ Σ m φ of the last field computed: the final positions' when it is updated every
+        // step (update_threshold = 0).
+        summary.conserved.potentialEnergy += selfGravity->stats().potentialEnergy;
+        summary.gravity.updates = selfGravity->stats().evaluations;
+    }
     summary.checksum = stateChecksum(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);

@@ -24,8 +24,8 @@ using namespace std::string_view_literals;
 /// particles::syncMethodName's.
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
-constexpr std::array kSelfNames{"none"sv, "direct"sv,         "tree"sv,      "pm"sv,
-                                "p3m"sv,  "occupied-cells"sv, "tree-nodes"sv};
+constexpr std::array kSelfNames{"none"sv, "direct"sv,         "tree"sv,       "pm"sv,
+                                "p3m"sv,  "occupied-cells"sv, "tree-nodes"sv, "mutual-tree"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
 
 /// The parsed section if present, else its defaults (every key of these sections is optional).
@@ -84,6 +84,7 @@ GravitySection parseGravity(core::ConfigTable const& t) {
                                           isNonNegativeFinite, "a non-negative finite number");
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
+    s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
     if (auto const petsc = t.findTable("petsc"))
         s.petscOptions = petsc->getOr<std::string>("options", "");
     return s;

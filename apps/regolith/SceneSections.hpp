@@ -57,10 +57,11 @@ struct ContactSection {
     double initialOverlap = 1e-6;
 };
 
-enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes };
+enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, MutualTree };
 
 /// [gravity] external (acceleration, finite), self (none | direct | tree | pm | p3m |
-/// occupied-cells | tree-nodes), G > 0, theta > 0 (Barnes–Hut opening angle),
+/// occupied-cells | tree-nodes | mutual-tree), G > 0, theta > 0 (Barnes–Hut opening angle;
+/// above 1 only with allow_large_theta = true),
 /// update_threshold >= 0 (displacement that triggers a recomputation), softening >= 0 (a
 /// length), [gravity.petsc] options (PETSc command-line options for the Poisson solve).
 struct GravitySection {
@@ -70,6 +71,7 @@ struct GravitySection {
     double theta = 0.5;
     double updateThreshold = 0.0;
     double softening = 0.0;
+    bool allowLargeTheta = false;
     std::string petscOptions;
 };
 

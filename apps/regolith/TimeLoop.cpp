@@ -64,7 +64,7 @@ void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
     summary.leftDomain = loop.leftDomain;
     summary.timing.sync = averageSeconds(loop.timers, particles::DemStep::kSyncTimer);
     summary.timing.contact = averageSeconds(loop.timers, particles::DemStep::kContactTimer);
-    summary.timing.gravity = 0.0;
+    summary.timing.gravity = averageSeconds(loop.timers, particles::DemStep::kBodyForceTimer);
     summary.timing.integrate = averageSeconds(loop.timers, particles::DemStep::kIntegrateTimer);
     if (loop.steps > 0) {
         auto const steps = static_cast<double>(loop.steps);

@@ -38,7 +38,7 @@ struct LoopOutcome {
 [[nodiscard]] std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local);
 
 /// Fills the loop's keys of `summary`: steps, wall_s, timing_s (average over ranks of each
-/// phase; gravity 0: no self-gravity yet), comm (messages and bytes summed over ranks per
+/// phase, gravity from the body-force timer), comm (messages and bytes summed over ranks per
 /// step, the largest number of peers of one exchange), left_domain, and the final global
 /// counts of masters (particles) and shadow copies (shadows) in `local`.
 /// COLLECTIVE over `comm`.

@@ -108,11 +108,18 @@ void DemStep::computeForces(std::uint32_t stamp) {
                 m_model);
         }
     }
-    auto const t = m_timers->scope(kSyncTimer);
-    if (reproducible)
-        m_sync->reduceForces(*m_local, m_records, stamp);
-    else
-        m_sync->reduceForces(*m_local, stamp);
+    {
+        auto const t = m_timers->scope(kSyncTimer);
+        if (reproducible)
+            m_sync->reduceForces(*m_local, m_records, stamp);
+        else
+            m_sync->reduceForces(*m_local, stamp);
+    }
+    // After the reduction: in reproducible mode it sums every master's force from zero.
+    if (m_bodyForces) {
+        auto const t = m_timers->scope(kBodyForceTimer);
+        m_bodyForces(*m_local);
+    }
 }
 
 } // namespace regolith::particles

@@ -20,8 +20,10 @@
 #include "particles/sync/SyncInvariants.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -55,6 +57,7 @@ struct DemStepConfig {
 ///     per block: resetForces, detect (region = block box, periodic frame of the forest),
 ///                evaluate with stamp = step number   (timer "contact")
 ///     sync.reduceForces(local[, records], stamp)     (timer "sync")
+///     body forces (setBodyForces), e.g. self-gravity  (timer "gravity")
 ///     integrator.postForce   on every block          (timer "integrate")
 ///
 /// In reproducible mode (sync.config().reproducible) every block evaluates with
@@ -77,6 +80,14 @@ public:
     static constexpr std::string_view kSyncTimer = "sync";
     static constexpr std::string_view kContactTimer = "contact";
     static constexpr std::string_view kIntegrateTimer = "integrate";
+    /// The body forces (self-gravity) of setBodyForces.
+    static constexpr std::string_view kBodyForceTimer = "gravity";
+
+    /// Forces that do not come from contacts, e.g. self-gravity (coupling/): called with the
+    /// local particles after every contact evaluation and force reduction (set-up and every
+    /// step), it adds to the masters' force and torque. It must be COLLECTIVE over the same
+    /// communicator if it communicates (it is called on every rank at the same point).
+    using BodyForces = std::function<void(LocalParticles&)>;
 
     /// Pre: `comm` is the communicator `sync` was built from (or a duplicate), `local`
     /// belongs to the forest `sync` was built for; config.dt > 0 and finite (throws
@@ -97,6 +108,10 @@ public:
     /// Throws what the synchronisation throws (core::Error: a grain too fast or too large
     /// for NNS, a malformed message). COLLECTIVE.
     void step();
+
+    /// Installs the body forces (see BodyForces); an empty function removes them. Call it
+    /// before setUp(), so that the initial forces include them.
+    void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
 
     /// Steps done since construction.
     [[nodiscard]] std::uint64_t stepsDone() const { return m_steps; }
@@ -129,6 +144,7 @@ private:
     std::vector<ContactDetector> m_detectors;        ///< one per local block
     std::vector<ContactList> m_contacts;             ///< one per local block
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
+    BodyForces m_bodyForces;
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
 };

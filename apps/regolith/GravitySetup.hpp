@@ -1,0 +1,19 @@
+#pragma once
+/// The scene's [gravity] self = ... as the time step's body forces (coupling/).
+#include "apps/regolith/SceneSections.hpp"
+#include "core/mpi/Comm.hpp"
+#include "coupling/gravity/SelfGravityForces.hpp"
+#include "domain/BlockForest.hpp"
+
+#include <memory>
+
+namespace regolith::apps {
+
+/// The self-gravity of `scene` on the grains, or nullptr for self = "none". Throws
+/// core::InputError naming gravity.self for a method the time step cannot use yet, and the
+/// gravity.* key of a bad parameter (theta, G, softening, update_threshold). COLLECTIVE.
+[[nodiscard]] std::unique_ptr<coupling::SelfGravityForces>
+makeSelfGravity(core::Comm const& comm, domain::BlockForest const& forest,
+                SceneDescription const& scene);
+
+} // namespace regolith::apps

@@ -1,0 +1,115 @@
+#include "coupling/gravity/SelfGravityForces.hpp"
+
+#include "gravity/common/PointMasses.hpp"
+#include "gravity/direct/DirectSum.hpp"
+#include "gravity/tree/BarnesHut.hpp"
+#include "gravity/tree/MutualTree.hpp"
+#include "gravity/tree/TreeOptions.hpp"
+
+#include <variant>
+
+namespace regolith::coupling {
+
+/// The chosen evaluator, behind one call.
+class SelfGravityForces::Method {
+public:
+    Method(core::Comm const& comm, domain::BlockForest const& forest, SelfGravityConfig const& c) {
+        gravity::tree::TreeOptions tree;
+        tree.G = c.G;
+        tree.softening = c.softening;
+        tree.theta = c.theta;
+        tree.allowLargeTheta = c.allowLargeTheta;
+        switch (c.method) {
+        case GrainGravityMethod::Direct:
+            m_eval = std::make_unique<gravity::direct::DirectSum>(
+                comm, gravity::direct::DirectOptions{c.G, c.softening});
+            break;
+        case GrainGravityMethod::Tree:
+            m_eval = std::make_unique<gravity::tree::BarnesHut>(comm, tree);
+            break;
+        case GrainGravityMethod::MutualTree:
+            m_eval = std::make_unique<gravity::tree::MutualTree>(tree);
+            break;
+        }
+        for (domain::Block const& b : forest.blocks())
+            m_boxes.push_back(b.aabb);
+    }
+
+    /// Field at the local grains; returns ½ Σ m φ over all ranks. COLLECTIVE.
+    double evaluate(core::Comm const& comm, gravity::PointMasses const& grains,
+                    gravity::FieldOut out) {
+        return std::visit(
+            [&](auto& e) -> double {
+                using E = std::decay_t<decltype(*e)>;
+                if constexpr (std::is_same_v<E, gravity::tree::BarnesHut>)
+                    return e->evaluate(grains, out, m_boxes);
+                else if constexpr (std::is_same_v<E, gravity::tree::MutualTree>)
+                    return e->evaluateGathered(comm, grains, out);
+                else
+                    return e->evaluate(grains, out);
+            },
+            m_eval);
+    }
+
+private:
+    std::variant<std::unique_ptr<gravity::direct::DirectSum>,
+                 std::unique_ptr<gravity::tree::BarnesHut>,
+                 std::unique_ptr<gravity::tree::MutualTree>>
+        m_eval;
+    std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
+};
+
+SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest const& forest,
+                                     SelfGravityConfig const& config)
+    : m_comm(&comm)
+    , m_method(std::make_unique<Method>(comm, forest, config))
+    , m_policy(config.updateThreshold) {}
+
+SelfGravityForces::~SelfGravityForces() = default;
+
+void SelfGravityForces::gather(particles::LocalParticles const& local) {
+    m_uid.clear();
+    m_x.clear();
+    m_y.clear();
+    m_z.clear();
+    m_m.clear();
+    for (particles::BlockParticles const& bp : local.blocks()) {
+        particles::ParticleStorage const& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) {
+            m_uid.push_back(ps.uid(i));
+            m_x.push_back(ps.position(i).x());
+            m_y.push_back(ps.position(i).y());
+            m_z.push_back(ps.position(i).z());
+            m_m.push_back(ps.mass(i));
+        });
+    }
+}
+
+void SelfGravityForces::addForces(particles::LocalParticles& local) {
+    gather(local);
+    std::size_t const n = m_uid.size();
+    if (m_policy.due(*m_comm, m_uid, m_x, m_y, m_z)) {
+        m_ax.assign(n, 0.0);
+        m_ay.assign(n, 0.0);
+        m_az.assign(n, 0.0);
+        gravity::PointMasses const grains{m_x, m_y, m_z, m_m};
+        m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
+        m_policy.markUpdated(m_uid, m_x, m_y, m_z);
+        ++m_stats.evaluations;
+        m_field.clear();
+        for (std::size_t k = 0; k < n; ++k)
+            m_field[m_uid[k]] = {m_ax[k], m_ay[k], m_az[k]};
+    }
+    // The policy guarantees a stored field for every local master: a grain that was not here
+    // at the last update forces an update.
+    for (particles::BlockParticles& bp : local.blocks()) {
+        particles::ParticleStorage& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) {
+            auto const& a = m_field.at(ps.uid(i));
+            ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);
+        });
+    }
+    ++m_stats.steps;
+}
+
+} // namespace regolith::coupling

@@ -1,0 +1,76 @@
+#pragma once
+/// Self-gravity on the DEM grains (DESIGN.md, "The time step": "if gravity due: ... field at
+/// grains"): gathers the masters of the local blocks, asks the update policy whether the field
+/// must be recomputed, evaluates it with the chosen method (direct sum, Barnes–Hut or the
+/// mutual tree of gravity/) and adds m g to every master's force. Installed into
+/// particles::DemStep as its body forces.
+#include "core/mpi/Comm.hpp"
+#include "domain/BlockForest.hpp"
+#include "gravity/update/UpdatePolicy.hpp"
+#include "particles/storage/Uid.hpp"
+#include "particles/sync/BlockParticles.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+namespace regolith::coupling {
+
+/// The self-gravity methods the time step can use on the grains themselves.
+enum class GrainGravityMethod {
+    Direct,     ///< exact pairwise sum over all ranks (gravity/direct)
+    Tree,       ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
+    MutualTree, ///< momentum-conserving dual-tree walk, grains gathered on every rank
+};
+
+struct SelfGravityConfig {
+    GrainGravityMethod method = GrainGravityMethod::Direct;
+    double G = 6.674e-11;         ///< gravity.G [m^3 kg^-1 s^-2]
+    double softening = 0.0;       ///< gravity.softening, Plummer length [m]
+    double theta = 0.5;           ///< gravity.theta (tree methods)
+    bool allowLargeTheta = false; ///< gravity.allow_large_theta
+    double updateThreshold = 0.0; ///< gravity.update_threshold [m]; 0: every step
+};
+
+/// What the run summary reports about self-gravity.
+struct SelfGravityStats {
+    long long evaluations = 0;    ///< times the field was computed (updates)
+    long long steps = 0;          ///< times the forces were applied
+    double potentialEnergy = 0.0; ///< ½ Σ m φ at the last update, over all ranks [J]
+};
+
+class SelfGravityForces {
+public:
+    /// Validates the options (core::InputError naming the gravity.* key, on every rank).
+    /// COLLECTIVE over `comm` (the methods duplicate it).
+    SelfGravityForces(core::Comm const& comm, domain::BlockForest const& forest,
+                      SelfGravityConfig const& config);
+    ~SelfGravityForces();
+    SelfGravityForces(SelfGravityForces const&) = delete;
+    SelfGravityForces& operator=(SelfGravityForces const&) = delete;
+
+    /// Adds m g to the force of every master of `local`; recomputes g first when the update
+    /// policy says so (no field yet, a grain moved more than the threshold, or a grain arrived
+    /// from another rank), else uses the field of the last update. COLLECTIVE.
+    void addForces(particles::LocalParticles& local);
+
+    [[nodiscard]] SelfGravityStats const& stats() const { return m_stats; }
+
+private:
+    class Method;
+    void gather(particles::LocalParticles const& local);
+
+    core::Comm const* m_comm;
+    std::unique_ptr<Method> m_method;
+    gravity::UpdatePolicy m_policy;
+    SelfGravityStats m_stats;
+    // The local masters, in block then storage order (reused between calls).
+    std::vector<std::uint64_t> m_uid;
+    std::vector<double> m_x, m_y, m_z, m_m, m_ax, m_ay, m_az;
+    /// The field of the last update per grain (uid): grains keep it between updates, and a
+    /// grain that moves to another block of this rank finds it there.
+    std::unordered_map<particles::Uid, std::array<double, 3>> m_field;
+};
+
+} // namespace regolith::coupling
