@@ -78,3 +78,14 @@ regolith_reference_app_test(two_agglomerates_direct APP regolith NP 1 2 4 SAME
        --set gravity.update_threshold=0.0)
 regolith_reference_app_test(two_agglomerates_tree APP regolith NP 1 2
   EXPECT particles=200 steps=30 left_domain=0 ARGS ${agglomerates_small})
+
+# Rubble pile around a boulder wider than three blocks (issue 8) at CI size: 2,000 grains;
+# hybrid and SOS equal to the serial hybrid run with direct gravity in reproducible mode, on
+# 1-8 ranks; NNS refuses it (regolith.rubble_pile_nns_refused).
+set(rubble_small ${PROJECT_SOURCE_DIR}/scenes/rubble-pile-boulder.toml --steps 10
+    --set particles[1].count=2000 "--set" "particles[1].grain_radius=[12.0,20.0]"
+    --set gravity.self=direct --set sync.reproducible=true)
+regolith_reference_app_test(rubble_pile_hybrid APP regolith NP 1 2 4 8 SAME
+  EXPECT particles=2001 steps=10 left_domain=0 ARGS ${rubble_small})
+regolith_reference_app_test(rubble_pile_sos APP regolith NP 1 3 SAME
+  EXPECT particles=2001 steps=10 sync=sos ARGS ${rubble_small} --set sync.method=sos)
