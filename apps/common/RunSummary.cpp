@@ -39,6 +39,10 @@ std::string toJson(RunSummary const& s) {
         .member("method", s.gravity.method)
         .member("updates", s.gravity.updates)
         .endObject();
+    w.key("auto").beginObject();
+    for (RunSummary::AutoChoice const& c : s.autoChoices)
+        w.key(c.key).beginObject().member("value", c.value).member("reason", c.reason).endObject();
+    w.endObject();
     w.key("comm")
         .beginObject()
         .member("messages_per_step", s.comm.messagesPerStep)

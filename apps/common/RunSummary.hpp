@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -36,6 +37,13 @@ struct RunSummary {
         std::string method = "none";
         long long updates = 0;
     } gravity;
+
+    /// The "auto" scene keys and what was chosen (JSON key "auto": {key: {value, reason}},
+    /// beyond the contract's keys).
+    struct AutoChoice {
+        std::string key, value, reason;
+    };
+    std::vector<AutoChoice> autoChoices;
 
     struct Communication {
         double messagesPerStep = 0.0;

@@ -84,6 +84,8 @@ double impactVelocityEstimate(core::Comm const& comm, particles::ParticleStorage
     return v > 0.0 ? v : 1.0;
 }
 
+} // namespace
+
 particles::ContactTimeEstimate contactTime(core::Comm const& comm,
                                            particles::ParticleStorage const& ps,
                                            SceneDescription const& scene) {
@@ -94,8 +96,6 @@ particles::ContactTimeEstimate contactTime(core::Comm const& comm,
     return particles::shortestContactTime(
         comm, particles::estimateContactTime(ps, std::get<particles::HertzMindlin>(model), v));
 }
-
-} // namespace
 
 particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
     ContactSection const& c = scene.contact;

@@ -1,4 +1,5 @@
 #pragma once
+#include "particles/integration/TimeStepGuard.hpp"
 /// The generated grains as particles: masters owned by the local block that contains their
 /// centre, checked before the first step (issue: "bad input"), and the contact model,
 /// integrator and walls of the scene for the time step.
@@ -15,6 +16,12 @@
 #include <span>
 
 namespace regolith::apps {
+
+/// The shortest contact duration among the masters of `ps` over all ranks, for the scene's
+/// contact model (time-step guard and time.dt = "auto"). COLLECTIVE.
+[[nodiscard]] particles::ContactTimeEstimate contactTime(core::Comm const& comm,
+                                                         particles::ParticleStorage const& ps,
+                                                         SceneDescription const& scene);
 
 /// Masters for `grains` (each inside one of this rank's blocks, as generateLocalGrains
 /// guarantees) in one storage, for the checks of the initial state. Throws core::Error if a

@@ -8,6 +8,7 @@
 #include "apps/common/RunSummary.hpp"
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
+#include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
@@ -33,7 +34,7 @@ namespace regolith::apps {
 int runScene(core::AppContext& ctx) {
     core::Comm const& world = ctx.world;
     expandScenarios(ctx.scene, world.size());
-    SceneDescription const scene = parseScene(ctx.scene, ctx.options.scenePath);
+    SceneDescription scene = parseScene(ctx.scene, ctx.options.scenePath);
     if (!ctx.options.restartPath.empty())
         throw core::InputError(fmt::format("--restart {}: restarting from a checkpoint needs the "
                                            "HDF5 checkpoint reader of the io module, which this "
@@ -46,10 +47,17 @@ int runScene(core::AppContext& ctx) {
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
     domain::BlockForest const forest(world, scene.forest);
-    // Before the grains: a bad gravity parameter fails fast.
-    auto const selfGravity = makeSelfGravity(world, forest, scene);
     auto const grains = generateLocalGrains(world, ctx.scene, scene, forest);
-    checkInitialState(world, makeMasters(grains, forest, world.rank()), scene);
+    std::vector<AutoChoice> choices;
+    {
+        auto const masters = makeMasters(grains, forest, world.rank());
+        choices = resolveAutoChoices(world, masters, scene);
+        checkInitialState(world, masters, scene);
+    }
+    if (ctx.isRoot() && !ctx.options.quiet)
+        for (AutoChoice const& c : choices)
+            fmt::print("  auto: {} = {} ({})\n", c.key, c.value, c.reason);
+    auto const selfGravity = makeSelfGravity(world, forest, scene);
     auto const counts = countParticles(world, static_cast<std::int64_t>(grains.size()));
     if (ctx.isRoot() && !ctx.options.quiet)
         printSceneReport(ctx, scene, forest, counts);
@@ -97,6 +105,8 @@ int runScene(core::AppContext& ctx) {
     summary.peakRssBytes = peakRssBytes(world);
     summary.conserved = conservedQuantities(world, masters, scene.gravity.external);
     summary.gravity.method = std::string(toString(scene.gravity.self));
+    for (AutoChoice const& c : choices)
+        summary.autoChoices.push_back({c.key, c.value, c.reason});
     if (selfGravity) {
         // ½ Σ m φ of the last field computed: the final positions' when it is updated every
         // step (update_threshold = 0).

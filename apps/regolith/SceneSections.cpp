@@ -24,8 +24,9 @@ using namespace std::string_view_literals;
 /// particles::syncMethodName's.
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
-constexpr std::array kSelfNames{"none"sv, "direct"sv,         "tree"sv,       "pm"sv,
-                                "p3m"sv,  "occupied-cells"sv, "tree-nodes"sv, "mutual-tree"sv};
+constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
+                                "pm"sv,         "p3m"sv,         "occupied-cells"sv,
+                                "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
 
 /// The parsed section if present, else its defaults (every key of these sections is optional).
@@ -39,7 +40,13 @@ Section optionalSection(core::ConfigTable const& root, std::string_view key, Par
 
 TimeSection parseTime(core::ConfigTable const& t) {
     TimeSection s;
-    s.dt = t.getIf<double>("dt", isPositiveFinite, "a positive finite number");
+    if (t.kindOf("dt") == core::ConfigKind::String) {
+        if (t.getString("dt") != "auto")
+            t.failExpected("dt", "a positive finite number or \"auto\"");
+        s.dtAuto = true;
+    } else {
+        s.dt = t.getIf<double>("dt", isPositiveFinite, "a positive finite number or \"auto\"");
+    }
     s.steps = t.getIf<std::int64_t>("steps", isNonNegative, "a non-negative integer");
     s.allowUnstable = t.getOr<bool>("allow_unstable", false);
     s.integrator = static_cast<Integrator>(t.getChoiceOr(
@@ -80,8 +87,18 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.self = static_cast<SelfGravity>(t.getChoiceOr("self", kSelfNames, 0));
     s.G = t.getOrIf<double>("G", s.G, isPositiveFinite, "a positive finite number");
     s.theta = t.getOrIf<double>("theta", s.theta, isPositiveFinite, "a positive finite number");
-    s.updateThreshold = t.getOrIf<double>("update_threshold", s.updateThreshold,
-                                          isNonNegativeFinite, "a non-negative finite number");
+    if (t.has("update_threshold") && t.kindOf("update_threshold") == core::ConfigKind::String) {
+        if (t.getString("update_threshold") != "auto")
+            t.failExpected("update_threshold", "a non-negative finite number or \"auto\"");
+        s.thresholdAuto = true;
+    } else {
+        s.updateThreshold =
+            t.getOrIf<double>("update_threshold", s.updateThreshold, isNonNegativeFinite,
+                              "a non-negative finite number or \"auto\"");
+    }
+    s.accuracy = t.getOrIf<double>(
+        "accuracy", s.accuracy, [](double a) { return a > 0.0 && a < 1.0; },
+        "a relative force error in (0, 1)");
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);

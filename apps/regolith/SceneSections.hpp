@@ -30,7 +30,8 @@ enum class Integrator { Euler, Verlet };
 /// a later stability check refuses a dt too large for the contact stiffness), integrator
 /// ("euler": semi-implicit Euler, or "verlet": velocity Verlet, the default).
 struct TimeSection {
-    double dt = 0.0;
+    double dt = 0.0;     ///< 0 until resolved when dtAuto
+    bool dtAuto = false; ///< time.dt = "auto": from the contact and orbital times (AutoChoices)
     std::int64_t steps = 0;
     bool allowUnstable = false;
     Integrator integrator = Integrator::Verlet;
@@ -57,10 +58,11 @@ struct ContactSection {
     double initialOverlap = 1e-6;
 };
 
-enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, MutualTree };
+enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, MutualTree, Auto };
 
 /// [gravity] external (acceleration, finite), self (none | direct | tree | pm | p3m |
-/// occupied-cells | tree-nodes | mutual-tree), G > 0, theta > 0 (Barnes–Hut opening angle;
+/// occupied-cells | tree-nodes | mutual-tree | auto), accuracy (target median relative force
+/// error of "auto", default 1e-3), G > 0, theta > 0 (Barnes–Hut opening angle;
 /// above 1 only with allow_large_theta = true),
 /// update_threshold >= 0 (displacement that triggers a recomputation), softening >= 0 (a
 /// length), [gravity.petsc] options (PETSc command-line options for the Poisson solve).
@@ -70,6 +72,8 @@ struct GravitySection {
     double G = 6.674e-11;
     double theta = 0.5;
     double updateThreshold = 0.0;
+    bool thresholdAuto = false; ///< update_threshold = "auto" (AutoChoices)
+    double accuracy = 1e-3;
     double softening = 0.0;
     bool allowLargeTheta = false;
     std::string petscOptions;

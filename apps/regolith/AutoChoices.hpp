@@ -1,0 +1,51 @@
+#pragma once
+/// "Model no more than the scene needs" (issue 8): the scene keys that may be "auto" —
+/// gravity.self, gravity.update_threshold and time.dt — resolved from the grains and the
+/// target accuracy, each with the reason, for the run report and the run summary.
+#include "apps/regolith/SceneSections.hpp"
+#include "core/mpi/Comm.hpp"
+#include "particles/storage/ParticleStorage.hpp"
+
+#include <string>
+#include <vector>
+
+namespace regolith::apps {
+
+/// One decision: the key, the value chosen and why.
+struct AutoChoice {
+    std::string key;
+    std::string value;
+    std::string reason;
+};
+
+/// The median relative force error of the Barnes–Hut tree (quadrupoles, b_max + offset
+/// opening) measured against the direct sum on the second paper's 38,358-grain agglomerate
+/// (docs/results.md, issue 7), by opening angle; "auto" picks the largest θ whose error meets
+/// gravity.accuracy.
+struct TreeErrorPoint {
+    double theta;
+    double medianError;
+};
+inline constexpr TreeErrorPoint kTreeErrors[] = {
+    {0.9, 3.2e-3}, {0.7, 9.9e-4}, {0.5, 3.9e-4}, {0.3, 6.7e-5}};
+
+/// Below this many grains the direct sum (exact, O(N²)) costs about what the tree costs (3,866
+/// grains: 23 ms direct vs 5 ms tree at θ = 0.5; the ratio grows as N).
+inline constexpr long long kDirectSumMaxGrains = 2000;
+
+/// Resolves every "auto" key of `scene` in place from `masters` (this rank's; counts and
+/// extremes are reduced over ranks) and returns the decisions (empty if nothing was "auto"):
+///  - gravity.self: "direct" for at most kDirectSumMaxGrains grains (or an accuracy finer
+///    than the tree's best point), else "tree" with the largest θ of kTreeErrors meeting
+///    gravity.accuracy;
+///  - gravity.update_threshold: accuracy × the smallest grain diameter / 2 (a neighbour at
+///    distance s displaced by δ changes its pull by ~2δ/s: UpdatePolicy's warning);
+///  - time.dt: the smaller of t_c / 20 (contact duration) and T_orb / 200, the period of two
+///    touching grains of the densest material orbiting each other, 2π sqrt(3 / (π G ρ)) (only
+///    with self-gravity).
+/// COLLECTIVE over `comm`.
+[[nodiscard]] std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
+                                                         particles::ParticleStorage const& masters,
+                                                         SceneDescription& scene);
+
+} // namespace regolith::apps
