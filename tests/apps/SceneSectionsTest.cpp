@@ -220,9 +220,9 @@ TEST(SceneSections, DomainRules) {
 
 TEST(SceneSections, TimeSyncContactGravityOutputRules) {
     EXPECT_EQ(errorWith("time.dt=0"), "--set time.dt=0: time.dt: expected a positive finite "
-                                      "number, got 0");
+                                      "number or \"auto\", got 0");
     EXPECT_EQ(errorWith("time.dt=inf"), "--set time.dt=inf: time.dt: expected a positive finite "
-                                        "number, got inf");
+                                        "number or \"auto\", got inf");
     EXPECT_EQ(errorWith("time.steps=-1"), "--set time.steps=-1: time.steps: expected a "
                                           "non-negative integer, got -1");
     EXPECT_EQ(errorWith("time.integrator=leapfrog"),
@@ -255,8 +255,9 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "got 0");
     EXPECT_EQ(errorWith("gravity.self=occupied_cells"),
               "--set gravity.self=occupied_cells: gravity.self: expected one of \"none\", "
-              "\"direct\", \"tree\", \"pm\", \"p3m\", \"occupied-cells\", \"tree-nodes\", got "
-              "\"occupied_cells\" \u2014 did you mean \"occupied-cells\"?");
+              "\"direct\", \"tree\", \"pm\", \"p3m\", \"occupied-cells\", \"tree-nodes\", "
+              "\"mutual-tree\", \"auto\", got \"occupied_cells\" \u2014 did you mean "
+              "\"occupied-cells\"?");
     EXPECT_EQ(errorWith("gravity.theta=0"),
               "--set gravity.theta=0: gravity.theta: expected a positive finite number, got 0");
     EXPECT_EQ(errorWith("gravity.G=-1"),
