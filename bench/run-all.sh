@@ -26,3 +26,17 @@ if command -v lmp >/dev/null; then
 else
   echo "lmp not found (apt-get install lammps): LAMMPS comparison skipped"
 fi
+
+# Self-gravity (issue 7): time and error vs the direct sum per instance, method and θ (one
+# rank; ~10 min), the 2.1e6-grain Plummer sphere (tree), and the tree on 1 vs 2 ranks.
+mpi=(env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe)
+"${mpi[@]}" -n 1 "$build/bin/gravity_bench" --csv "$out/gravity_np1.csv" \
+    | tee "$out/gravity_np1.txt"
+"${mpi[@]}" -n 1 "$build/bin/gravity_bench" --instances plummer2.1e6 --methods tree \
+    --thetas 0.5,0.7 --repeat 1 --samples 1000 --csv "$out/gravity_2e6.csv" \
+    | tee "$out/gravity_2e6.txt"
+for np in 1 2; do
+    "${mpi[@]}" -n "$np" "$build/bin/gravity_bench" --instances agg38358,plummer1e6 \
+        --methods tree --thetas 0.5,0.7 --samples 1000 --csv "$out/gravity_tree_np$np.csv" \
+        | tee "$out/gravity_tree_np$np.txt"
+done
