@@ -1,8 +1,14 @@
 #include "apps/regolith/GravitySetup.hpp"
 
 #include "core/Error.hpp"
+#include "core/log/Log.hpp"
+#include "gravity/update/UpdatePolicy.hpp"
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <string>
 
 namespace regolith::apps {
 
@@ -36,6 +42,20 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     c.allowLargeTheta = g.allowLargeTheta;
     c.updateThreshold = g.updateThreshold;
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
+}
+
+void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage const& masters,
+                             SceneDescription const& scene) {
+    GravitySection const& g = scene.gravity;
+    if (g.self == SelfGravity::None || !(g.updateThreshold > 0.0))
+        return;
+    double smallest = std::numeric_limits<double>::infinity();
+    masters.forEachMaster([&](std::size_t i) { smallest = std::min(smallest, masters.radius(i)); });
+    smallest = comm.allReduce(smallest, core::ReduceOp::Min);
+    std::string const warning =
+        gravity::UpdatePolicy::thresholdWarning(g.updateThreshold, 2.0 * smallest);
+    if (!warning.empty())
+        core::log::warn("{}", warning);
 }
 
 } // namespace regolith::apps

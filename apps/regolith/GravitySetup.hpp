@@ -4,6 +4,7 @@
 #include "core/mpi/Comm.hpp"
 #include "coupling/gravity/SelfGravityForces.hpp"
 #include "domain/BlockForest.hpp"
+#include "particles/storage/ParticleStorage.hpp"
 
 #include <memory>
 
@@ -15,5 +16,11 @@ namespace regolith::apps {
 [[nodiscard]] std::unique_ptr<coupling::SelfGravityForces>
 makeSelfGravity(core::Comm const& comm, domain::BlockForest const& forest,
                 SceneDescription const& scene);
+
+/// Warns (rank 0, once) when gravity.update_threshold exceeds the grain spacing, taken as the
+/// smallest grain diameter over all ranks, stating the force error to expect
+/// (gravity::UpdatePolicy::thresholdWarning). COLLECTIVE when self-gravity is on.
+void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage const& masters,
+                             SceneDescription const& scene);
 
 } // namespace regolith::apps

@@ -53,6 +53,7 @@ int runScene(core::AppContext& ctx) {
         auto const masters = makeMasters(grains, forest, world.rank());
         choices = resolveAutoChoices(world, masters, scene);
         checkInitialState(world, masters, scene);
+        warnLazyUpdateThreshold(world, masters, scene);
     }
     if (ctx.isRoot() && !ctx.options.quiet)
         for (AutoChoice const& c : choices)
