@@ -65,8 +65,7 @@ void GridGravity::fillBoundaryGhosts() {
                     GlobalCell const c{o[0] + i, o[1] + j, o[2] + k};
                     if (m_layout.wrap(c))
                         continue;
-                    m_potential.at(b, i, j, k) =
-                        multipolePotential(m_solver.moments(), m_solver.G(), m_layout.centre(c));
+                    m_potential.at(b, i, j, k) = m_solver.boundary().at(m_layout.centre(c));
                 }
     }
 }

@@ -11,7 +11,7 @@ MassMoments massMoments(core::Comm const& comm, CellField const& density) {
     // Moments about the domain centre, which keeps the numbers small (no cancellation of
     // huge second moments far from the origin).
     core::Vec3 const origin = layout.forest().domain().center();
-    std::array<double, 10> s{}; // M, M x (3), M x x^T (xx, yy, zz, xy, xz, yz)
+    std::array<double, 11> s{}; // M, M x (3), M x x^T (xx, yy, zz, xy, xz, yz), count
     double const volume = layout.cellVolume();
     for (std::size_t b = 0; b < layout.localBlockCount(); ++b)
         for (int k = 0; k < n[2]; ++k)
@@ -31,10 +31,12 @@ MassMoments massMoments(core::Comm const& comm, CellField const& density) {
                     s[7] += m * x[0] * x[1];
                     s[8] += m * x[0] * x[2];
                     s[9] += m * x[1] * x[2];
+                    s[10] += 1.0;
                 }
     comm.allReduceInPlace(std::span<double>(s), core::ReduceOp::Sum);
     MassMoments out;
     out.mass = s[0];
+    out.occupiedCells = s[10];
     if (out.mass <= 0.0) {
         out.centre = origin;
         return out;

@@ -19,6 +19,7 @@ struct MassMoments {
     double mass = 0.0;                                    ///< [mass]
     core::Vec3 centre = core::Vec3::Zero();               ///< centre of mass [length]
     Eigen::Matrix3d quadrupole = Eigen::Matrix3d::Zero(); ///< sum m (3 s s^T - |s|^2 I)
+    double occupiedCells = 0.0; ///< cells with non-zero mass, all ranks (same reduction)
 };
 
 /// Moments of the cell masses (density component 0 times cell volume, interior cells).

@@ -184,7 +184,7 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
         double const sum = m_comm.allReduce(density.localInteriorSum(), core::ReduceOp::Sum);
         shift = sum / static_cast<double>(layout.globalCellCount());
     } else {
-        m_moments = massMoments(m_comm, density);
+        m_boundary.update(m_comm, density, m_options.G);
     }
     PetscScalar* b = nullptr;
     petscCheck(VecGetArray(p.b, &b), "VecGetArray");
@@ -195,8 +195,7 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
             b[blk * cells + c] = -fourPiG * (rho[layout.padOfInterior(c)] - shift);
     }
     for (auto const& t : p.boundary)
-        b[t.localRow] +=
-            t.weight * multipolePotential(m_moments, m_options.G, layout.centre(t.ghost));
+        b[t.localRow] += t.weight * m_boundary.at(layout.centre(t.ghost));
     petscCheck(VecRestoreArray(p.b, &b), "VecRestoreArray");
     if (p.nullSpace)
         petscCheck(MatNullSpaceRemove(p.nullSpace, p.b), "MatNullSpaceRemove");

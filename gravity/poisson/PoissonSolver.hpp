@@ -8,11 +8,11 @@
 ///
 /// Boundaries: all axes periodic -> periodic Laplacian with the constant null space, mean
 /// density subtracted; no axis periodic -> free space: the potential at the centres of the
-/// ghost cells beyond each domain face from a multipole expansion (Multipole.hpp), folded
-/// into the right-hand side. Mixed periodicity is refused.
+/// ghost cells beyond each domain face (FreeSpaceBoundary.hpp: direct sum over occupied
+/// cells or multipole expansion), folded into the right-hand side. Mixed periodicity is refused.
 #include "core/mpi/Comm.hpp"
 #include "gravity/field/CellField.hpp"
-#include "gravity/poisson/Multipole.hpp"
+#include "gravity/poisson/FreeSpaceBoundary.hpp"
 
 #include <memory>
 #include <string>
@@ -54,8 +54,8 @@ public:
     /// converge, naming iterations, residual and PETSc's reason. COLLECTIVE.
     SolveStats solve(CellField const& density, CellField& potential);
 
-    /// Free space: the multipole moments of the last solve's density (for boundary ghosts).
-    [[nodiscard]] MassMoments const& moments() const { return m_moments; }
+    /// Free space: the boundary potential of the last solve's density (for boundary ghosts).
+    [[nodiscard]] FreeSpaceBoundary const& boundary() const { return m_boundary; }
     [[nodiscard]] bool periodic() const { return m_periodic; }
     [[nodiscard]] double G() const { return m_options.G; }
     /// "ksp_type / pc_type" actually in use, e.g. "cg / gamg".
@@ -68,7 +68,7 @@ private:
     PoissonOptions m_options;
     bool m_periodic = false;
     bool m_setUp = false;
-    MassMoments m_moments;
+    FreeSpaceBoundary m_boundary;
     std::string m_solverName;
     std::unique_ptr<Petsc> m_petsc;
 };

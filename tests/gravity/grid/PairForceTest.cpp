@@ -1,0 +1,161 @@
+// Forces between grains from the mesh: two point masses far apart (>= 4 h) attract with
+// equal and opposite forces that follow G m1 m2 / r^2 within 1 % (TSC with the fourth-order
+// gradient), up to half the box (free-space boundary by direct sum: few occupied cells); closer
+// than 2 h the mesh's softening makes the force far too weak (asserted large: that is where a
+// short-range correction such as P3M is needed); a lone grain feels (almost) no self-force.
+#include "gravity/GridGravity.hpp"
+#include "tests/gravity/grid/GridTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <tuple>
+
+using namespace regolith;
+using namespace regolith::gravity;
+
+namespace {
+
+constexpr double kG = 1.0;
+
+struct Pair {
+    core::Vec3 forceA; ///< on grain A (mass mA)
+    core::Vec3 forceB;
+};
+
+/// Grain A on rank 0, grain B on the last rank; both point masses (radius 0).
+class PairForce : public ::testing::TestWithParam<std::tuple<Assignment, int>> {
+protected:
+    [[nodiscard]] std::string name() const {
+        return std::string(toString(std::get<0>(GetParam()))) + " order " +
+               std::to_string(std::get<1>(GetParam()));
+    }
+
+    void SetUp() override {
+        spec = test::cubeSpec(world, 2, 32, {false, false, false}, 2.0); // h = 1/8
+        forest = std::make_unique<domain::BlockForest>(world, spec);
+        GridGravityOptions options;
+        options.assignment = std::get<0>(GetParam());
+        options.gradientOrder = std::get<1>(GetParam());
+        options.poisson.G = kG;
+        gravity = std::make_unique<GridGravity>(world, *forest, spec.cellsPerBlock, options);
+    }
+
+    Pair forces(core::Vec3 const& a, core::Vec3 const& b, double mA, double mB) {
+        std::vector<core::Vec3> pos;
+        std::vector<double> mass;
+        if (world.rank() == 0) {
+            pos.push_back(a);
+            mass.push_back(mA);
+        }
+        if (world.rank() == world.size() - 1) {
+            pos.push_back(b);
+            mass.push_back(mB);
+        }
+        Grains const grains{pos, {}, mass};
+        gravity->update(grains);
+        std::vector<core::Vec3> g(pos.size());
+        gravity->accelerations(grains, g);
+        std::array<double, 6> f{};
+        if (world.rank() == 0)
+            for (int c = 0; c < 3; ++c)
+                f[static_cast<std::size_t>(c)] = mA * g.front()[c];
+        if (world.rank() == world.size() - 1)
+            for (int c = 0; c < 3; ++c)
+                f[3 + static_cast<std::size_t>(c)] = mB * g.back()[c];
+        world.allReduceInPlace(std::span<double>(f), core::ReduceOp::Sum);
+        return {core::Vec3{f[0], f[1], f[2]}, core::Vec3{f[3], f[4], f[5]}};
+    }
+
+    core::Comm world;
+    domain::ForestSpec spec;
+    std::unique_ptr<domain::BlockForest> forest;
+    std::unique_ptr<GridGravity> gravity;
+};
+
+/// 1 % needs TSC and the fourth-order gradient at 4 h (measured, 32^3 cells: TSC/4th order
+/// 0.33 %, TSC/2nd order 2.0 %, CIC/4th order 3.2 %, CIC/2nd order 4.4 % at 4 h; all below
+/// 1 % from 8 h on); the other kernels are held to what they reach.
+TEST_P(PairForce, FarPairsFollowInverseSquareAndNewtonsThirdLaw) {
+    double const h = gravity->layout().spacing()[0]; // 1/8; box width 4
+    core::Vec3 const dir = core::Vec3{1.0, 0.37, -0.21}.normalized();
+    core::Vec3 const centre{0.013, -0.021, 0.008}; // not on a cell centre or face
+    for (double sep : {4 * h, 6 * h, 8 * h, 12 * h, 16 * h}) {
+        core::Vec3 const a = centre - 0.5 * sep * dir;
+        core::Vec3 const b = centre + 0.5 * sep * dir;
+        double const mA = 1.0;
+        double const mB = 2.5;
+        Pair const p = forces(a, b, mA, mB);
+        double const exact = kG * mA * mB / (sep * sep);
+        double const along = p.forceA.dot(dir); // A is pulled towards B
+        double const relError = std::abs(along - exact) / exact;
+        double const imbalance = (p.forceA + p.forceB).norm() / exact;
+        if (world.rank() == 0)
+            std::printf("%s r = %.2f h: |F - F_exact| / F = %.4f, |F_A + F_B| / F = %.4f\n",
+                        name().c_str(), sep / h, relError, imbalance);
+        bool const best =
+            std::get<0>(GetParam()) == Assignment::Tsc && std::get<1>(GetParam()) == 4;
+        double const tolerance = best || sep >= 8 * h ? 0.01 : 0.05;
+        EXPECT_LT(relError, tolerance) << name() << " separation " << sep / h << " h";
+        EXPECT_LT(imbalance, 0.01) << "separation " << sep / h << " h";
+    }
+}
+
+TEST_P(PairForce, ClosePairsAreBadlyResolved) {
+    double const h = gravity->layout().spacing()[0];
+    core::Vec3 const dir = core::Vec3{1.0, 0.37, -0.21}.normalized();
+    for (double sep : {0.5 * h, 1.0 * h}) {
+        Pair const p = forces(-0.5 * sep * dir, 0.5 * sep * dir, 1.0, 1.0);
+        double const exact = kG / (sep * sep);
+        double const relError = std::abs(p.forceA.dot(dir) - exact) / exact;
+        if (world.rank() == 0)
+            std::printf("%s r = %.2f h: |F - F_exact| / F = %.3f (mesh softening)\n",
+                        name().c_str(), sep / h, relError);
+        EXPECT_GT(relError, 0.3) << name() << " separation " << sep / h << " h";
+    }
+}
+
+TEST_P(PairForce, LoneGrainFeelsNoSelfForce) {
+    double const h = gravity->layout().spacing()[0];
+    std::vector<core::Vec3> pos;
+    std::vector<double> mass;
+    std::vector<double> radius;
+    if (world.rank() == 0)
+        for (double r : {0.0, 3.0 * h}) { // a point and a grain larger than a cell
+            pos.push_back(core::Vec3{0.137, -0.052, 0.311} * (1.0 + r));
+            mass.push_back(1.0);
+            radius.push_back(r);
+        }
+    for (std::size_t i = 0; i < 2; ++i) {
+        std::vector<core::Vec3> one;
+        std::vector<double> m;
+        std::vector<double> r;
+        if (world.rank() == 0) {
+            one.push_back(pos[i]);
+            m.push_back(mass[i]);
+            r.push_back(radius[i]);
+        }
+        Grains const grains{one, r, m};
+        gravity->update(grains);
+        std::vector<core::Vec3> g(one.size());
+        gravity->accelerations(grains, g);
+        // Compared with the pull of an equal mass 4 h away: the self-force comes only from
+        // the boundary's lack of translation symmetry.
+        double const reference = kG / (16.0 * h * h);
+        if (world.rank() == 0) {
+            std::printf("%s self-force / F(4h) = %.2e\n", name().c_str(),
+                        g.front().norm() / reference);
+            EXPECT_LT(g.front().norm(), 1e-3 * reference);
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Kernels, PairForce,
+                         ::testing::Combine(::testing::Values(Assignment::Cic, Assignment::Tsc),
+                                            ::testing::Values(2, 4)),
+                         [](auto const& p) {
+                             return std::string(toString(std::get<0>(p.param))) + "_order" +
+                                    std::to_string(std::get<1>(p.param));
+                         });
+
+} // namespace
