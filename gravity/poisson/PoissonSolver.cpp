@@ -174,6 +174,10 @@ PoissonSolver::PoissonSolver(core::Comm const& comm, CellLayout const& layout,
 
 PoissonSolver::~PoissonSolver() = default;
 
+void PoissonSolver::resetInitialGuess() {
+    petscCheck(VecSet(m_petsc->x, 0.0), "VecSet");
+}
+
 SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) {
     detail::PetscQuiet quiet;
     auto& p = *m_petsc;

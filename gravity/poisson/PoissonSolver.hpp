@@ -54,6 +54,9 @@ public:
     /// converge, naming iterations, residual and PETSc's reason. COLLECTIVE.
     SolveStats solve(CellField const& density, CellField& potential);
 
+    /// The next solve starts from zero (a cold start; e.g. after a jump of the mass). Local.
+    void resetInitialGuess();
+
     /// Free space: the boundary potential of the last solve's density (for boundary ghosts).
     [[nodiscard]] FreeSpaceBoundary const& boundary() const { return m_boundary; }
     [[nodiscard]] bool periodic() const { return m_periodic; }
