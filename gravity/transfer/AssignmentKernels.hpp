@@ -17,7 +17,7 @@ namespace regolith::gravity {
 
 enum class Assignment { Cic, Tsc };
 
-/// "cic" / "tsc" (the scene spelling); throws core::InputError otherwise (see .cpp users).
+/// "cic" / "tsc": the spelling of the kernel in scene files and messages.
 [[nodiscard]] inline char const* toString(Assignment a) {
     return a == Assignment::Cic ? "cic" : "tsc";
 }
