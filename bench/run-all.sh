@@ -39,4 +39,11 @@ for np in 1 2; do
     "${mpi[@]}" -n "$np" "$build/bin/gravity_bench" --instances agg38358,plummer1e6 \
         --methods tree --thetas 0.5,0.7 --samples 1000 --csv "$out/gravity_tree_np$np.csv" \
         | tee "$out/gravity_tree_np$np.txt"
+
+# Grid gravity (issue 6): Poisson set-up / solve / iterations against unknowns for CG+GAMG and
+# CG+hypre BoomerAMG, cold vs. warm start, on 1 and 2 ranks (CSV per rank count).
+for np in 1 2; do
+    OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe -n "$np" \
+        "$build/bin/grid_bench" --max-cells 128 --csv "$out/grid_bench_np$np.csv" \
+        | tee "$out/grid_bench_np$np.txt"
 done

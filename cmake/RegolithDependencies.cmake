@@ -28,6 +28,12 @@ if(NOT PETSC_FOUND)
   regolith_missing("PETSc (pkg-config PETSc)" "petsc-dev")
 endif()
 
+# FFTW (double precision): the FFT free-space reference solver of grid gravity.
+pkg_check_modules(FFTW3 QUIET IMPORTED_TARGET GLOBAL fftw3)
+if(NOT FFTW3_FOUND)
+  regolith_missing("FFTW 3 (pkg-config fftw3)" "libfftw3-dev")
+endif()
+
 # HDF5 built against Open MPI (parallel I/O for checkpoints).
 pkg_check_modules(HDF5_MPI QUIET IMPORTED_TARGET GLOBAL hdf5-openmpi)
 if(NOT HDF5_MPI_FOUND)

@@ -8,6 +8,7 @@ packages=(
   openmpi-bin libopenmpi-dev         # MPI
   libeigen3-dev                      # Vec3 / Quat / small linear algebra
   petsc-dev                          # Poisson solve (gravity)
+  libfftw3-dev                       # FFT free-space reference solver (gravity)
   libhdf5-openmpi-dev                # parallel checkpoints (io)
   libvtk9-dev                        # ParaView output (io)
   libgtest-dev libgmock-dev          # tests

@@ -1,0 +1,91 @@
+#include "gravity/GridGravity.hpp"
+
+#include "core/Error.hpp"
+#include "gravity/poisson/Gradient.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <vector>
+
+namespace regolith::gravity {
+
+namespace {
+
+GridGravityOptions const& validated(GridGravityOptions const& o) {
+    if (!std::isfinite(o.poisson.G) || o.poisson.G <= 0.0)
+        throw core::InputError(
+            fmt::format("gravity.G: expected a positive number, got {}", o.poisson.G));
+    if (o.gradientOrder != 2 && o.gradientOrder != 4)
+        throw core::InputError(
+            fmt::format("gravity.gradient_order: expected 2 or 4, got {}", o.gradientOrder));
+    return o;
+}
+
+} // namespace
+
+GridGravity::GridGravity(core::Comm const& comm, domain::BlockForest const& forest,
+                         std::array<int, 3> cellsPerBlock, GridGravityOptions options)
+    : m_comm(comm.duplicate())
+    , m_options(validated(options))
+    , m_layout(m_comm, forest, cellsPerBlock, m_options.gradientOrder / 2)
+    , m_ghosts(m_comm, m_layout)
+    , m_transfer(m_comm, m_layout, m_options.assignment)
+    , m_solver(m_comm, m_layout, m_options.poisson)
+    , m_density(m_layout)
+    , m_potential(m_layout)
+    , m_acceleration(m_layout, 3) {}
+
+SolveStats GridGravity::update(Grains const& grains) {
+    m_density.fill(0.0);
+    m_transfer.deposit(grains, m_density);
+    return solveFromDensity();
+}
+
+SolveStats GridGravity::solveFromDensity() {
+    SolveStats const stats = m_solver.solve(m_density, m_potential);
+    // The potential's ghost layers: neighbours' cells by exchange, while the free-space
+    // boundary values are computed (they do not depend on the messages).
+    m_ghosts.start(m_potential);
+    if (!m_solver.periodic())
+        fillBoundaryGhosts();
+    m_ghosts.wait(m_potential);
+    negativeGradient(m_potential, m_acceleration, m_options.gradientOrder);
+    return stats;
+}
+
+void GridGravity::fillBoundaryGhosts() {
+    auto const& n = m_layout.cellsPerBlock();
+    int const g = m_layout.ghost();
+    for (std::size_t b = 0; b < m_layout.localBlockCount(); ++b) {
+        auto const& o = m_layout.origin(b);
+        for (int k = -g; k < n[2] + g; ++k)
+            for (int j = -g; j < n[1] + g; ++j)
+                for (int i = -g; i < n[0] + g; ++i) {
+                    GlobalCell const c{o[0] + i, o[1] + j, o[2] + k};
+                    if (m_layout.wrap(c))
+                        continue;
+                    m_potential.at(b, i, j, k) = m_solver.boundary().at(m_layout.centre(c));
+                }
+    }
+}
+
+void GridGravity::accelerations(Grains const& grains, std::span<core::Vec3> out) {
+    if (out.size() != grains.position.size())
+        throw core::Error("GridGravity::accelerations: output size does not match the grains");
+    std::vector<double> flat(3 * out.size());
+    m_transfer.interpolate(grains, m_acceleration, flat);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = core::Vec3{flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+}
+
+double GridGravity::potentialEnergy(Grains const& grains) {
+    std::vector<double> phi(grains.position.size());
+    m_transfer.interpolate(grains, m_potential, phi);
+    double local = 0.0;
+    for (std::size_t i = 0; i < phi.size(); ++i)
+        local += 0.5 * grains.mass[i] * phi[i];
+    return m_comm.allReduce(local, core::ReduceOp::Sum);
+}
+
+} // namespace regolith::gravity

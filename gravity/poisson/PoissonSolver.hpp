@@ -1,0 +1,79 @@
+#pragma once
+/// The Poisson solve  ∇²φ = 4πGρ  on the cells of a CellLayout with PETSc (no PETSc header
+/// here: the PETSc objects live in the .cpp). Second-order 7-point Laplacian on cell
+/// centres, assembled ONCE as -∇² (symmetric positive (semi-)definite, so CG applies) with
+/// rows numbered block by block along the forest's curve: PETSc's row distribution is the
+/// forest's. The KSP is built once from a run-time options string, its set-up (e.g. the
+/// GAMG hierarchy) reused by every solve, and each solve starts from the previous potential.
+///
+/// Boundaries: all axes periodic -> periodic Laplacian with the constant null space, mean
+/// density subtracted; no axis periodic -> free space: the potential at the centres of the
+/// ghost cells beyond each domain face (FreeSpaceBoundary.hpp: direct sum over occupied
+/// cells or multipole expansion), folded into the right-hand side. Mixed periodicity is refused.
+#include "core/mpi/Comm.hpp"
+#include "gravity/field/CellField.hpp"
+#include "gravity/poisson/FreeSpaceBoundary.hpp"
+
+#include <memory>
+#include <string>
+
+namespace regolith::gravity {
+
+struct PoissonOptions {
+    double G = 6.674e-11; ///< gravitational constant [length^3 / (mass time^2)]
+    /// PETSc options (scene key gravity.petsc.options), e.g. "-ksp_type cg -pc_type gamg";
+    /// applied after the defaults below, so they override them. Empty: the defaults.
+    std::string petscOptions;
+    double rtol = 1e-10;       ///< default relative tolerance (unpreconditioned residual)
+    int maxIterations = 10000; ///< default iteration limit
+};
+
+/// What one solve did.
+struct SolveStats {
+    int iterations = 0;
+    double residual = 0.0;     ///< final residual norm as PETSc reports it
+    double setupSeconds = 0.0; ///< KSPSetUp time of this call (non-zero on the first solve)
+    double solveSeconds = 0.0; ///< KSPSolve time
+};
+
+class PoissonSolver {
+public:
+    /// Assembles the matrix and configures the KSP ("-ksp_type cg -pc_type gamg" by default,
+    /// then `options.petscOptions`). Throws core::InputError on every rank for mixed
+    /// periodicity ("domain.periodic") or an options string PETSc rejects, e.g. an unknown
+    /// solver ("gravity.petsc.options"). Pre: PETSc initialised (PetscSession), `layout`
+    /// outlives this object. COLLECTIVE over `comm`.
+    PoissonSolver(core::Comm const& comm, CellLayout const& layout, PoissonOptions options);
+    ~PoissonSolver();
+    PoissonSolver(PoissonSolver const&) = delete;
+    PoissonSolver& operator=(PoissonSolver const&) = delete;
+
+    /// Solves for φ [length^2 / time^2] from density component 0 [mass / length^3] (interior
+    /// cells) and writes φ into the interior cells of `potential`. Starts from the previous
+    /// solution (zero at first). Throws core::Error on every rank if the solve does not
+    /// converge, naming iterations, residual and PETSc's reason. COLLECTIVE.
+    SolveStats solve(CellField const& density, CellField& potential);
+
+    /// The next solve starts from zero (a cold start; e.g. after a jump of the mass). Local.
+    void resetInitialGuess();
+
+    /// Free space: the boundary potential of the last solve's density (for boundary ghosts).
+    [[nodiscard]] FreeSpaceBoundary const& boundary() const { return m_boundary; }
+    [[nodiscard]] bool periodic() const { return m_periodic; }
+    [[nodiscard]] double G() const { return m_options.G; }
+    /// "ksp_type / pc_type" actually in use, e.g. "cg / gamg".
+    [[nodiscard]] std::string const& solverName() const { return m_solverName; }
+
+private:
+    struct Petsc; // the PETSc objects
+    core::Comm m_comm;
+    CellLayout const* m_layout;
+    PoissonOptions m_options;
+    bool m_periodic = false;
+    bool m_setUp = false;
+    FreeSpaceBoundary m_boundary;
+    std::string m_solverName;
+    std::unique_ptr<Petsc> m_petsc;
+};
+
+} // namespace regolith::gravity

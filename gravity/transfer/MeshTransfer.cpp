@@ -1,0 +1,224 @@
+#include "gravity/transfer/MeshTransfer.hpp"
+
+#include "core/Error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace regolith::gravity {
+
+namespace {
+
+std::string str(core::Vec3 const& v) {
+    return fmt::format("[{}, {}, {}]", v[0], v[1], v[2]);
+}
+
+} // namespace
+
+MeshTransfer::MeshTransfer(core::Comm const& comm, CellLayout const& layout, Assignment scheme)
+    : m_comm(comm.duplicate())
+    , m_layout(&layout)
+    , m_scheme(scheme)
+    , m_exchange(std::make_unique<core::SparseExchange>(m_comm)) {}
+
+MeshTransfer::~MeshTransfer() = default;
+
+template <class Visit>
+bool MeshTransfer::forEachCell(Grains const& grains, std::size_t i, Visit&& visit) {
+    double const r = grains.radius.empty() ? 0.0 : grains.radius[i];
+    ballSamples(r, m_layout->spacing(), m_samples);
+    double const sampleWeight = 1.0 / static_cast<double>(m_samples.size());
+    for (auto const& offset : m_samples) {
+        core::Vec3 const u = m_layout->cellCoordinate(grains.position[i] + offset);
+        std::array<Stencil1D, 3> const s{stencil(m_scheme, u[0]), stencil(m_scheme, u[1]),
+                                         stencil(m_scheme, u[2])};
+        for (int c = 0; c < s[2].count; ++c)
+            for (int b = 0; b < s[1].count; ++b)
+                for (int a = 0; a < s[0].count; ++a) {
+                    double const w = sampleWeight * s[0].w[static_cast<std::size_t>(a)] *
+                                     s[1].w[static_cast<std::size_t>(b)] *
+                                     s[2].w[static_cast<std::size_t>(c)];
+                    auto const owner =
+                        m_layout->owner({s[0].first + a, s[1].first + b, s[2].first + c});
+                    if (!owner) {
+                        // A zero weight (a point exactly on a cell centre for CIC) outside
+                        // the domain carries no mass: only refuse real losses.
+                        if (w == 0.0)
+                            continue;
+                        return false;
+                    }
+                    visit(*owner, w);
+                }
+    }
+    return true;
+}
+
+void MeshTransfer::agree(std::string const& error) const {
+    if (m_comm.allTrue(error.empty()))
+        return;
+    throw core::InputError(error.empty() ? std::string("grid gravity: a grain on another rank "
+                                                       "puts mass outside the domain")
+                                         : error);
+}
+
+namespace {
+
+std::string checkGrain(Grains const& g, std::size_t i, domain::BlockForest const& forest) {
+    core::Vec3 const& p = g.position[i];
+    double const r = g.radius.empty() ? 0.0 : g.radius[i];
+    double const m = g.mass.empty() ? 0.0 : g.mass[i];
+    if (!p.allFinite() || !std::isfinite(r) || r < 0.0 || !std::isfinite(m) || m < 0.0)
+        return fmt::format("grid gravity: grain {} has position {}, radius {}, mass {}: expected "
+                           "finite values, radius and mass >= 0",
+                           i, str(p), r, m);
+    if (!forest.insideDomain(p))
+        return fmt::format("grid gravity: grain {} at {} (mass outside the domain): the "
+                           "domain is {} - {}",
+                           i, str(p), str(forest.domain().min), str(forest.domain().max));
+    return {};
+}
+
+std::string outside(Grains const& g, std::size_t i, domain::BlockForest const& forest) {
+    return fmt::format("grid gravity: grain {} at {} with radius {} puts mass outside the "
+                       "domain {} - {} (its kernel reaches past a non-periodic face; enlarge "
+                       "the domain)",
+                       i, str(g.position[i]), g.radius.empty() ? 0.0 : g.radius[i],
+                       str(forest.domain().min), str(forest.domain().max));
+}
+
+} // namespace
+
+void MeshTransfer::deposit(Grains const& grains, CellField& density) {
+    auto const& forest = m_layout->forest();
+    if (grains.mass.size() != grains.position.size() ||
+        (!grains.radius.empty() && grains.radius.size() != grains.position.size()))
+        throw core::Error("MeshTransfer::deposit: position, radius and mass spans differ in size");
+    double const invVolume = 1.0 / m_layout->cellVolume();
+    std::map<int, std::unordered_map<std::int64_t, double>> remote;
+    std::string error;
+    for (std::size_t i = 0; i < grains.position.size() && error.empty(); ++i) {
+        error = checkGrain(grains, i, forest);
+        if (!error.empty())
+            break;
+        double const rho = grains.mass[i] * invVolume;
+        bool const inside = forEachCell(grains, i, [&](CellOwner const& o, double w) {
+            if (o.localBlock >= 0)
+                density.block(static_cast<std::size_t>(
+                    o.localBlock))[m_layout->padOfInterior(o.interior)] += w * rho;
+            else
+                remote[o.rank][o.row] += w * rho;
+        });
+        if (!inside)
+            error = outside(grains, i, forest);
+    }
+    agree(error); // before any message: no rank may be left waiting in the exchange
+
+    for (auto const& [rank, cells] : remote) {
+        auto& out = m_exchange->sendBuffer(rank);
+        std::vector<std::int64_t> rows;
+        std::vector<double> values;
+        for (auto const& [row, v] : cells) {
+            rows.push_back(row);
+            values.push_back(v);
+        }
+        out << rows << values;
+    }
+    m_exchange->start();
+    m_exchange->wait([&](int, core::RecvBuffer& in) {
+        std::vector<std::int64_t> rows;
+        std::vector<double> values;
+        in >> rows >> values;
+        if (rows.size() != values.size())
+            throw core::Error("MeshTransfer: corrupt deposit message");
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+            if (rows[k] < m_layout->rowBegin() || rows[k] >= m_layout->rowEnd())
+                throw core::Error("MeshTransfer: deposit message for a cell of another rank");
+            auto const [b, cell] = m_layout->localOfRow(rows[k]);
+            density.block(b)[m_layout->padOfInterior(cell)] += values[k];
+        }
+    });
+}
+
+void MeshTransfer::interpolate(Grains const& grains, CellField const& field,
+                               std::span<double> out) {
+    auto const& forest = m_layout->forest();
+    auto const nc = static_cast<std::size_t>(field.components());
+    if (out.size() != grains.position.size() * nc ||
+        (!grains.radius.empty() && grains.radius.size() != grains.position.size()))
+        throw core::Error("MeshTransfer::interpolate: output size does not match the grains");
+    // Pass 1: which remote cells are needed (each requested once).
+    std::map<int, std::vector<std::int64_t>> requests;
+    std::unordered_map<std::int64_t, std::size_t> slot; // row -> index into `remoteValues`
+    std::string error;
+    for (std::size_t i = 0; i < grains.position.size() && error.empty(); ++i) {
+        error = checkGrain(grains, i, forest);
+        if (!error.empty())
+            break;
+        bool const inside = forEachCell(grains, i, [&](CellOwner const& o, double) {
+            if (o.localBlock < 0 && slot.find(o.row) == slot.end()) {
+                slot.emplace(o.row, 0);
+                requests[o.rank].push_back(o.row);
+            }
+        });
+        if (!inside)
+            error = outside(grains, i, forest);
+    }
+    agree(error);
+
+    // Round 1: requests; round 2: the owners reply with the values in request order.
+    for (auto const& [rank, rows] : requests)
+        m_exchange->sendBuffer(rank) << rows;
+    m_exchange->start();
+    auto asked = m_exchange->wait();
+    for (auto& m : asked) {
+        std::vector<std::int64_t> rows;
+        m.buffer >> rows;
+        std::vector<double> values;
+        values.reserve(rows.size() * nc);
+        for (auto row : rows) {
+            if (row < m_layout->rowBegin() || row >= m_layout->rowEnd())
+                throw core::Error("MeshTransfer: value request for a cell of another rank");
+            auto const [b, cell] = m_layout->localOfRow(row);
+            for (std::size_t c = 0; c < nc; ++c)
+                values.push_back(
+                    field.block(b, static_cast<int>(c))[m_layout->padOfInterior(cell)]);
+        }
+        m_exchange->sendBuffer(m.rank) << values;
+    }
+    m_exchange->start();
+    std::vector<double> remoteValues;
+    m_exchange->wait([&](int from, core::RecvBuffer& in) {
+        std::vector<double> values;
+        in >> values;
+        auto const& rows = requests[from];
+        if (values.size() != rows.size() * nc)
+            throw core::Error("MeshTransfer: reply of the wrong size from rank " +
+                              std::to_string(from));
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+            slot[rows[k]] = remoteValues.size() / nc;
+            remoteValues.insert(remoteValues.end(),
+                                values.begin() + static_cast<std::ptrdiff_t>(k * nc),
+                                values.begin() + static_cast<std::ptrdiff_t>((k + 1) * nc));
+        }
+    });
+
+    // Pass 2: the weighted sums.
+    std::fill(out.begin(), out.end(), 0.0);
+    for (std::size_t i = 0; i < grains.position.size(); ++i)
+        forEachCell(grains, i, [&](CellOwner const& o, double w) {
+            for (std::size_t c = 0; c < nc; ++c) {
+                double const v =
+                    o.localBlock >= 0
+                        ? field.block(static_cast<std::size_t>(o.localBlock),
+                                      static_cast<int>(c))[m_layout->padOfInterior(o.interior)]
+                        : remoteValues[slot.at(o.row) * nc + c];
+                out[i * nc + c] += w * v;
+            }
+        });
+}
+
+} // namespace regolith::gravity
