@@ -29,11 +29,17 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     case SelfGravity::MutualTree:
         c.method = coupling::GrainGravityMethod::MutualTree;
         break;
+    case SelfGravity::Pm:
+        c.method = coupling::GrainGravityMethod::Mesh;
+        c.cellsPerBlock = scene.forest.cellsPerBlock;
+        c.petscOptions = g.petscOptions;
+        c.gradientOrder = g.gradientOrder;
+        break;
     default:
         // The grid methods exist in gravity/ but are not coupled to the grains yet.
         throw core::InputError(fmt::format(
             "gravity.self = \"{}\": this method is not coupled to the time step yet; use "
-            "\"direct\", \"tree\" or \"mutual-tree\"",
+            "\"direct\", \"tree\", \"mutual-tree\" or \"pm\"",
             toString(g.self)));
     }
     c.G = g.G;

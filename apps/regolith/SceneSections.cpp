@@ -102,6 +102,8 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
+    s.gradientOrder = t.getOrIf<int>(
+        "gradient_order", 2, [](int o) { return o == 2 || o == 4; }, "2 or 4");
     if (auto const petsc = t.findTable("petsc"))
         s.petscOptions = petsc->getOr<std::string>("options", "");
     return s;

@@ -76,6 +76,7 @@ struct GravitySection {
     double accuracy = 1e-3;
     double softening = 0.0;
     bool allowLargeTheta = false;
+    int gradientOrder = 2; ///< gravity.gradient_order of the mesh's g = -grad phi (2 or 4)
     std::string petscOptions;
 };
 

@@ -1,12 +1,63 @@
 #include "coupling/gravity/SelfGravityForces.hpp"
 
+#include "gravity/GridGravity.hpp"
 #include "gravity/common/PointMasses.hpp"
 #include "gravity/direct/DirectSum.hpp"
+#include "gravity/petsc/PetscSession.hpp"
 #include "gravity/tree/BarnesHut.hpp"
 #include "gravity/tree/MutualTree.hpp"
 #include "gravity/tree/TreeOptions.hpp"
 
 #include <variant>
+
+namespace regolith::coupling {
+
+namespace {
+
+/// The particle-mesh method with the PETSc session it needs (nested: an app that opened one
+/// keeps it).
+class MeshGravity {
+public:
+    MeshGravity(core::Comm const& comm, domain::BlockForest const& forest,
+                SelfGravityConfig const& c)
+        : m_session(m_argc, m_argv)
+        , m_grid(comm, forest, c.cellsPerBlock, options(c)) {}
+
+    double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) {
+        m_position.resize(grains.size());
+        for (std::size_t k = 0; k < grains.size(); ++k)
+            m_position[k] = core::Vec3(grains.x[k], grains.y[k], grains.z[k]);
+        gravity::Grains const g{m_position, grains.r, grains.m};
+        m_grid.update(g);
+        m_acceleration.resize(grains.size());
+        m_grid.accelerations(g, m_acceleration);
+        for (std::size_t k = 0; k < grains.size(); ++k) {
+            out.ax[k] = m_acceleration[k].x();
+            out.ay[k] = m_acceleration[k].y();
+            out.az[k] = m_acceleration[k].z();
+        }
+        return m_grid.potentialEnergy(g);
+    }
+
+private:
+    static gravity::GridGravityOptions options(SelfGravityConfig const& c) {
+        gravity::GridGravityOptions o;
+        o.gradientOrder = c.gradientOrder;
+        o.poisson.G = c.G;
+        o.poisson.petscOptions = c.petscOptions;
+        return o;
+    }
+
+    int m_argc = 0;
+    char** m_argv = nullptr;
+    gravity::PetscSession m_session;
+    gravity::GridGravity m_grid;
+    std::vector<core::Vec3> m_position, m_acceleration;
+};
+
+} // namespace
+
+} // namespace regolith::coupling
 
 namespace regolith::coupling {
 
@@ -30,6 +81,9 @@ public:
         case GrainGravityMethod::MutualTree:
             m_eval = std::make_unique<gravity::tree::MutualTree>(tree);
             break;
+        case GrainGravityMethod::Mesh:
+            m_eval = std::make_unique<MeshGravity>(comm, forest, c);
+            break;
         }
         for (domain::Block const& b : forest.blocks())
             m_boxes.push_back(b.aabb);
@@ -45,6 +99,8 @@ public:
                     return e->evaluate(grains, out, m_boxes);
                 else if constexpr (std::is_same_v<E, gravity::tree::MutualTree>)
                     return e->evaluateGathered(comm, grains, out);
+                else if constexpr (std::is_same_v<E, MeshGravity>)
+                    return e->evaluate(grains, out);
                 else
                     return e->evaluate(grains, out);
             },
@@ -54,7 +110,7 @@ public:
 private:
     std::variant<std::unique_ptr<gravity::direct::DirectSum>,
                  std::unique_ptr<gravity::tree::BarnesHut>,
-                 std::unique_ptr<gravity::tree::MutualTree>>
+                 std::unique_ptr<gravity::tree::MutualTree>, std::unique_ptr<MeshGravity>>
         m_eval;
     std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
 };
@@ -73,6 +129,7 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
     m_y.clear();
     m_z.clear();
     m_m.clear();
+    m_r.clear();
     for (particles::BlockParticles const& bp : local.blocks()) {
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
@@ -81,6 +138,7 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
             m_y.push_back(ps.position(i).y());
             m_z.push_back(ps.position(i).z());
             m_m.push_back(ps.mass(i));
+            m_r.push_back(ps.radius(i));
         });
     }
 }
@@ -92,7 +150,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         m_ax.assign(n, 0.0);
         m_ay.assign(n, 0.0);
         m_az.assign(n, 0.0);
-        gravity::PointMasses const grains{m_x, m_y, m_z, m_m};
+        gravity::PointMasses const grains{m_x, m_y, m_z, m_m, m_r};
         m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
         m_policy.markUpdated(m_uid, m_x, m_y, m_z);
         ++m_stats.evaluations;

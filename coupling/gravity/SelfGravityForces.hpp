@@ -10,8 +10,10 @@
 #include "particles/storage/Uid.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
+#include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -22,6 +24,7 @@ enum class GrainGravityMethod {
     Direct,     ///< exact pairwise sum over all ranks (gravity/direct)
     Tree,       ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
     MutualTree, ///< momentum-conserving dual-tree walk, grains gathered on every rank
+    Mesh,       ///< particle-mesh: deposit, PETSc Poisson solve, interpolate (gravity/)
 };
 
 struct SelfGravityConfig {
@@ -31,6 +34,10 @@ struct SelfGravityConfig {
     double theta = 0.5;           ///< gravity.theta (tree methods)
     bool allowLargeTheta = false; ///< gravity.allow_large_theta
     double updateThreshold = 0.0; ///< gravity.update_threshold [m]; 0: every step
+    // Mesh only:
+    std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< domain.cells_per_block
+    std::string petscOptions;                  ///< gravity.petsc.options
+    int gradientOrder = 2;                     ///< gravity.gradient_order (2 or 4)
 };
 
 /// What the run summary reports about self-gravity.
@@ -67,7 +74,7 @@ private:
     SelfGravityStats m_stats;
     // The local masters, in block then storage order (reused between calls).
     std::vector<std::uint64_t> m_uid;
-    std::vector<double> m_x, m_y, m_z, m_m, m_ax, m_ay, m_az;
+    std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
     /// The field of the last update per grain (uid): grains keep it between updates, and a
     /// grain that moves to another block of this rank finds it there.
     std::unordered_map<particles::Uid, std::array<double, 3>> m_field;
