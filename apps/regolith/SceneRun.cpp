@@ -1,6 +1,7 @@
 // The generic scene run behind `regolith` and the reference-scene apps: builds the block
 // forest, generates the initial particles on every rank, runs the DEM time steps with shadow
-// synchronisation and writes the run summary and dump (DESIGN.md, "Contracts").
+// synchronisation and writes the run summary and dump (DESIGN.md, "Contracts"), checkpoints
+// (output.checkpoint_every) and restarts from one (--restart).
 #include "apps/regolith/SceneRun.hpp"
 
 #include "apps/common/ConservedQuantities.hpp"
@@ -8,6 +9,7 @@
 #include "apps/common/RunSummary.hpp"
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
+#include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/SceneReport.hpp"
@@ -18,6 +20,7 @@
 #include "core/log/Log.hpp"
 #include "core/timing/TimerTree.hpp"
 #include "domain/BlockForest.hpp"
+#include "io/checkpoint/RestoreGrains.hpp"
 #include "particles/simulation/DemStep.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
@@ -29,15 +32,40 @@
 
 namespace regolith::apps {
 
+namespace {
+
+/// The masters of a new run: the scene's [[particles]], checked. COLLECTIVE.
+void generateInitialState(core::AppContext const& ctx, SceneDescription const& scene,
+                          domain::BlockForest const& forest, particles::LocalParticles& local) {
+    auto const grains = generateLocalGrains(ctx.world, ctx.scene, scene, forest);
+    checkInitialState(ctx.world, makeMasters(grains, forest, ctx.world.rank()), scene);
+    addMasters(local, grains);
+}
+
+/// The masters of a restarted run, from --restart FILE (any rank count), checked against
+/// the state checksum the writer stored. Returns the checkpoint's step. COLLECTIVE.
+std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& scene,
+                          particles::LocalParticles& local) {
+    std::string const& path = ctx.options.restartPath;
+    io::CheckpointSlice const slice = readRestart(ctx.world, path, scene);
+    io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
+    std::string const restored = stateChecksum(ctx.world, masterRecords(local));
+    if (restored != slice.info.stateChecksum)
+        throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
+                                           "the checkpoint says {}",
+                                           path, restored, slice.info.stateChecksum));
+    core::log::info("restarting from {} at step {} (time {})", path, slice.info.step,
+                    slice.info.time);
+    return slice.info.step;
+}
+
+} // namespace
+
 int runScene(core::AppContext& ctx) {
     core::Comm const& world = ctx.world;
     expandScenarios(ctx.scene, world.size());
     SceneDescription const scene = parseScene(ctx.scene, ctx.options.scenePath);
-    if (!ctx.options.restartPath.empty())
-        throw core::InputError(fmt::format("--restart {}: restarting from a checkpoint needs the "
-                                           "HDF5 checkpoint reader of the io module, which this "
-                                           "build does not have yet",
-                                           ctx.options.restartPath));
+    bool const restart = !ctx.options.restartPath.empty();
     // Fail before the run, not after it, if an output file cannot be written.
     if (!ctx.options.jsonPath.empty())
         checkWritable(world, ctx.options.jsonPath, "--json");
@@ -45,9 +73,12 @@ int runScene(core::AppContext& ctx) {
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
     domain::BlockForest const forest(world, scene.forest);
-    auto const grains = generateLocalGrains(world, ctx.scene, scene, forest);
-    checkInitialState(world, makeMasters(grains, forest, world.rank()), scene);
-    auto const counts = countParticles(world, static_cast<std::int64_t>(grains.size()));
+    // The particles of this rank's blocks: masters now, shadows from the set-up's sync.
+    particles::LocalParticles local(forest);
+    std::int64_t const startStep = restart ? restoreState(ctx, scene, local) : 0;
+    if (!restart)
+        generateInitialState(ctx, scene, forest, local);
+    auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
     if (ctx.isRoot() && !ctx.options.quiet)
         printSceneReport(ctx, scene, forest, counts);
     if (forest.idleRankCount() > 0)
@@ -55,16 +86,14 @@ int runScene(core::AppContext& ctx) {
                         "ranks",
                         forest.idleRankCount(), world.size());
     auto const wallOverlaps = world.allReduce(
-        static_cast<long long>(countWallOverlaps(toMasterRecords(grains), scene.walls)),
+        static_cast<long long>(countWallOverlaps(masterRecords(local), scene.walls)),
         core::ReduceOp::Sum);
-    if (wallOverlaps > 0)
+    if (wallOverlaps > 0 && !restart)
         core::log::warn("{} of {} grains overlap a wall at the start", wallOverlaps, counts.total);
 
-    // The particles of this rank's blocks, their shadows, and the time step (DESIGN.md, "The
-    // time step"): NNS refuses a grain too large for it (InputError, exit 2 on every rank),
-    // then every shadow is created and the initial forces computed.
-    particles::LocalParticles local(forest);
-    addMasters(local, grains);
+    // The time step (DESIGN.md, "The time step"): NNS refuses a grain too large for it
+    // (InputError, exit 2 on every rank), then every shadow is created and, for a new run,
+    // the initial forces computed (a restart has them from the checkpoint).
     particles::ParticleSync sync(world, forest, scene.sync);
     core::TimerTree timers([] { return MPI_Wtime(); });
     particles::DemStepConfig stepConfig;
@@ -72,10 +101,17 @@ int runScene(core::AppContext& ctx) {
     stepConfig.gravity = scene.gravity.external;
     particles::DemStep dem(world, sync, local, makeContactModel(scene), makeIntegrator(scene),
                            makeWalls(scene), stepConfig, timers);
-    dem.setUp();
-    checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
+    if (restart) {
+        dem.resume(static_cast<std::uint64_t>(startStep));
+    } else {
+        dem.setUp();
+        checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
+    }
 
-    LoopOutcome const loop = runTimeLoop(world, dem, sync, timers, scene.time.steps);
+    CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local);
+    auto const afterStep = [&](std::int64_t stepsDone) { checkpoints.afterStep(stepsDone); };
+    LoopOutcome const loop =
+        runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
 
     auto const masters = masterRecords(local);
     if (!ctx.options.dumpPath.empty())

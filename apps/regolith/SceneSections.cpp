@@ -108,6 +108,9 @@ OutputSection parseOutput(core::ConfigTable const& t) {
     s.vtkEvery = t.getOrIf<std::int64_t>("vtk_every", 0, isNonNegative, "a non-negative integer");
     s.checkpointEvery =
         t.getOrIf<std::int64_t>("checkpoint_every", 0, isNonNegative, "a non-negative integer");
+    s.checkpointKeep = t.getOrIf<std::int64_t>("checkpoint_keep", s.checkpointKeep, isNonNegative,
+                                               "a non-negative integer");
+    s.vtkShadows = t.getOr<bool>("vtk_shadows", false);
     return s;
 }
 
