@@ -54,8 +54,10 @@ std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& s
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
                                            path, restored, slice.info.stateChecksum));
-    core::log::info("restarting from {} at step {} (time {})", path, slice.info.step,
-                    slice.info.time);
+    core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
+                    "entries",
+                    path, slice.info.step, slice.info.time, slice.info.grainCount,
+                    slice.info.historyCount);
     return slice.info.step;
 }
 
