@@ -12,6 +12,7 @@
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
+#include "apps/regolith/ProgressLine.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/TimeLoop.hpp"
@@ -21,6 +22,7 @@
 #include "core/timing/TimerTree.hpp"
 #include "domain/BlockForest.hpp"
 #include "io/checkpoint/RestoreGrains.hpp"
+#include "io/vtk/VtkOutput.hpp"
 #include "particles/simulation/DemStep.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
@@ -28,6 +30,7 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <optional>
 #include <string>
 
 namespace regolith::apps {
@@ -110,10 +113,26 @@ int runScene(core::AppContext& ctx) {
         checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
     }
 
+    // Output during the run: checkpoints, VTK files (the start state too), the progress line.
     CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local);
-    auto const afterStep = [&](std::int64_t stepsDone) { checkpoints.afterStep(stepsDone); };
+    std::optional<io::VtkOutput> vtk;
+    if (scene.output.vtkEvery > 0) {
+        vtk.emplace(world, io::VtkOptions{scene.output.dir, scene.output.vtkShadows, true});
+        vtk->write(startStep, static_cast<double>(startStep) * scene.time.dt, local);
+    }
+    ProgressLine progress(ProgressSettings{
+        startStep, scene.time.steps, scene.time.dt, counts.total,
+        std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
+        scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
+    auto const afterStep = [&](std::int64_t stepsDone) {
+        checkpoints.afterStep(stepsDone);
+        if (vtk && stepsDone % scene.output.vtkEvery == 0)
+            vtk->write(stepsDone, static_cast<double>(stepsDone) * scene.time.dt, local);
+        progress.afterStep(stepsDone);
+    };
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
+    progress.finish();
 
     auto const masters = masterRecords(local);
     if (!ctx.options.dumpPath.empty())
