@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <mpi.h>
 
 #include <filesystem>
 #include <fstream>
@@ -110,10 +111,14 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     info.scene = m_text;
     info.stateChecksum = stateChecksum(*m_comm, masterRecords(*m_local));
     std::string const path = io::checkpointPath(m_output.dir, stepsDone);
+    double const start = MPI_Wtime();
     auto const grains = io::collectMasters(*m_local);
-    io::writeCheckpoint(*m_comm, path, info, grains);
+    std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);
+    double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
     if (m_comm->rank() == 0)
         io::rotateCheckpoints(m_output.dir, m_output.checkpointKeep);
+    core::log::info("checkpoint {}: {} grains, {} history entries, {:.3g} MB in {:.3g} s", path,
+                    info.grainCount, info.historyCount, static_cast<double>(bytes) * 1e-6, seconds);
     return path;
 }
 

@@ -50,6 +50,7 @@ void generateInitialState(core::AppContext const& ctx, SceneDescription const& s
 std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& scene,
                           particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
+    double const start = MPI_Wtime();
     io::CheckpointSlice const slice = readRestart(ctx.world, path, scene);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksum(ctx.world, masterRecords(local));
@@ -57,10 +58,11 @@ std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& s
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
                                            path, restored, slice.info.stateChecksum));
+    double const seconds = ctx.world.allReduce(MPI_Wtime() - start, core::ReduceOp::Max);
     core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
-                    "entries",
+                    "entries, read and distributed in {:.3g} s",
                     path, slice.info.step, slice.info.time, slice.info.grainCount,
-                    slice.info.historyCount);
+                    slice.info.historyCount, seconds);
     return slice.info.step;
 }
 
