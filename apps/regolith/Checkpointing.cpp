@@ -97,7 +97,7 @@ CheckpointSchedule::CheckpointSchedule(core::Comm const& comm, SceneDescription 
 }
 
 void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
-    if (m_output.checkpointEvery > 0 && stepsDone % m_output.checkpointEvery == 0)
+    if (due(stepsDone))
         write(stepsDone);
 }
 

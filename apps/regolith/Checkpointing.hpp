@@ -34,6 +34,10 @@ public:
     CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene, std::string text,
                        particles::LocalParticles const& local);
 
+    /// Whether afterStep(stepsDone) writes a checkpoint. Not collective.
+    [[nodiscard]] bool due(std::int64_t stepsDone) const {
+        return m_output.checkpointEvery > 0 && stepsDone % m_output.checkpointEvery == 0;
+    }
     /// Writes the checkpoint of step `stepsDone` if one is due. COLLECTIVE.
     void afterStep(std::int64_t stepsDone);
     /// Writes the checkpoint of step `stepsDone` now; returns its path. COLLECTIVE.

@@ -66,6 +66,14 @@ void ProgressLine::afterStep(std::int64_t stepsDone) {
     m_lastPrint = t;
 }
 
+void ProgressLine::clear() {
+    if (m_drawn) {
+        fmt::print("\r\x1b[K");
+        std::fflush(stdout);
+        m_drawn = false;
+    }
+}
+
 void ProgressLine::finish() {
     if (m_drawn) {
         fmt::print("\n");

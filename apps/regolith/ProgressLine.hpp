@@ -28,6 +28,9 @@ public:
     void afterStep(std::int64_t stepsDone);
     /// Ends the live line (a newline, so that what follows starts on its own line).
     void finish();
+    /// Erases the live line before other output (a log line) is printed; the next
+    /// afterStep draws it again. Not collective.
+    void clear();
 
     /// The text of the line after `stepsDone` steps, `elapsed` seconds after the loop
     /// started. Not collective.

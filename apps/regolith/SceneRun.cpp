@@ -127,6 +127,8 @@ int runScene(core::AppContext& ctx) {
         std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
         scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
     auto const afterStep = [&](std::int64_t stepsDone) {
+        if (checkpoints.due(stepsDone))
+            progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
             vtk->write(stepsDone, static_cast<double>(stepsDone) * scene.time.dt, local);
