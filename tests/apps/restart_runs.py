@@ -6,7 +6,9 @@ usage: restart_runs.py --mpiexec M --app APP --scene SCENE --out DIR
 Checks, in order (exit 1 with the reason on the first failure):
  1. the reference: 40 steps on 2 ranks;
  2. 20 steps on 2 ranks writing a checkpoint every 5 steps and keeping 3: exactly the
-    checkpoints of steps 10, 15, 20 remain, no temporary file;
+    checkpoints of steps 10, 15, 20 remain, no temporary file; its VTK output (every 10
+    steps) is a particles.pvd and blocks.pvd series of steps 0, 10, 20 whose .pvtu files
+    name 2 existing pieces holding the 1000 grains (the 8 blocks);
  3. restarts to the scene's 40 steps (a total): from step 20 on 3 ranks and from step 10 on
     1 rank give the reference's checksum, having run 20 and 30 steps;
  4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
@@ -19,9 +21,11 @@ import argparse
 import hashlib
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
+import xml.etree.ElementTree as ET
 
 CRASH_SIGNS = ("internal error", "terminate called", "Segmentation fault", "MPI_ABORT",
                "core dumped", "Sanitizer")
@@ -60,6 +64,28 @@ def digest(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
+def check_vtk(directory, steps, np, dt=0.01):
+    """The driver's VTK series (io/vtk): counts from the XML headers of the pieces."""
+    for kind, total, what in (("particles", 1000, "NumberOfPoints"), ("blocks", 8, "NumberOfCells")):
+        root = ET.parse(os.path.join(directory, f"{kind}.pvd")).getroot()
+        sets = root.find("Collection").findall("DataSet")
+        if [(float(d.get("timestep")), d.get("file")) for d in sets] != [
+                (s * dt, f"vtk/{kind}_{s:08d}.pvtu") for s in steps]:
+            fail(f"{directory}/{kind}.pvd lists {[d.attrib for d in sets]}")
+        for d in sets:
+            index = os.path.join(directory, d.get("file"))
+            pieces = [p.get("Source") for p in ET.parse(index).getroot().iter("Piece")]
+            if len(pieces) != np:
+                fail(f"{index} names {len(pieces)} pieces, expected {np}")
+            count = 0
+            for piece in pieces:
+                with open(os.path.join(os.path.dirname(index), piece), "rb") as f:
+                    header = f.read(2000).decode("latin-1")
+                count += int(re.search(what + r'="\s*(\d+)', header).group(1))
+            if count != total:
+                fail(f"{index}: {count} {what} in its pieces, expected {total}")
+
+
 def expect_refused(runner, np, args, message, files):
     before = {f: digest(f) for f in files}
     command, done = runner.run(np, args)
@@ -89,8 +115,10 @@ def main():
     first = runner.path("first")
     runner.summary(2, "first", ["--steps", "20", "--output", first,
                                 "--set", "output.checkpoint_every=5",
-                                "--set", "output.checkpoint_keep=3"])
-    names = sorted(os.listdir(first))
+                                "--set", "output.checkpoint_keep=3",
+                                "--set", "output.vtk_every=10"])
+    check_vtk(first, (0, 10, 20), 2)
+    names = sorted(n for n in os.listdir(first) if n.startswith("checkpoint"))
     expected = [f"checkpoint_{s:08d}.h5" for s in (10, 15, 20)]
     if names != expected:
         fail(f"{first} holds {names}, expected {expected} (rotation, no temporary file)")
