@@ -26,3 +26,8 @@ if command -v lmp >/dev/null; then
 else
   echo "lmp not found (apt-get install lammps): LAMMPS comparison skipped"
 fi
+
+# Checkpoint size and write / read time per grain for 103,823 grains on 1, 2, 4 ranks
+# (docs/results.md, issue 9).
+/usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \
+    --repeats 3 --out "$out/ckpt-bench" | tee "$out/checkpoint_bench.txt"
