@@ -5,6 +5,7 @@
 #include "io/vtk/VtkPieces.hpp"
 
 #include <fmt/format.h>
+#include <vtkObject.h>
 
 #include <filesystem>
 #include <fstream>
@@ -47,6 +48,9 @@ std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
 VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
     : m_comm(&comm)
     , m_options(std::move(options)) {
+    // VTK would print its own error text on every failing rank; the failure is reported
+    // once, as an InputError naming the file (writeParticlePiece, writeBlockPiece).
+    vtkObject::GlobalWarningDisplayOff();
     detail::agreeOnError(comm, [&] {
         if (comm.rank() != 0)
             return;
