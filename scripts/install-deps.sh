@@ -10,6 +10,7 @@ packages=(
   petsc-dev                          # Poisson solve (gravity)
   libhdf5-openmpi-dev                # parallel checkpoints (io)
   libvtk9-dev                        # ParaView output (io)
+  xvfb xauth                         # regolith-render's off-screen pictures without a display
   libgtest-dev libgmock-dev          # tests
   libbenchmark-dev                   # bench/
   libtomlplusplus-dev libcli11-dev   # scene files and command line
