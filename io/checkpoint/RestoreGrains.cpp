@@ -7,6 +7,10 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 namespace regolith::io {
@@ -46,6 +50,51 @@ std::vector<OwnedBox> gatherBlockBoxes(core::Comm const& comm, domain::BlockFore
     return out;
 }
 
+/// Which rank owns the block containing a point: the gathered boxes bucketed by the root
+/// block their centre lies in (a refined root holds its children), so a look-up tests the
+/// few boxes of one root block instead of all of them.
+class OwnerLookup {
+public:
+    OwnerLookup(std::vector<OwnedBox> boxes, domain::BlockForest const& forest)
+        : m_boxes(std::move(boxes))
+        , m_domain(forest.domain())
+        , m_roots(forest.rootBlocks()) {
+        m_buckets.resize(static_cast<std::size_t>(m_roots[0]) * m_roots[1] * m_roots[2]);
+        for (std::size_t k = 0; k < m_boxes.size(); ++k)
+            m_buckets[bucket(m_boxes[k].box.center())].push_back(k);
+    }
+    /// The owner rank, or -1 if no box contains p.
+    [[nodiscard]] int owner(core::Vec3 const& p) const {
+        for (std::size_t k : m_buckets[bucket(p)])
+            if (m_boxes[k].box.contains(p))
+                return m_boxes[k].rank;
+        // A point on a root face may round into the neighbouring bucket: search them all.
+        for (OwnedBox const& b : m_boxes)
+            if (b.box.contains(p))
+                return b.rank;
+        return -1;
+    }
+
+private:
+    [[nodiscard]] std::size_t bucket(core::Vec3 const& p) const {
+        std::size_t index = 0;
+        for (int a = 2; a >= 0; --a) {
+            double const edge =
+                (m_domain.max[a] - m_domain.min[a]) / m_roots[static_cast<std::size_t>(a)];
+            auto i = static_cast<long long>(std::floor((p[a] - m_domain.min[a]) / edge));
+            i = std::clamp<long long>(i, 0, m_roots[static_cast<std::size_t>(a)] - 1);
+            index = index * static_cast<std::size_t>(m_roots[static_cast<std::size_t>(a)]) +
+                    static_cast<std::size_t>(i);
+        }
+        return index;
+    }
+
+    std::vector<OwnedBox> m_boxes;
+    core::AABB m_domain;
+    std::array<int, 3> m_roots;
+    std::vector<std::vector<std::size_t>> m_buckets;
+};
+
 void pack(core::SendBuffer& b, GrainState const& g) {
     b << g.uid << g.position << g.velocity << g.angularVelocity << g.orientation << g.force
       << g.torque << g.radius << g.mass << g.type << g.flags
@@ -81,7 +130,7 @@ void addRestored(particles::LocalParticles& local, GrainState const& g) {
 void restoreGrains(core::Comm const& comm, particles::LocalParticles& local,
                    std::span<GrainState const> grains, std::string const& context) {
     domain::BlockForest const& forest = local.forest();
-    std::vector<OwnedBox> const boxes = gatherBlockBoxes(comm, forest);
+    OwnerLookup const owners(gatherBlockBoxes(comm, forest), forest);
     core::SparseExchange exchange(comm);
     detail::agreeOnError(comm, [&] {
         for (GrainState const& g : grains) {
@@ -91,12 +140,7 @@ void restoreGrains(core::Comm const& comm, particles::LocalParticles& local,
                                 "(the checkpoint was written for another domain)",
                                 context, g.uid, g.position.x(), g.position.y(), g.position.z()));
             core::Vec3 const p = forest.wrap(g.position);
-            int owner = -1;
-            for (OwnedBox const& b : boxes)
-                if (b.box.contains(p)) {
-                    owner = b.rank;
-                    break;
-                }
+            int const owner = owners.owner(p);
             if (owner < 0)
                 throw core::InputError(
                     fmt::format("{}: grain uid {} lies in no block", context, g.uid));

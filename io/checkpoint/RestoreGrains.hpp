@@ -13,7 +13,8 @@ namespace regolith::io {
 /// Sends every grain of `grains` (this rank's slice of the file, any grains) to the rank
 /// owning the block whose half-open box contains its (wrapped) centre, which adds it as a
 /// master (LocalParticles::addMaster) with force, torque and contact history restored. The
-/// owners are found from every rank's block boxes, gathered once (O(global blocks) memory);
+/// owners are found from every rank's block boxes, gathered once (O(global blocks) memory)
+/// and bucketed by root block;
 /// the grains travel in one sparse exchange (NBX).
 ///
 /// Pre: `local` holds no masters of these uids. Errors: a grain outside the domain of the

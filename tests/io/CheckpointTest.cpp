@@ -178,6 +178,27 @@ TEST(Checkpoint, OtherRankCountReadsTheSameGrains) {
     MPI_Comm_free(&half);
 }
 
+TEST(Checkpoint, IdleRanksWriteAndReadNothing) {
+    // Two blocks: on 4 ranks two ranks own no block and no grain, yet join every collective.
+    core::Comm const world;
+    domain::ForestSpec s = spec();
+    s.rootBlocks = {2, 1, 1};
+    domain::BlockForest const forest(world, s);
+    particles::LocalParticles local(forest);
+    for (io::GrainState const& g : allGrains())
+        (void)local.addMaster(io::toParticleInit(g));
+    std::string const path = fileName(world, "idle");
+    io::CheckpointInfo i = info();
+    io::writeCheckpoint(world, path, i, io::collectMasters(local));
+    EXPECT_EQ(i.grainCount, 64U);
+    io::CheckpointSlice const slice = io::readCheckpoint(world, path);
+    particles::LocalParticles restored(forest);
+    io::restoreGrains(world, restored, slice.grains, "test");
+    EXPECT_EQ(restored.countMasters(), local.countMasters());
+    EXPECT_EQ(world.allReduce(static_cast<long long>(restored.countMasters()), core::ReduceOp::Sum),
+              64);
+}
+
 TEST(Checkpoint, TruncatedFileIsRefused) {
     core::Comm const world;
     std::string const path = fileName(world, "truncated");
