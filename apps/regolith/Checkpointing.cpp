@@ -73,13 +73,15 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
 }
 
 CheckpointSchedule::CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene,
-                                       std::string text, particles::LocalParticles const& local)
+                                       std::string text, particles::LocalParticles const& local,
+                                       TimeAt timeAt)
     : m_comm(&comm)
     , m_local(&local)
     , m_output(scene.output)
     , m_dt(scene.time.dt)
     , m_forest(scene.forest)
-    , m_text(std::move(text)) {
+    , m_text(std::move(text))
+    , m_timeAt(std::move(timeAt)) {
     if (m_output.checkpointEvery <= 0)
         return;
     std::string failure;
@@ -104,7 +106,7 @@ void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
 std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     io::CheckpointInfo info;
     info.step = stepsDone;
-    info.time = static_cast<double>(stepsDone) * m_dt;
+    info.time = m_timeAt(stepsDone);
     info.dt = m_dt;
     info.domain = m_forest.domain;
     info.periodic = m_forest.periodic;

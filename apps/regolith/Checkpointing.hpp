@@ -8,6 +8,7 @@
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace regolith::apps {
@@ -28,11 +29,13 @@ namespace regolith::apps {
 /// checkpoint_<step>.h5, keeping the newest output.checkpoint_keep.
 class CheckpointSchedule {
 public:
+    /// Simulated time after a step [time].
+    using TimeAt = std::function<double(std::int64_t step)>;
     /// Creates output.dir (rank 0) if checkpoints are due at all; throws core::InputError on
     /// every rank if it cannot. COLLECTIVE over `comm`, which must outlive this object, as
     /// must `local`.
     CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene, std::string text,
-                       particles::LocalParticles const& local);
+                       particles::LocalParticles const& local, TimeAt timeAt);
 
     /// Whether afterStep(stepsDone) writes a checkpoint. Not collective.
     [[nodiscard]] bool due(std::int64_t stepsDone) const {
@@ -50,6 +53,7 @@ private:
     double m_dt;
     domain::ForestSpec m_forest;
     std::string m_text;
+    TimeAt m_timeAt;
 };
 
 } // namespace regolith::apps

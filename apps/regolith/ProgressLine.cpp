@@ -41,9 +41,8 @@ std::string ProgressLine::text(std::int64_t stepsDone, double elapsed) const {
     std::string const eta = rate > 0.0 ? duration(left / rate) : std::string("?");
     return fmt::format("step {}/{}  t = {:.6g}  {:.4g} steps/s  ETA {}  {} grains  sync {}  "
                        "gravity {}",
-                       stepsDone, m_settings.lastStep,
-                       static_cast<double>(stepsDone) * m_settings.dt, rate, eta, m_settings.grains,
-                       m_settings.sync, m_settings.gravity);
+                       stepsDone, m_settings.lastStep, m_settings.firstTime + done * m_settings.dt,
+                       rate, eta, m_settings.grains, m_settings.sync, m_settings.gravity);
 }
 
 void ProgressLine::afterStep(std::int64_t stepsDone) {

@@ -11,6 +11,7 @@ namespace regolith::apps {
 
 struct ProgressSettings {
     std::int64_t firstStep = 0; ///< steps done when the loop starts (a restart's step)
+    double firstTime = 0.0;     ///< simulated time then [time]
     std::int64_t lastStep = 0;  ///< time.steps
     double dt = 0.0;            ///< [time]
     std::int64_t grains = 0;    ///< masters at the start, over all ranks

@@ -45,10 +45,16 @@ void generateInitialState(core::AppContext const& ctx, SceneDescription const& s
     addMasters(local, grains);
 }
 
+/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time.
+struct RunStart {
+    std::int64_t step = 0;
+    double time = 0.0;
+};
+
 /// The masters of a restarted run, from --restart FILE (any rank count), checked against
-/// the state checksum the writer stored. Returns the checkpoint's step. COLLECTIVE.
-std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& scene,
-                          particles::LocalParticles& local) {
+/// the state checksum the writer stored. Returns the checkpoint's step and time. COLLECTIVE.
+RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
+                      particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
     double const start = MPI_Wtime();
     io::CheckpointSlice const slice = readRestart(ctx.world, path, scene);
@@ -63,7 +69,7 @@ std::int64_t restoreState(core::AppContext const& ctx, SceneDescription const& s
                     "entries, read and distributed in {:.3g} s",
                     path, slice.info.step, slice.info.time, slice.info.grainCount,
                     slice.info.historyCount, seconds);
-    return slice.info.step;
+    return {slice.info.step, slice.info.time};
 }
 
 } // namespace
@@ -82,7 +88,12 @@ int runScene(core::AppContext& ctx) {
     domain::BlockForest const forest(world, scene.forest);
     // The particles of this rank's blocks: masters now, shadows from the set-up's sync.
     particles::LocalParticles local(forest);
-    std::int64_t const startStep = restart ? restoreState(ctx, scene, local) : 0;
+    RunStart const start = restart ? restoreState(ctx, scene, local) : RunStart{};
+    std::int64_t const startStep = start.step;
+    // Simulated time after a step: continued from the checkpoint's (its dt may differ).
+    auto const timeAt = [&](std::int64_t step) {
+        return start.time + static_cast<double>(step - startStep) * scene.time.dt;
+    };
     if (!restart)
         generateInitialState(ctx, scene, forest, local);
     auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
@@ -116,14 +127,18 @@ int runScene(core::AppContext& ctx) {
     }
 
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.
-    CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local);
+    CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local, timeAt);
     std::optional<io::VtkOutput> vtk;
     if (scene.output.vtkEvery > 0) {
-        vtk.emplace(world, io::VtkOptions{scene.output.dir, scene.output.vtkShadows, true});
-        vtk->write(startStep, static_cast<double>(startStep) * scene.time.dt, local);
+        // A restart continues the series of the run it restarts (the entries before it).
+        io::VtkOptions options{scene.output.dir, scene.output.vtkShadows, true};
+        if (restart)
+            options.keepEntriesBefore = start.time;
+        vtk.emplace(world, options);
+        vtk->write(startStep, start.time, local);
     }
     ProgressLine progress(ProgressSettings{
-        startStep, scene.time.steps, scene.time.dt, counts.total,
+        startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
         std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
         scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
     auto const afterStep = [&](std::int64_t stepsDone) {
@@ -131,7 +146,7 @@ int runScene(core::AppContext& ctx) {
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
-            vtk->write(stepsDone, static_cast<double>(stepsDone) * scene.time.dt, local);
+            vtk->write(stepsDone, timeAt(stepsDone), local);
         progress.afterStep(stepsDone);
     };
     LoopOutcome const loop =

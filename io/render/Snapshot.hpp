@@ -4,20 +4,11 @@
 /// outlines of the matching blocks .pvtu coloured by owner rank, rendered off screen with
 /// VTK into a PNG. VTK's OpenGL window needs an X display: on a machine without one run the
 /// tool under `xvfb-run` (Debian package xvfb).
+#include "io/vtk/VtkSeries.hpp"
+
 #include <string>
-#include <vector>
 
 namespace regolith::io {
-
-/// One entry of a .pvd time series.
-struct SeriesEntry {
-    double time = 0.0;
-    std::string file; ///< as written in the .pvd (relative to its directory)
-};
-
-/// The data sets of the .pvd at `path`, in file order. Throws core::InputError naming the
-/// file if it cannot be read or is not a VTK collection. Not collective.
-[[nodiscard]] std::vector<SeriesEntry> readSeries(std::string const& path);
 
 struct SnapshotOptions {
     std::string particles; ///< .pvtu (or .vtu) of particles written by VtkOutput

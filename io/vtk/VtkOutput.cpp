@@ -1,14 +1,17 @@
 #include "io/vtk/VtkOutput.hpp"
 
 #include "core/Error.hpp"
+#include "core/log/Log.hpp"
 #include "io/detail/AgreeOnError.hpp"
 #include "io/vtk/VtkPieces.hpp"
+#include "io/vtk/VtkSeries.hpp"
 
 #include <fmt/format.h>
 #include <vtkObject.h>
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <system_error>
 
 namespace regolith::io {
@@ -43,6 +46,21 @@ std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
     return out;
 }
 
+/// The entries of an existing series before `time` (a restart continues it).
+std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time) {
+    std::vector<std::pair<double, std::string>> out;
+    if (time == -std::numeric_limits<double>::infinity() || !fs::is_regular_file(pvd))
+        return out;
+    try {
+        for (SeriesEntry const& e : readSeries(pvd))
+            if (e.time < time)
+                out.emplace_back(e.time, e.file);
+    } catch (core::InputError const& e) {
+        core::log::warn("{}: starting the series afresh", e.what());
+    }
+    return out;
+}
+
 } // namespace
 
 VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
@@ -60,6 +78,8 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
             throw core::InputError(fmt::format("output.dir = \"{}\": cannot create the directory "
                                                "for VTK output: {}",
                                                m_options.dir, ec.message()));
+        m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
+        m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
     });
 }
 

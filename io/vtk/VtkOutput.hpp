@@ -15,6 +15,7 @@
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,11 +26,16 @@ struct VtkOptions {
     std::string dir = "out"; ///< output directory (created if missing)
     bool shadows = false;    ///< also write shadow copies (flagged by the `shadow` array)
     bool blocks = true;      ///< also write the block outlines at every output step
+    /// A restarted run continues the series of the run it restarts: the entries of existing
+    /// .pvd files in `dir` with a time below this are kept (the default keeps none).
+    double keepEntriesBefore = -std::numeric_limits<double>::infinity();
 };
 
 class VtkOutput {
 public:
-    /// Rank 0 creates <dir>/vtk; throws core::InputError on every rank if it cannot.
+    /// Rank 0 creates <dir>/vtk and reads the entries to keep of existing series (see
+    /// VtkOptions::keepEntriesBefore; an unreadable old series is started afresh, with a
+    /// warning); throws core::InputError on every rank if the directory cannot be made.
     /// COLLECTIVE over `comm`, which must outlive this object.
     VtkOutput(core::Comm const& comm, VtkOptions options);
 

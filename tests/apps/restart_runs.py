@@ -10,7 +10,8 @@ Checks, in order (exit 1 with the reason on the first failure):
     steps) is a particles.pvd and blocks.pvd series of steps 0, 10, 20 whose .pvtu files
     name 2 existing pieces holding the 1000 grains (the 8 blocks);
  3. restarts to the scene's 40 steps (a total): from step 20 on 3 ranks and from step 10 on
-    1 rank give the reference's checksum, having run 20 and 30 steps;
+    1 rank give the reference's checksum, having run 20 and 30 steps; the first, into the
+    directory of run 2, continues its VTK series (steps 0-10 on 2 ranks, 20-40 on 3);
  4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
     non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
  5. a truncated file, a flipped byte, a scene with another domain and a step beyond
@@ -64,15 +65,15 @@ def digest(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
-def check_vtk(directory, steps, np, dt=0.01):
+def check_vtk(directory, steps, nps, dt=0.01):
     """The driver's VTK series (io/vtk): counts from the XML headers of the pieces."""
     for kind, total, what in (("particles", 1000, "NumberOfPoints"), ("blocks", 8, "NumberOfCells")):
         root = ET.parse(os.path.join(directory, f"{kind}.pvd")).getroot()
         sets = root.find("Collection").findall("DataSet")
-        if [(float(d.get("timestep")), d.get("file")) for d in sets] != [
-                (s * dt, f"vtk/{kind}_{s:08d}.pvtu") for s in steps]:
+        if [(round(float(d.get("timestep")), 9), d.get("file")) for d in sets] != [
+                (round(s * dt, 9), f"vtk/{kind}_{s:08d}.pvtu") for s in steps]:
             fail(f"{directory}/{kind}.pvd lists {[d.attrib for d in sets]}")
-        for d in sets:
+        for d, np in zip(sets, nps):
             index = os.path.join(directory, d.get("file"))
             pieces = [p.get("Source") for p in ET.parse(index).getroot().iter("Piece")]
             if len(pieces) != np:
@@ -117,19 +118,22 @@ def main():
                                 "--set", "output.checkpoint_every=5",
                                 "--set", "output.checkpoint_keep=3",
                                 "--set", "output.vtk_every=10"])
-    check_vtk(first, (0, 10, 20), 2)
+    check_vtk(first, (0, 10, 20), (2, 2, 2))
     names = sorted(n for n in os.listdir(first) if n.startswith("checkpoint"))
     expected = [f"checkpoint_{s:08d}.h5" for s in (10, 15, 20)]
     if names != expected:
         fail(f"{first} holds {names}, expected {expected} (rotation, no temporary file)")
     step10, step20 = (os.path.join(first, expected[k]) for k in (0, 2))
 
-    for np, start, steps in ((3, step20, 20), (1, step10, 30)):
-        s = runner.summary(np, f"restart_np{np}", ["--restart", start,
-                                                   "--output", runner.path(f"r{np}")])
+    # The 3-rank restart writes into the first run's directory: its VTK series continues.
+    for np, start, steps, out in ((3, step20, 20, first), (1, step10, 30, runner.path("r1"))):
+        s = runner.summary(np, f"restart_np{np}", ["--restart", start, "--output", out,
+                                                   "--set", "output.vtk_every=10"])
         if s["checksum"] != reference or s["steps"] != steps or s["particles"] != 1000:
             fail(f"restart from {start} on {np} ranks: checksum {s['checksum']}, steps "
                  f"{s['steps']}, particles {s['particles']}; expected {reference}, {steps}, 1000")
+
+    check_vtk(first, (0, 10, 20, 30, 40), (2, 2, 3, 3, 3))
 
     killed = runner.path("killed")
     command, done = runner.run(2, ["--output", killed, "--set", "output.checkpoint_every=10"],
