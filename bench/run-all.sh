@@ -39,6 +39,7 @@ for np in 1 2; do
     "${mpi[@]}" -n "$np" "$build/bin/gravity_bench" --instances agg38358,plummer1e6 \
         --methods tree --thetas 0.5,0.7 --samples 1000 --csv "$out/gravity_tree_np$np.csv" \
         | tee "$out/gravity_tree_np$np.txt"
+done
 
 # Grid gravity (issue 6): Poisson set-up / solve / iterations against unknowns for CG+GAMG and
 # CG+hypre BoomerAMG, cold vs. warm start, on 1 and 2 ranks (CSV per rank count).
@@ -47,3 +48,8 @@ for np in 1 2; do
         "$build/bin/grid_bench" --max-cells 128 --csv "$out/grid_bench_np$np.csv" \
         | tee "$out/grid_bench_np$np.txt"
 done
+
+# Checkpoint size and write / read time per grain for 103,823 grains on 1, 2, 4 ranks
+# (docs/results.md, issue 9).
+/usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \
+    --repeats 3 --out "$out/ckpt-bench" | tee "$out/checkpoint_bench.txt"

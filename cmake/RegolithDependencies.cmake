@@ -40,9 +40,15 @@ if(NOT HDF5_MPI_FOUND)
   regolith_missing("parallel HDF5 (pkg-config hdf5-openmpi)" "libhdf5-openmpi-dev")
 endif()
 
-find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML IOParallelXML)
+find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel IOXML IOParallelXML
+             OPTIONAL_COMPONENTS RenderingCore RenderingOpenGL2 FiltersSources IOImage)
 if(NOT VTK_FOUND)
   regolith_missing("VTK 9 (CommonCore, CommonDataModel, IOXML, IOParallelXML)" "libvtk9-dev")
+endif()
+# Off-screen pictures (io/render, regolith-render): optional, skipped without these modules.
+set(REGOLITH_HAVE_VTK_RENDERING OFF)
+if(TARGET VTK::RenderingOpenGL2 AND TARGET VTK::FiltersSources AND TARGET VTK::IOImage)
+  set(REGOLITH_HAVE_VTK_RENDERING ON)
 endif()
 
 find_package(tomlplusplus CONFIG QUIET)

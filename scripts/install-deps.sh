@@ -11,6 +11,7 @@ packages=(
   libfftw3-dev                       # FFT free-space reference solver (gravity)
   libhdf5-openmpi-dev                # parallel checkpoints (io)
   libvtk9-dev                        # ParaView output (io)
+  xvfb xauth                         # regolith-render's off-screen pictures without a display
   libgtest-dev libgmock-dev          # tests
   libbenchmark-dev                   # bench/
   libtomlplusplus-dev libcli11-dev   # scene files and command line

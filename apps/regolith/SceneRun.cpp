@@ -1,6 +1,7 @@
 // The generic scene run behind `regolith` and the reference-scene apps: builds the block
 // forest, generates the initial particles on every rank, runs the DEM time steps with shadow
-// synchronisation and writes the run summary and dump (DESIGN.md, "Contracts").
+// synchronisation and writes the run summary and dump (DESIGN.md, "Contracts"), checkpoints
+// (output.checkpoint_every) and restarts from one (--restart).
 #include "apps/regolith/SceneRun.hpp"
 
 #include "apps/common/ConservedQuantities.hpp"
@@ -9,9 +10,11 @@
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
 #include "apps/regolith/AutoChoices.hpp"
+#include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
+#include "apps/regolith/ProgressLine.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/TimeLoop.hpp"
@@ -20,6 +23,8 @@
 #include "core/log/Log.hpp"
 #include "core/timing/TimerTree.hpp"
 #include "domain/BlockForest.hpp"
+#include "io/checkpoint/RestoreGrains.hpp"
+#include "io/vtk/VtkOutput.hpp"
 #include "particles/simulation/DemStep.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
@@ -27,19 +32,82 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <optional>
 #include <string>
 
 namespace regolith::apps {
+
+namespace {
+
+/// The masters of a new run: the scene's [[particles]], with the scene's "auto" keys resolved
+/// from them (returned), checked. COLLECTIVE.
+std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneDescription& scene,
+                                             domain::BlockForest const& forest,
+                                             particles::LocalParticles& local) {
+    auto const grains = generateLocalGrains(ctx.world, ctx.scene, scene, forest);
+    std::vector<AutoChoice> choices;
+    {
+        auto const masters = makeMasters(grains, forest, ctx.world.rank());
+        choices = resolveAutoChoices(ctx.world, masters, scene);
+        checkInitialState(ctx.world, masters, scene);
+        warnLazyUpdateThreshold(ctx.world, masters, scene);
+    }
+    addMasters(local, grains);
+    return choices;
+}
+
+/// A restart continues with the original run's settings, which "auto" would re-derive from
+/// the restored grains (and could change): refused, naming the keys to set.
+std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
+    std::string keys;
+    if (scene.time.dtAuto)
+        keys += " time.dt";
+    if (scene.gravity.self == SelfGravity::Auto)
+        keys += " gravity.self";
+    if (scene.gravity.thresholdAuto)
+        keys += " gravity.update_threshold";
+    if (!keys.empty())
+        throw core::InputError(fmt::format(
+            "--restart: \"auto\" is not resolved again on a restart ({}); set the values the "
+            "original run chose (its run summary lists them under \"auto\") with --set",
+            keys.substr(1)));
+    return {};
+}
+
+/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time.
+struct RunStart {
+    std::int64_t step = 0;
+    double time = 0.0;
+};
+
+/// The masters of a restarted run, from --restart FILE (any rank count), checked against
+/// the state checksum the writer stored. Returns the checkpoint's step and time. COLLECTIVE.
+RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
+                      particles::LocalParticles& local) {
+    std::string const& path = ctx.options.restartPath;
+    double const start = MPI_Wtime();
+    io::CheckpointSlice const slice = readRestart(ctx.world, path, scene);
+    io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
+    std::string const restored = stateChecksum(ctx.world, masterRecords(local));
+    if (restored != slice.info.stateChecksum)
+        throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
+                                           "the checkpoint says {}",
+                                           path, restored, slice.info.stateChecksum));
+    double const seconds = ctx.world.allReduce(MPI_Wtime() - start, core::ReduceOp::Max);
+    core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
+                    "entries, read and distributed in {:.3g} s",
+                    path, slice.info.step, slice.info.time, slice.info.grainCount,
+                    slice.info.historyCount, seconds);
+    return {slice.info.step, slice.info.time};
+}
+
+} // namespace
 
 int runScene(core::AppContext& ctx) {
     core::Comm const& world = ctx.world;
     expandScenarios(ctx.scene, world.size());
     SceneDescription scene = parseScene(ctx.scene, ctx.options.scenePath);
-    if (!ctx.options.restartPath.empty())
-        throw core::InputError(fmt::format("--restart {}: restarting from a checkpoint needs the "
-                                           "HDF5 checkpoint reader of the io module, which this "
-                                           "build does not have yet",
-                                           ctx.options.restartPath));
+    bool const restart = !ctx.options.restartPath.empty();
     // Fail before the run, not after it, if an output file cannot be written.
     if (!ctx.options.jsonPath.empty())
         checkWritable(world, ctx.options.jsonPath, "--json");
@@ -47,19 +115,21 @@ int runScene(core::AppContext& ctx) {
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
     domain::BlockForest const forest(world, scene.forest);
-    auto const grains = generateLocalGrains(world, ctx.scene, scene, forest);
-    std::vector<AutoChoice> choices;
-    {
-        auto const masters = makeMasters(grains, forest, world.rank());
-        choices = resolveAutoChoices(world, masters, scene);
-        checkInitialState(world, masters, scene);
-        warnLazyUpdateThreshold(world, masters, scene);
-    }
+    // The particles of this rank's blocks: masters now, shadows from the set-up's sync.
+    particles::LocalParticles local(forest);
+    RunStart const start = restart ? restoreState(ctx, scene, local) : RunStart{};
+    std::int64_t const startStep = start.step;
+    std::vector<AutoChoice> const choices =
+        restart ? refuseAutoOnRestart(scene) : generateInitialState(ctx, scene, forest, local);
+    // Simulated time after a step: continued from the checkpoint's (its dt may differ).
+    auto const timeAt = [&](std::int64_t step) {
+        return start.time + static_cast<double>(step - startStep) * scene.time.dt;
+    };
     if (ctx.isRoot() && !ctx.options.quiet)
         for (AutoChoice const& c : choices)
             fmt::print("  auto: {} = {} ({})\n", c.key, c.value, c.reason);
     auto const selfGravity = makeSelfGravity(world, forest, scene);
-    auto const counts = countParticles(world, static_cast<std::int64_t>(grains.size()));
+    auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
     if (ctx.isRoot() && !ctx.options.quiet)
         printSceneReport(ctx, scene, forest, counts);
     if (forest.idleRankCount() > 0)
@@ -67,16 +137,14 @@ int runScene(core::AppContext& ctx) {
                         "ranks",
                         forest.idleRankCount(), world.size());
     auto const wallOverlaps = world.allReduce(
-        static_cast<long long>(countWallOverlaps(toMasterRecords(grains), scene.walls)),
+        static_cast<long long>(countWallOverlaps(masterRecords(local), scene.walls)),
         core::ReduceOp::Sum);
-    if (wallOverlaps > 0)
+    if (wallOverlaps > 0 && !restart)
         core::log::warn("{} of {} grains overlap a wall at the start", wallOverlaps, counts.total);
 
-    // The particles of this rank's blocks, their shadows, and the time step (DESIGN.md, "The
-    // time step"): NNS refuses a grain too large for it (InputError, exit 2 on every rank),
-    // then every shadow is created and the initial forces computed.
-    particles::LocalParticles local(forest);
-    addMasters(local, grains);
+    // The time step (DESIGN.md, "The time step"): NNS refuses a grain too large for it
+    // (InputError, exit 2 on every rank), then every shadow is created and, for a new run,
+    // the initial forces computed (a restart has them from the checkpoint).
     particles::ParticleSync sync(world, forest, scene.sync);
     core::TimerTree timers([] { return MPI_Wtime(); });
     particles::DemStepConfig stepConfig;
@@ -88,10 +156,39 @@ int runScene(core::AppContext& ctx) {
     if (selfGravity)
         dem.setBodyForces(
             [g = selfGravity.get()](particles::LocalParticles& l) { g->addForces(l); });
-    dem.setUp();
-    checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
+    if (restart) {
+        dem.resume(static_cast<std::uint64_t>(startStep));
+    } else {
+        dem.setUp();
+        checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
+    }
 
-    LoopOutcome const loop = runTimeLoop(world, dem, sync, timers, scene.time.steps);
+    // Output during the run: checkpoints, VTK files (the start state too), the progress line.
+    CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local, timeAt);
+    std::optional<io::VtkOutput> vtk;
+    if (scene.output.vtkEvery > 0) {
+        // A restart continues the series of the run it restarts (the entries before it).
+        io::VtkOptions options{scene.output.dir, scene.output.vtkShadows, true};
+        if (restart)
+            options.keepEntriesBefore = start.time;
+        vtk.emplace(world, options);
+        vtk->write(startStep, start.time, local);
+    }
+    ProgressLine progress(ProgressSettings{
+        startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
+        std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
+        scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
+    auto const afterStep = [&](std::int64_t stepsDone) {
+        if (checkpoints.due(stepsDone))
+            progress.clear(); // the checkpoint's log line gets a line of its own
+        checkpoints.afterStep(stepsDone);
+        if (vtk && stepsDone % scene.output.vtkEvery == 0)
+            vtk->write(stepsDone, timeAt(stepsDone), local);
+        progress.afterStep(stepsDone);
+    };
+    LoopOutcome const loop =
+        runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
+    progress.finish();
 
     auto const masters = masterRecords(local);
     if (!ctx.options.dumpPath.empty())

@@ -7,6 +7,7 @@
 #include "particles/generators/ParticleSpecValidation.hpp"
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 
 namespace regolith::apps {
@@ -128,6 +129,12 @@ OutputSection parseOutput(core::ConfigTable const& t) {
     s.vtkEvery = t.getOrIf<std::int64_t>("vtk_every", 0, isNonNegative, "a non-negative integer");
     s.checkpointEvery =
         t.getOrIf<std::int64_t>("checkpoint_every", 0, isNonNegative, "a non-negative integer");
+    s.checkpointKeep = t.getOrIf<std::int64_t>("checkpoint_keep", s.checkpointKeep, isNonNegative,
+                                               "a non-negative integer");
+    s.vtkShadows = t.getOr<bool>("vtk_shadows", false);
+    s.progressSeconds = t.getOrIf<double>(
+        "progress_seconds", s.progressSeconds,
+        [](double v) { return std::isfinite(v) && v >= 0.0; }, "a non-negative number");
     return s;
 }
 

@@ -80,11 +80,18 @@ struct GravitySection {
     std::string petscOptions;
 };
 
-/// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never).
+/// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),
+/// checkpoint_keep >= 0 (how many of the newest checkpoints to keep in dir; 0: all; default
+/// 2), vtk_shadows (also write the shadow copies, flagged; default false), progress_seconds
+/// (>= 0: interval of the progress lines when standard output is not a terminal; 0: none;
+/// default 10).
 struct OutputSection {
     std::string dir = "out";
     std::int64_t vtkEvery = 0;
     std::int64_t checkpointEvery = 0;
+    std::int64_t checkpointKeep = 2;
+    bool vtkShadows = false;
+    double progressSeconds = 10.0;
 };
 
 /// A whole scene. `name` is the top-level `name` key, else the scene file's stem.

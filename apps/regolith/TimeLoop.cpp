@@ -9,15 +9,18 @@
 namespace regolith::apps {
 
 LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
-                        particles::ParticleSync& sync, core::TimerTree& timers,
-                        std::int64_t steps) {
+                        particles::ParticleSync& sync, core::TimerTree& timers, std::int64_t steps,
+                        AfterStep const& afterStep) {
     timers.reset();
     sync.resetCounters();
     std::uint64_t const leftBefore = dem.leftDomain();
     comm.barrier(); // every rank starts the clock together
     double const start = MPI_Wtime();
-    for (std::int64_t n = 0; n < steps; ++n)
+    for (std::int64_t n = 0; n < steps; ++n) {
         dem.step();
+        if (afterStep)
+            afterStep(static_cast<std::int64_t>(dem.stepsDone()));
+    }
     double const elapsed = MPI_Wtime() - start;
 
     LoopOutcome out;

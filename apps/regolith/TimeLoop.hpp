@@ -11,6 +11,7 @@
 #include "particles/sync/ParticleSync.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace regolith::apps {
@@ -26,12 +27,18 @@ struct LoopOutcome {
     std::int64_t leftDomain = 0; ///< masters that left an open domain, over all ranks
 };
 
+/// Called after every step with the number of steps done (dem.stepsDone()): output,
+/// checkpoints, progress. Must be collective-safe (called on every rank alike).
+using AfterStep = std::function<void(std::int64_t stepsDone)>;
+
 /// Runs `steps` steps of `dem` after forgetting the set-up's timers and traffic (so both
-/// cover the loop only). Pre: dem.setUp() was called; `dem` uses `sync` and `timers`.
+/// cover the loop only), calling `afterStep` (if set) after each; its time (output written
+/// during the run) is part of wallSeconds, as in LAMMPS's loop time. Pre: dem.setUp() or
+/// dem.resume() was called; `dem` uses `sync` and `timers`.
 /// COLLECTIVE over `comm` (the communicator `sync` was built from).
 [[nodiscard]] LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
                                       particles::ParticleSync& sync, core::TimerTree& timers,
-                                      std::int64_t steps);
+                                      std::int64_t steps, AfterStep const& afterStep = {});
 
 /// The masters of every local block as reported records (block order, then storage order).
 /// Not collective.

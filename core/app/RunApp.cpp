@@ -72,9 +72,12 @@ int runApp(int argc, char** argv, std::string_view appName, std::string_view def
             embedded ? ConfigTable::fromString(defaultSceneToml, "<embedded default scene>")
                      : loadConfigFile(world, options.scenePath);
         applySceneOptions(options, scene);
-        AppContext context{world, options, scene,
+        AppContext context{world,
+                           options,
+                           scene,
                            embedded ? "<embedded default scene>" : options.scenePath,
-                           std::string(appName)};
+                           std::string(appName),
+                           defaultSceneToml};
         int const code = body(context);
         std::fflush(stdout);
         return code;

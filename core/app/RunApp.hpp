@@ -17,6 +17,7 @@ struct AppContext {
     ConfigTable& scene;        ///< root of the scene, command-line overrides applied
     std::string sceneName;     ///< the scene file, or "<embedded default scene>"
     std::string appName;
+    std::string_view defaultScene; ///< the app's embedded scene text (used without a file)
 
     [[nodiscard]] bool isRoot() const { return world.rank() == 0; }
 };

@@ -44,6 +44,19 @@ int DemStep::setUp() {
     return calls;
 }
 
+int DemStep::resume(std::uint64_t stepsDone) {
+    m_sync->requireNnsApplicable(*m_local);
+    int calls = 0;
+    {
+        auto const t = m_timers->scope(kSyncTimer);
+        calls = m_sync->syncUntilConverged(*m_local);
+    }
+    if (m_config.checkInvariants)
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume");
+    m_steps = stepsDone;
+    return calls;
+}
+
 void DemStep::step() {
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;

@@ -104,6 +104,15 @@ public:
     /// them. COLLECTIVE.
     int setUp();
 
+    /// Instead of setUp(), for a run restarted from a checkpoint: the masters were added
+    /// with the force, torque and contact history of the step `stepsDone` they were saved
+    /// at. Refuses what setUp refuses, synchronises until every shadow exists, and continues
+    /// the step numbering (history stamps) after `stepsDone`. It computes no forces: the
+    /// restored ones are those velocity Verlet's next half kick must see, and evaluating the
+    /// contacts again would advance the tangential springs a second time. Returns the number
+    /// of sync calls. COLLECTIVE.
+    int resume(std::uint64_t stepsDone);
+
     /// One time step (see the class comment); the step number (stamp) is stepsDone() + 1.
     /// Throws what the synchronisation throws (core::Error: a grain too fast or too large
     /// for NNS, a malformed message). COLLECTIVE.
@@ -113,7 +122,7 @@ public:
     /// before setUp(), so that the initial forces include them.
     void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
 
-    /// Steps done since construction.
+    /// Steps done: since construction, plus the checkpoint's steps after resume().
     [[nodiscard]] std::uint64_t stepsDone() const { return m_steps; }
     /// Masters this rank removed because they left an open domain, over all steps (set-up
     /// removes none: every master starts in the block containing it). Local: sum over ranks

@@ -1,0 +1,127 @@
+#include "apps/regolith/Checkpointing.hpp"
+
+#include "apps/common/StateChecksum.hpp"
+#include "apps/regolith/TimeLoop.hpp"
+#include "core/Error.hpp"
+#include "core/log/Log.hpp"
+#include "io/checkpoint/CheckpointSeries.hpp"
+#include "io/checkpoint/CheckpointWriter.hpp"
+#include "io/checkpoint/GrainState.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <mpi.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace regolith::apps {
+
+std::string sceneText(core::AppContext const& ctx) {
+    std::string text;
+    if (ctx.isRoot()) {
+        if (ctx.options.scenePath.empty()) {
+            text = std::string(ctx.defaultScene);
+        } else {
+            std::ifstream in(ctx.options.scenePath);
+            std::ostringstream s;
+            s << in.rdbuf();
+            text = s.str(); // the scene was read moments ago; an empty text only loses provenance
+        }
+        for (std::string const& o : ctx.options.overrides)
+            text += "\n# --set " + o;
+        if (ctx.options.steps)
+            text += fmt::format("\n# --steps {}", *ctx.options.steps);
+    }
+    ctx.world.broadcast(text, 0);
+    return text;
+}
+
+namespace {
+
+std::string describe(core::AABB const& box, std::array<bool, 3> const& periodic) {
+    return fmt::format("[{}, {}, {}] - [{}, {}, {}], periodic [{}]", box.min.x(), box.min.y(),
+                       box.min.z(), box.max.x(), box.max.y(), box.max.z(),
+                       fmt::join(periodic, ", "));
+}
+
+} // namespace
+
+io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
+                                SceneDescription const& scene) {
+    io::CheckpointSlice slice = io::readCheckpoint(comm, path);
+    io::CheckpointInfo const& info = slice.info;
+    std::string const context = "--restart " + path;
+    bool const sameDomain = info.domain.min == scene.forest.domain.min &&
+                            info.domain.max == scene.forest.domain.max &&
+                            info.periodic == scene.forest.periodic;
+    if (!sameDomain)
+        throw core::InputError(
+            fmt::format("{}: the checkpoint was written for the domain {}, the scene has {}",
+                        context, describe(info.domain, info.periodic),
+                        describe(scene.forest.domain, scene.forest.periodic)));
+    if (info.step > scene.time.steps)
+        throw core::InputError(fmt::format("{}: the checkpoint is at step {}, beyond the scene's "
+                                           "time.steps = {} (a total, not a remainder)",
+                                           context, info.step, scene.time.steps));
+    if (info.dt != scene.time.dt)
+        core::log::warn("{}: the checkpoint was written with time.dt = {}, the scene has {}",
+                        context, info.dt, scene.time.dt);
+    return slice;
+}
+
+CheckpointSchedule::CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene,
+                                       std::string text, particles::LocalParticles const& local,
+                                       TimeAt timeAt)
+    : m_comm(&comm)
+    , m_local(&local)
+    , m_output(scene.output)
+    , m_dt(scene.time.dt)
+    , m_forest(scene.forest)
+    , m_text(std::move(text))
+    , m_timeAt(std::move(timeAt)) {
+    if (m_output.checkpointEvery <= 0)
+        return;
+    std::string failure;
+    if (comm.rank() == 0) {
+        std::error_code ec;
+        std::filesystem::create_directories(m_output.dir, ec);
+        if (ec)
+            failure = fmt::format("output.dir = \"{}\": cannot create the directory for "
+                                  "checkpoints: {}",
+                                  m_output.dir, ec.message());
+    }
+    comm.broadcast(failure, 0);
+    if (!failure.empty())
+        throw core::InputError(failure);
+}
+
+void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
+    if (due(stepsDone))
+        write(stepsDone);
+}
+
+std::string CheckpointSchedule::write(std::int64_t stepsDone) {
+    io::CheckpointInfo info;
+    info.step = stepsDone;
+    info.time = m_timeAt(stepsDone);
+    info.dt = m_dt;
+    info.domain = m_forest.domain;
+    info.periodic = m_forest.periodic;
+    info.scene = m_text;
+    info.stateChecksum = stateChecksum(*m_comm, masterRecords(*m_local));
+    std::string const path = io::checkpointPath(m_output.dir, stepsDone);
+    double const start = MPI_Wtime();
+    auto const grains = io::collectMasters(*m_local);
+    std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);
+    double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
+    if (m_comm->rank() == 0)
+        io::rotateCheckpoints(m_output.dir, m_output.checkpointKeep);
+    core::log::info("checkpoint {}: {} grains, {} history entries, {:.3g} MB in {:.3g} s", path,
+                    info.grainCount, info.historyCount, static_cast<double>(bytes) * 1e-6, seconds);
+    return path;
+}
+
+} // namespace regolith::apps

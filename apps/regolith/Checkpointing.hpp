@@ -1,0 +1,59 @@
+#pragma once
+/// Checkpoints of a `regolith` run (output.checkpoint_every, output.checkpoint_keep) and the
+/// restart from one (--restart FILE), on top of io/checkpoint.
+#include "apps/regolith/SceneSections.hpp"
+#include "core/app/RunApp.hpp"
+#include "core/mpi/Comm.hpp"
+#include "io/checkpoint/CheckpointReader.hpp"
+#include "particles/sync/BlockParticles.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace regolith::apps {
+
+/// The scene as text, stored in every checkpoint for provenance: the scene file (or the
+/// app's embedded scene, ctx.defaultScene), then each command-line override as a comment
+/// line. Rank 0 reads, every rank gets the same text. COLLECTIVE over ctx.world.
+[[nodiscard]] std::string sceneText(core::AppContext const& ctx);
+
+/// Reads the checkpoint `path` (io::readCheckpoint: every rank its slice) and checks that it
+/// belongs to `scene`: the same domain box and periodicity, and a step not beyond
+/// time.steps. A different time step is allowed, with a warning. Throws the same
+/// core::InputError on every rank naming the file and what differs. COLLECTIVE over `comm`.
+[[nodiscard]] io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
+                                              SceneDescription const& scene);
+
+/// Writes a checkpoint every output.checkpoint_every steps into output.dir, as
+/// checkpoint_<step>.h5, keeping the newest output.checkpoint_keep.
+class CheckpointSchedule {
+public:
+    /// Simulated time after a step [time].
+    using TimeAt = std::function<double(std::int64_t step)>;
+    /// Creates output.dir (rank 0) if checkpoints are due at all; throws core::InputError on
+    /// every rank if it cannot. COLLECTIVE over `comm`, which must outlive this object, as
+    /// must `local`.
+    CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene, std::string text,
+                       particles::LocalParticles const& local, TimeAt timeAt);
+
+    /// Whether afterStep(stepsDone) writes a checkpoint. Not collective.
+    [[nodiscard]] bool due(std::int64_t stepsDone) const {
+        return m_output.checkpointEvery > 0 && stepsDone % m_output.checkpointEvery == 0;
+    }
+    /// Writes the checkpoint of step `stepsDone` if one is due. COLLECTIVE.
+    void afterStep(std::int64_t stepsDone);
+    /// Writes the checkpoint of step `stepsDone` now; returns its path. COLLECTIVE.
+    std::string write(std::int64_t stepsDone);
+
+private:
+    core::Comm const* m_comm;
+    particles::LocalParticles const* m_local;
+    OutputSection m_output;
+    double m_dt;
+    domain::ForestSpec m_forest;
+    std::string m_text;
+    TimeAt m_timeAt;
+};
+
+} // namespace regolith::apps

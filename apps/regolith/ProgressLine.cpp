@@ -1,0 +1,84 @@
+#include "apps/regolith/ProgressLine.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <unistd.h>
+#include <utility>
+
+namespace regolith::apps {
+
+namespace {
+
+double now() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+std::string duration(double seconds) {
+    if (seconds < 120.0)
+        return fmt::format("{:.1f} s", seconds);
+    if (seconds < 7200.0)
+        return fmt::format("{:.1f} min", seconds / 60.0);
+    return fmt::format("{:.1f} h", seconds / 3600.0);
+}
+
+constexpr double kTerminalRedrawSeconds = 0.2;
+
+} // namespace
+
+ProgressLine::ProgressLine(ProgressSettings settings)
+    : m_settings(std::move(settings))
+    , m_terminal(m_settings.enabled && ::isatty(STDOUT_FILENO) == 1)
+    , m_start(now())
+    , m_lastPrint(m_start) {}
+
+std::string ProgressLine::text(std::int64_t stepsDone, double elapsed) const {
+    auto const done = static_cast<double>(stepsDone - m_settings.firstStep);
+    auto const left = static_cast<double>(m_settings.lastStep - stepsDone);
+    double const rate = elapsed > 0.0 ? done / elapsed : 0.0;
+    std::string const eta = rate > 0.0 ? duration(left / rate) : std::string("?");
+    return fmt::format("step {}/{}  t = {:.6g}  {:.4g} steps/s  ETA {}  {} grains  sync {}  "
+                       "gravity {}",
+                       stepsDone, m_settings.lastStep, m_settings.firstTime + done * m_settings.dt,
+                       rate, eta, m_settings.grains, m_settings.sync, m_settings.gravity);
+}
+
+void ProgressLine::afterStep(std::int64_t stepsDone) {
+    if (!m_settings.enabled)
+        return;
+    double const t = now();
+    bool const last = stepsDone >= m_settings.lastStep;
+    if (m_terminal) {
+        if (!last && t - m_lastPrint < kTerminalRedrawSeconds)
+            return;
+        // Carriage return and "erase to end of line": the line is redrawn in place.
+        fmt::print("\r{}\x1b[K", text(stepsDone, t - m_start));
+        m_drawn = true;
+    } else {
+        if (m_settings.logSeconds <= 0.0 || t - m_lastPrint < m_settings.logSeconds)
+            return;
+        fmt::print("{}\n", text(stepsDone, t - m_start));
+    }
+    std::fflush(stdout);
+    m_lastPrint = t;
+}
+
+void ProgressLine::clear() {
+    if (m_drawn) {
+        fmt::print("\r\x1b[K");
+        std::fflush(stdout);
+        m_drawn = false;
+    }
+}
+
+void ProgressLine::finish() {
+    if (m_drawn) {
+        fmt::print("\n");
+        std::fflush(stdout);
+        m_drawn = false;
+    }
+}
+
+} // namespace regolith::apps

@@ -1,0 +1,42 @@
+#pragma once
+/// What a checkpoint file says about itself besides the grains (io/checkpoint/GrainState.hpp):
+/// the format version, where the run stood, the scene it was written for, and checksums.
+///
+/// File layout (HDF5, one file per checkpoint; N grains, H contact-history entries in all):
+///   attributes of "/": format_version, step, time, dt, domain_min[3], domain_max[3],
+///                      periodic[3], scene (text), state_checksum (text), grain_count,
+///                      history_count, checksum
+///   datasets: uid[N], position[N,3], velocity[N,3], angular_velocity[N,3],
+///             orientation[N,4] (w, x, y, z), force[N,3], torque[N,3], radius[N], mass[N],
+///             type[N], flags[N], history_offset[N] (first entry of the grain),
+///             history_count[N], history_partner[H], history_spring[H,3], history_stamp[H]
+/// `checksum` is the FNV-1a of the attributes plus the sum over grains of grainHash: any
+/// slice of grains can be hashed by any rank, so a file is verified on any rank count.
+#include "core/math/AABB.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace regolith::io {
+
+/// The checkpoint format this build writes and reads. Bump it with every layout change.
+inline constexpr std::int64_t kCheckpointFormatVersion = 1;
+
+struct CheckpointInfo {
+    std::int64_t formatVersion = kCheckpointFormatVersion;
+    std::int64_t step = 0; ///< time steps done when the checkpoint was written
+    double time = 0.0;     ///< simulated time at that step [time]
+    double dt = 0.0;       ///< the run's time step [time]
+    core::AABB domain;     ///< the forest's domain the run used
+    std::array<bool, 3> periodic{false, false, false};
+    std::string scene;              ///< the scene as text (provenance; not parsed on restart)
+    std::string stateChecksum;      ///< the run's state checksum of these masters (apps), or ""
+    std::uint64_t grainCount = 0;   ///< over all ranks (filled by the writer)
+    std::uint64_t historyCount = 0; ///< over all ranks (filled by the writer)
+};
+
+/// FNV-1a of every field of `info` (the header part of the file checksum). Not collective.
+[[nodiscard]] std::uint64_t infoHash(CheckpointInfo const& info);
+
+} // namespace regolith::io

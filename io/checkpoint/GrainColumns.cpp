@@ -1,0 +1,126 @@
+#include "io/checkpoint/GrainColumns.hpp"
+
+#include "core/Error.hpp"
+
+#include <fmt/format.h>
+
+namespace regolith::io::detail {
+
+void GrainColumns::resize(std::size_t grains, std::size_t entries) {
+    uid.resize(grains);
+    for (auto* v : {&position, &velocity, &angularVelocity, &force, &torque})
+        v->resize(3 * grains);
+    orientation.resize(4 * grains);
+    radius.resize(grains);
+    mass.resize(grains);
+    type.resize(grains);
+    flags.resize(grains);
+    historyOffset.resize(grains);
+    historyCount.resize(grains);
+    partner.resize(entries);
+    spring.resize(3 * entries);
+    stamp.resize(entries);
+}
+
+std::vector<ColumnView> columnViews(GrainColumns& c) {
+    return {
+        {"uid", ColumnType::U64, 1, c.uid.data(), false},
+        {"position", ColumnType::F64, 3, c.position.data(), false},
+        {"velocity", ColumnType::F64, 3, c.velocity.data(), false},
+        {"angular_velocity", ColumnType::F64, 3, c.angularVelocity.data(), false},
+        {"orientation", ColumnType::F64, 4, c.orientation.data(), false},
+        {"force", ColumnType::F64, 3, c.force.data(), false},
+        {"torque", ColumnType::F64, 3, c.torque.data(), false},
+        {"radius", ColumnType::F64, 1, c.radius.data(), false},
+        {"mass", ColumnType::F64, 1, c.mass.data(), false},
+        {"type", ColumnType::U32, 1, c.type.data(), false},
+        {"flags", ColumnType::U8, 1, c.flags.data(), false},
+        {"history_offset", ColumnType::U64, 1, c.historyOffset.data(), false},
+        {"history_count", ColumnType::U32, 1, c.historyCount.data(), false},
+        {"history_partner", ColumnType::U64, 1, c.partner.data(), true},
+        {"history_spring", ColumnType::F64, 3, c.spring.data(), true},
+        {"history_stamp", ColumnType::U32, 1, c.stamp.data(), true},
+    };
+}
+
+namespace {
+
+void put3(std::vector<double>& v, std::size_t row, core::Vec3 const& x) {
+    for (std::size_t k = 0; k < 3; ++k)
+        v[3 * row + k] = x[static_cast<Eigen::Index>(k)];
+}
+
+core::Vec3 get3(std::vector<double> const& v, std::size_t row) {
+    return {v[3 * row], v[3 * row + 1], v[3 * row + 2]};
+}
+
+} // namespace
+
+GrainColumns toColumns(std::span<GrainState const> grains, std::uint64_t historyBase) {
+    std::size_t entries = 0;
+    for (GrainState const& g : grains)
+        entries += g.history.size();
+    GrainColumns c;
+    c.resize(grains.size(), entries);
+    std::size_t e = 0;
+    for (std::size_t i = 0; i < grains.size(); ++i) {
+        GrainState const& g = grains[i];
+        c.uid[i] = g.uid;
+        put3(c.position, i, g.position);
+        put3(c.velocity, i, g.velocity);
+        put3(c.angularVelocity, i, g.angularVelocity);
+        c.orientation[4 * i] = g.orientation.w();
+        c.orientation[4 * i + 1] = g.orientation.x();
+        c.orientation[4 * i + 2] = g.orientation.y();
+        c.orientation[4 * i + 3] = g.orientation.z();
+        put3(c.force, i, g.force);
+        put3(c.torque, i, g.torque);
+        c.radius[i] = g.radius;
+        c.mass[i] = g.mass;
+        c.type[i] = g.type;
+        c.flags[i] = g.flags;
+        c.historyOffset[i] = historyBase + e;
+        c.historyCount[i] = static_cast<std::uint32_t>(g.history.size());
+        for (particles::HistoryEntry const& h : g.history) {
+            c.partner[e] = h.partner;
+            put3(c.spring, e, h.spring);
+            c.stamp[e] = h.stamp;
+            ++e;
+        }
+    }
+    return c;
+}
+
+std::vector<GrainState> fromColumns(GrainColumns const& c, std::uint64_t historyBase,
+                                    std::string const& context) {
+    std::vector<GrainState> out(c.uid.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        GrainState& g = out[i];
+        g.uid = c.uid[i];
+        g.position = get3(c.position, i);
+        g.velocity = get3(c.velocity, i);
+        g.angularVelocity = get3(c.angularVelocity, i);
+        g.orientation = core::Quat(c.orientation[4 * i], c.orientation[4 * i + 1],
+                                   c.orientation[4 * i + 2], c.orientation[4 * i + 3]);
+        g.force = get3(c.force, i);
+        g.torque = get3(c.torque, i);
+        g.radius = c.radius[i];
+        g.mass = c.mass[i];
+        g.type = c.type[i];
+        g.flags = c.flags[i];
+        std::uint64_t const first = c.historyOffset[i];
+        std::uint64_t const count = c.historyCount[i];
+        if (first < historyBase || first - historyBase + count > c.partner.size())
+            throw core::InputError(fmt::format(
+                "{}: grain uid {} names history entries [{}, {}) outside the stored ones", context,
+                g.uid, first, first + count));
+        g.history.resize(count);
+        for (std::uint64_t k = 0; k < count; ++k) {
+            std::size_t const e = first - historyBase + k;
+            g.history[k] = {c.partner[e], get3(c.spring, e), c.stamp[e]};
+        }
+    }
+    return out;
+}
+
+} // namespace regolith::io::detail

@@ -1,0 +1,55 @@
+#pragma once
+/// Internal to io/: grains as columns (one array per stored field), the form in which they go
+/// to and come from the checkpoint's datasets (CheckpointInfo.hpp lists the layout).
+#include "io/checkpoint/GrainState.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace regolith::io::detail {
+
+/// The element type of a column, mapped to an HDF5 type by the reader and writer.
+enum class ColumnType { U64, U32, U8, F64 };
+
+struct GrainColumns {
+    std::vector<std::uint64_t> uid;
+    std::vector<double> position, velocity, angularVelocity, orientation, force, torque;
+    std::vector<double> radius, mass;
+    std::vector<std::uint32_t> type;
+    std::vector<std::uint8_t> flags;
+    std::vector<std::uint64_t> historyOffset; ///< global index of the grain's first entry
+    std::vector<std::uint32_t> historyCount;
+    std::vector<std::uint64_t> partner; ///< history entries, grain after grain
+    std::vector<double> spring;
+    std::vector<std::uint32_t> stamp;
+
+    /// Resizes every grain column to `grains` rows and every history column to `entries`.
+    void resize(std::size_t grains, std::size_t entries);
+};
+
+/// One column seen untyped: dataset name, element type, values per row, data, whether it is
+/// a history column (H rows) or a grain column (N rows).
+struct ColumnView {
+    char const* name;
+    ColumnType type;
+    std::size_t width;
+    void* data;
+    bool history;
+};
+
+/// Every column of `c`, in the file's order. The views point into `c`.
+[[nodiscard]] std::vector<ColumnView> columnViews(GrainColumns& c);
+
+/// `grains` as columns; the history offsets start at `historyBase` (the number of entries
+/// stored before this slice).
+[[nodiscard]] GrainColumns toColumns(std::span<GrainState const> grains, std::uint64_t historyBase);
+
+/// The grains back from columns whose history offsets start at `historyBase`. Throws
+/// core::InputError (prefixed with `context`) if an offset or count points outside the
+/// history columns.
+[[nodiscard]] std::vector<GrainState> fromColumns(GrainColumns const& c, std::uint64_t historyBase,
+                                                  std::string const& context);
+
+} // namespace regolith::io::detail

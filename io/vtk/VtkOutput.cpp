@@ -1,0 +1,136 @@
+#include "io/vtk/VtkOutput.hpp"
+
+#include "core/Error.hpp"
+#include "core/log/Log.hpp"
+#include "io/detail/AgreeOnError.hpp"
+#include "io/vtk/VtkPieces.hpp"
+#include "io/vtk/VtkSeries.hpp"
+
+#include <fmt/format.h>
+#include <vtkObject.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <system_error>
+
+namespace regolith::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Writes `text` to `path` through a temporary file and a rename. Throws core::InputError.
+void writeText(fs::path const& path, std::string const& text) {
+    fs::path const tmp = path.string() + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush())
+            throw core::InputError(fmt::format("cannot write '{}'", tmp.string()));
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec)
+        throw core::InputError(fmt::format("cannot write '{}': {}", path.string(), ec.message()));
+}
+
+std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
+    std::string out = "<?xml version=\"1.0\"?>\n"
+                      "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                      "  <Collection>\n";
+    for (auto const& [time, file] : steps)
+        out += fmt::format(
+            "    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time, file);
+    out += "  </Collection>\n</VTKFile>\n";
+    return out;
+}
+
+/// The entries of an existing series before `time` (a restart continues it).
+std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time) {
+    std::vector<std::pair<double, std::string>> out;
+    if (time == -std::numeric_limits<double>::infinity() || !fs::is_regular_file(pvd))
+        return out;
+    try {
+        for (SeriesEntry const& e : readSeries(pvd))
+            if (e.time < time)
+                out.emplace_back(e.time, e.file);
+    } catch (core::InputError const& e) {
+        core::log::warn("{}: starting the series afresh", e.what());
+    }
+    return out;
+}
+
+} // namespace
+
+VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
+    : m_comm(&comm)
+    , m_options(std::move(options)) {
+    // VTK would print its own error text on every failing rank; the failure is reported
+    // once, as an InputError naming the file (writeParticlePiece, writeBlockPiece).
+    vtkObject::GlobalWarningDisplayOff();
+    detail::agreeOnError(comm, [&] {
+        if (comm.rank() != 0)
+            return;
+        std::error_code ec;
+        fs::create_directories(fs::path(m_options.dir) / "vtk", ec);
+        if (ec)
+            throw core::InputError(fmt::format("output.dir = \"{}\": cannot create the directory "
+                                               "for VTK output: {}",
+                                               m_options.dir, ec.message()));
+        m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
+        m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
+    });
+}
+
+std::string VtkOutput::particleSeriesPath() const {
+    return (fs::path(m_options.dir) / "particles.pvd").string();
+}
+
+std::string VtkOutput::blockSeriesPath() const {
+    return (fs::path(m_options.dir) / "blocks.pvd").string();
+}
+
+void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles const& local) {
+    fs::path const vtkDir = fs::path(m_options.dir) / "vtk";
+    auto const piece = [&](char const* kind, int rank) {
+        return fmt::format("{}_{:08d}_r{:04d}.vtu", kind, step, rank);
+    };
+    std::string const particleIndex = fmt::format("particles_{:08d}.pvtu", step);
+    std::string const blockIndex = fmt::format("blocks_{:08d}.pvtu", step);
+    detail::agreeOnError(*m_comm, [&] {
+        try {
+            detail::writeParticlePiece((vtkDir / piece("particles", m_comm->rank())).string(),
+                                       local, m_options.shadows);
+            if (m_options.blocks)
+                detail::writeBlockPiece((vtkDir / piece("blocks", m_comm->rank())).string(), local);
+        } catch (core::InputError const&) {
+            throw;
+        } catch (core::Error const& e) {
+            throw core::InputError(e.what()); // a full disk is the user's to fix
+        }
+    });
+    // Rank 0 writes the indices after every piece exists (the agreement above is a barrier).
+    detail::agreeOnError(*m_comm, [&] {
+        if (m_comm->rank() != 0)
+            return;
+        std::vector<std::string> particlePieces;
+        std::vector<std::string> blockPieces;
+        for (int r = 0; r < m_comm->size(); ++r) {
+            particlePieces.push_back(piece("particles", r));
+            blockPieces.push_back(piece("blocks", r));
+        }
+        writeText(vtkDir / particleIndex,
+                  detail::pvtuText(detail::particleArrays(m_options.shadows), {}, particlePieces));
+        m_particleSteps.emplace_back(time, "vtk/" + particleIndex);
+        writeText(particleSeriesPath(), pvdText(m_particleSteps));
+        if (m_options.blocks) {
+            writeText(vtkDir / blockIndex,
+                      detail::pvtuText({}, detail::blockArrays(), blockPieces));
+            m_blockSteps.emplace_back(time, "vtk/" + blockIndex);
+            writeText(blockSeriesPath(), pvdText(m_blockSteps));
+        }
+    });
+}
+
+} // namespace regolith::io

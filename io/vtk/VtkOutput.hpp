@@ -1,0 +1,59 @@
+#pragma once
+/// VTK XML output for ParaView (output.vtk_every): per output step one .vtu piece per rank
+/// and a .pvtu naming them, for the particles and for the block-forest outlines, and one
+/// .pvd time series of each per run:
+///
+///     <dir>/particles.pvd, <dir>/blocks.pvd           open these in ParaView
+///     <dir>/vtk/particles_<step>.pvtu, <dir>/vtk/particles_<step>_r<rank>.vtu
+///     <dir>/vtk/blocks_<step>.pvtu,    <dir>/vtk/blocks_<step>_r<rank>.vtu
+///
+/// Particles are points (one vertex cell each) with point data uid, radius, mass, velocity,
+/// angular_velocity, force, owner_rank, and with shadows on also `shadow` (1 for a shadow
+/// copy). Blocks are hexahedra with cell data block_id, owner_rank, level, grains (masters).
+/// No VTK header is visible here: VTK is linked PRIVATE to regolith::io.
+#include "core/mpi/Comm.hpp"
+#include "particles/sync/BlockParticles.hpp"
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace regolith::io {
+
+struct VtkOptions {
+    std::string dir = "out"; ///< output directory (created if missing)
+    bool shadows = false;    ///< also write shadow copies (flagged by the `shadow` array)
+    bool blocks = true;      ///< also write the block outlines at every output step
+    /// A restarted run continues the series of the run it restarts: the entries of existing
+    /// .pvd files in `dir` with a time below this are kept (the default keeps none).
+    double keepEntriesBefore = -std::numeric_limits<double>::infinity();
+};
+
+class VtkOutput {
+public:
+    /// Rank 0 creates <dir>/vtk and reads the entries to keep of existing series (see
+    /// VtkOptions::keepEntriesBefore; an unreadable old series is started afresh, with a
+    /// warning); throws core::InputError on every rank if the directory cannot be made.
+    /// COLLECTIVE over `comm`, which must outlive this object.
+    VtkOutput(core::Comm const& comm, VtkOptions options);
+
+    /// Writes the state of step `step` at simulated time `time`: every rank its pieces, rank
+    /// 0 the .pvtu indices and both .pvd series (rewritten whole each time, via a temporary
+    /// file, so they stay valid if the run stops). Throws core::InputError on every rank if a
+    /// file cannot be written. COLLECTIVE over the communicator.
+    void write(std::int64_t step, double time, particles::LocalParticles const& local);
+
+    /// The .pvd files this object writes.
+    [[nodiscard]] std::string particleSeriesPath() const;
+    [[nodiscard]] std::string blockSeriesPath() const;
+
+private:
+    core::Comm const* m_comm;
+    VtkOptions m_options;
+    std::vector<std::pair<double, std::string>> m_particleSteps; ///< (time, .pvtu) so far
+    std::vector<std::pair<double, std::string>> m_blockSteps;
+};
+
+} // namespace regolith::io

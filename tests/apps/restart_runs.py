@@ -1,0 +1,177 @@
+"""Checkpoint and restart of `regolith` end to end (issue 9), on the scene
+tests/apps/scenes/restart.toml (1000 grains falling on a floor, reproducible mode, 40 steps).
+
+usage: restart_runs.py --mpiexec M --app APP --scene SCENE --out DIR
+
+Checks, in order (exit 1 with the reason on the first failure):
+ 1. the reference: 40 steps on 2 ranks;
+ 2. 20 steps on 2 ranks writing a checkpoint every 5 steps and keeping 3: exactly the
+    checkpoints of steps 10, 15, 20 remain, no temporary file; its VTK output (every 10
+    steps) is a particles.pvd and blocks.pvd series of steps 0, 10, 20 whose .pvtu files
+    name 2 existing pieces holding the 1000 grains (the 8 blocks);
+ 3. restarts to the scene's 40 steps (a total): from step 20 on 3 ranks and from step 10 on
+    1 rank give the reference's checksum, having run 20 and 30 steps; the first, into the
+    directory of run 2, continues its VTK series (steps 0-10 on 2 ranks, 20-40 on 3);
+ 4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
+    non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
+ 5. a truncated file, a flipped byte, a scene with another domain and a step beyond
+    time.steps are refused on 2 ranks: exit code 2, the message once on stderr naming the
+    file, no crash, every checkpoint file byte-identical before and after.
+"""
+import argparse
+import hashlib
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+
+CRASH_SIGNS = ("internal error", "terminate called", "Segmentation fault", "MPI_ABORT",
+               "core dumped", "Sanitizer")
+
+
+def fail(message):
+    sys.exit(f"restart_runs: {message}")
+
+
+class Runner:
+    def __init__(self, mpiexec, app, scene, out):
+        self.mpiexec, self.app, self.scene, self.out = mpiexec, app, scene, out
+
+    def path(self, name):
+        return os.path.join(self.out, name)
+
+    def run(self, np, args, env_extra=None):
+        command = [self.mpiexec, "-n", str(np), "--oversubscribe", self.app, self.scene,
+                   "--quiet", *args]
+        env = dict(os.environ, **(env_extra or {}))
+        done = subprocess.run(command, capture_output=True, text=True, timeout=60, check=False,
+                              env=env)
+        return command, done
+
+    def summary(self, np, name, args):
+        json_path = self.path(name + ".json")
+        command, done = self.run(np, [*args, "--json", json_path])
+        if done.returncode != 0:
+            fail(f"{' '.join(command)} exited with {done.returncode}\n{done.stderr}")
+        with open(json_path, encoding="utf-8") as f:
+            return json.load(f)
+
+
+def digest(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def check_vtk(directory, steps, nps, dt=0.01):
+    """The driver's VTK series (io/vtk): counts from the XML headers of the pieces."""
+    for kind, total, what in (("particles", 1000, "NumberOfPoints"), ("blocks", 8, "NumberOfCells")):
+        root = ET.parse(os.path.join(directory, f"{kind}.pvd")).getroot()
+        sets = root.find("Collection").findall("DataSet")
+        if [(round(float(d.get("timestep")), 9), d.get("file")) for d in sets] != [
+                (round(s * dt, 9), f"vtk/{kind}_{s:08d}.pvtu") for s in steps]:
+            fail(f"{directory}/{kind}.pvd lists {[d.attrib for d in sets]}")
+        for d, np in zip(sets, nps):
+            index = os.path.join(directory, d.get("file"))
+            pieces = [p.get("Source") for p in ET.parse(index).getroot().iter("Piece")]
+            if len(pieces) != np:
+                fail(f"{index} names {len(pieces)} pieces, expected {np}")
+            count = 0
+            for piece in pieces:
+                with open(os.path.join(os.path.dirname(index), piece), "rb") as f:
+                    header = f.read(2000).decode("latin-1")
+                count += int(re.search(what + r'="\s*(\d+)', header).group(1))
+            if count != total:
+                fail(f"{index}: {count} {what} in its pieces, expected {total}")
+
+
+def expect_refused(runner, np, args, message, files):
+    before = {f: digest(f) for f in files}
+    command, done = runner.run(np, args)
+    line = f"{' '.join(command)}\n--- stderr:\n{done.stderr}"
+    if done.returncode != 2:
+        fail(f"expected exit code 2, got {done.returncode}: {line}")
+    if done.stderr.count(message) != 1:
+        fail(f"expected the message {message!r} once on stderr: {line}")
+    if any(sign in done.stderr for sign in CRASH_SIGNS):
+        fail(f"a crash sign on stderr: {line}")
+    if {f: digest(f) for f in files} != before:
+        fail(f"a checkpoint file changed: {line}")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    for option in ("--mpiexec", "--app", "--scene", "--out"):
+        parser.add_argument(option, required=True)
+    a = parser.parse_args()
+    out = os.path.join(a.out, "restart")
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(out)
+    runner = Runner(a.mpiexec, a.app, a.scene, out)
+
+    reference = runner.summary(2, "reference", [])["checksum"]
+
+    first = runner.path("first")
+    runner.summary(2, "first", ["--steps", "20", "--output", first,
+                                "--set", "output.checkpoint_every=5",
+                                "--set", "output.checkpoint_keep=3",
+                                "--set", "output.vtk_every=10"])
+    check_vtk(first, (0, 10, 20), (2, 2, 2))
+    names = sorted(n for n in os.listdir(first) if n.startswith("checkpoint"))
+    expected = [f"checkpoint_{s:08d}.h5" for s in (10, 15, 20)]
+    if names != expected:
+        fail(f"{first} holds {names}, expected {expected} (rotation, no temporary file)")
+    step10, step20 = (os.path.join(first, expected[k]) for k in (0, 2))
+
+    # The 3-rank restart writes into the first run's directory: its VTK series continues.
+    for np, start, steps, out in ((3, step20, 20, first), (1, step10, 30, runner.path("r1"))):
+        s = runner.summary(np, f"restart_np{np}", ["--restart", start, "--output", out,
+                                                   "--set", "output.vtk_every=10"])
+        if s["checksum"] != reference or s["steps"] != steps or s["particles"] != 1000:
+            fail(f"restart from {start} on {np} ranks: checksum {s['checksum']}, steps "
+                 f"{s['steps']}, particles {s['particles']}; expected {reference}, {steps}, 1000")
+
+    check_vtk(first, (0, 10, 20, 30, 40), (2, 2, 3, 3, 3))
+
+    killed = runner.path("killed")
+    command, done = runner.run(2, ["--output", killed, "--set", "output.checkpoint_every=10"],
+                               {"REGOLITH_TEST_ABORT_IN_CHECKPOINT": "20"})
+    if done.returncode == 0:
+        fail(f"{' '.join(command)}: the writer killed at step 20 exited 0")
+    if os.path.exists(os.path.join(killed, "checkpoint_00000020.h5")):
+        fail("the killed writer left a checkpoint of step 20 under its final name")
+    s = runner.summary(2, "after_kill", ["--restart", os.path.join(killed, expected[0]),
+                                         "--output", runner.path("after_kill")])
+    if s["checksum"] != reference:
+        fail(f"restart from the checkpoint before the killed one: checksum {s['checksum']}, "
+             f"expected {reference}")
+
+    truncated = runner.path("truncated.h5")
+    shutil.copy(step20, truncated)
+    os.truncate(truncated, os.path.getsize(step20) // 2)
+    flipped = runner.path("flipped.h5")
+    shutil.copy(step20, flipped)
+    with open(flipped, "r+b") as f:  # a byte well inside the datasets (raw data is the bulk)
+        f.seek(int(os.path.getsize(flipped) * 0.6))
+        byte = f.read(1)
+        f.seek(-1, os.SEEK_CUR)
+        f.write(bytes([byte[0] ^ 0x01]))
+    files = [truncated, flipped, step10, step20]
+    refused = runner.path("refused")
+    expect_refused(runner, 2, ["--restart", truncated, "--output", refused],
+                   f"checkpoint '{truncated}': HDF5 cannot open it (truncated or damaged file)",
+                   files)
+    expect_refused(runner, 2, ["--restart", flipped, "--output", refused],
+                   f"checkpoint '{flipped}': checksum mismatch", files)
+    expect_refused(runner, 2, ["--restart", step20, "--output", refused,
+                               "--set", "domain.max=[12,10,12]"],
+                   f"--restart {step20}: the checkpoint was written for the domain", files)
+    expect_refused(runner, 2, ["--restart", step20, "--output", refused, "--steps", "10"],
+                   f"--restart {step20}: the checkpoint is at step 20, beyond", files)
+    print(f"restart_runs: all checks passed (reference checksum {reference})")
+
+
+if __name__ == "__main__":
+    main()

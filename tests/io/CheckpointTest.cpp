@@ -1,0 +1,302 @@
+// HDF5 checkpoints (io/checkpoint): every stored field of every master, contact history
+// included, survives a write and a read bit for bit, also when a sub-communicator of another
+// size reads what all ranks wrote; a truncated file, a flipped data byte and another format
+// version are refused with one message on every rank and the file left as it was; rotation
+// keeps the newest files.
+#include "core/Error.hpp"
+#include "domain/BlockForest.hpp"
+#include "io/checkpoint/CheckpointReader.hpp"
+#include "io/checkpoint/CheckpointSeries.hpp"
+#include "io/checkpoint/CheckpointWriter.hpp"
+#include "io/checkpoint/RestoreGrains.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <bit>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace regolith;
+using core::Vec3;
+namespace fs = std::filesystem;
+
+namespace {
+
+domain::ForestSpec spec() {
+    domain::ForestSpec s;
+    s.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
+    s.rootBlocks = {2, 2, 2};
+    s.periodic = {true, false, false};
+    return s;
+}
+
+/// 64 grains on a lattice with values that use every bit of their fields, rank-independent;
+/// every third grain has 1-3 history entries.
+std::vector<io::GrainState> allGrains() {
+    std::vector<io::GrainState> out;
+    for (int k = 0; k < 64; ++k) {
+        io::GrainState g;
+        g.uid = static_cast<particles::Uid>(1000 + 7 * k);
+        double const f = 1.0 + k / 3.0;
+        g.position = Vec3(0.5 + (k % 4) * 2.0, 0.5 + (k / 4 % 4) * 2.0, 0.5 + (k / 16) * 2.0);
+        g.velocity = Vec3(0.1 / f, -0.2 * f, 1e-17 * f);
+        g.angularVelocity = Vec3(-0.0, 3.0 / f, 1.0 / 7.0);
+        g.orientation = core::Quat(Eigen::AngleAxisd(0.1 * k, Vec3(1, 2, 3).normalized()));
+        g.force = Vec3(f, -f / 3.0, 1e300);
+        g.torque = Vec3(1e-300, -f, 2.0 / 3.0);
+        g.radius = 0.4 + 1e-3 * k;
+        g.mass = 4.0 * g.radius * g.radius * g.radius;
+        g.type = static_cast<std::uint32_t>(k % 3);
+        g.flags = k % 5 == 0 ? static_cast<std::uint8_t>(particles::Flag::Fixed) : 0;
+        if (k % 3 == 0)
+            for (int e = 0; e <= k % 3 + k % 2; ++e)
+                g.history.push_back({g.uid + 1 + static_cast<particles::Uid>(e),
+                                     Vec3(1e-3 * e, -f * 1e-4, 1.0 / 3.0), 41U});
+        out.push_back(g);
+    }
+    return out;
+}
+
+/// This rank's share: the grains its blocks contain.
+particles::LocalParticles fill(domain::BlockForest const& forest) {
+    particles::LocalParticles local(forest);
+    for (io::GrainState const& g : allGrains())
+        if (forest.localBlockContaining(g.position) != nullptr) {
+            local.addMaster(io::toParticleInit(g));
+            for (particles::BlockParticles& bp : local.blocks())
+                if (auto i = bp.particles.find(g.uid); i != particles::ParticleStorage::kNotFound)
+                    io::restoreDynamicState(g, bp.particles, i);
+        }
+    return local;
+}
+
+std::vector<io::GrainState> sortedMasters(particles::LocalParticles const& local) {
+    auto out = io::collectMasters(local);
+    std::sort(out.begin(), out.end(), [](auto const& a, auto const& b) { return a.uid < b.uid; });
+    return out;
+}
+
+/// Equal in every bit of every field (the hashes cover every stored field).
+void expectSame(std::vector<io::GrainState> const& a, std::vector<io::GrainState> const& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].uid, b[i].uid);
+        EXPECT_EQ(io::grainHash(a[i]), io::grainHash(b[i])) << "uid " << a[i].uid;
+        EXPECT_EQ(a[i].history.size(), b[i].history.size());
+    }
+}
+
+/// A file name per test and rank count (ctest may run the 1- and 4-rank tests together).
+std::string fileName(core::Comm const& comm, std::string const& what) {
+    return fmt::format("checkpoint_test_np{}_{}.h5", comm.size(), what);
+}
+
+io::CheckpointInfo info() {
+    io::CheckpointInfo i;
+    i.step = 20;
+    i.time = 0.2;
+    i.dt = 0.01;
+    i.domain = spec().domain;
+    i.periodic = spec().periodic;
+    i.scene = "[domain]\nmin = [0,0,0]\n";
+    i.stateChecksum = "0123456789abcdef";
+    return i;
+}
+
+/// Writes the checkpoint of `fill` to `path`. COLLECTIVE.
+void writeSample(core::Comm const& comm, std::string const& path) {
+    domain::BlockForest const forest(comm, spec());
+    auto const local = fill(forest);
+    auto const grains = io::collectMasters(local);
+    io::CheckpointInfo i = info();
+    std::uint64_t const bytes = io::writeCheckpoint(comm, path, i, grains);
+    EXPECT_GT(bytes, 64U * 20U * 8U);
+    EXPECT_EQ(i.grainCount, 64U);
+    EXPECT_FALSE(fs::exists(path + ".tmp"));
+}
+
+/// The message readCheckpoint throws on every rank (or "" if it does not throw).
+std::string readError(core::Comm const& comm, std::string const& path) {
+    try {
+        (void)io::readCheckpoint(comm, path);
+    } catch (core::InputError const& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string fileBytes(std::string const& path) {
+    std::string bytes(fs::file_size(path), '\0');
+    std::ifstream(path, std::ios::binary)
+        .read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return bytes;
+}
+
+} // namespace
+
+TEST(Checkpoint, RoundTripIsBitwise) {
+    core::Comm const world;
+    std::string const path = fileName(world, "roundtrip");
+    writeSample(world, path);
+    domain::BlockForest const forest(world, spec());
+    auto const expected = sortedMasters(fill(forest));
+    io::CheckpointSlice const slice = io::readCheckpoint(world, path);
+    EXPECT_EQ(slice.info.step, 20);
+    EXPECT_EQ(slice.info.time, 0.2);
+    EXPECT_EQ(slice.info.scene, info().scene);
+    EXPECT_EQ(slice.info.stateChecksum, info().stateChecksum);
+    EXPECT_EQ(slice.info.historyCount, 33U); // 11 grains with one entry, 11 with two
+    particles::LocalParticles restored(forest);
+    io::restoreGrains(world, restored, slice.grains, "test");
+    expectSame(expected, sortedMasters(restored));
+}
+
+TEST(Checkpoint, OtherRankCountReadsTheSameGrains) {
+    // What all ranks wrote, read back by ranks 0 and 1 only (or rank 0 alone on one rank).
+    core::Comm const world;
+    std::string const path = fileName(world, "subset");
+    writeSample(world, path);
+    MPI_Comm half = MPI_COMM_NULL;
+    MPI_Comm_split(world.raw(), world.rank() < 2 ? 0 : 1, world.rank(), &half);
+    {
+        core::Comm const sub(half);
+        domain::BlockForest const forest(sub, spec());
+        io::CheckpointSlice const slice = io::readCheckpoint(sub, path);
+        particles::LocalParticles restored(forest);
+        io::restoreGrains(sub, restored, slice.grains, "test");
+        auto const count =
+            sub.allReduce(static_cast<long long>(restored.countMasters()), core::ReduceOp::Sum);
+        EXPECT_EQ(count, 64);
+        expectSame(sortedMasters(fill(forest)), sortedMasters(restored));
+    }
+    MPI_Comm_free(&half);
+}
+
+TEST(Checkpoint, IdleRanksWriteAndReadNothing) {
+    // Two blocks: on 4 ranks two ranks own no block and no grain, yet join every collective.
+    core::Comm const world;
+    domain::ForestSpec s = spec();
+    s.rootBlocks = {2, 1, 1};
+    domain::BlockForest const forest(world, s);
+    particles::LocalParticles local(forest);
+    for (io::GrainState const& g : allGrains())
+        (void)local.addMaster(io::toParticleInit(g));
+    std::string const path = fileName(world, "idle");
+    io::CheckpointInfo i = info();
+    io::writeCheckpoint(world, path, i, io::collectMasters(local));
+    EXPECT_EQ(i.grainCount, 64U);
+    io::CheckpointSlice const slice = io::readCheckpoint(world, path);
+    particles::LocalParticles restored(forest);
+    io::restoreGrains(world, restored, slice.grains, "test");
+    EXPECT_EQ(restored.countMasters(), local.countMasters());
+    EXPECT_EQ(world.allReduce(static_cast<long long>(restored.countMasters()), core::ReduceOp::Sum),
+              64);
+}
+
+TEST(Checkpoint, TruncatedFileIsRefused) {
+    core::Comm const world;
+    std::string const path = fileName(world, "truncated");
+    writeSample(world, path);
+    if (world.rank() == 0)
+        fs::resize_file(path, fs::file_size(path) / 2);
+    world.barrier();
+    std::string const before = fileBytes(path);
+    std::string const message = readError(world, path);
+    EXPECT_NE(message.find("checkpoint '" + path + "'"), std::string::npos) << message;
+    EXPECT_NE(message.find("truncated or damaged"), std::string::npos) << message;
+    EXPECT_EQ(fileBytes(path), before);
+}
+
+TEST(Checkpoint, FlippedDataByteIsRefused) {
+    core::Comm const world;
+    std::string const path = fileName(world, "flipped");
+    writeSample(world, path);
+    if (world.rank() == 0) {
+        // One bit of the middle of the velocity dataset: HDF5 itself cannot notice it.
+        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        hid_t const set = H5Dopen2(file, "velocity", H5P_DEFAULT);
+        auto const offset = static_cast<std::streamoff>(H5Dget_offset(set) + 64 * 3 * 8 / 2);
+        H5Dclose(set);
+        H5Fclose(file);
+        std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(offset);
+        char c = 0;
+        f.get(c);
+        f.seekp(offset);
+        f.put(static_cast<char>(c ^ 0x10));
+    }
+    world.barrier();
+    std::string const message = readError(world, path);
+    EXPECT_NE(message.find("checkpoint '" + path + "': checksum mismatch"), std::string::npos)
+        << message;
+}
+
+TEST(Checkpoint, OtherFormatVersionIsRefused) {
+    core::Comm const world;
+    std::string const path = fileName(world, "version");
+    writeSample(world, path);
+    if (world.rank() == 0) {
+        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        hid_t const attr = H5Aopen(file, "format_version", H5P_DEFAULT);
+        std::int64_t const v = 99;
+        H5Awrite(attr, H5T_NATIVE_INT64, &v);
+        H5Aclose(attr);
+        H5Fclose(file);
+    }
+    world.barrier();
+    std::string const message = readError(world, path);
+    EXPECT_NE(message.find("format version 99, this build reads version 1"), std::string::npos)
+        << message;
+}
+
+TEST(Checkpoint, MissingFileIsRefused) {
+    core::Comm const world;
+    EXPECT_EQ(readError(world, "no_such_checkpoint.h5"),
+              "checkpoint 'no_such_checkpoint.h5': no such file");
+}
+
+TEST(Checkpoint, GrainOutsideTheDomainIsRefused) {
+    core::Comm const world;
+    domain::BlockForest const forest(world, spec());
+    particles::LocalParticles local(forest);
+    std::vector<io::GrainState> grains;
+    if (world.rank() == world.size() - 1) {
+        grains = allGrains();
+        grains[5].position.z() = 9.0; // beyond the non-periodic z face
+    }
+    try {
+        io::restoreGrains(world, local, grains, "ctx");
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find("ctx: grain uid 1035 at [2.5, 2.5, 9] lies outside"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(Checkpoint, RotationKeepsTheNewest) {
+    core::Comm const world;
+    if (world.rank() != 0)
+        return;
+    fs::path const dir = fmt::format("checkpoint_rotation_np{}", world.size());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (int step : {10, 20, 30, 40, 100})
+        std::ofstream(io::checkpointPath(dir.string(), step)) << "x";
+    std::ofstream(dir / "checkpoint_00000050.h5.tmp") << "x";
+    std::ofstream(dir / "notes.txt") << "x";
+    EXPECT_EQ(io::checkpointPath("d", 20), (fs::path("d") / "checkpoint_00000020.h5").string());
+    EXPECT_EQ(io::rotateCheckpoints(dir.string(), 2).size(), 3U);
+    EXPECT_TRUE(fs::exists(io::checkpointPath(dir.string(), 40)));
+    EXPECT_TRUE(fs::exists(io::checkpointPath(dir.string(), 100)));
+    EXPECT_FALSE(fs::exists(io::checkpointPath(dir.string(), 30)));
+    EXPECT_TRUE(fs::exists(dir / "checkpoint_00000050.h5.tmp"));
+    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+    EXPECT_TRUE(io::rotateCheckpoints(dir.string(), 0).empty());
+}

@@ -1,0 +1,163 @@
+// VTK output for ParaView (io/vtk): every file a run writes is read back with VTK's own XML
+// readers (vtkXMLPUnstructuredGridReader for the .pvtu with its pieces, vtkXMLDataParser for
+// the .pvd series), and its counts, array names and value ranges checked; on 1 and 4 ranks,
+// with and without shadows.
+#include "io/vtk/VtkOutput.hpp"
+
+#include "core/Error.hpp"
+#include "domain/BlockForest.hpp"
+#include "particles/sync/ParticleSync.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
+#include <vtkXMLPUnstructuredGridReader.h>
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+using namespace regolith;
+using core::Vec3;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr int kGrains = 125;
+
+domain::ForestSpec spec() {
+    domain::ForestSpec s;
+    s.domain = core::AABB{Vec3::Zero(), Vec3::Constant(10.0)};
+    s.rootBlocks = {2, 2, 2};
+    s.periodic = {true, true, false};
+    return s;
+}
+
+/// 5 x 5 x 5 grains of radius 0.6 at spacing 2 starting at 1: those at 5 touch the block
+/// faces at x, y, z = 5 and get shadows; uids 10, 11, ...
+void fill(particles::LocalParticles& local) {
+    for (int k = 0; k < kGrains; ++k) {
+        particles::ParticleInit p;
+        p.uid = static_cast<particles::Uid>(10 + k);
+        p.position = Vec3(1.0 + 2.0 * (k % 5), 1.0 + 2.0 * (k / 5 % 5), 1.0 + 2.0 * (k / 25));
+        p.velocity = Vec3(0.125 * (k % 7), -0.5, 0.0);
+        p.radius = 0.6;
+        p.mass = 2.0;
+        (void)local.addMaster(p); // false: another rank's grain
+    }
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> readPvtu(std::string const& path) {
+    vtkNew<vtkXMLPUnstructuredGridReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
+    return grid;
+}
+
+std::array<double, 2> range(vtkDataArray* a, int component = 0) {
+    std::array<double, 2> r{};
+    a->GetRange(r.data(), component);
+    return r;
+}
+
+/// The `file` attributes of the DataSets of a .pvd, and their timesteps.
+std::vector<std::pair<double, std::string>> readPvd(std::string const& path) {
+    vtkNew<vtkXMLDataParser> parser;
+    parser->SetFileName(path.c_str());
+    std::vector<std::pair<double, std::string>> out;
+    if (parser->Parse() != 1)
+        return out;
+    vtkXMLDataElement* collection = parser->GetRootElement()->GetNestedElement(0);
+    for (int i = 0; i < collection->GetNumberOfNestedElements(); ++i) {
+        vtkXMLDataElement* set = collection->GetNestedElement(i);
+        out.emplace_back(std::stod(set->GetAttribute("timestep")), set->GetAttribute("file"));
+    }
+    return out;
+}
+
+} // namespace
+
+TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
+    core::Comm const world;
+    domain::BlockForest const forest(world, spec());
+    particles::LocalParticles local(forest);
+    fill(local);
+    particles::ParticleSync sync(world, forest, particles::SyncConfig{});
+    sync.syncUntilConverged(local);
+    long long const copies =
+        world.allReduce(static_cast<long long>(local.countCopies()), core::ReduceOp::Sum);
+    ASSERT_GT(copies, kGrains); // the grains on the faces have shadows
+
+    for (bool shadows : {false, true}) {
+        std::string const dir = fmt::format("vtk_test_np{}_{}", world.size(), shadows);
+        if (world.rank() == 0)
+            fs::remove_all(dir);
+        world.barrier();
+        io::VtkOutput out(world, io::VtkOptions{dir, shadows, true});
+        out.write(0, 0.0, local);
+        out.write(10, 0.25, local);
+        world.barrier();
+
+        auto const series = readPvd(out.particleSeriesPath());
+        ASSERT_EQ(series.size(), 2U);
+        EXPECT_EQ(series[1].first, 0.25);
+        EXPECT_EQ(series[1].second, "vtk/particles_00000010.pvtu");
+        auto const grid = readPvtu(dir + "/" + series[1].second);
+        vtkPointData* pd = grid->GetPointData();
+        EXPECT_EQ(grid->GetNumberOfPoints(), shadows ? copies : kGrains);
+        EXPECT_EQ(grid->GetNumberOfCells(), grid->GetNumberOfPoints());
+        for (char const* name :
+             {"uid", "radius", "mass", "velocity", "angular_velocity", "force", "owner_rank"})
+            ASSERT_NE(pd->GetArray(name), nullptr) << name;
+        EXPECT_EQ(pd->GetArray("shadow") != nullptr, shadows);
+        EXPECT_EQ(range(pd->GetArray("uid")), (std::array<double, 2>{10.0, 10.0 + kGrains - 1}));
+        EXPECT_EQ(range(pd->GetArray("radius")), (std::array<double, 2>{0.6, 0.6}));
+        EXPECT_EQ(range(pd->GetArray("velocity"), 1), (std::array<double, 2>{-0.5, -0.5}));
+        EXPECT_EQ(range(pd->GetArray("velocity"), 0), (std::array<double, 2>{0.0, 0.75}));
+        EXPECT_EQ(pd->GetArray("velocity")->GetNumberOfComponents(), 3);
+        auto const owners = range(pd->GetArray("owner_rank"));
+        EXPECT_GE(owners[0], 0.0);
+        EXPECT_LE(owners[1], world.size() - 1.0);
+        if (shadows) {
+            EXPECT_EQ(range(pd->GetArray("shadow")), (std::array<double, 2>{0.0, 1.0}));
+        }
+
+        auto const blockSeries = readPvd(out.blockSeriesPath());
+        ASSERT_EQ(blockSeries.size(), 2U);
+        auto const blocks = readPvtu(dir + "/" + blockSeries[0].second);
+        EXPECT_EQ(blocks->GetNumberOfCells(), 8);
+        EXPECT_EQ(blocks->GetNumberOfPoints(), 64);
+        vtkCellData* cd = blocks->GetCellData();
+        double total = 0.0;
+        for (vtkIdType c = 0; c < 8; ++c)
+            total += cd->GetArray("grains")->GetTuple1(c);
+        EXPECT_EQ(total, kGrains);
+        EXPECT_EQ(range(cd->GetArray("level")), (std::array<double, 2>{0.0, 0.0}));
+        EXPECT_EQ(range(cd->GetArray("owner_rank"))[1], std::min(world.size(), 8) - 1.0);
+        EXPECT_NE(cd->GetArray("block_id"), nullptr);
+        double bounds[6];
+        blocks->GetBounds(bounds);
+        EXPECT_EQ(bounds[1], 10.0);
+        world.barrier(); // nobody removes a directory another rank still reads
+    }
+}
+
+TEST(VtkOutput, UnwritableDirectoryIsRefused) {
+    core::Comm const world;
+    try {
+        io::VtkOutput out(world, io::VtkOptions{"/proc/no_vtk_here", false, true});
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find("output.dir = \"/proc/no_vtk_here\": cannot create"),
+                  std::string::npos)
+            << e.what();
+    }
+}
