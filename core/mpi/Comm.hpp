@@ -70,6 +70,26 @@ public:
               "MPI_Allgather");
         return out;
     }
+    /// Every rank's `mine` (any length) concatenated in rank order, on every rank; `counts`,
+    /// if given, receives each rank's length. Collective (MPI_Allgatherv).
+    template <class T>
+    [[nodiscard]] std::vector<T> allGatherVarying(std::span<T const> mine,
+                                                  std::vector<int>* counts = nullptr) const {
+        std::vector<int> const n = allGather(static_cast<int>(mine.size()));
+        std::vector<int> displs(n.size(), 0);
+        int total = 0;
+        for (std::size_t r = 0; r < n.size(); ++r) {
+            displs[r] = total;
+            total += n[r];
+        }
+        std::vector<T> out(static_cast<std::size_t>(total));
+        check(MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), mpiType<T>(), out.data(),
+                             n.data(), displs.data(), mpiType<T>(), m_raw),
+              "MPI_Allgatherv");
+        if (counts != nullptr)
+            *counts = n;
+        return out;
+    }
     /// Gathers a string from every rank on `root` (empty elsewhere). Collective.
     [[nodiscard]] std::vector<std::string> gatherStrings(std::string const& s, int root) const;
     /// Broadcasts a string from `root`. Collective.

@@ -24,18 +24,7 @@ std::vector<double> relativeErrors(AccelView approx, AccelView reference) {
 }
 
 ErrorStats errorStats(core::Comm const& comm, std::span<double const> errors) {
-    std::vector<int> const counts = comm.allGather(static_cast<int>(errors.size()));
-    std::vector<int> displs(counts.size(), 0);
-    int total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-        displs[r] = total;
-        total += counts[r];
-    }
-    std::vector<double> all(static_cast<std::size_t>(total));
-    core::Comm::check(MPI_Allgatherv(errors.data(), static_cast<int>(errors.size()), MPI_DOUBLE,
-                                     all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                                     comm.raw()),
-                      "MPI_Allgatherv (force errors)");
+    std::vector<double> all = comm.allGatherVarying(errors);
     ErrorStats s;
     s.count = static_cast<long long>(all.size());
     if (all.empty())

@@ -76,21 +76,12 @@ BarnesHut::gatherBoxes(PointMasses const& local, std::span<core::AABB const> blo
     std::vector<double> flat;
     for (core::AABB const& b : mine)
         flat.insert(flat.end(), {b.min.x(), b.min.y(), b.min.z(), b.max.x(), b.max.y(), b.max.z()});
-    std::vector<int> const counts = m_comm.allGather(static_cast<int>(flat.size()));
-    std::vector<int> displs(counts.size(), 0);
-    int total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-        displs[r] = total;
-        total += counts[r];
-    }
-    std::vector<double> all(static_cast<std::size_t>(total));
-    core::Comm::check(MPI_Allgatherv(flat.data(), static_cast<int>(flat.size()), MPI_DOUBLE,
-                                     all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                                     m_comm.raw()),
-                      "MPI_Allgatherv (tree boxes)");
+    std::vector<int> counts;
+    std::vector<double> const all = m_comm.allGatherVarying<double>(flat, &counts);
     std::vector<std::vector<core::AABB>> boxes(counts.size());
-    for (std::size_t r = 0; r < counts.size(); ++r)
-        for (int k = displs[r]; k < displs[r] + counts[r]; k += 6) {
+    int begin = 0; // rank r's boxes: [begin, begin + counts[r]) of `all`, 6 values each
+    for (std::size_t r = 0; r < counts.size(); begin += counts[r], ++r)
+        for (int k = begin; k < begin + counts[r]; k += 6) {
             double const* b = all.data() + k;
             boxes[r].push_back({core::Vec3(b[0], b[1], b[2]), core::Vec3(b[3], b[4], b[5])});
         }

@@ -28,21 +28,12 @@ std::vector<OwnedBox> gatherBlockBoxes(core::Comm const& comm, domain::BlockFore
     for (domain::Block const& b : forest.blocks())
         for (core::Vec3 const* v : {&b.aabb.min, &b.aabb.max})
             mine.insert(mine.end(), v->data(), v->data() + 3);
-    std::vector<int> const counts = comm.allGather(static_cast<int>(mine.size()));
-    std::vector<int> displs(counts.size(), 0);
-    int total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-        displs[r] = total;
-        total += counts[r];
-    }
-    std::vector<double> all(static_cast<std::size_t>(total));
-    core::Comm::check(MPI_Allgatherv(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE,
-                                     all.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                                     comm.raw()),
-                      "MPI_Allgatherv");
+    std::vector<int> counts;
+    std::vector<double> const all = comm.allGatherVarying<double>(mine, &counts);
     std::vector<OwnedBox> out;
-    for (std::size_t r = 0; r < counts.size(); ++r)
-        for (int k = displs[r]; k < displs[r] + counts[r]; k += 6) {
+    int begin = 0; // rank r's boxes: [begin, begin + counts[r]) of `all`, 6 values each
+    for (std::size_t r = 0; r < counts.size(); begin += counts[r], ++r)
+        for (int k = begin; k < begin + counts[r]; k += 6) {
             auto const* v = &all[static_cast<std::size_t>(k)];
             out.push_back({core::AABB{core::Vec3(v[0], v[1], v[2]), core::Vec3(v[3], v[4], v[5])},
                            static_cast<int>(r)});
