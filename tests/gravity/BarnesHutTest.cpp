@@ -17,11 +17,6 @@ namespace gt = regolith::gravity::tree;
 
 namespace {
 
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
 /// A body, this rank's slab of it and the exact field there, computed once per process.
 struct Scene {
     gravity::samples::Body body;

@@ -11,15 +11,6 @@ using namespace regolith;
 using namespace regolith::testing;
 namespace dg = regolith::gravity::direct;
 
-namespace {
-
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
-} // namespace
-
 TEST(DirectSum, TwoGrainsFollowNewton) {
     std::vector<double> x{0.0, 3.0}, y{0.0, 0.0}, z{0.0, 4.0}, m{2.0, 5.0};
     Field f(2);

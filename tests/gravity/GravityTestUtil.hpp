@@ -12,6 +12,12 @@
 
 namespace regolith::testing {
 
+/// MPI_COMM_WORLD as a core::Comm, for the gravity tests.
+inline core::Comm const& world() {
+    static core::Comm const comm(MPI_COMM_WORLD);
+    return comm;
+}
+
 /// Accelerations and potentials of n grains, owning.
 struct Field {
     std::vector<double> ax, ay, az, phi;

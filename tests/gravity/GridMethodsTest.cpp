@@ -14,11 +14,6 @@ namespace gb = regolith::gravity::baselines;
 
 namespace {
 
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
 template <class Method>
 void expectConvergence(char const* name, double theta) {
     auto const body = testAgglomerate(1000, 21);

@@ -18,11 +18,6 @@ namespace gt = regolith::gravity::tree;
 
 namespace {
 
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
 void expectTreeMatchesSampledDirect(gravity::samples::Body const& body, char const* name) {
     gravity::samples::Body const local = localSlab(world(), body);
     gt::TreeOptions options;

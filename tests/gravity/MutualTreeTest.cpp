@@ -17,11 +17,6 @@ namespace gt = regolith::gravity::tree;
 
 namespace {
 
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
 gt::TreeOptions withTheta(double theta) {
     gt::TreeOptions o;
     o.theta = theta;

@@ -14,15 +14,6 @@
 using namespace regolith;
 using namespace regolith::testing;
 
-namespace {
-
-core::Comm const& world() {
-    static core::Comm const comm(MPI_COMM_WORLD);
-    return comm;
-}
-
-} // namespace
-
 TEST(UpdatePolicy, TriggersOnTheLargestDisplacementOfAnyRank) {
     gravity::UpdatePolicy policy(1.0);
     std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(world().rank())};
