@@ -146,7 +146,8 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
 void SelfGravityForces::addForces(particles::LocalParticles& local) {
     gather(local);
     std::size_t const n = m_uid.size();
-    if (m_policy.due(*m_comm, m_uid, m_x, m_y, m_z)) {
+    bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
+    if (updated) {
         m_ax.assign(n, 0.0);
         m_ay.assign(n, 0.0);
         m_az.assign(n, 0.0);
@@ -154,17 +155,27 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
         m_policy.markUpdated(m_uid, m_x, m_y, m_z);
         ++m_stats.evaluations;
-        m_field.clear();
-        for (std::size_t k = 0; k < n; ++k)
-            m_field[m_uid[k]] = {m_ax[k], m_ay[k], m_az[k]};
+        // Kept per uid only for the steps between updates (a threshold above 0).
+        if (m_policy.threshold() > 0.0) {
+            m_field.clear();
+            for (std::size_t k = 0; k < n; ++k)
+                m_field[m_uid[k]] = {m_ax[k], m_ay[k], m_az[k]};
+        }
     }
-    // The policy guarantees a stored field for every local master: a grain that was not here
-    // at the last update forces an update.
+    // Masters in gather order: index k is the k-th master visited. Between updates the policy
+    // guarantees a stored field for every local master (a grain that was not here at the last
+    // update forces an update).
+    std::size_t k = 0;
     for (particles::BlockParticles& bp : local.blocks()) {
         particles::ParticleStorage& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
-            auto const& a = m_field.at(ps.uid(i));
-            ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);
+            if (updated) {
+                ps.force(i) += ps.mass(i) * core::Vec3(m_ax[k], m_ay[k], m_az[k]);
+            } else {
+                auto const& a = m_field.at(ps.uid(i));
+                ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);
+            }
+            ++k;
         });
     }
     ++m_stats.steps;

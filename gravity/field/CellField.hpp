@@ -53,4 +53,24 @@ private:
     std::vector<double> m_data;
 };
 
+/// Calls f(centre, mass) for every interior cell of the local blocks whose mass (density x
+/// cell volume) is not zero: the occupied cells the free-space boundary sums over. Not
+/// collective.
+template <class F>
+void forEachOccupiedCell(CellField const& density, F&& f) {
+    CellLayout const& layout = density.layout();
+    auto const& n = layout.cellsPerBlock();
+    double const volume = layout.cellVolume();
+    for (std::size_t b = 0; b < layout.localBlockCount(); ++b) {
+        auto const& o = layout.origin(b);
+        for (int k = 0; k < n[2]; ++k)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i) {
+                    double const m = density.at(b, i, j, k) * volume;
+                    if (m != 0.0)
+                        f(layout.centre({o[0] + i, o[1] + j, o[2] + k}), m);
+                }
+    }
+}
+
 } // namespace regolith::gravity

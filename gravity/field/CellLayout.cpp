@@ -4,10 +4,8 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <mpi.h>
 
 #include <cmath>
-#include <numeric>
 
 namespace regolith::gravity {
 
@@ -63,19 +61,14 @@ CellLayout::CellLayout(core::Comm const& comm, domain::BlockForest const& forest
         m_firstCurve = forest.blocks().front().curveIndex;
         m_rowBegin = static_cast<std::int64_t>(m_firstCurve * m_cellsInBlock);
     }
-    int const count = static_cast<int>(mine.size());
-    std::vector<int> counts = comm.allGather(count);
-    std::vector<int> displs(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
-    std::vector<std::int64_t> all(static_cast<std::size_t>(displs.back() + counts.back()));
-    core::Comm::check(MPI_Allgatherv(mine.data(), count, MPI_INT64_T, all.data(), counts.data(),
-                                     displs.data(), MPI_INT64_T, comm.raw()),
-                      "MPI_Allgatherv");
+    std::vector<int> counts;
+    std::vector<std::int64_t> const all = comm.allGatherVarying<std::int64_t>(mine, &counts);
     auto const roots = static_cast<std::size_t>(geo.rootCount());
     m_ownerOfRoot.assign(roots, -1);
     m_curveOfRoot.assign(roots, -1);
-    for (std::size_t r = 0; r < counts.size(); ++r)
-        for (int i = displs[r]; i < displs[r] + counts[r]; i += 2) {
+    int begin = 0; // rank r's pairs: [begin, begin + counts[r]) of `all`
+    for (std::size_t r = 0; r < counts.size(); begin += counts[r], ++r)
+        for (int i = begin; i < begin + counts[r]; i += 2) {
             auto const root = static_cast<std::size_t>(all[static_cast<std::size_t>(i)]);
             m_ownerOfRoot[root] = static_cast<int>(r);
             m_curveOfRoot[root] = all[static_cast<std::size_t>(i) + 1];

@@ -86,6 +86,38 @@ void unpack(CellField& field, std::vector<GhostExchange::Box> const& boxes, core
             });
 }
 
+/// Packs every peer's boxes (`boxes`: Peer::send forward, Peer::recv for the reverse add)
+/// and starts the exchange.
+template <class Peers, class Boxes>
+void sendBoxes(CellField const& field, Peers const& peers, Boxes boxes,
+               core::NeighbourExchange& exchange, std::vector<double>& scratch) {
+    for (auto const& p : peers) {
+        pack(field, p.*boxes, scratch);
+        exchange.sendBuffer(p.rank).writeBytes(scratch.data(), scratch.size() * sizeof(double));
+    }
+    exchange.start();
+}
+
+/// The same-rank copies: forward (ghost = source) or, for the reverse exchange, adding the
+/// ghost cells to their sources.
+template <bool kReverseAdd, class Copies>
+void copyLocal(CellField& field, Copies const& copies) {
+    for (auto const& copy : copies)
+        for (int c = 0; c < field.components(); ++c) {
+            auto const& g = copy.ghost;
+            auto const& s = copy.source;
+            forEachCell(g, [&](int i, int j, int k) {
+                double& ghost = field.at(static_cast<std::size_t>(g.block), i, j, k, c);
+                double& source = field.at(static_cast<std::size_t>(s.block), i - g.lo[0] + s.lo[0],
+                                          j - g.lo[1] + s.lo[1], k - g.lo[2] + s.lo[2], c);
+                if constexpr (kReverseAdd)
+                    source += ghost;
+                else
+                    ghost = source;
+            });
+        }
+}
+
 void checkField(CellLayout const* layout, CellField const& field) {
     if (&field.layout() != layout)
         throw core::Error("GhostExchange: the field was built on another cell layout");
@@ -172,24 +204,10 @@ std::size_t GhostExchange::ghostCellsCovered() const {
 
 void GhostExchange::start(CellField& field) {
     checkField(m_layout, field);
-    for (auto const& p : m_peers) {
-        pack(field, p.send, m_scratch);
-        m_exchange->sendBuffer(p.rank).writeBytes(m_scratch.data(),
-                                                  m_scratch.size() * sizeof(double));
-    }
-    m_exchange->start();
+    sendBoxes(field, m_peers, &Peer::send, *m_exchange, m_scratch);
     // Local copies while the messages travel: interior cells only are read, ghost cells only
     // written, so the order does not matter.
-    for (auto const& copy : m_local)
-        for (int c = 0; c < field.components(); ++c) {
-            auto const& g = copy.ghost;
-            auto const& s = copy.source;
-            forEachCell(g, [&](int i, int j, int k) {
-                field.at(static_cast<std::size_t>(g.block), i, j, k, c) =
-                    field.at(static_cast<std::size_t>(s.block), i - g.lo[0] + s.lo[0],
-                             j - g.lo[1] + s.lo[1], k - g.lo[2] + s.lo[2], c);
-            });
-        }
+    copyLocal<false>(field, m_local);
 }
 
 void GhostExchange::wait(CellField& field) {
@@ -204,22 +222,8 @@ void GhostExchange::wait(CellField& field) {
 
 void GhostExchange::startAdd(CellField& field) {
     checkField(m_layout, field);
-    for (auto const& p : m_peers) {
-        pack(field, p.recv, m_scratch);
-        m_exchange->sendBuffer(p.rank).writeBytes(m_scratch.data(),
-                                                  m_scratch.size() * sizeof(double));
-    }
-    m_exchange->start();
-    for (auto const& copy : m_local)
-        for (int c = 0; c < field.components(); ++c) {
-            auto const& g = copy.ghost;
-            auto const& s = copy.source;
-            forEachCell(g, [&](int i, int j, int k) {
-                field.at(static_cast<std::size_t>(s.block), i - g.lo[0] + s.lo[0],
-                         j - g.lo[1] + s.lo[1], k - g.lo[2] + s.lo[2], c) +=
-                    field.at(static_cast<std::size_t>(g.block), i, j, k, c);
-            });
-        }
+    sendBoxes(field, m_peers, &Peer::recv, *m_exchange, m_scratch);
+    copyLocal<true>(field, m_local);
 }
 
 void GhostExchange::waitAdd(CellField& field) {

@@ -1,9 +1,6 @@
 #include "gravity/poisson/FreeSpaceBoundary.hpp"
 
-#include <mpi.h>
-
 #include <cmath>
-#include <numeric>
 
 namespace regolith::gravity {
 
@@ -17,28 +14,12 @@ void FreeSpaceBoundary::update(core::Comm const& comm, CellField const& density,
     m_cells.clear();
     if (!m_direct)
         return;
+    // Every rank's occupied cells as (x, y, z, m), on every rank.
     std::vector<double> mine;
-    auto const& n = layout.cellsPerBlock();
-    double const volume = layout.cellVolume();
-    for (std::size_t b = 0; b < layout.localBlockCount(); ++b)
-        for (int k = 0; k < n[2]; ++k)
-            for (int j = 0; j < n[1]; ++j)
-                for (int i = 0; i < n[0]; ++i) {
-                    double const m = density.at(b, i, j, k) * volume;
-                    if (m == 0.0)
-                        continue;
-                    auto const& o = layout.origin(b);
-                    core::Vec3 const x = layout.centre({o[0] + i, o[1] + j, o[2] + k});
-                    mine.insert(mine.end(), {x[0], x[1], x[2], m});
-                }
-    int const count = static_cast<int>(mine.size());
-    std::vector<int> counts = comm.allGather(count);
-    std::vector<int> displs(counts.size(), 0);
-    std::exclusive_scan(counts.begin(), counts.end(), displs.begin(), 0);
-    m_cells.resize(static_cast<std::size_t>(displs.back() + counts.back()));
-    core::Comm::check(MPI_Allgatherv(mine.data(), count, MPI_DOUBLE, m_cells.data(), counts.data(),
-                                     displs.data(), MPI_DOUBLE, comm.raw()),
-                      "MPI_Allgatherv");
+    forEachOccupiedCell(density, [&](core::Vec3 const& x, double m) {
+        mine.insert(mine.end(), {x[0], x[1], x[2], m});
+    });
+    m_cells = comm.allGatherVarying<double>(mine);
 }
 
 double FreeSpaceBoundary::at(core::Vec3 const& x) const {

@@ -7,32 +7,23 @@ namespace regolith::gravity {
 
 MassMoments massMoments(core::Comm const& comm, CellField const& density) {
     auto const& layout = density.layout();
-    auto const& n = layout.cellsPerBlock();
     // Moments about the domain centre, which keeps the numbers small (no cancellation of
     // huge second moments far from the origin).
     core::Vec3 const origin = layout.forest().domain().center();
     std::array<double, 11> s{}; // M, M x (3), M x x^T (xx, yy, zz, xy, xz, yz), count
-    double const volume = layout.cellVolume();
-    for (std::size_t b = 0; b < layout.localBlockCount(); ++b)
-        for (int k = 0; k < n[2]; ++k)
-            for (int j = 0; j < n[1]; ++j)
-                for (int i = 0; i < n[0]; ++i) {
-                    double const m = density.at(b, i, j, k) * volume;
-                    if (m == 0.0)
-                        continue;
-                    auto const& o = layout.origin(b);
-                    core::Vec3 const x = layout.centre({o[0] + i, o[1] + j, o[2] + k}) - origin;
-                    s[0] += m;
-                    for (int a = 0; a < 3; ++a)
-                        s[1 + static_cast<std::size_t>(a)] += m * x[a];
-                    s[4] += m * x[0] * x[0];
-                    s[5] += m * x[1] * x[1];
-                    s[6] += m * x[2] * x[2];
-                    s[7] += m * x[0] * x[1];
-                    s[8] += m * x[0] * x[2];
-                    s[9] += m * x[1] * x[2];
-                    s[10] += 1.0;
-                }
+    forEachOccupiedCell(density, [&](core::Vec3 const& centre, double m) {
+        core::Vec3 const x = centre - origin;
+        s[0] += m;
+        for (int a = 0; a < 3; ++a)
+            s[1 + static_cast<std::size_t>(a)] += m * x[a];
+        s[4] += m * x[0] * x[0];
+        s[5] += m * x[1] * x[1];
+        s[6] += m * x[2] * x[2];
+        s[7] += m * x[0] * x[1];
+        s[8] += m * x[0] * x[2];
+        s[9] += m * x[1] * x[2];
+        s[10] += 1.0;
+    });
     comm.allReduceInPlace(std::span<double>(s), core::ReduceOp::Sum);
     MassMoments out;
     out.mass = s[0];

@@ -1,8 +1,7 @@
 #include "gravity/tree/MutualTree.hpp"
 
+#include "gravity/common/GatherAll.hpp"
 #include "gravity/tree/Octree.hpp"
-
-#include <mpi.h>
 
 #include <array>
 #include <cmath>
@@ -261,26 +260,15 @@ double MutualTree::evaluateGathered(core::Comm const& comm, PointMasses const& l
                                     FieldOut out) {
     validatePointMassesCollective(comm, local, "gravity");
     validateFieldOut(out, local.size());
-    std::vector<int> const counts = comm.allGather(static_cast<int>(local.size()));
-    std::vector<int> displs(counts.size(), 0);
-    int total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) {
-        displs[r] = total;
-        total += counts[r];
-    }
-    auto const n = static_cast<std::size_t>(total);
-    std::array<std::vector<double>, 4> all;
-    std::array<std::span<double const>, 4> const mine{local.x, local.y, local.z, local.m};
-    for (std::size_t a = 0; a < 4; ++a) {
-        all[a].resize(n);
-        core::Comm::check(MPI_Allgatherv(mine[a].data(), static_cast<int>(mine[a].size()),
-                                         MPI_DOUBLE, all[a].data(), counts.data(), displs.data(),
-                                         MPI_DOUBLE, comm.raw()),
-                          "MPI_Allgatherv (mutual tree)");
-    }
+    OwnedMasses const all = gatherAll(comm, local);
+    std::size_t const n = all.x.size();
     std::vector<double> ax(n), ay(n), az(n), phi(n);
-    double const energy = evaluate({all[0], all[1], all[2], all[3]}, {ax, ay, az, phi});
-    auto const offset = static_cast<std::size_t>(displs[static_cast<std::size_t>(comm.rank())]);
+    double const energy = evaluate({all.x, all.y, all.z, all.m}, {ax, ay, az, phi});
+    // This rank's grains start after those of the ranks before it.
+    std::vector<int> const counts = comm.allGather(static_cast<int>(local.size()));
+    std::size_t offset = 0;
+    for (int r = 0; r < comm.rank(); ++r)
+        offset += static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]);
     for (std::size_t i = 0; i < local.size(); ++i) {
         out.ax[i] = ax[offset + i];
         out.ay[i] = ay[offset + i];

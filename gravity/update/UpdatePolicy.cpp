@@ -21,6 +21,8 @@ UpdatePolicy::UpdatePolicy(double threshold)
 bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> uid,
                        std::span<double const> x, std::span<double const> y,
                        std::span<double const> z) {
+    if (m_threshold == 0.0)
+        return true; // every step, on every rank alike: nothing to measure or agree on
     double local = m_updates == 0 ? std::numeric_limits<double>::infinity() : 0.0;
     for (std::size_t i = 0; i < uid.size() && std::isfinite(local); ++i) {
         auto const it = m_reference.find(uid[i]);
@@ -34,16 +36,18 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         local = std::max(local, std::sqrt(dx * dx + dy * dy + dz * dz));
     }
     m_lastMax = comm.allReduce(local, core::ReduceOp::Max);
-    return m_lastMax > m_threshold || m_threshold == 0.0;
+    return m_lastMax > m_threshold;
 }
 
 void UpdatePolicy::markUpdated(std::span<std::uint64_t const> uid, std::span<double const> x,
                                std::span<double const> y, std::span<double const> z) {
+    ++m_updates;
+    if (m_threshold == 0.0)
+        return; // due() never looks at the reference positions
     m_reference.clear();
     m_reference.reserve(uid.size());
     for (std::size_t i = 0; i < uid.size(); ++i)
         m_reference[uid[i]] = {x[i], y[i], z[i]};
-    ++m_updates;
 }
 
 std::string UpdatePolicy::thresholdWarning(double threshold, double spacing) {

@@ -34,7 +34,8 @@ public:
 
     [[nodiscard]] long long updates() const { return m_updates; }
     [[nodiscard]] double threshold() const { return m_threshold; }
-    /// The global largest displacement found by the last due(), m.
+    /// The global largest displacement found by the last due(), m (not measured, so 0, with
+    /// threshold 0: due() is then true at once, without communication).
     [[nodiscard]] double lastMaxDisplacement() const { return m_lastMax; }
 
     /// Empty if threshold <= spacing (m, the typical centre distance of neighbouring
