@@ -2,6 +2,7 @@
 
 #include "core/Error.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -63,6 +64,16 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
     comm.allReduceInPlace(std::span<double>(m_table), core::ReduceOp::Sum);
     for (double& v : m_table)
         v /= static_cast<double>(offsets.size() * dirs.size());
+    // The pair potential from the force table, integrated inwards from the cut-off: the
+    // trapezoid rule on the table's own spacing is exact for its linear interpolation.
+    auto const steps = static_cast<std::size_t>(std::ceil(m_cutoff / m_dr));
+    m_integral.assign(steps + 1, 0.0);
+    for (std::size_t k = steps; k-- > 0;) {
+        double const a = static_cast<double>(k) * m_dr;
+        double const b = std::min(a + m_dr, m_cutoff);
+        m_integral[k] =
+            m_integral[k + 1] + 0.5 * (b - a) * (meshPairAcceleration(a) + meshPairAcceleration(b));
+    }
 }
 
 double GridShortRange::meshPairAcceleration(double r) const {
@@ -81,6 +92,28 @@ core::Vec3 GridShortRange::correction(core::Vec3 const& d, double mj) const {
     if (r >= m_cutoff || r == 0.0)
         return core::Vec3::Zero();
     return m_G * mj * (1.0 / (r * r) - meshPairAcceleration(r)) * (d / r);
+}
+
+double GridShortRange::pairFactor(double r, double softening) const {
+    if (r >= m_cutoff || r == 0.0)
+        return 0.0;
+    double const s2 = r * r + softening * softening;
+    return m_G * (1.0 / (s2 * std::sqrt(s2)) - meshPairAcceleration(r) / r);
+}
+
+double GridShortRange::pairPotential(double r, double softening) const {
+    if (r >= m_cutoff)
+        return 0.0;
+    double const u = r / m_dr;
+    auto const k = std::min(static_cast<std::size_t>(u), m_integral.size() - 2);
+    double const f = std::min(u - static_cast<double>(k), 1.0);
+    double const integral = (1.0 - f) * m_integral[k] + f * m_integral[k + 1];
+    double const meshPsi = 1.0 / m_cutoff + integral;
+    return -m_G * (1.0 / std::sqrt(r * r + softening * softening) - meshPsi);
+}
+
+double GridShortRange::selfPotential() const {
+    return -m_G * (1.0 / m_cutoff + m_integral.front());
 }
 
 } // namespace regolith::gravity

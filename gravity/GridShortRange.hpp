@@ -32,11 +32,30 @@ public:
     /// d = x_j - x_i: G mj d̂ (1/r² - mesh(r)) for r < cutoff, else zero. Local, pure.
     [[nodiscard]] core::Vec3 correction(core::Vec3 const& d, double mj) const;
 
+    /// The same correction as a factor, with Plummer softening ε [length] inside the cut-off
+    /// (the mesh itself is not softened, so use ε well below the cut-off): the acceleration of
+    /// grain i due to grain j is pairFactor(r, ε) * m_j * (x_j - x_i), where
+    /// pairFactor = G (r / (r² + ε²)^{3/2} - mesh(r)) / r for 0 < r < cutoff, else 0
+    /// [1 / (mass time²)]. Local, pure.
+    [[nodiscard]] double pairFactor(double r, double softening) const;
+    /// Correction to the potential at grain i due to grain j, per unit m_j [length² / (mass
+    /// time²)]: -G (ψ(r) - ψ_mesh(r)) with ψ = 1 / sqrt(r² + ε²) and the mesh's pair
+    /// potential ψ_mesh(r) = 1 / cutoff + ∫_r^cutoff mesh(s) ds (the table integrated with
+    /// the trapezoid rule, taking the mesh as exact at the cut-off); 0 from the cut-off on.
+    /// Local, pure.
+    [[nodiscard]] double pairPotential(double r, double softening) const;
+    /// The mesh potential a point grain feels from itself, per unit mass of it: -G ψ_mesh(0)
+    /// [length² / (mass time²)]. A grain's mesh potential includes this; P3M subtracts it so
+    /// that ½ Σ m φ is the pair energy alone, as for the direct sum. Local, pure.
+    [[nodiscard]] double selfPotential() const;
+
 private:
     double m_G = 0.0;
     double m_cutoff = 0.0;
     double m_dr = 0.0;           ///< table spacing [length]
     std::vector<double> m_table; ///< mesh(r) at r = (k + 1) * m_dr
+    /// ∫_r^cutoff mesh(s) ds at r = k * m_dr (k = 0 .. ceil(cutoff / m_dr), 0 from the cut-off)
+    std::vector<double> m_integral;
 };
 
 } // namespace regolith::gravity

@@ -35,11 +35,18 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
         c.petscOptions = g.petscOptions;
         c.gradientOrder = g.gradientOrder;
         break;
+    case SelfGravity::P3m:
+        c.method = coupling::GrainGravityMethod::P3m;
+        c.cellsPerBlock = scene.forest.cellsPerBlock;
+        c.petscOptions = g.petscOptions;
+        c.gradientOrder = g.gradientOrder;
+        c.p3mCutoffCells = g.p3mCutoff;
+        break;
     default:
         // The grid methods exist in gravity/ but are not coupled to the grains yet.
         throw core::InputError(fmt::format(
             "gravity.self = \"{}\": this method is not coupled to the time step yet; use "
-            "\"direct\", \"tree\", \"mutual-tree\" or \"pm\"",
+            "\"direct\", \"tree\", \"mutual-tree\", \"pm\" or \"p3m\"",
             toString(g.self)));
     }
     c.G = g.G;

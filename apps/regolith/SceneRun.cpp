@@ -12,6 +12,7 @@
 #include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/GravitySetup.hpp"
+#include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/ProgressLine.hpp"
@@ -51,6 +52,7 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
         choices = resolveAutoChoices(ctx.world, masters, scene);
         checkInitialState(ctx.world, masters, scene);
         warnLazyUpdateThreshold(ctx.world, masters, scene);
+        checkGridAccuracy(ctx.world, masters, scene);
     }
     addMasters(local, grains);
     return choices;

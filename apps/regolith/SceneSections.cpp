@@ -97,6 +97,7 @@ GravitySection parseGravity(core::ConfigTable const& t) {
             t.getOrIf<double>("update_threshold", s.updateThreshold, isNonNegativeFinite,
                               "a non-negative finite number or \"auto\"");
     }
+    s.accuracyGiven = t.has("accuracy");
     s.accuracy = t.getOrIf<double>(
         "accuracy", s.accuracy, [](double a) { return a > 0.0 && a < 1.0; },
         "a relative force error in (0, 1)");
@@ -107,6 +108,9 @@ GravitySection parseGravity(core::ConfigTable const& t) {
         "gradient_order", 2, [](int o) { return o == 2 || o == 4; }, "2 or 4");
     if (auto const petsc = t.findTable("petsc"))
         s.petscOptions = petsc->getOr<std::string>("options", "");
+    s.p3mCutoff = t.getOrIf<double>(
+        "p3m_cutoff", s.p3mCutoff, [](double c) { return c >= 2.0 && std::isfinite(c); },
+        "a number of cells >= 2");
     return s;
 }
 

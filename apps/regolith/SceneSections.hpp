@@ -65,7 +65,8 @@ enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, 
 /// error of "auto", default 1e-3), G > 0, theta > 0 (Barnes–Hut opening angle;
 /// above 1 only with allow_large_theta = true),
 /// update_threshold >= 0 (displacement that triggers a recomputation), softening >= 0 (a
-/// length), [gravity.petsc] options (PETSc command-line options for the Poisson solve).
+/// length), [gravity.petsc] options (PETSc command-line options for the Poisson solve),
+/// p3m_cutoff (cells, >= 2).
 struct GravitySection {
     core::Vec3 external = core::Vec3::Zero();
     SelfGravity self = SelfGravity::None;
@@ -78,6 +79,8 @@ struct GravitySection {
     bool allowLargeTheta = false;
     int gradientOrder = 2; ///< gravity.gradient_order of the mesh's g = -grad phi (2 or 4)
     std::string petscOptions;
+    double p3mCutoff = 4.0;     ///< gravity.p3m_cutoff: P3M's pair cut-off in cells (>= 2)
+    bool accuracyGiven = false; ///< gravity.accuracy was set (the mesh methods then check it)
 };
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),

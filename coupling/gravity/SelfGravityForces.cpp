@@ -1,5 +1,6 @@
 #include "coupling/gravity/SelfGravityForces.hpp"
 
+#include "coupling/gravity/P3mGravity.hpp"
 #include "gravity/GridGravity.hpp"
 #include "gravity/common/PointMasses.hpp"
 #include "gravity/direct/DirectSum.hpp"
@@ -84,6 +85,9 @@ public:
         case GrainGravityMethod::Mesh:
             m_eval = std::make_unique<MeshGravity>(comm, forest, c);
             break;
+        case GrainGravityMethod::P3m:
+            m_eval = std::make_unique<P3mGravity>(comm, forest, c);
+            break;
         }
         for (domain::Block const& b : forest.blocks())
             m_boxes.push_back(b.aabb);
@@ -110,7 +114,8 @@ public:
 private:
     std::variant<std::unique_ptr<gravity::direct::DirectSum>,
                  std::unique_ptr<gravity::tree::BarnesHut>,
-                 std::unique_ptr<gravity::tree::MutualTree>, std::unique_ptr<MeshGravity>>
+                 std::unique_ptr<gravity::tree::MutualTree>, std::unique_ptr<MeshGravity>,
+                 std::unique_ptr<P3mGravity>>
         m_eval;
     std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
 };

@@ -25,6 +25,7 @@ enum class GrainGravityMethod {
     Tree,       ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
     MutualTree, ///< momentum-conserving dual-tree walk, grains gathered on every rank
     Mesh,       ///< particle-mesh: deposit, PETSc Poisson solve, interpolate (gravity/)
+    P3m,        ///< the mesh plus the short-range pair correction (P3mGravity.hpp)
 };
 
 struct SelfGravityConfig {
@@ -38,6 +39,7 @@ struct SelfGravityConfig {
     std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< domain.cells_per_block
     std::string petscOptions;                  ///< gravity.petsc.options
     int gradientOrder = 2;                     ///< gravity.gradient_order (2 or 4)
+    double p3mCutoffCells = 4.0;               ///< gravity.p3m_cutoff [cells] (P3M only)
 };
 
 /// What the run summary reports about self-gravity.

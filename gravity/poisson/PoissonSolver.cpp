@@ -174,6 +174,14 @@ PoissonSolver::PoissonSolver(core::Comm const& comm, CellLayout const& layout,
 
 PoissonSolver::~PoissonSolver() = default;
 
+void PoissonSolver::setRelativeTolerance(double rtol) {
+    if (!(rtol > 0.0 && rtol < 1.0))
+        throw core::Error(fmt::format("PoissonSolver: relative tolerance {} not in (0, 1)", rtol));
+    m_options.rtol = rtol;
+    petscCheck(KSPSetTolerances(m_petsc->ksp, rtol, 1e-300, PETSC_DEFAULT, m_options.maxIterations),
+               "KSPSetTolerances");
+}
+
 void PoissonSolver::resetInitialGuess() {
     petscCheck(VecSet(m_petsc->x, 0.0), "VecSet");
 }

@@ -56,6 +56,10 @@ public:
 
     /// The next solve starts from zero (a cold start; e.g. after a jump of the mass). Local.
     void resetInitialGuess();
+    /// Sets the relative tolerance of the next solves (unpreconditioned residual relative to
+    /// |b|; overrides options.rtol and any -ksp_rtol), keeping the set-up. Pre: rtol in
+    /// (0, 1). COLLECTIVE in spirit (PETSc state): call on every rank alike.
+    void setRelativeTolerance(double rtol);
 
     /// Free space: the boundary potential of the last solve's density (for boundary ghosts).
     [[nodiscard]] FreeSpaceBoundary const& boundary() const { return m_boundary; }

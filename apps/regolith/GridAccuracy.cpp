@@ -1,0 +1,97 @@
+#include "apps/regolith/GridAccuracy.hpp"
+
+#include "core/Error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace regolith::apps {
+
+std::span<GridErrorPoint const> gridErrorPoints(SelfGravity method) {
+    switch (method) {
+    case SelfGravity::Pm:
+        return kMeshErrors;
+    case SelfGravity::P3m:
+        return kP3mErrors;
+    default:
+        return {};
+    }
+}
+
+double expectedGridError(std::span<GridErrorPoint const> points, double cellsAcross) {
+    if (cellsAcross <= points.front().cellsAcrossBody)
+        return points.front().medianError;
+    if (cellsAcross >= points.back().cellsAcrossBody)
+        return points.back().medianError;
+    std::size_t k = 1;
+    while (points[k].cellsAcrossBody < cellsAcross)
+        ++k;
+    GridErrorPoint const& a = points[k - 1];
+    GridErrorPoint const& b = points[k];
+    double const f =
+        std::log(cellsAcross / a.cellsAcrossBody) / std::log(b.cellsAcrossBody / a.cellsAcrossBody);
+    return a.medianError * std::pow(b.medianError / a.medianError, f);
+}
+
+void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const& masters,
+                       SceneDescription const& scene) {
+    GravitySection const& g = scene.gravity;
+    auto const points = gridErrorPoints(g.self);
+    if (points.empty() || !g.accuracyGiven)
+        return;
+    // The body's largest extent: the bounding box of the grains, over all ranks.
+    std::array<double, 6> box{};
+    box.fill(-std::numeric_limits<double>::infinity()); // -min (3), max (3)
+    masters.forEachMaster([&](std::size_t i) {
+        for (int a = 0; a < 3; ++a) {
+            auto const ua = static_cast<std::size_t>(a);
+            double const x = masters.position(i)[a];
+            double const r = masters.radius(i);
+            box[ua] = std::max(box[ua], -(x - r));
+            box[ua + 3] = std::max(box[ua + 3], x + r);
+        }
+    });
+    comm.allReduceInPlace(std::span<double>(box), core::ReduceOp::Max);
+    double extent = 0.0;
+    for (std::size_t a = 0; a < 3; ++a)
+        extent = std::max(extent, box[a + 3] + box[a]);
+    if (!(extent > 0.0) || !std::isfinite(extent))
+        return; // no grains: nothing to resolve
+    domain::ForestSpec const& f = scene.forest;
+    double h = 0.0; // the coarsest cell edge decides
+    for (std::size_t a = 0; a < 3; ++a)
+        h = std::max(h, f.domain.extent()[static_cast<int>(a)] /
+                            (f.rootBlocks[a] * std::max(f.cellsPerBlock[a], 1)));
+    double const across = extent / h;
+    double const expected = expectedGridError(points, across);
+    if (expected <= g.accuracy)
+        return;
+    auto const name = toString(g.self);
+    auto const meets = std::find_if(points.begin(), points.end(), [&](GridErrorPoint const& p) {
+        return p.medianError <= g.accuracy;
+    });
+    if (meets == points.end())
+        throw core::InputError(fmt::format(
+            "gravity.accuracy = {:g}: gravity.self = \"{}\" reached a median force error of {:g} "
+            "at best ({:g} cells across the body, measured on the 38,358-grain agglomerate); "
+            "ask for a larger gravity.accuracy or use \"p3m\", \"tree\" or \"direct\"",
+            g.accuracy, name, points.back().medianError, points.back().cellsAcrossBody));
+    // Cells per block that put meets->cellsAcrossBody cells across the body.
+    double const hNeeded = extent / meets->cellsAcrossBody;
+    std::array<int, 3> needed{};
+    for (std::size_t a = 0; a < 3; ++a)
+        needed[a] = static_cast<int>(
+            std::ceil(f.domain.extent()[static_cast<int>(a)] / (f.rootBlocks[a] * hNeeded)));
+    throw core::InputError(fmt::format(
+        "domain.cells_per_block = [{}, {}, {}] is too coarse for gravity.accuracy = {:g} with "
+        "gravity.self = \"{}\": {:.1f} cells across the body (extent {:g}) give a median force "
+        "error of about {:.2g}; {:g} cells across are needed: domain.cells_per_block = [{}, {}, "
+        "{}] (measured on the 38,358-grain agglomerate, docs/results.md)",
+        f.cellsPerBlock[0], f.cellsPerBlock[1], f.cellsPerBlock[2], g.accuracy, name, across,
+        extent, expected, meets->cellsAcrossBody, needed[0], needed[1], needed[2]));
+}
+
+} // namespace regolith::apps

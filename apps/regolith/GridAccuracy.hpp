@@ -1,0 +1,47 @@
+#pragma once
+/// "A forest too coarse for the requested accuracy" (issue 6): the grid methods' force error
+/// is set by the grid spacing relative to the body, so a scene that asks for a
+/// gravity.accuracy the mesh cannot give on its domain.cells_per_block is refused before the
+/// run, naming the cells per block it would need.
+#include "apps/regolith/SceneSections.hpp"
+#include "core/mpi/Comm.hpp"
+#include "particles/storage/ParticleStorage.hpp"
+
+#include <array>
+#include <span>
+
+namespace regolith::apps {
+
+/// One measured point: the median relative force error against the direct sum at a number of
+/// grid cells across the body (its largest bounding-box extent / h).
+struct GridErrorPoint {
+    double cellsAcrossBody;
+    double medianError;
+};
+
+/// Measured on the second paper's 38,358-grain agglomerate (radii 20–60 m, TSC, 4th-order
+/// gradient, rtol 1e-5; `grid_agglomerate_bench`, docs/results.md), ascending cells.
+/// "pm": grains deposited as volumes. "p3m": the default 4-cell cut-off. Other bodies differ
+/// (the error also depends on how many grains share a cell), so the check is a guide of the
+/// right order, not a guarantee.
+inline constexpr GridErrorPoint kMeshErrors[] = {
+    {13.6, 4.9e-2}, {27.2, 1.9e-2}, {54.4, 8.1e-3}, {108.8, 4.2e-3}};
+inline constexpr GridErrorPoint kP3mErrors[] = {
+    {13.6, 2.3e-3}, {27.2, 2.1e-3}, {54.4, 2.0e-3}, {108.8, 1.9e-3}};
+
+/// The measured points of `method` (pm or p3m), empty for the other methods.
+[[nodiscard]] std::span<GridErrorPoint const> gridErrorPoints(SelfGravity method);
+
+/// The median error expected at `cellsAcross` from `points` (log-log interpolation; beyond
+/// the ends, the end values: coarser is at least as bad, finer no better than measured).
+[[nodiscard]] double expectedGridError(std::span<GridErrorPoint const> points, double cellsAcross);
+
+/// For gravity.self = "pm" or "p3m" with gravity.accuracy given in the scene: throws
+/// core::InputError (on every rank alike) if the grid is coarser than the measured points say
+/// the accuracy needs, naming gravity.accuracy, domain.cells_per_block and the cells per block
+/// needed (or, if no measured grid meets it, the best the method reached and what to use
+/// instead). Does nothing otherwise. COLLECTIVE over `comm` (extent of the masters).
+void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const& masters,
+                       SceneDescription const& scene);
+
+} // namespace regolith::apps

@@ -1,0 +1,67 @@
+"""P3M in the coupled time step through the whole driver (issues 6 and 8): the Kepler pair of
+scenes/kepler.toml (separation 1, G = 1) takes one step with gravity.self = "pm" and "p3m" on
+grids where the pair is only 1 and 2 cells apart (h = 1 with a 2-cell cut-off, h = 1/2 with the
+default 4 cells; 4th-order gradient), and with the direct sum. The relative error of grain 1's
+velocity change against the direct sum is the relative force error: the bare mesh's must be
+large (softened over the kernel width), P3M's small. Prints the errors (quoted in
+docs/results.md).
+
+usage: p3m_force_check.py --mpiexec M --app APP --scene kepler.toml --out DIR [--np 2]
+"""
+import argparse
+import csv
+import math
+import os
+import subprocess
+import sys
+
+V0 = 0.7071067811865476  # grain 1's initial velocity along y
+
+# (cells per block on x and y, cut-off in cells, the least mesh error, the largest P3M error)
+CASES = ((4, 2, 0.3, 0.06), (8, 4, 0.08, 0.02))
+
+
+def velocity_change(a, name, extra):
+    dump = os.path.join(a.out, f"p3m_force_{name}.csv")
+    command = [a.mpiexec, "-n", str(a.np), "--oversubscribe", a.app, a.scene, "--quiet",
+               "--steps", "1", "--dump", dump, *extra]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=240, check=False)
+    if done.returncode != 0:
+        sys.exit(f"p3m_force_check: {' '.join(command)} exited with {done.returncode}\n"
+                 f"{done.stdout}\n{done.stderr}")
+    with open(dump, encoding="utf-8") as f:
+        grain = next(r for r in csv.DictReader(f) if r["uid"] == "1")
+    return float(grain["vx"]), float(grain["vy"]) - V0
+
+
+def main():
+    p = argparse.ArgumentParser()
+    for k in ("--mpiexec", "--app", "--scene", "--out"):
+        p.add_argument(k, required=True)
+    p.add_argument("--np", type=int, default=2)
+    a = p.parse_args()
+    reference = velocity_change(a, "direct", ["--set", "gravity.self=direct"])
+    failures = []
+    for cells, cutoff, mesh_least, p3m_most in CASES:
+        grid = ["--set", "gravity.gradient_order=4",
+                "--set", f"domain.cells_per_block=[{cells},{cells},{2 * cells}]"]
+        errors = {}
+        for method in ("pm", "p3m"):
+            extra = ["--set", f"gravity.self={method}", *grid]
+            if method == "p3m":
+                extra += ["--set", f"gravity.p3m_cutoff={cutoff}"]
+            dv = velocity_change(a, f"{method}{cells}", extra)
+            errors[method] = math.dist(dv, reference) / math.hypot(*reference)
+        h = 4.0 / cells  # the domain is 8 wide over 2 blocks in x and y
+        print(f"h = {h:g} (pair {1 / h:g} h apart): pm error {errors['pm']:.3g}, "
+              f"p3m (cut-off {cutoff} cells) error {errors['p3m']:.3g}")
+        if not errors["pm"] > mesh_least:
+            failures.append(f"pm error {errors['pm']:.3g} at h = {h:g}, expected > {mesh_least}")
+        if not errors["p3m"] < p3m_most:
+            failures.append(f"p3m error {errors['p3m']:.3g} at h = {h:g}, expected < {p3m_most}")
+    if failures:
+        sys.exit("p3m_force_check: " + "; ".join(failures))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+// P3M in the coupled path (SelfGravityForces with gravity.self = "p3m", masters in
+// particles::LocalParticles): where the bare mesh fails (two grains closer than 2 h, here
+// across a block face and, on 2 and 4 ranks, across ranks; and across a periodic face) P3M
+// gives the Newtonian pair force; on a packed agglomerate it agrees with the direct sum
+// within the mesh's residual anisotropy. 1, 2, 4 ranks, G = 1, h = 1/2 (32³ cells).
+#include "gravity/samples/SyntheticBodies.hpp"
+#include "tests/coupling/CouplingTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+
+using namespace regolith;
+using coupling::GrainGravityMethod;
+using coupling::test::GlobalGrains;
+
+namespace {
+
+domain::ForestSpec forestSpec(bool periodic) {
+    domain::ForestSpec spec;
+    spec.domain = core::AABB{core::Vec3::Constant(-8.0), core::Vec3::Constant(8.0)};
+    spec.rootBlocks = {2, 2, 2};
+    spec.periodic = {periodic, periodic, periodic};
+    spec.cellsPerBlock = {16, 16, 16}; // h = 0.5
+    return spec;
+}
+
+coupling::SelfGravityConfig config(GrainGravityMethod method, domain::ForestSpec const& spec) {
+    coupling::SelfGravityConfig c;
+    c.method = method;
+    c.G = 1.0;
+    c.cellsPerBlock = spec.cellsPerBlock;
+    c.gradientOrder = 4;
+    return c;
+}
+
+/// |a - a_exact| / |a_exact| of grain 0 of a pair, a_exact = G m1 / r² towards grain 1 (the
+/// minimum image on a periodic domain).
+double pairError(domain::ForestSpec const& spec, GlobalGrains const& pair,
+                 GrainGravityMethod method) {
+    domain::BlockForest const forest(coupling::test::world(), spec);
+    auto const field = coupling::test::selfGravity(forest, pair, config(method, spec));
+    core::Vec3 d = pair.position[1] - pair.position[0];
+    for (int a = 0; a < 3; ++a)
+        if (spec.periodic[static_cast<std::size_t>(a)])
+            d[a] -= 16.0 * std::round(d[a] / 16.0);
+    core::Vec3 const exact = pair.mass[1] / d.squaredNorm() * d.normalized();
+    return (field.acceleration[0] - exact).norm() / exact.norm();
+}
+
+/// Two grains one cell apart across the block face x = 0 (on 2 and 4 ranks also a rank
+/// boundary), off the grid axes. PairForceTest measured the mesh 55-60 % too weak at 1 h and
+/// P3M's residual anisotropy below 5 % (TSC, 4th-order gradient).
+TEST(P3mCoupling, TwoCloseGrainsMeshFailsP3mRepairs) {
+    core::Vec3 const dir = core::Vec3{1.0, 0.37, -0.21}.normalized();
+    core::Vec3 const centre{0.0, 0.13, -0.07};
+    double const h = 0.5;
+    GlobalGrains pair;
+    pair.position = {centre - 0.5 * h * dir, centre + 0.5 * h * dir};
+    pair.mass = {1.0, 2.0};
+    pair.radius = {0.1, 0.1};
+    auto const spec = forestSpec(false);
+    double const mesh = pairError(spec, pair, GrainGravityMethod::Mesh);
+    double const p3m = pairError(spec, pair, GrainGravityMethod::P3m);
+    if (coupling::test::world().rank() == 0)
+        std::printf("pair at 1 h: mesh error %.3f, P3M error %.4f\n", mesh, p3m);
+    EXPECT_GT(mesh, 0.3);
+    EXPECT_LT(p3m, 0.06);
+}
+
+/// The same through a periodic face: the pair is found through the halo's periodic image
+/// (on one rank an image of the rank's own grain).
+TEST(P3mCoupling, ClosePairAcrossAPeriodicFace) {
+    GlobalGrains pair;
+    pair.position = {{-7.85, 0.21, 0.33}, {7.8, 0.02, 0.41}}; // 0.35 apart through x = ±8
+    pair.mass = {1.0, 1.5};
+    pair.radius = {0.1, 0.1};
+    auto const spec = forestSpec(true);
+    double const mesh = pairError(spec, pair, GrainGravityMethod::Mesh);
+    double const p3m = pairError(spec, pair, GrainGravityMethod::P3m);
+    if (coupling::test::world().rank() == 0)
+        std::printf("periodic pair at 0.8 h: mesh error %.3f, P3M error %.4f\n", mesh, p3m);
+    EXPECT_GT(mesh, 0.3);
+    EXPECT_LT(p3m, 0.06);
+}
+
+/// A packed agglomerate of 500 grains (radii 0.1-0.2, about 7 cells across, so most of each
+/// grain's pull comes from within the 4-cell cut-off): per-grain relative force error against
+/// the direct sum. Tolerances (measured 0.6 % and 1.3 % on 1, 2, 4 ranks): median 1 %, 99th
+/// percentile 3 % (the mesh's anisotropy and its ~0.3 % error beyond the cut-off); the bare
+/// mesh, asserted at least 5 times worse in the median. The potential energy within 0.5 % of the direct sum's.
+TEST(P3mCoupling, AgreesWithTheDirectSumOnAnAgglomerate) {
+    auto const body = gravity::samples::packedAgglomerate(500, 0.1, 0.2, 1.0, 0.3,
+                                                          core::Vec3{0.31, -0.22, 0.13}, 5);
+    GlobalGrains grains;
+    for (std::size_t k = 0; k < body.size(); ++k) {
+        grains.position.emplace_back(body.x[k], body.y[k], body.z[k]);
+        grains.mass.push_back(body.m[k]);
+        grains.radius.push_back(0.0); // points for the mesh, as P3M deposits them
+    }
+    auto const spec = forestSpec(false);
+    domain::BlockForest const forest(coupling::test::world(), spec);
+    auto errors = [&](GrainGravityMethod method, double& energyError) {
+        auto const direct =
+            coupling::test::selfGravity(forest, grains, config(GrainGravityMethod::Direct, spec));
+        auto const approx = coupling::test::selfGravity(forest, grains, config(method, spec));
+        std::vector<double> e;
+        for (std::size_t k = 0; k < grains.position.size(); ++k)
+            e.push_back((approx.acceleration[k] - direct.acceleration[k]).norm() /
+                        direct.acceleration[k].norm());
+        std::sort(e.begin(), e.end());
+        energyError = std::abs(approx.potentialEnergy / direct.potentialEnergy - 1.0);
+        return std::pair{e[e.size() / 2], e[e.size() * 99 / 100]};
+    };
+    double meshEnergy = 0.0, p3mEnergy = 0.0;
+    auto const mesh = errors(GrainGravityMethod::Mesh, meshEnergy);
+    auto const p3m = errors(GrainGravityMethod::P3m, p3mEnergy);
+    if (coupling::test::world().rank() == 0)
+        std::printf("agglomerate, 500 grains: mesh median %.4f p99 %.4f energy %.4f; P3M median "
+                    "%.5f p99 %.5f energy %.5f\n",
+                    mesh.first, mesh.second, meshEnergy, p3m.first, p3m.second, p3mEnergy);
+    EXPECT_LT(p3m.first, 0.01);
+    EXPECT_LT(p3m.second, 0.03);
+    EXPECT_LT(5.0 * p3m.first, mesh.first);
+    EXPECT_LT(p3mEnergy, 0.005);
+}
+
+} // namespace
