@@ -32,12 +32,16 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
     double const h = layout.spacing().minCoeff();
     m_cutoff = cutoffCells * h;
     m_dr = 0.125 * h;
+    m_dv = 0.25 * h;
+    m_half = static_cast<int>(std::ceil(m_cutoff / m_dv));
+    int const side = 2 * m_half + 1;
     auto const samples = static_cast<std::size_t>(std::ceil(m_cutoff / m_dr)) + 1;
     m_table.assign(samples, 0.0);
+    std::vector<double> vector(3 * static_cast<std::size_t>(side * side * side), 0.0);
     core::Vec3 const centre = layout.forest().domain().center();
     auto const dirs = directions();
-    // Source positions at several sub-cell offsets, so that the table averages over where a
-    // grain sits in its cell as well as over directions.
+    // Source positions at several sub-cell offsets, so that the tables average over where a
+    // grain sits in its cell (the lattice symmetries below multiply them by up to 48).
     std::array<core::Vec3, 4> const offsets{core::Vec3{0.0, 0.0, 0.0}, core::Vec3{0.5, 0.5, 0.5},
                                             core::Vec3{0.25, 0.1, 0.4}, core::Vec3{0.5, 0.0, 0.25}};
     for (auto const& off : offsets) {
@@ -49,21 +53,36 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
             mass.push_back(1.0 / m_G); // unit G m
         }
         gravity.update({src, {}, mass});
+        // Probes: the radial samples (26 directions), then the lattice of displacements.
         std::vector<core::Vec3> probes;
-        if (comm.rank() == 0)
+        if (comm.rank() == 0) {
             for (std::size_t k = 0; k < samples; ++k)
                 for (auto const& d : dirs)
                     probes.push_back(source + static_cast<double>(k + 1) * m_dr * d);
+            for (int k = -m_half; k <= m_half; ++k)
+                for (int j = -m_half; j <= m_half; ++j)
+                    for (int i = -m_half; i <= m_half; ++i)
+                        probes.push_back(source + m_dv * core::Vec3(i, j, k));
+        }
         std::vector<core::Vec3> g(probes.size());
         gravity.accelerations({probes, {}, {}}, g);
-        if (comm.rank() == 0)
+        if (comm.rank() == 0) {
             for (std::size_t k = 0; k < samples; ++k)
                 for (std::size_t d = 0; d < dirs.size(); ++d)
                     m_table[k] += -g[k * dirs.size() + d].dot(dirs[d]); // towards the source
+            std::size_t const first = samples * dirs.size();
+            for (std::size_t v = 0; v + first < g.size(); ++v)
+                for (int a = 0; a < 3; ++a)
+                    vector[3 * v + static_cast<std::size_t>(a)] += g[first + v][a];
+        }
     }
     comm.allReduceInPlace(std::span<double>(m_table), core::ReduceOp::Sum);
+    comm.allReduceInPlace(std::span<double>(vector), core::ReduceOp::Sum);
     for (double& v : m_table)
         v /= static_cast<double>(offsets.size() * dirs.size());
+    for (double& v : vector)
+        v /= static_cast<double>(offsets.size());
+    symmetrise(vector, layout.spacing());
     // The pair potential from the force table, integrated inwards from the cut-off: the
     // trapezoid rule on the table's own spacing is exact for its linear interpolation.
     auto const steps = static_cast<std::size_t>(std::ceil(m_cutoff / m_dr));
@@ -74,6 +93,70 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
         m_integral[k] =
             m_integral[k + 1] + 0.5 * (b - a) * (meshPairAcceleration(a) + meshPairAcceleration(b));
     }
+}
+
+void GridShortRange::symmetrise(std::vector<double> const& raw, core::Vec3 const& spacing) {
+    // The mesh is invariant under the lattice's symmetries about a source (reflections of each
+    // axis; with cubic cells also permutations of the axes), which map one source offset to
+    // another: averaging T(P e) mapped back by P^-1 over the group P averages over the mapped
+    // offsets too, and makes the table odd, T(-e) = -T(e), so the correction conserves
+    // momentum pair by pair.
+    bool const cubic = (spacing.maxCoeff() - spacing.minCoeff()) <= 1e-12 * spacing.maxCoeff();
+    std::vector<std::array<int, 3>> perms{{0, 1, 2}};
+    if (cubic)
+        perms = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    int const side = 2 * m_half + 1;
+    auto index = [&](std::array<int, 3> const& e) {
+        return static_cast<std::size_t>((e[0] + m_half) +
+                                        side * ((e[1] + m_half) + side * (e[2] + m_half)));
+    };
+    m_vector.assign(static_cast<std::size_t>(side * side * side), core::Vec3::Zero());
+    double const count = static_cast<double>(perms.size() * 8);
+    for (int k = -m_half; k <= m_half; ++k)
+        for (int j = -m_half; j <= m_half; ++j)
+            for (int i = -m_half; i <= m_half; ++i) {
+                std::array<int, 3> const e{i, j, k};
+                core::Vec3 sum = core::Vec3::Zero();
+                for (auto const& p : perms)
+                    for (int signs = 0; signs < 8; ++signs) {
+                        std::array<int, 3> w{};
+                        std::array<double, 3> s{};
+                        for (std::size_t a = 0; a < 3; ++a) {
+                            s[a] = ((signs >> a) & 1) != 0 ? -1.0 : 1.0;
+                            w[a] = static_cast<int>(s[a]) * e[static_cast<std::size_t>(p[a])];
+                        }
+                        std::size_t const v = index(w);
+                        for (std::size_t a = 0; a < 3; ++a)
+                            sum[p[a]] += s[a] * raw[3 * v + a];
+                    }
+                m_vector[index(e)] = sum / count;
+            }
+}
+
+core::Vec3 GridShortRange::meshPairVector(core::Vec3 const& e) const {
+    int const side = 2 * m_half + 1;
+    std::array<int, 3> i0{};
+    std::array<double, 3> f{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        double const u =
+            std::clamp(e[static_cast<int>(a)] / m_dv + m_half, 0.0, static_cast<double>(side - 1));
+        i0[a] = std::min(static_cast<int>(u), side - 2);
+        f[a] = u - i0[a];
+    }
+    core::Vec3 out = core::Vec3::Zero();
+    for (int c = 0; c < 8; ++c) {
+        double w = 1.0;
+        std::size_t idx = 0;
+        std::size_t stride = 1;
+        for (std::size_t a = 0; a < 3; ++a) {
+            int const bit = (c >> a) & 1;
+            w *= bit != 0 ? f[a] : 1.0 - f[a];
+            idx += static_cast<std::size_t>(i0[a] + bit) * stride;
+            stride *= static_cast<std::size_t>(side);
+        }
+        out += w * m_vector[idx];
+    }
+    return out;
 }
 
 double GridShortRange::meshPairAcceleration(double r) const {
@@ -88,17 +171,16 @@ double GridShortRange::meshPairAcceleration(double r) const {
 }
 
 core::Vec3 GridShortRange::correction(core::Vec3 const& d, double mj) const {
+    return mj * pairCorrection(d, 0.0);
+}
+
+core::Vec3 GridShortRange::pairCorrection(core::Vec3 const& d, double softening) const {
     double const r = d.norm();
     if (r >= m_cutoff || r == 0.0)
         return core::Vec3::Zero();
-    return m_G * mj * (1.0 / (r * r) - meshPairAcceleration(r)) * (d / r);
-}
-
-double GridShortRange::pairFactor(double r, double softening) const {
-    if (r >= m_cutoff || r == 0.0)
-        return 0.0;
     double const s2 = r * r + softening * softening;
-    return m_G * (1.0 / (s2 * std::sqrt(s2)) - meshPairAcceleration(r) / r);
+    // Grain i sits at -d from the source j: the mesh gave it T(-d) = -T(d).
+    return m_G * (d / (s2 * std::sqrt(s2)) + meshPairVector(d));
 }
 
 double GridShortRange::pairPotential(double r, double softening) const {

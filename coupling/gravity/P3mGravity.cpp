@@ -96,15 +96,15 @@ double P3mGravity::addShortRange(gravity::PointMasses const& grains) {
         double const r = d.norm();
         if (r == 0.0)
             return; // coincident grains exert nothing on each other, as in the direct sum
-        double const factor = m_shortRange.pairFactor(r, m_softening);
+        core::Vec3 const correction = m_shortRange.pairCorrection(d, m_softening);
         double const potential = m_shortRange.pairPotential(r, m_softening);
         ++m_pairs;
         if (a < n) {
-            m_acc[a] += factor * m_mass[b] * d;
+            m_acc[a] += m_mass[b] * correction;
             energy += 0.5 * m_mass[a] * m_mass[b] * potential;
         }
         if (b < n) {
-            m_acc[b] -= factor * m_mass[a] * d;
+            m_acc[b] -= m_mass[a] * correction;
             energy += 0.5 * m_mass[a] * m_mass[b] * potential;
         }
     });

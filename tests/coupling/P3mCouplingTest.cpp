@@ -50,8 +50,9 @@ double pairError(domain::ForestSpec const& spec, GlobalGrains const& pair,
 }
 
 /// Two grains one cell apart across the block face x = 0 (on 2 and 4 ranks also a rank
-/// boundary), off the grid axes. PairForceTest measured the mesh 55-60 % too weak at 1 h and
-/// P3M's residual anisotropy below 5 % (TSC, 4th-order gradient).
+/// boundary), off the grid axes. Measured: mesh 58 % too weak, P3M 2.2 % off (TSC, 4th-order
+/// gradient; what remains is how the mesh force depends on where the grains sit in their
+/// cells, up to ~5 % at 1 h in PairForceTest).
 TEST(P3mCoupling, TwoCloseGrainsMeshFailsP3mRepairs) {
     core::Vec3 const dir = core::Vec3{1.0, 0.37, -0.21}.normalized();
     core::Vec3 const centre{0.0, 0.13, -0.07};
@@ -87,9 +88,10 @@ TEST(P3mCoupling, ClosePairAcrossAPeriodicFace) {
 
 /// A packed agglomerate of 500 grains (radii 0.1-0.2, about 7 cells across, so most of each
 /// grain's pull comes from within the 4-cell cut-off): per-grain relative force error against
-/// the direct sum. Tolerances (measured 0.6 % and 1.3 % on 1, 2, 4 ranks): median 1 %, 99th
-/// percentile 3 % (the mesh's anisotropy and its ~0.3 % error beyond the cut-off); the bare
-/// mesh, asserted at least 5 times worse in the median. The potential energy within 0.5 % of the direct sum's.
+/// the direct sum. Tolerances (measured 0.36 % and 0.95 % on 1, 2, 4 ranks): median 1 %, 99th
+/// percentile 3 % (the mesh force's dependence on the grains' positions in their cells, and its
+/// ~0.3 % error beyond the cut-off); the bare mesh (10.6 %), asserted at least 5 times worse in
+/// the median. The potential energy within 0.5 % of the direct sum's (measured 0.23 %).
 TEST(P3mCoupling, AgreesWithTheDirectSumOnAnAgglomerate) {
     auto const body = gravity::samples::packedAgglomerate(500, 0.1, 0.2, 1.0, 0.3,
                                                           core::Vec3{0.31, -0.22, 0.13}, 5);
