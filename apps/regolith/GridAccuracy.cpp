@@ -22,18 +22,19 @@ std::span<GridErrorPoint const> gridErrorPoints(SelfGravity method) {
 }
 
 double expectedGridError(std::span<GridErrorPoint const> points, double cellsAcross) {
-    if (cellsAcross <= points.front().cellsAcrossBody)
-        return points.front().medianError;
-    if (cellsAcross >= points.back().cellsAcrossBody)
+    auto const along = [cellsAcross](GridErrorPoint const& a, GridErrorPoint const& b) {
+        double const f = std::log(cellsAcross / a.cellsAcrossBody) /
+                         std::log(b.cellsAcrossBody / a.cellsAcrossBody);
+        return a.medianError * std::pow(b.medianError / a.medianError, f);
+    };
+    if (points.size() < 2 || cellsAcross >= points.back().cellsAcrossBody)
         return points.back().medianError;
+    if (cellsAcross <= points.front().cellsAcrossBody)
+        return std::max(points.front().medianError, along(points[0], points[1]));
     std::size_t k = 1;
     while (points[k].cellsAcrossBody < cellsAcross)
         ++k;
-    GridErrorPoint const& a = points[k - 1];
-    GridErrorPoint const& b = points[k];
-    double const f =
-        std::log(cellsAcross / a.cellsAcrossBody) / std::log(b.cellsAcrossBody / a.cellsAcrossBody);
-    return a.medianError * std::pow(b.medianError / a.medianError, f);
+    return along(points[k - 1], points[k]);
 }
 
 void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const& masters,
@@ -70,15 +71,24 @@ void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const&
     if (expected <= g.accuracy)
         return;
     auto const name = toString(g.self);
-    auto const meets = std::find_if(points.begin(), points.end(), [&](GridErrorPoint const& p) {
-        return p.medianError <= g.accuracy;
-    });
-    if (meets == points.end())
+    // The measured point that meets the accuracy nearest to this grid (in log cells).
+    GridErrorPoint const* meets = nullptr;
+    GridErrorPoint const* best = &points.front();
+    for (GridErrorPoint const& p : points) {
+        if (p.medianError < best->medianError)
+            best = &p;
+        if (p.medianError <= g.accuracy &&
+            (meets == nullptr || std::abs(std::log(p.cellsAcrossBody / across)) <
+                                     std::abs(std::log(meets->cellsAcrossBody / across))))
+            meets = &p;
+    }
+    if (meets == nullptr)
         throw core::InputError(fmt::format(
             "gravity.accuracy = {:g}: gravity.self = \"{}\" reached a median force error of {:g} "
             "at best ({:g} cells across the body, measured on the 38,358-grain agglomerate); "
-            "ask for a larger gravity.accuracy or use \"p3m\", \"tree\" or \"direct\"",
-            g.accuracy, name, points.back().medianError, points.back().cellsAcrossBody));
+            "ask for a larger gravity.accuracy or use {}\"tree\" or \"direct\"",
+            g.accuracy, name, best->medianError, best->cellsAcrossBody,
+            g.self == SelfGravity::Pm ? "\"p3m\", " : ""));
     // Cells per block that put meets->cellsAcrossBody cells across the body.
     double const hNeeded = extent / meets->cellsAcrossBody;
     std::array<int, 3> needed{};
@@ -86,12 +96,13 @@ void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const&
         needed[a] = static_cast<int>(
             std::ceil(f.domain.extent()[static_cast<int>(a)] / (f.rootBlocks[a] * hNeeded)));
     throw core::InputError(fmt::format(
-        "domain.cells_per_block = [{}, {}, {}] is too coarse for gravity.accuracy = {:g} with "
+        "domain.cells_per_block = [{}, {}, {}] is too {} for gravity.accuracy = {:g} with "
         "gravity.self = \"{}\": {:.1f} cells across the body (extent {:g}) give a median force "
-        "error of about {:.2g}; {:g} cells across are needed: domain.cells_per_block = [{}, {}, "
-        "{}] (measured on the 38,358-grain agglomerate, docs/results.md)",
-        f.cellsPerBlock[0], f.cellsPerBlock[1], f.cellsPerBlock[2], g.accuracy, name, across,
-        extent, expected, meets->cellsAcrossBody, needed[0], needed[1], needed[2]));
+        "error of about {:.2g}; {:g} cells across meet it: domain.cells_per_block = [{}, {}, {}] "
+        "(measured on the 38,358-grain agglomerate, docs/results.md)",
+        f.cellsPerBlock[0], f.cellsPerBlock[1], f.cellsPerBlock[2],
+        meets->cellsAcrossBody > across ? "coarse" : "fine", g.accuracy, name, across, extent,
+        expected, meets->cellsAcrossBody, needed[0], needed[1], needed[2]));
 }
 
 } // namespace regolith::apps
