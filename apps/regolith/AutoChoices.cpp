@@ -1,5 +1,6 @@
 #include "apps/regolith/AutoChoices.hpp"
 
+#include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <span>
 
 namespace regolith::apps {
@@ -20,11 +22,19 @@ struct GrainExtremes {
     long long count = 0;
     double minRadius = std::numeric_limits<double>::infinity();
     double maxDensity = 0.0;
+    double extent = 0.0; ///< largest extent of the grains' bounding box (radii included)
 };
 
 GrainExtremes extremes(core::Comm const& comm, particles::ParticleStorage const& ps) {
     GrainExtremes e;
+    std::array<double, 6> box{}; // -min (3), max (3)
+    box.fill(-std::numeric_limits<double>::infinity());
     ps.forEachMaster([&](std::size_t i) {
+        for (int a = 0; a < 3; ++a) {
+            auto const ua = static_cast<std::size_t>(a);
+            box[ua] = std::max(box[ua], ps.radius(i) - ps.position(i)[a]);
+            box[ua + 3] = std::max(box[ua + 3], ps.position(i)[a] + ps.radius(i));
+        }
         ++e.count;
         double const r = ps.radius(i);
         e.minRadius = std::min(e.minRadius, r);
@@ -34,7 +44,26 @@ GrainExtremes extremes(core::Comm const& comm, particles::ParticleStorage const&
     e.count = comm.allReduce(e.count, core::ReduceOp::Sum);
     e.minRadius = comm.allReduce(e.minRadius, core::ReduceOp::Min);
     e.maxDensity = comm.allReduce(e.maxDensity, core::ReduceOp::Max);
+    comm.allReduceInPlace(std::span<double>(box), core::ReduceOp::Max);
+    for (std::size_t a = 0; a < 3; ++a)
+        e.extent = std::max(e.extent, box[a + 3] + box[a]);
     return e;
+}
+
+/// P3M's measured median error on the scene's grid, or nothing where P3M is not safe: no
+/// grid, a refined forest, or mixed periodicity (see kP3mSecondsPerGrain).
+std::optional<double> p3mExpectedError(SceneDescription const& scene, GrainExtremes const& e) {
+    domain::ForestSpec const& f = scene.forest;
+    bool const grid = f.cellsPerBlock[0] > 0 && f.cellsPerBlock[1] > 0 && f.cellsPerBlock[2] > 0;
+    bool const periodicAll = f.periodic[0] && f.periodic[1] && f.periodic[2];
+    bool const periodicNone = !f.periodic[0] && !f.periodic[1] && !f.periodic[2];
+    if (!grid || !f.refine.empty() || !(periodicAll || periodicNone) || !(e.extent > 0.0))
+        return std::nullopt;
+    double h = 0.0;
+    for (std::size_t a = 0; a < 3; ++a)
+        h = std::max(h, f.domain.extent()[static_cast<int>(a)] /
+                            (f.rootBlocks[a] * f.cellsPerBlock[a]));
+    return expectedGridError(kP3mErrors, e.extent / h);
 }
 
 } // namespace
@@ -61,13 +90,26 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                                : fmt::format("accuracy {:g} is finer than the tree's best "
                                              "measured point",
                                              g.accuracy)});
+        } else if (auto const p3m = p3mExpectedError(scene, e);
+                   p3m && *p3m <= g.accuracy && kP3mSecondsPerGrain < kTreeSecondsPerGrain) {
+            g.self = SelfGravity::P3m;
+            out.push_back({"gravity.self", "p3m",
+                           fmt::format("{} grains; its measured median force error on this grid "
+                                       "({:.2g}) meets accuracy {:g} and it is cheaper than the "
+                                       "tree",
+                                       e.count, *p3m, g.accuracy)});
         } else {
             g.self = SelfGravity::Tree;
             g.theta = point->theta;
-            out.push_back({"gravity.self", fmt::format("tree, theta = {:g}", point->theta),
-                           fmt::format("{} grains; the largest opening angle whose median "
-                                       "force error ({:g}) meets accuracy {:g}",
-                                       e.count, point->medianError, g.accuracy)});
+            std::string reason = fmt::format("{} grains; the largest opening angle whose median "
+                                             "force error ({:g}) meets accuracy {:g}",
+                                             e.count, point->medianError, g.accuracy);
+            if (p3m && *p3m <= g.accuracy)
+                reason += fmt::format("; p3m would meet it on this grid ({:.2g}) but costs {:.0f}x "
+                                      "the tree per grain (measured)",
+                                      *p3m, kP3mSecondsPerGrain / kTreeSecondsPerGrain);
+            out.push_back(
+                {"gravity.self", fmt::format("tree, theta = {:g}", point->theta), reason});
         }
     }
     if (g.thresholdAuto) {
