@@ -42,12 +42,23 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
         c.gradientOrder = g.gradientOrder;
         c.p3mCutoffCells = g.p3mCutoff;
         break;
+    case SelfGravity::OccupiedCells:
+    case SelfGravity::TreeNodes:
+        c.method = g.self == SelfGravity::OccupiedCells
+                       ? coupling::GrainGravityMethod::OccupiedCells
+                       : coupling::GrainGravityMethod::TreeNodes;
+        if (!(g.gridSpacing > 0.0))
+            throw core::InputError(fmt::format(
+                "gravity.grid_spacing: required with gravity.self = \"{}\" (the node distance; "
+                "the paper uses 2.5 x the largest grain diameter)",
+                toString(g.self)));
+        c.gridSpacing = g.gridSpacing;
+        c.neighbourhood = g.neighbourhood >= 0.0 ? g.neighbourhood : g.gridSpacing;
+        break;
     default:
-        // The grid methods exist in gravity/ but are not coupled to the grains yet.
+        // "auto" is resolved before (AutoChoices); nothing else is left.
         throw core::InputError(fmt::format(
-            "gravity.self = \"{}\": this method is not coupled to the time step yet; use "
-            "\"direct\", \"tree\", \"mutual-tree\", \"pm\" or \"p3m\"",
-            toString(g.self)));
+            "gravity.self = \"{}\": not resolved to a method before the run", toString(g.self)));
     }
     c.G = g.G;
     c.softening = g.softening;

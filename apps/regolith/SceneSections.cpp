@@ -111,6 +111,10 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.p3mCutoff = t.getOrIf<double>(
         "p3m_cutoff", s.p3mCutoff, [](double c) { return c >= 2.0 && std::isfinite(c); },
         "a number of cells >= 2");
+    s.gridSpacing = t.getOrIf<double>("grid_spacing", s.gridSpacing, isPositiveFinite,
+                                      "a positive finite length");
+    s.neighbourhood = t.getOrIf<double>("neighbourhood", s.neighbourhood, isNonNegativeFinite,
+                                        "a non-negative finite length");
     return s;
 }
 

@@ -66,7 +66,9 @@ enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, 
 /// above 1 only with allow_large_theta = true),
 /// update_threshold >= 0 (displacement that triggers a recomputation), softening >= 0 (a
 /// length), [gravity.petsc] options (PETSc command-line options for the Poisson solve),
-/// p3m_cutoff (cells, >= 2).
+/// p3m_cutoff (cells, >= 2), grid_spacing (> 0, the node methods' node distance; the paper
+/// uses 2.5 x the largest grain diameter) and neighbourhood (>= 0, tree-nodes; default
+/// grid_spacing).
 struct GravitySection {
     core::Vec3 external = core::Vec3::Zero();
     SelfGravity self = SelfGravity::None;
@@ -79,8 +81,10 @@ struct GravitySection {
     bool allowLargeTheta = false;
     int gradientOrder = 2; ///< gravity.gradient_order of the mesh's g = -grad phi (2 or 4)
     std::string petscOptions;
-    double p3mCutoff = 4.0;     ///< gravity.p3m_cutoff: P3M's pair cut-off in cells (>= 2)
-    bool accuracyGiven = false; ///< gravity.accuracy was set (the mesh methods then check it)
+    double p3mCutoff = 4.0;      ///< gravity.p3m_cutoff: P3M's pair cut-off in cells (>= 2)
+    double gridSpacing = 0.0;    ///< gravity.grid_spacing: node distance of the node methods
+    double neighbourhood = -1.0; ///< gravity.neighbourhood (tree-nodes); < 0: grid_spacing
+    bool accuracyGiven = false;  ///< gravity.accuracy was set (the mesh methods then check it)
 };
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),

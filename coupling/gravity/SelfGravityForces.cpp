@@ -2,6 +2,7 @@
 
 #include "coupling/gravity/P3mGravity.hpp"
 #include "gravity/GridGravity.hpp"
+#include "gravity/baselines/GridMethods.hpp"
 #include "gravity/common/PointMasses.hpp"
 #include "gravity/direct/DirectSum.hpp"
 #include "gravity/petsc/PetscSession.hpp"
@@ -88,6 +89,12 @@ public:
         case GrainGravityMethod::P3m:
             m_eval = std::make_unique<P3mGravity>(comm, forest, c);
             break;
+        case GrainGravityMethod::OccupiedCells:
+            m_eval = std::make_unique<gravity::baselines::OccupiedCells>(nodeOptions(forest, c));
+            break;
+        case GrainGravityMethod::TreeNodes:
+            m_eval = std::make_unique<gravity::baselines::TreeAtNodes>(nodeOptions(forest, c));
+            break;
         }
         for (domain::Block const& b : forest.blocks())
             m_boxes.push_back(b.aabb);
@@ -103,6 +110,9 @@ public:
                     return e->evaluate(grains, out, m_boxes);
                 else if constexpr (std::is_same_v<E, gravity::tree::MutualTree>)
                     return e->evaluateGathered(comm, grains, out);
+                else if constexpr (std::is_same_v<E, gravity::baselines::OccupiedCells> ||
+                                   std::is_same_v<E, gravity::baselines::TreeAtNodes>)
+                    return e->evaluate(comm, grains, out);
                 else if constexpr (std::is_same_v<E, MeshGravity>)
                     return e->evaluate(grains, out);
                 else
@@ -112,10 +122,25 @@ public:
     }
 
 private:
+    /// The node methods' options: the lattice from the domain's minimum corner (validated by
+    /// the methods: InputError naming gravity.grid_spacing, gravity.theta, ...).
+    static gravity::baselines::GridMethodOptions nodeOptions(domain::BlockForest const& forest,
+                                                             SelfGravityConfig const& c) {
+        gravity::baselines::GridMethodOptions o;
+        o.G = c.G;
+        o.grid.origin = forest.domain().min;
+        o.grid.spacing = c.gridSpacing;
+        o.theta = c.theta;
+        o.allowLargeTheta = c.allowLargeTheta;
+        o.neighbourhood = c.neighbourhood;
+        return o;
+    }
+
     std::variant<std::unique_ptr<gravity::direct::DirectSum>,
                  std::unique_ptr<gravity::tree::BarnesHut>,
                  std::unique_ptr<gravity::tree::MutualTree>, std::unique_ptr<MeshGravity>,
-                 std::unique_ptr<P3mGravity>>
+                 std::unique_ptr<P3mGravity>, std::unique_ptr<gravity::baselines::OccupiedCells>,
+                 std::unique_ptr<gravity::baselines::TreeAtNodes>>
         m_eval;
     std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
 };

@@ -21,11 +21,13 @@ namespace regolith::coupling {
 
 /// The self-gravity methods the time step can use on the grains themselves.
 enum class GrainGravityMethod {
-    Direct,     ///< exact pairwise sum over all ranks (gravity/direct)
-    Tree,       ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
-    MutualTree, ///< momentum-conserving dual-tree walk, grains gathered on every rank
-    Mesh,       ///< particle-mesh: deposit, PETSc Poisson solve, interpolate (gravity/)
-    P3m,        ///< the mesh plus the short-range pair correction (P3mGravity.hpp)
+    Direct,        ///< exact pairwise sum over all ranks (gravity/direct)
+    Tree,          ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
+    MutualTree,    ///< momentum-conserving dual-tree walk, grains gathered on every rank
+    Mesh,          ///< particle-mesh: deposit, PETSc Poisson solve, interpolate (gravity/)
+    P3m,           ///< the mesh plus the short-range pair correction (P3mGravity.hpp)
+    OccupiedCells, ///< the second paper's nodes around occupied cells (gravity/baselines)
+    TreeNodes,     ///< the second paper's Barnes–Hut tree evaluated at those nodes
 };
 
 struct SelfGravityConfig {
@@ -40,6 +42,10 @@ struct SelfGravityConfig {
     std::string petscOptions;                  ///< gravity.petsc.options
     int gradientOrder = 2;                     ///< gravity.gradient_order (2 or 4)
     double p3mCutoffCells = 4.0;               ///< gravity.p3m_cutoff [cells] (P3M only)
+    // Node methods (occupied-cells, tree-nodes) only; the node lattice starts at the domain's
+    // minimum corner:
+    double gridSpacing = 0.0;   ///< gravity.grid_spacing, node distance [m] (> 0)
+    double neighbourhood = 0.0; ///< gravity.neighbourhood [m] (tree-nodes; >= 0)
 };
 
 /// What the run summary reports about self-gravity.
