@@ -49,6 +49,18 @@ for np in 1 2; do
         | tee "$out/grid_bench_np$np.txt"
 done
 
+# Grid gravity at matched accuracy (issue 6): PETSc (set-up reused; cold and warm start over a
+# tolerance ladder) against the FFT, φ error against the analytic potential, CPU seconds; and
+# the error of g against the direct sum with the time per evaluation for the mesh, P3M and the
+# tree on the 38,358-grain agglomerate (the error-versus-time points; CSV
+# method,param,median_err,p99_err,time_s,...).
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe -n 1 \
+    "$build/bin/grid_matched_bench" --min-cells 32 --max-cells 128 \
+    --csv "$out/grid_matched_np1.csv" | tee "$out/grid_matched_np1.txt"
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe -n 1 \
+    "$build/bin/grid_agglomerate_bench" --cells 32,64,128 --cutoffs 2,4 \
+    --csv "$out/grid_agglomerate_np1.csv" | tee "$out/grid_agglomerate_np1.txt"
+
 # Checkpoint size and write / read time per grain for 103,823 grains on 1, 2, 4 ranks
 # (docs/results.md, issue 9).
 /usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \

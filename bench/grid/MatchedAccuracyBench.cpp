@@ -11,7 +11,8 @@
 // the FFT). Prints the table and the ratios to the FFT; writes CSV.
 //
 //   mpiexec -n P grid_matched_bench [--min-cells 32] [--max-cells 128] [--csv out.csv]
-//       [--solvers gamg,hypre,gamg-tuned]
+//       [--solvers gamg,hypre,gamg-tuned] [--rtols 1e-2,1e-3,...,1e-10 (loosest first; the
+//       last is taken as converged)]
 #include "gravity/fft/FftFreeSpace.hpp"
 #include "gravity/field/CellLayout.hpp"
 #include "gravity/petsc/PetscSession.hpp"
@@ -25,6 +26,7 @@
 #include <ctime>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -125,6 +127,7 @@ int main(int argc, char** argv) {
     int minCells = 32, maxCells = 128;
     std::string csvPath = "bench/out/grid_matched.csv";
     std::string solverList = "gamg,hypre,gamg-tuned";
+    std::string rtolList = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-8,1e-10"; // ascending tightness
     for (int i = 1; i + 1 < argc; i += 2) {
         std::string const key = argv[i];
         if (key == "--min-cells")
@@ -135,6 +138,8 @@ int main(int argc, char** argv) {
             csvPath = argv[i + 1];
         else if (key == "--solvers")
             solverList = argv[i + 1];
+        else if (key == "--rtols")
+            rtolList = argv[i + 1];
     }
     std::vector<std::pair<std::string, std::string>> solvers;
     auto want = [&](char const* s) { return solverList.find(s) != std::string::npos; };
@@ -146,7 +151,13 @@ int main(int argc, char** argv) {
         solvers.emplace_back("cg+gamg-tuned", "-ksp_type cg -pc_type gamg -pc_gamg_agg_nsmooths 1 "
                                               "-pc_gamg_square_graph 0 -mg_levels_ksp_max_it 1 "
                                               "-pc_gamg_threshold 0.02");
-    std::vector<double> const rtols{1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8, 1e-10};
+    std::vector<double> rtols;
+    {
+        std::stringstream in(rtolList);
+        std::string item;
+        while (std::getline(in, item, ','))
+            rtols.push_back(std::stod(item));
+    }
     std::ofstream csv;
     if (world.rank() == 0) {
         csv.open(csvPath);
