@@ -49,6 +49,11 @@ for np in 1 2; do
         | tee "$out/grid_bench_np$np.txt"
 done
 
+# Coupled runs (issue 8): the two-agglomerates instances on 1 and 2 ranks, time per step and
+# phase against the paper's; centre-of-mass, momentum and energy error per gravity method.
+/usr/bin/python3 bench/coupled/agglomerates_bench.py --build "$build" --out "$out" \
+    | tee "$out/agglomerates_bench.txt"
+
 # Checkpoint size and write / read time per grain for 103,823 grains on 1, 2, 4 ranks
 # (docs/results.md, issue 9).
 /usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \
