@@ -49,6 +49,11 @@ for np in 1 2; do
         | tee "$out/grid_bench_np$np.txt"
 done
 
+# Coupled runs (issue 8): the two-agglomerates instances on 1 and 2 ranks, time per step and
+# phase against the paper's; centre-of-mass, momentum and energy error per gravity method.
+/usr/bin/python3 bench/coupled/agglomerates_bench.py --build "$build" --out "$out" \
+    | tee "$out/agglomerates_bench.txt"
+
 # Grid gravity at matched accuracy (issue 6): PETSc (set-up reused; cold and warm start over a
 # tolerance ladder) against the FFT, φ error against the analytic potential, CPU seconds; and
 # the error of g against the direct sum with the time per evaluation for the mesh, P3M and the

@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 
 namespace regolith::domain {
 
@@ -83,6 +85,12 @@ ForestSpec parseForestSpec(core::ConfigTable const& section) {
             return allZero || allPositive;
         },
         "an array of 3 integers, all positive (or all zero: no grid)");
+    constexpr std::array<std::string_view, 2> kBalanceNames{"load", "blocks"};
+    spec.balance =
+        static_cast<ForestSpec::Balance>(section.getChoiceOr("balance", kBalanceNames, 0));
+    spec.cellWeight = section.getOrIf<double>(
+        "cell_weight", spec.cellWeight, [](double w) { return std::isfinite(w) && w >= 0.0; },
+        "a non-negative finite number");
 
     validate(spec); // the module's own check; everything it rejects was reported above
     return spec;

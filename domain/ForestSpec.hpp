@@ -22,6 +22,12 @@ struct ForestSpec {
     std::vector<RefineRegion> refine;
     /// Cells per block and axis for grid fields; zero when no grid is used.
     std::array<int, 3> cellsPerBlock{0, 0, 0};
+    /// How blocks are weighed for the block -> rank assignment (domain.balance): by their
+    /// load at the start (grains, and cells when a grid is used) or all alike.
+    enum class Balance { Load, Blocks } balance = Balance::Load;
+    /// Cost of one grid cell relative to one grain per step (domain.cell_weight), used by
+    /// Balance::Load when a grid is used. Default measured, docs/results.md ("Coupled runs").
+    double cellWeight = 0.05;
 };
 
 } // namespace regolith::domain

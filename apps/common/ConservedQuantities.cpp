@@ -32,6 +32,7 @@ RunSummary::Conserved conservedQuantities(core::Comm const& comm,
     c.potentialEnergy = sums[7];
     if (sums[8] > 0.0)
         c.centerOfMass = core::Vec3(sums[9], sums[10], sums[11]) / sums[8];
+    c.mass = sums[8];
     return c;
 }
 

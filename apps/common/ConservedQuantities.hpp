@@ -14,7 +14,8 @@ namespace regolith::apps {
 ///  - kinetic_energy       sum (1/2 m |v|^2 + 1/2 I |w|^2);
 ///  - potential_energy     sum -m g.x in the uniform external field `gravity` (self-gravity
 ///                         energy is not included: it belongs to the gravity module);
-///  - center_of_mass       sum m x / sum m (zero when there is no mass).
+///  - center_of_mass       sum m x / sum m (zero when there is no mass);
+///  - mass                 sum m (beyond the DESIGN.md contract).
 /// Positions are taken as stored, i.e. wrapped into the domain on periodic axes (where the
 /// angular momentum and centre of mass are frame quantities, not conserved ones). Summed
 /// locally in storage order, then over ranks with MPI_Allreduce: equal for any rank count to

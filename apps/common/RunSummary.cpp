@@ -56,6 +56,7 @@ std::string toJson(RunSummary const& s) {
         .member("kinetic_energy", s.conserved.kineticEnergy)
         .member("potential_energy", s.conserved.potentialEnergy)
         .member("center_of_mass", s.conserved.centerOfMass)
+        .member("mass", s.conserved.mass)
         .endObject();
     w.member("checksum", s.checksum).endObject();
     return w.str();

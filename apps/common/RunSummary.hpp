@@ -57,6 +57,7 @@ struct RunSummary {
         double kineticEnergy = 0.0;
         double potentialEnergy = 0.0;
         core::Vec3 centerOfMass = core::Vec3::Zero();
+        double mass = 0.0; ///< total mass of the masters (beyond the contract)
     } conserved;
 
     std::string checksum; ///< hex digest of the uid-sorted final state

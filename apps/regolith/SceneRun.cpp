@@ -10,6 +10,7 @@
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
 #include "apps/regolith/AutoChoices.hpp"
+#include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/GridAccuracy.hpp"
@@ -116,13 +117,17 @@ int runScene(core::AppContext& ctx) {
     if (!ctx.options.dumpPath.empty())
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
-    domain::BlockForest const forest(world, scene.forest);
-    // The particles of this rank's blocks: masters now, shadows from the set-up's sync.
-    particles::LocalParticles local(forest);
-    RunStart const start = restart ? restoreState(ctx, scene, local) : RunStart{};
+    // The particles of this rank's blocks: masters now, shadows from the set-up's sync. They
+    // are placed on equally weighted blocks, then the blocks are re-assigned by their load.
+    BlockPlacement placement = uniformPlacement(world, scene);
+    RunStart const start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
     std::int64_t const startStep = start.step;
     std::vector<AutoChoice> const choices =
-        restart ? refuseAutoOnRestart(scene) : generateInitialState(ctx, scene, forest, local);
+        restart ? refuseAutoOnRestart(scene)
+                : generateInitialState(ctx, scene, *placement.forest, *placement.local);
+    balanceByLoad(world, scene, placement);
+    domain::BlockForest const& forest = *placement.forest;
+    particles::LocalParticles& local = *placement.local;
     // Simulated time after a step: continued from the checkpoint's (its dt may differ).
     auto const timeAt = [&](std::int64_t step) {
         return start.time + static_cast<double>(step - startStep) * scene.time.dt;

@@ -177,24 +177,29 @@ TEST(SceneSections, DefaultsForOptionalSections) {
 TEST(SceneSections, DefaultSceneFileIsValid) {
     auto const root = core::ConfigTable::fromFile(REGOLITH_SOURCE_DIR "/scenes/default.toml");
     auto const s = apps::parseScene(root, "scenes/default.toml");
-    EXPECT_EQ(s.name, "sparse-gas-small");
-    EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 2}));
+    EXPECT_EQ(s.name, "rubble-piles-merge");
+    EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{4, 3, 2}));
     EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid);
+    // The coupled default leaves the gravity method, its update threshold and dt to the driver.
+    EXPECT_EQ(s.gravity.self, apps::SelfGravity::Auto);
+    EXPECT_TRUE(s.gravity.thresholdAuto);
+    EXPECT_TRUE(s.time.dtAuto);
+    EXPECT_GT(s.output.vtkEvery, 0);
     ASSERT_EQ(s.particles.size(), 2u);
-    // The boulder first, so that the lattice fills the space around it.
-    EXPECT_EQ(std::get<particles::ListSpec>(s.particles[0].kind).radius,
-              (std::vector<double>{3.0}));
-    auto const& gas = std::get<particles::LatticeSpec>(s.particles[1].kind);
-    EXPECT_EQ(gas.lattice, particles::LatticeKind::SimpleCubic);
-    EXPECT_EQ(gas.radius, 0.4);
-    EXPECT_EQ(gas.spacing, 1.0);
-    EXPECT_TRUE(std::holds_alternative<particles::RandomVelocity>(gas.velocity));
+    for (auto const& pile : s.particles)
+        EXPECT_EQ(std::get<particles::AgglomerateSpec>(pile.kind).count, 1200);
 }
 
 TEST(SceneSections, DomainRules) {
     EXPECT_EQ(errorWith("domain.blocks=[4,0,4]"),
               "--set domain.blocks=[4,0,4]: domain.blocks: expected an array of 3 positive "
               "integers (at most 2097152 each), got [4, 0, 4]");
+    EXPECT_EQ(errorWith("domain.balance=grains"),
+              "--set domain.balance=grains: domain.balance: expected one of \"load\", "
+              "\"blocks\", got \"grains\"");
+    EXPECT_EQ(errorWith("domain.cell_weight=-1"),
+              "--set domain.cell_weight=-1: domain.cell_weight: expected a non-negative finite "
+              "number, got -1");
     EXPECT_EQ(errorWith("domain.max=[8,-1,4]"),
               "--set domain.max=[8,-1,4]: domain.max: must exceed domain.min on every axis, got "
               "min = [0, 0, 0], max = [8, -1, 4]");

@@ -4,7 +4,8 @@ agree.
 usage: compare_runs.py --mpiexec M --app APP --out DIR --name NAME [--np 1 4]
                        [--case "NP [ARGS...]" ...] [--reference STEM]
                        [--same KEY ...] [--expect KEY=VALUE ...] [--dump]
-                       [--final "UID COLUMN OP VALUE" ...] [--reload SCENE] -- [app arguments]
+                       [--final "UID COLUMN OP VALUE" ...] [--reload SCENE] [--close TOL]
+                       -- [app arguments]
 
 Every run must exit 0 and write a summary (--json); the summaries must agree on every --same
 key (e.g. particles, checksum) and satisfy every --expect. Runs: one per --np value with the
@@ -18,6 +19,9 @@ follow the contract (header, one line per particle sorted by uid, 12 fields) and
 summary's checksum (the checksum is recomputed here from the dumped numbers: the
 MSet-Add-Hash of apps/common/StateChecksum.hpp). --final checks a value of the dumped final
 state, e.g. --final "0 x < 5" (OP one of < <= > >= ==; needs --dump).
+--close TOL (needs --dump) replaces the byte comparison of the dumps: the runs must hold the same
+uids, and every grain's position may differ from the first run's by at most TOL per axis (for
+methods equal across rank counts only to a tolerance: the parallel tree, the PETSc solve).
 --reload SCENE (needs --dump) runs SCENE, whose first [[particles]] entry is a `kind = "file"`
 entry, on the largest rank count with its path set to the dump: the state read back must
 have the same particle count and checksum (the dump is a lossless restart).
@@ -95,6 +99,23 @@ def check_dump(path, summary):
     return f"{fnv1a(struct.pack('<QQ', len(rows), total)):016x}"
 
 
+def positions(path):
+    with open(path, encoding="utf-8") as f:
+        rows = [line.split(",") for line in f.read().splitlines()[1:]]
+    return {int(r[0]): tuple(float(v) for v in r[1:4]) for r in rows}
+
+
+def check_close(path_a, path_b, tol, labels):
+    a, b = positions(path_a), positions(path_b)
+    if a.keys() != b.keys():
+        fail(f"{labels}: different grains ({len(a)} and {len(b)}; uids differ)")
+    worst = max(((max(abs(p - q) for p, q in zip(a[u], b[u])), u) for u in a), default=(0, 0))
+    if not worst[0] <= tol:
+        fail(f"{labels}: grain uid {worst[1]} differs by {worst[0]:.3e} in position, more than "
+             f"{tol:g}")
+    print(f"{labels}: positions within {worst[0]:.3e} (tolerance {tol:g})")
+
+
 def check_final(path, check):
     """One --final check "UID COLUMN OP VALUE" against the dump at `path`."""
     ops = {"<": operator.lt, "<=": operator.le, ">": operator.gt, ">=": operator.ge,
@@ -132,6 +153,7 @@ def main():
     parser.add_argument("--dump", action="store_true")
     parser.add_argument("--final", action="append", default=[])
     parser.add_argument("--reload")
+    parser.add_argument("--close", type=float)
     parser.add_argument("app_args", nargs="*")
     args = parser.parse_args()
 
@@ -177,7 +199,9 @@ def main():
         for key in args.same:
             if summary[key] != first[key]:
                 fail(f"{key}: {first[key]!r} on {first_label} but {summary[key]!r} on {label}")
-        if dump:
+        if dump and args.close is not None:
+            check_close(first_dump, dump, args.close, f"{first_label} and {label}")
+        elif dump:
             with open(first_dump, "rb") as a, open(dump, "rb") as b:
                 if a.read() != b.read():
                     fail(f"the dumps of {first_label} and {label} differ: {first_dump} {dump}")

@@ -1,0 +1,73 @@
+// Block weights of a coupled run (coupling/balance/BlockWeights.hpp): every block weighs
+// 1 + its grains + cellWeight x its cells, on any rank count, and the forest re-assigned with
+// them puts the one crowded block on a rank of its own.
+#include "coupling/balance/BlockWeights.hpp"
+
+#include "tests/particles/sync/SyncTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace regolith;
+using namespace regolith::particles::synctest;
+
+namespace {
+
+/// 8 x 1 x 1 blocks of edge 1 along x; `crowd` grains in block 0, 10 in every other block.
+std::vector<particles::ParticleInit> crowdedRow(int crowd) {
+    std::vector<particles::ParticleInit> grains;
+    particles::Uid uid = 0;
+    for (int b = 0; b < 8; ++b) {
+        int const n = b == 0 ? crowd : 10;
+        for (int k = 0; k < n; ++k)
+            grains.push_back(grain(uid++, Vec3(b + (k + 0.5) / n, 0.5, 0.5), 0.001));
+    }
+    return grains;
+}
+
+int blockIndex(core::AABB const& box) {
+    return static_cast<int>(std::lround(box.min.x()));
+}
+
+} // namespace
+
+TEST(BlockWeights, GrainsAndCellsPerBlockOnEveryRank) {
+    Comm world;
+    auto const spec = forestSpec(Vec3::Zero(), Vec3(8, 1, 1), {8, 1, 1}, allAxes(false));
+    domain::BlockForest const forest(world, spec);
+    particles::LocalParticles local(forest);
+    addAll(local, world, crowdedRow(70));
+    domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {});
+    domain::BlockWeight const withCells =
+        coupling::grainAndCellWeights(world, local, {{4, 2, 2}, 0.25});
+    // Every rank answers for every block, not only its own.
+    for (int b = 0; b < 8; ++b) {
+        core::AABB const box{Vec3(b, 0, 0), Vec3(b + 1, 1, 1)};
+        double const grains = b == 0 ? 70.0 : 10.0;
+        EXPECT_DOUBLE_EQ(grainsOnly(box, 0), 1.0 + grains) << "block " << b;
+        EXPECT_DOUBLE_EQ(withCells(box, 0), 1.0 + grains + 0.25 * 16.0) << "block " << b;
+    }
+}
+
+TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
+    Comm world;
+    auto const spec = forestSpec(Vec3::Zero(), Vec3(8, 1, 1), {8, 1, 1}, allAxes(false));
+    domain::BlockForest const uniform(world, spec);
+    particles::LocalParticles local(uniform);
+    addAll(local, world, crowdedRow(200));
+    domain::BlockForest const balanced(world, spec,
+                                       coupling::grainAndCellWeights(world, local, {}));
+    // The load of a rank differs from the mean by less than the heaviest block (the curve
+    // cut, domain/SfcPartition.hpp); the crowded block (201 of 278) is alone when P > 1.
+    double const total = 201.0 + 7 * 11.0;
+    EXPECT_DOUBLE_EQ(world.allReduce(balanced.localLoad(), core::ReduceOp::Sum), total);
+    EXPECT_LT(std::abs(balanced.localLoad() - total / world.size()), 201.0);
+    bool const holdsCrowd =
+        !balanced.blocks().empty() && blockIndex(balanced.blocks().front().aabb) == 0;
+    if (holdsCrowd && world.size() > 1) {
+        EXPECT_EQ(balanced.blocks().size(), 1u);
+    }
+    EXPECT_EQ(world.allReduce(static_cast<int>(holdsCrowd), core::ReduceOp::Sum), 1);
+}
