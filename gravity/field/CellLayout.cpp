@@ -115,6 +115,7 @@ std::optional<CellOwner> CellLayout::owner(GlobalCell const& c) const {
                  static_cast<std::size_t>(m_n[0]) *
                      (static_cast<std::size_t>(local[1]) +
                       static_cast<std::size_t>(m_n[1]) * static_cast<std::size_t>(local[2]));
+    o.pad = padIndex(local[0], local[1], local[2]);
     auto const curve = m_curveOfRoot[rootIndex];
     o.row =
         curve * static_cast<std::int64_t>(m_cellsInBlock) + static_cast<std::int64_t>(o.interior);

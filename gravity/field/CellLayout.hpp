@@ -26,6 +26,7 @@ struct CellOwner {
     std::int64_t row = -1;    ///< global row: curveIndex * cellsPerBlock + interior index
     int localBlock = -1;      ///< index into forest.blocks() if this rank owns it, else -1
     std::size_t interior = 0; ///< interior index (i + n0 * (j + n1 * k)) in its block
+    std::size_t pad = 0;      ///< padded index of that cell (padOfInterior(interior))
 };
 
 class CellLayout {

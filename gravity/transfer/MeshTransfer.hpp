@@ -57,6 +57,11 @@ private:
     /// Returns false (and stops) if a cell lies outside the domain.
     template <class Visit>
     bool forEachCell(Grains const& grains, std::size_t i, Visit&& visit);
+    /// forEachCell's fast path for one sample's stencil: visits its cells and returns true if
+    /// they all lie in one block without wrapping, else visits nothing and returns false.
+    template <class Visit>
+    bool visitInOneBlock(std::array<Stencil1D, 3> const& s, double sampleWeight,
+                         Visit& visit) const;
     /// Agrees on `error` over all ranks; throws core::InputError everywhere if any is set.
     void agree(std::string const& error) const;
 
