@@ -38,14 +38,14 @@ inline constexpr long long kDirectSumMaxGrains = 2000;
 /// has a grid (domain.cells_per_block), the forest is unrefined and the domain free-space or
 /// periodic on every axis — and meets gravity.accuracy by its measured error at the scene's
 /// cells across the body (GridAccuracy.hpp); it is chosen only where it is also cheaper than the
-/// tree. Measured side by side on the 38,358-grain agglomerate, one rank
+/// tree. Measured side by side on the 38,358-grain agglomerate, one rank, CPU time
 /// (`grid_agglomerate_bench --cells 32,64,128 --cutoffs 2,4 --thetas 0.5,0.7`,
-/// docs/results.md): the tree 2.3 µs per grain at θ = 0.5 (1.6 at 0.7), P3M 20 µs per grain at
-/// best (64³, 2-cell cut-off). On that evidence P3M is not chosen (the reason says so when it
-/// would have met the accuracy); the bare mesh never is (its error, 3.4e-3 at best, misses
-/// what the tree meets faster).
-inline constexpr double kTreeSecondsPerGrain = 2.3e-6;
-inline constexpr double kP3mSecondsPerGrain = 2.0e-5;
+/// docs/results.md): the tree 1.3 µs per grain at θ = 0.5 (0.9 at 0.7), P3M 4.4 µs per grain
+/// at best (64³, 2-cell cut-off, at 3.4 times the tree's error). On that evidence P3M is not
+/// chosen (the reason says so when it would have met the accuracy); the bare mesh never is
+/// (its error, 3.4e-3 at best, misses what the tree meets faster).
+inline constexpr double kTreeSecondsPerGrain = 1.3e-6;
+inline constexpr double kP3mSecondsPerGrain = 4.4e-6;
 
 /// Resolves every "auto" key of `scene` in place from `masters` (this rank's; counts and
 /// extremes are reduced over ranks) and returns the decisions (empty if nothing was "auto"):
