@@ -28,8 +28,10 @@ def run_with_dump(app, ranks, args, timeout=900):
                                   timeout=timeout, env={**os.environ, **MPI_ENV})
         except subprocess.TimeoutExpired:
             return None, None, "timeout", f"no result within {timeout} s"
-        lines = (done.stderr.strip() or done.stdout.strip()).splitlines()
-        message = lines[-1] if lines else ""
+        lines = (done.stderr + "\n" + done.stdout).splitlines()
+        said = [l for l in lines if l.startswith(os.path.basename(app) + ":")]
+        errors = [l for l in said if "error" in l.lower()]
+        message = (errors or said or [l for l in lines if l.strip()] or [""])[0]
         if done.returncode != 0 or not os.path.exists(summary):
             return None, None, done.returncode, message
         with open(summary, encoding="utf-8") as f:

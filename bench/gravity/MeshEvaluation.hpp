@@ -37,9 +37,9 @@ public:
     MeshEvaluation(MeshEvaluation const&) = delete;
     MeshEvaluation& operator=(MeshEvaluation const&) = delete;
 
-    /// Field at this rank's grains `local` from all ranks' grains, from a cold start (zero
-    /// initial guess: the solver is rebuilt between calls, outside the timed part); the AMG
-    /// set-up, done once per forest in a run, is not counted. COLLECTIVE.
+    /// Field at this rank's grains `local` from all ranks' grains, from a cold start (the
+    /// solver is rebuilt between calls, outside the timed part); the AMG set-up, done once per
+    /// forest in a run, is not counted. COLLECTIVE.
     MeshTiming evaluate(gravity::PointMasses const& local, gravity::FieldOut out);
 
     [[nodiscard]] int cellsPerAxis() const { return m_cells; }
@@ -50,9 +50,10 @@ private:
     MeshSetup m_setup;
     int m_cells = 0;
     double m_spacing = 0.0;
+    core::Vec3 m_centre = core::Vec3::Zero();
     std::unique_ptr<domain::BlockForest> m_forest;
     std::unique_ptr<gravity::GridGravity> m_grid;
-    bool m_used = false; ///< m_grid has solved once (its next solve would start warm)
+    bool m_used = false; ///< m_grid has solved (its next solve would start warm)
     std::vector<core::Vec3> m_position, m_acceleration;
 };
 

@@ -12,7 +12,7 @@ the fastest grain moved the threshold: error just before the update against the 
 step, amortised). Extra points of the same shape (CSV with columns
 method,param,median_err,p99_err,time_s, e.g. P3M) join the Pareto chart with --extra.
 
-usage: gravity_pareto.py [--build build/default] [--out bench/out] [--instance agg11100]
+usage: gravity_pareto.py [--build build/default] [--out bench/out] [--instance agg11100|agg38358]
                          [--thetas ...] [--spacings ...] [--thresholds ...] [--target 1e-2]
                          [--extra p3m.csv ...] [--from-csv raw.csv] [--no-docs]
 
@@ -205,7 +205,12 @@ def chart_grid(a, rows, plt):
     shade_above(ax, a.grid_target, f"error > {a.grid_target:g} (fails the target)")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_ylim(top=1.0)
+    from matplotlib.ticker import ScalarFormatter
+    ax.xaxis.set_major_formatter(ScalarFormatter())
+    ax.xaxis.set_minor_formatter(ScalarFormatter())
+    ax.tick_params(axis="x", which="minor", labelsize=7)
+    shown = [r["median_err"] for r in rows if r["method"] in ("pm", "occupied-cells")]
+    ax.set_ylim(min(shown + [a.grid_target]) / 3, 1.0)
     ax.set_xlabel("cell (node) spacing h / largest grain diameter")
     ax.set_ylabel("relative force error vs the direct sum")
     ax.set_title(f"Where the grid fails: spacing against error, {a.instance}")
@@ -223,7 +228,7 @@ def main():
                    help="gravity_bench instance: agg3866, agg11100, agg38358")
     p.add_argument("--methods", default=METHODS)
     p.add_argument("--thetas", default="0.2,0.3,0.5,0.7,0.9,1.2,1.5")
-    p.add_argument("--spacings", default="4,2,1,0.5",
+    p.add_argument("--spacings", default="4,2,1,0.5,0.25",
                    help="pm cell spacings, multiples of the largest grain diameter")
     p.add_argument("--thresholds", default="0.01,0.1,1,6",
                    help="update thresholds, multiples of the smallest grain radius")
