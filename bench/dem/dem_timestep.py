@@ -5,7 +5,7 @@ springs' energy (elastic_energy.py), so its drift is the integrator's error.
 
   sweep  energy error and PUpCS against the time step at the scene's stiffness, dt a fraction
          of the contact time t_c (a fixed simulated time, so smaller steps make more steps);
-         the paper's gas (v in [-0.1, 0.1]), 2 ranks.
+         the paper's gas (v in [-0.1, 0.1]), 20^3 grains, one rank, PUpCS the median of 3.
   map    stability map: time step against contact stiffness on a hot gas (v in [-1, 1]), one
          rank; each run is stable, loses energy conservation (|ΔE| / E > --energy-limit, or the
          run breaks down) or lets grains pass through each other (a final overlap deeper than
@@ -13,8 +13,9 @@ springs' energy (elastic_energy.py), so its drift is the integrator's error.
          time.dt = "auto" (apps/regolith/AutoChoices.cpp) and the t_c/10 guard as lines.
 
 usage: dem_timestep.py [sweep|map ...] [--build build/default] [--out bench/out]
-                       [--fractions 80 40 20 10 5 3] [--sweep-box 16] [--sweep-time 20]
-                       [--stiffness 0.1 1 10 100 1000] [--map-dt-min 2e-4] [--map-dt-count 14]
+                       [--fractions 80 40 20 10 5 3] [--sweep-box 20] [--sweep-time 20]
+                       [--sweep-ranks 1] [--repeats 3]
+                       [--stiffness 0.3 1 3 ... 3000] [--map-dt-min 2e-4] [--map-dt-count 13]
                        [--map-time 4] [--no-docs]
 
 Writes <out>/dem_timestep.csv, <out>/dem_stability.csv and the charts dem-timestep.png,
@@ -23,6 +24,7 @@ dem-stability.png (copied to docs/images/). A benchmark: it asserts nothing.
 import argparse
 import math
 import os
+import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -98,11 +100,19 @@ def sweep(a, plt):
     print(f"sweep: k = {a.sweep_stiffness:g}, t_c = {tc:.4g}, box {a.sweep_box}^3, "
           f"{a.sweep_ranks} ranks, simulated time {a.sweep_time:g}")
     for n in a.fractions:
-        r = measure(a, a.sweep_ranks, a.sweep_box, a.sweep_stiffness, tc / n, a.sweep_time, 0.1)
+        # Repeats for PUpCS only (the machine's load moves it); the energy is the first run's.
+        runs = [measure(a, a.sweep_ranks, a.sweep_box, a.sweep_stiffness, tc / n, a.sweep_time,
+                        0.1) for _ in range(a.repeats)]
+        r = runs[0]
+        speeds = sorted(x["pupcs"] for x in runs if x["status"] == "ran")
+        if speeds:
+            r.update(pupcs=statistics.median(speeds), pupcs_min=speeds[0], pupcs_max=speeds[-1])
         results.append(r)
         print(f"  dt = t_c/{n:g}: {r['steps']} steps, energy error {r['energy_error']}, "
-              f"PUpCS {r['pupcs']} {r['status']} {r['message']}", flush=True)
-    write_csv(os.path.join(a.out, "dem_timestep.csv"), FIELDS, [as_row(r) for r in results])
+              f"PUpCS {r['pupcs']} ({speeds[0] if speeds else ''}-{speeds[-1] if speeds else ''})"
+              f" {r['status']} {r['message']}", flush=True)
+    write_csv(os.path.join(a.out, "dem_timestep.csv"), FIELDS + ["pupcs_min", "pupcs_max"],
+              [as_row(r) + [r.get("pupcs_min", ""), r.get("pupcs_max", "")] for r in results])
 
     fig, (ax_e, ax_p) = plt.subplots(1, 2, figsize=(12, 4.6))
     ok = [r for r in results if r["status"] == "ran"]
@@ -114,14 +124,24 @@ def sweep(a, plt):
               color="tab:red", label="energy gained")
     ax_e.plot([r["dt"] / r["tc"] for r in loss], [-r["energy_error"] for r in loss], "v",
               color="tab:blue", label="energy lost")
+    if len(ok) >= 2:  # guides: errors growing like dt and like dt², through the middle point
+        mid = ok[len(ok) // 2]
+        x0, y0 = mid["dt"] / mid["tc"], abs(mid["energy_error"])
+        for power, style in ((1, ":"), (2, "--")):
+            ax_e.plot(x, [y0 * (xi / x0) ** power for xi in x], style, color="grey",
+                      linewidth=0.8, label=f"∝ dt^{power}")
     ax_e.set_yscale("log")
     ax_e.set_ylabel("|E_end − E_0| / E_0  (kinetic + spring)")
     ax_e.set_title(f"Energy error after simulated time {a.sweep_time:g}")
-    ax_p.plot(x, [r["pupcs"] for r in ok], "o-", color="tab:green")
+    ax_p.errorbar(x, [r["pupcs"] for r in ok],
+                  yerr=[[r["pupcs"] - r["pupcs_min"] for r in ok],
+                        [r["pupcs_max"] - r["pupcs"] for r in ok]],
+                  fmt="o-", color="tab:green", capsize=3, label=f"median of {a.repeats} (range)")
+    ax_p.legend(fontsize=8)
     ax_p.set_ylabel("PUpCS")
     ax_p.set_ylim(bottom=0)
-    ax_p.set_title(f"PUpCS ({ok[0]['grains'] if ok else '?'} grains, {a.sweep_ranks} ranks; "
-                   "loaded machine)")
+    ax_p.set_title(f"PUpCS ({ok[0]['grains'] if ok else '?'} grains, {a.sweep_ranks} "
+                   f"rank(s))")
     for ax in (ax_e, ax_p):
         ax.set_xscale("log")
         ax.axvline(1 / 20, color="black", linestyle="--", linewidth=1)
@@ -129,6 +149,9 @@ def sweep(a, plt):
         ax.text(1 / 20, 0.02, " t_c/20 (auto)", transform=ax.get_xaxis_transform(), fontsize=7)
         ax.text(1 / 10, 0.08, " t_c/10 (guard)", transform=ax.get_xaxis_transform(), fontsize=7,
                 color="tab:red")
+        ax.set_xticks([r["dt"] / r["tc"] for r in results])
+        ax.set_xticklabels([f"1/{r['tc'] / r['dt']:.3g}" for r in results], fontsize=8)
+        ax.minorticks_off()
         ax.set_xlabel("dt / t_c")
         ax.grid(True, which="both", alpha=0.25)
     ax_e.legend(fontsize=8)
@@ -214,12 +237,14 @@ def main():
     p.add_argument("--fractions", type=float, nargs="*", default=[80, 40, 20, 10, 5, 3],
                    help="sweep: dt = t_c / each")
     p.add_argument("--sweep-stiffness", type=float, default=50.0)
-    p.add_argument("--sweep-box", type=int, default=16)
-    p.add_argument("--sweep-ranks", type=int, default=2)
+    p.add_argument("--sweep-box", type=int, default=20)
+    p.add_argument("--sweep-ranks", type=int, default=1)
+    p.add_argument("--repeats", type=int, default=3, help="sweep: runs per time step (PUpCS)")
     p.add_argument("--sweep-time", type=float, default=20.0)
-    p.add_argument("--stiffness", type=float, nargs="*", default=[0.1, 1, 10, 100, 1000])
+    p.add_argument("--stiffness", type=float, nargs="*",
+                   default=[0.3, 1, 3, 10, 30, 100, 300, 1000, 3000])
     p.add_argument("--map-dt-min", type=float, default=2e-4)
-    p.add_argument("--map-dt-count", type=int, default=14)
+    p.add_argument("--map-dt-count", type=int, default=13)
     p.add_argument("--map-box", type=int, default=6)
     p.add_argument("--map-speed", type=float, default=1.0)
     p.add_argument("--map-time", type=float, default=4.0)

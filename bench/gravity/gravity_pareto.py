@@ -112,11 +112,12 @@ def chart_pareto(a, rows, plt):
     for ax, key, title in zip(axes, ("median_err", "p99_err"),
                               ("median relative force error", "99th-percentile error")):
         floor = error_floor(rows, key)
-        extra_markers = iter("XdhH<>p")
+        extra_styles = iter(zip("XdhH<>p", ("tab:cyan", "tab:pink", "tab:brown", "tab:gray",
+                                            "gold", "navy", "lime")))
         for method, g in series(rows).items():
             label, marker, colour, pname = STYLE.get(method, (method, None, None, "param"))
-            if marker is None:
-                marker = next(extra_markers, "x")
+            if marker is None:  # a method from --extra
+                marker, colour = next(extra_styles, ("x", "black"))
             xs = [r["time_s"] for r in g]
             ys = [max(r[key], floor) for r in g]
             ax.plot(xs, ys, marker=marker, color=colour, linestyle="-" if len(g) > 1 else "",
