@@ -44,7 +44,8 @@ def contact_time(stiffness):
 
 def gas_args(box, stiffness, dt, steps, speed):
     return [SCENE, "--steps", str(steps),
-            "--set", "granular_gas.scaling=strong", "--set", f"granular_gas.box=[{box},{box},{box}]",
+            "--set", "granular_gas.scaling=strong",
+            "--set", f"granular_gas.box=[{box},{box},{box}]",
             "--set", "contact.restitution=1.0", "--set", "contact.friction=0.0",
             "--set", f"contact.stiffness={stiffness!r}", "--set", f"time.dt={dt!r}",
             "--set", "time.allow_unstable=true",
@@ -195,7 +196,7 @@ def stability_map(a, plt):
     def edges(v):
         lv = np.log10(v)
         mid = (lv[1:] + lv[:-1]) / 2
-        return 10 ** np.concatenate([[lv[0] - (mid[0] - lv[0])], mid, [lv[-1] + (lv[-1] - mid[-1])]])
+        return 10 ** np.concatenate([[2 * lv[0] - mid[0]], mid, [2 * lv[-1] - mid[-1]]])
     fig, ax = plt.subplots(figsize=(8, 6))
     ax.pcolormesh(edges(np.array(a.stiffness)), edges(np.array(dts)), grid,
                   cmap=ListedColormap(["white", "tab:red", "tab:orange"]), vmin=0, vmax=2,

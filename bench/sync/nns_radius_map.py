@@ -13,11 +13,11 @@ Writes <out>/nns_radius_map.csv and the chart nns-radius-map.png (copied to docs
 A benchmark: it asserts nothing.
 """
 import argparse
+import json
 import os
 import subprocess
 import sys
 import tempfile
-import json
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from chart_output import ROOT, pyplot, save_chart, write_csv  # noqa: E402
