@@ -12,7 +12,8 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
   memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
 
 usage: dem_bench.py [methods|radius|radius-chart|memory ...] [--build build/default]
-                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40] [--radii 4 8 12 16 20 24]
+                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40]
+                    [--radii 4 8 12 16 20 24]
 """
 import argparse
 import csv
