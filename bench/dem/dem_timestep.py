@@ -197,7 +197,7 @@ def stability_map(a, plt):
         lv = np.log10(v)
         mid = (lv[1:] + lv[:-1]) / 2
         return 10 ** np.concatenate([[2 * lv[0] - mid[0]], mid, [2 * lv[-1] - mid[-1]]])
-    fig, ax = plt.subplots(figsize=(8, 6))
+    fig, ax = plt.subplots(figsize=(8, 7))
     ax.pcolormesh(edges(np.array(a.stiffness)), edges(np.array(dts)), grid,
                   cmap=ListedColormap(["white", "tab:red", "tab:orange"]), vmin=0, vmax=2,
                   alpha=0.35, shading="flat")
@@ -224,7 +224,8 @@ def stability_map(a, plt):
     ax.set_title(f"Where the DEM fails: hot elastic gas, {a.map_box}^3 grains, v in "
                  f"[-{a.map_speed:g}, {a.map_speed:g}], simulated time {a.map_time:g}",
                  fontsize=10)
-    ax.legend(fontsize=7.5, loc="lower left")
+    ax.legend(fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2,
+              frameon=False)
     ax.grid(True, which="both", alpha=0.2)
     fig.tight_layout()
     save_chart(fig, a.out, "dem-stability", not a.no_docs)
