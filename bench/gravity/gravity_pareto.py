@@ -174,8 +174,9 @@ def chart_theta(a, rows, plt):
                label="θ > 1: only with gravity.allow_large_theta")
     thetas = [r["param"] for r in groups.get("tree", [])] or [0.1, 1.5]
     ax.set_xlim(min(thetas) * 0.9, max(thetas) * 1.05)
-    ax.set_ylim(min(1e-5, 0.5 * min((r["median_err"] for r in rows
-                                     if r["method"] == "tree"), default=1e-5)), 1.0)
+    shown = [r[k] for r in rows if r["method"] in ("tree", "mutual", "tree-nodes")
+             for k in ("median_err", "p99_err")]
+    ax.set_ylim(min(shown + [1e-4]) / 2, max(shown + [0.5]) * 2)
     ax.set_yscale("log")
     ax.set_xlabel("opening angle θ")
     ax.set_ylabel("relative force error vs the direct sum")
