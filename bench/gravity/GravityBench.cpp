@@ -6,6 +6,7 @@
 //       [--methods direct,tree,mutual,occupied-cells,tree-nodes] [--thetas 0.3,0.5,0.7,0.9]
 //       [--samples 2000] [--repeat 3] [--csv out.csv] [--opening bmax-offset|bmax|edge-offset]
 //       [--leaf 8] [--group 64]
+//       [--node-spacings 2.5]                      (occupied-cells, tree-nodes)
 //       [--spacings 4,2,1,0.5] [--pm-gradient 4] [--pm-rtol 1e-6]          (method pm)
 //       [--thresholds 0.01,0.1,1,6] [--step-displacement 0.001] [--stale-theta 0.5]
 //                                                                      (method stale-tree)
@@ -16,8 +17,9 @@
 // threshold (StaleFieldStudy.hpp: the tree field at --stale-theta kept until the fastest grain
 // moved the threshold, given in multiples of the smallest grain radius, one rank only; time per
 // step amortised for a fastest grain moving --step-displacement smallest radii per step).
-// θ > 1 is allowed (gravity.allow_large_theta). CSV columns `spacing` (h or node spacing / the
-// largest diameter) and `threshold` (/ the smallest radius) say which parameter a row varies.
+// The grid baselines at node spacings given as multiples of the largest diameter. θ > 1 is
+// allowed (gravity.allow_large_theta). CSV columns `spacing` (h or node spacing / the largest
+// diameter) and `threshold` (/ the smallest radius) say which parameter a row varies.
 //
 // Errors: on a sample of about `samples` grains (every k-th grain of each rank), against the
 // direct sum for those grains over all grains (double-double, DirectKernel.hpp). Time: the
@@ -147,6 +149,7 @@ int main(int argc, char** argv) {
     auto criterion = gravity::tree::TreeOptions{}.criterion;
     int groupSize = gravity::tree::TreeOptions{}.groupSize;
     std::string spacings = "4,2,1,0.5";
+    std::string nodeSpacings = "2.5"; // the paper's: 2.5 x the largest diameter
     bench::MeshSetup meshSetup;
     std::string thresholds = "0.01,0.1,1,6";
     double stepDisplacement = 0.001;
@@ -174,6 +177,8 @@ int main(int argc, char** argv) {
             groupSize = std::stoi(value);
         else if (key == "--spacings")
             spacings = value;
+        else if (key == "--node-spacings")
+            nodeSpacings = value;
         else if (key == "--pm-gradient")
             meshSetup.gradientOrder = std::stoi(value);
         else if (key == "--pm-rtol")
@@ -277,25 +282,29 @@ int main(int argc, char** argv) {
                     timeIt(world, repeat, [&] { mutual.evaluate(local.view(), f.out()); });
                 report("mutual", theta, t, f);
             }
-            if (has("tree-nodes") && inst.agglomerate) {
+            for (std::string const& ns : split(nodeSpacings)) {
+                if (!has("tree-nodes") || !inst.agglomerate)
+                    break;
                 gravity::baselines::GridMethodOptions g;
-                g.grid.spacing = 2.5 * 2.0 * inst.largestRadius;
+                g.grid.spacing = std::stod(ns) * 2.0 * inst.largestRadius;
                 g.theta = theta;
                 g.allowLargeTheta = theta > 1.0;
                 g.neighbourhood = g.grid.spacing;
                 gravity::baselines::TreeAtNodes method(g);
                 double const t = timeIt(world, std::min(repeat, 2),
                                         [&] { method.evaluate(world, local.view(), f.out()); });
-                report("tree-nodes", theta, t, f, 2.5);
+                report("tree-nodes", theta, t, f, std::stod(ns));
             }
         }
-        if (has("occupied-cells") && inst.agglomerate) {
+        for (std::string const& ns : split(nodeSpacings)) {
+            if (!has("occupied-cells") || !inst.agglomerate)
+                break;
             gravity::baselines::GridMethodOptions g;
-            g.grid.spacing = 2.5 * 2.0 * inst.largestRadius;
+            g.grid.spacing = std::stod(ns) * 2.0 * inst.largestRadius;
             gravity::baselines::OccupiedCells method(g);
             double const t =
                 timeIt(world, 1, [&] { method.evaluate(world, local.view(), f.out()); });
-            report("occupied-cells", 0.0, t, f, 2.5);
+            report("occupied-cells", 0.0, t, f, std::stod(ns));
         }
         if (has("pm") && inst.agglomerate) {
             if (!petsc) {

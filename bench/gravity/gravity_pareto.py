@@ -6,7 +6,8 @@ with the region above the target error shaded.
 
 Methods: direct sum (the reference, error 0), Barnes-Hut tree and mutual tree at each θ
 (θ > 1 with gravity.allow_large_theta), the second paper's tree-at-nodes (each θ) and
-occupied-cells baselines at its node spacing 2.5 x the largest diameter, particle-mesh
+occupied-cells baselines at node spacings of 2.5 (the paper's) and 1.25 x the largest
+diameter, particle-mesh
 (PETSc Poisson) at each cell spacing, and the update threshold (the tree's field kept until
 the fastest grain moved the threshold: error just before the update against the time per
 step, amortised). Extra points of the same shape (CSV with columns
@@ -54,7 +55,8 @@ def run_bench(a, raw):
     command = ["mpiexec", "-n", "1", "--oversubscribe", "--bind-to", "none",
                os.path.join(a.build, "bin", "gravity_bench"), "--instances", a.instance,
                "--methods", a.methods, "--thetas", a.thetas, "--spacings", a.spacings,
-               "--thresholds", a.thresholds, "--step-displacement", str(a.step_displacement),
+               "--node-spacings", a.node_spacings, "--thresholds", a.thresholds,
+               "--step-displacement", str(a.step_displacement),
                "--samples", str(a.samples), "--repeat", str(a.repeat), "--csv", raw]
     print(" ".join(command), flush=True)
     subprocess.run(command, check=True, env={**os.environ, **MPI_ENV})
@@ -73,7 +75,8 @@ def param_of(row):
 def normalise(raw_rows):
     return [{"method": r["method"], "param": param_of(r), "median_err": float(r["err_median"]),
              "p99_err": float(r["err_p99"]), "time_s": float(r["wall_ms"]) / 1e3,
-             "cpu_s": float(r["cpu_ms"]) / 1e3} for r in raw_rows]
+             "cpu_s": float(r["cpu_ms"]) / 1e3, "spacing": float(r.get("spacing") or 0)}
+            for r in raw_rows]
 
 
 def read_extra(paths):
@@ -87,11 +90,31 @@ def read_extra(paths):
     return rows
 
 
+PAPER_SPACING = 2.5  # the paper's node spacing / the largest diameter
+
+
+def series_key(r):
+    """A chart series: the method, and for tree-at-nodes (parameter θ) also a node spacing
+    other than the paper's."""
+    if r["method"] == "tree-nodes" and r.get("spacing", 0) not in (0, PAPER_SPACING):
+        return f"tree-nodes@{r['spacing']:g}"
+    return r["method"]
+
+
+def style_of(key):
+    """(label, marker, colour, parameter name, line style) of a series."""
+    method, _, spacing = key.partition("@")
+    label, marker, colour, pname = STYLE.get(method, (method, None, None, "param"))
+    if spacing:
+        return f"{label}, h = {spacing} d_max", marker, colour, pname, "--"
+    return label, marker, colour, pname, "-"
+
+
 def series(rows):
-    """Rows grouped by method, each group sorted by its parameter."""
+    """Rows grouped by series_key, each group sorted by its parameter."""
     groups = {}
     for r in rows:
-        groups.setdefault(r["method"], []).append(r)
+        groups.setdefault(series_key(r), []).append(r)
     for g in groups.values():
         g.sort(key=lambda r: r["param"])
     return groups
@@ -115,12 +138,12 @@ def chart_pareto(a, rows, plt):
         extra_styles = iter(zip("XdhH<>p", ("tab:cyan", "tab:pink", "tab:brown", "tab:gray",
                                             "gold", "navy", "lime")))
         for method, g in series(rows).items():
-            label, marker, colour, pname = STYLE.get(method, (method, None, None, "param"))
+            label, marker, colour, pname, line = style_of(method)
             if marker is None:  # a method from --extra
                 marker, colour = next(extra_styles, ("x", "black"))
             xs = [r["time_s"] for r in g]
             ys = [max(r[key], floor) for r in g]
-            ax.plot(xs, ys, marker=marker, color=colour, linestyle="-" if len(g) > 1 else "",
+            ax.plot(xs, ys, marker=marker, color=colour, linestyle=line if len(g) > 1 else "",
                     label=label, markersize=6,
                     markerfacecolor="none" if method in AMORTISED else None)
             for r, x, y in zip(g, xs, ys):
@@ -159,22 +182,21 @@ def shade_above(ax, target, label):
 def chart_theta(a, rows, plt):
     fig, ax = plt.subplots(figsize=(7.5, 5))
     groups = series(rows)
-    for method in ("tree", "mutual", "tree-nodes"):
-        if method not in groups:
-            continue
-        label, marker, colour, _ = STYLE[method]
+    for method in [m for m in groups if m.split("@")[0] in ("tree", "mutual", "tree-nodes")]:
+        label, marker, colour, _, line = style_of(method)
         g = groups[method]
         xs = [r["param"] for r in g]
-        ax.plot(xs, [r["median_err"] for r in g], marker=marker, color=colour,
+        ax.plot(xs, [r["median_err"] for r in g], marker=marker, color=colour, linestyle=line,
                 label=f"{label}, median")
-        ax.plot(xs, [r["p99_err"] for r in g], marker=marker, color=colour, linestyle="--",
-                alpha=0.7, label=f"{label}, p99")
+        if line == "-":
+            ax.plot(xs, [r["p99_err"] for r in g], marker=marker, color=colour, linestyle=":",
+                    alpha=0.7, label=f"{label}, p99")
     shade_above(ax, a.target, f"error > {a.target:g} (fails the target)")
     ax.axvspan(1.0, 10.0, color="grey", alpha=0.12,
                label="θ > 1: only with gravity.allow_large_theta")
     thetas = [r["param"] for r in groups.get("tree", [])] or [0.1, 1.5]
     ax.set_xlim(min(thetas) * 0.9, max(thetas) * 1.05)
-    shown = [r[k] for r in rows if r["method"] in ("tree", "mutual", "tree-nodes")
+    shown = [r[k] for r in rows if r["method"] in ("tree", "mutual")
              for k in ("median_err", "p99_err")]
     ax.set_ylim(min(shown + [1e-4]) / 2, max(shown + [0.5]) * 2)
     ax.set_yscale("log")
@@ -193,17 +215,22 @@ def chart_grid(a, rows, plt):
     for method in ("pm", "occupied-cells"):
         if method not in groups:
             continue
-        label, marker, colour, _ = STYLE[method]
+        label, marker, colour, _, _ = style_of(method)
         g = groups[method]
         xs = [r["param"] for r in g]
         ax.plot(xs, [r["median_err"] for r in g], marker=marker, color=colour,
                 label=f"{label}, median")
         ax.plot(xs, [r["p99_err"] for r in g], marker=marker, color=colour, linestyle="--",
                 alpha=0.7, label=f"{label}, p99")
-    if "tree-nodes" in groups:  # the paper's spacing, its best θ
-        best = min(groups["tree-nodes"], key=lambda r: r["median_err"])
-        ax.plot([2.5], [best["median_err"]], marker="^", color="tab:green", linestyle="",
-                label=f"tree at nodes θ = {best['param']:g}, median")
+    nodes = [r for r in rows if r["method"] == "tree-nodes"]
+    if nodes:  # per node spacing, the θ with the smallest median error
+        best = {}
+        for r in nodes:
+            if r["spacing"] not in best or r["median_err"] < best[r["spacing"]]["median_err"]:
+                best[r["spacing"]] = r
+        pts = sorted(best.values(), key=lambda r: r["spacing"])
+        ax.plot([r["spacing"] for r in pts], [r["median_err"] for r in pts], marker="^",
+                color="tab:green", label="tree at nodes (best θ), median")
     shade_above(ax, a.grid_target, f"error > {a.grid_target:g} (fails the target)")
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -211,7 +238,8 @@ def chart_grid(a, rows, plt):
     ax.xaxis.set_major_formatter(ScalarFormatter())
     ax.xaxis.set_minor_formatter(ScalarFormatter())
     ax.tick_params(axis="x", which="minor", labelsize=7)
-    shown = [r["median_err"] for r in rows if r["method"] in ("pm", "occupied-cells")]
+    shown = [r["median_err"] for r in rows
+             if r["method"] in ("pm", "occupied-cells", "tree-nodes")]
     ax.set_ylim(min(shown + [a.grid_target]) / 3, 1.0)
     ax.set_xlabel("cell (node) spacing h / largest grain diameter")
     ax.set_ylabel("relative force error vs the direct sum")
@@ -232,6 +260,8 @@ def main():
     p.add_argument("--thetas", default="0.2,0.3,0.5,0.7,0.9,1.2,1.5")
     p.add_argument("--spacings", default="4,2,1,0.5,0.25",
                    help="pm cell spacings, multiples of the largest grain diameter")
+    p.add_argument("--node-spacings", default="2.5,1.25",
+                   help="node spacings of the paper's grid methods, largest diameters")
     p.add_argument("--thresholds", default="0.01,0.1,1,6",
                    help="update thresholds, multiples of the smallest grain radius")
     p.add_argument("--step-displacement", type=float, default=0.001,
@@ -251,9 +281,9 @@ def main():
         run_bench(a, raw)
     rows = normalise(read_csv(raw))
     write_csv(os.path.join(a.out, f"gravity_pareto_{a.instance}.csv"),
-              ["method", "param", "median_err", "p99_err", "time_s", "cpu_s"],
-              [[r["method"], r["param"], r["median_err"], r["p99_err"], r["time_s"], r["cpu_s"]]
-               for r in rows])
+              ["method", "param", "median_err", "p99_err", "time_s", "cpu_s", "spacing"],
+              [[r["method"], r["param"], r["median_err"], r["p99_err"], r["time_s"], r["cpu_s"],
+                r["spacing"]] for r in rows])
     plt = pyplot()
     chart_pareto(a, rows + read_extra(a.extra), plt)
     chart_theta(a, rows, plt)
