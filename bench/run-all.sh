@@ -56,7 +56,7 @@ done
 
 # Charts (issue 9; docs/results.md, "Charts"): PNG + CSV in bench/out/, PNGs copied to
 # docs/images/. Gravity error against time (Pareto) with the θ and grid-spacing stability maps,
-# on agg11100 (~1 min) and the paper's 38,358-grain agglomerate; DEM energy error and PUpCS
+# on agg11100 (~1.5 min) and the paper's 38,358-grain agglomerate; DEM energy error and PUpCS
 # against dt and the dt-stiffness stability map; the NNS radius / block-edge map.
 /usr/bin/python3 bench/gravity/gravity_pareto.py --build "$build" --out "$out" \
     --instance agg11100 | tee "$out/gravity_pareto_agg11100.txt"
