@@ -15,7 +15,7 @@ method,param,median_err,p99_err,time_s, e.g. P3M) join the Pareto chart with --e
 
 usage: gravity_pareto.py [--build build/default] [--out bench/out] [--instance agg11100|agg38358]
                          [--thetas ...] [--spacings ...] [--thresholds ...] [--target 1e-2]
-                         [--extra p3m.csv ...] [--from-csv raw.csv] [--no-docs]
+                         [--extra p3m.csv ...] [--from-csv raw.csv] [--cpu] [--no-docs]
 
 Writes <out>/gravity_pareto_<instance>.csv (method,param,median_err,p99_err,time_s,cpu_s),
 the raw gravity_bench CSV <out>/gravity_bench_<instance>.csv, and the charts
@@ -141,7 +141,7 @@ def chart_pareto(a, rows, plt):
             label, marker, colour, pname, line = style_of(method)
             if marker is None:  # a method from --extra
                 marker, colour = next(extra_styles, ("x", "black"))
-            xs = [r["time_s"] for r in g]
+            xs = [r[a.time_key] for r in g]
             ys = [max(r[key], floor) for r in g]
             ax.plot(xs, ys, marker=marker, color=colour, linestyle=line if len(g) > 1 else "",
                     label=label, markersize=6,
@@ -150,7 +150,7 @@ def chart_pareto(a, rows, plt):
                 if pname:
                     ax.annotate(f"{r['param']:.3g}", (x, y), textcoords="offset points",
                                 xytext=(4, 3), fontsize=6.5, color=colour or "black")
-        front = pareto_front([(r["time_s"], max(r[key], floor)) for r in rows
+        front = pareto_front([(r[a.time_key], max(r[key], floor)) for r in rows
                               if r["method"] not in AMORTISED])
         if front:
             fx, fy = zip(*front)
@@ -162,8 +162,8 @@ def chart_pareto(a, rows, plt):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(title)
-        ax.set_xlabel("wall time per evaluation [s]; update threshold (hollow): per step, "
-                      "amortised", fontsize=8.5)
+        ax.set_xlabel(f"{'CPU' if a.cpu else 'wall'} time per evaluation [s]; update threshold "
+                      "(hollow): per step, amortised", fontsize=8.5)
         ax.grid(True, which="both", alpha=0.25)
     axes[0].set_ylabel("relative force error against the direct sum")
     handles, labels = axes[0].get_legend_handles_labels()
@@ -171,7 +171,7 @@ def chart_pareto(a, rows, plt):
     fig.suptitle(f"Self-gravity: error against time, {a.instance}, one rank "
                  f"(labels: θ; pm, occupied cells: h / d_max; threshold / r_min)", fontsize=11)
     fig.tight_layout(rect=(0, 0.1, 1, 1))
-    save_chart(fig, a.out, f"gravity-pareto-{a.instance}", not a.no_docs)
+    save_chart(fig, a.out, f"gravity-pareto-{a.instance}{'-cpu' if a.cpu else ''}", not a.no_docs)
 
 
 def shade_above(ax, target, label):
@@ -273,8 +273,11 @@ def main():
     p.add_argument("--extra", nargs="*", default=[],
                    help="CSV files with method,param,median_err,p99_err,time_s (e.g. P3M)")
     p.add_argument("--from-csv", help="a gravity_bench CSV to chart instead of running it")
+    p.add_argument("--cpu", action="store_true",
+                   help="Pareto chart over CPU time (fairer on a loaded machine) instead of wall")
     p.add_argument("--no-docs", action="store_true", help="do not copy PNGs to docs/images")
     a = p.parse_args()
+    a.time_key = "cpu_s" if a.cpu else "time_s"
     os.makedirs(a.out, exist_ok=True)
     raw = a.from_csv or os.path.join(a.out, f"gravity_bench_{a.instance}.csv")
     if not a.from_csv:
