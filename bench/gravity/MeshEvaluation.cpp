@@ -63,10 +63,12 @@ MeshEvaluation::MeshEvaluation(core::Comm const& comm, gravity::samples::Body co
 MeshEvaluation::~MeshEvaluation() = default;
 
 MeshTiming MeshEvaluation::evaluate(gravity::PointMasses const& local, gravity::FieldOut out) {
-    if (m_used)
+    if (m_used) {
+        m_grid.reset(); // the old solver's memory first
         m_grid = std::make_unique<gravity::GridGravity>(
             m_comm, *m_forest, std::array<int, 3>{m_cells / m_comm.size(), m_cells, m_cells},
             gridOptions(m_setup));
+    }
     m_used = true;
     // A first solve for a negligible mass at the centre does the AMG set-up (once per forest
     // in a run) and leaves an initial guess ~1e-12 of the true potential: the timed solve is
