@@ -67,8 +67,9 @@ public:
     SelfGravityForces& operator=(SelfGravityForces const&) = delete;
 
     /// Adds m g to the force of every master of `local`; recomputes g first when the update
-    /// policy says so (no field yet, a grain moved more than the threshold, or a grain arrived
-    /// from another rank), else uses the field of the last update. COLLECTIVE.
+    /// policy says so (no field yet, a grain moved more than the threshold, or a grain has no
+    /// record on any rank), else uses the field of the last update, which a grain that changed
+    /// rank brings along. COLLECTIVE.
     void addForces(particles::LocalParticles& local);
 
     [[nodiscard]] SelfGravityStats const& stats() const { return m_stats; }
