@@ -27,8 +27,8 @@ namespace regolith::apps {
                                               SceneDescription const& scene);
 
 /// Hands the self-gravity state of a checkpoint (this rank's slice of the per-grain records,
-/// and the run-wide state) to `gravity`, which brings each record to its grain's rank at the
-/// next step. Not collective.
+/// and the run-wide state) to `selfGravity`, which brings each record to its grain's rank at
+/// the next step. Not collective.
 void restoreSelfGravity(io::CheckpointSlice const& slice, coupling::SelfGravityForces& selfGravity);
 
 /// Writes a checkpoint every output.checkpoint_every steps into output.dir, as
@@ -51,8 +51,8 @@ public:
     void afterStep(std::int64_t stepsDone);
     /// Writes the checkpoint of step `stepsDone` now; returns its path. COLLECTIVE.
     std::string write(std::int64_t stepsDone);
-    /// Also store the state the self-gravity keeps between updates (nullptr: none); it must outlive
-    /// this object. Not collective.
+    /// Also store the state self-gravity keeps between updates (nullptr: none); `gravity`
+    /// must outlive this object. Not collective.
     void setSelfGravity(coupling::SelfGravityForces const* gravity) { m_gravity = gravity; }
 
 private:

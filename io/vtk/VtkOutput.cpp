@@ -48,14 +48,16 @@ std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
     return out;
 }
 
-/// The entries of an existing series before `time` (a restart continues it).
-std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time) {
+/// The entries of an existing series before `time`, or up to it with `inclusive` (a restart
+/// continues it).
+std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time,
+                                                        bool inclusive = false) {
     std::vector<std::pair<double, std::string>> out;
     if (time == -std::numeric_limits<double>::infinity() || !fs::is_regular_file(pvd))
         return out;
     try {
         for (SeriesEntry const& e : readSeries(pvd))
-            if (e.time < time)
+            if (e.time < time || (inclusive && e.time == time))
                 out.emplace_back(e.time, e.file);
     } catch (core::InputError const& e) {
         core::log::warn("{}: starting the series afresh", e.what());
@@ -82,7 +84,9 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
                                                m_options.dir, ec.message()));
         m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
         m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
-        m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore);
+        // A restart writes no grid at its first step (the field is restored per grain, not
+        // on the grid): the original run's entry of that step stays.
+        m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore, true);
     });
 }
 
@@ -167,6 +171,7 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
                 gridPieces.push_back({fmt::format("block {}", c), gridPiece(step, c)});
             std::string const gridIndex = fmt::format("grid_{:08d}.vtm", step);
             writeText(vtkDir / gridIndex, detail::vtmText(gridPieces));
+            std::erase_if(m_gridSteps, [&](auto const& e) { return e.first == time; });
             m_gridSteps.emplace_back(time, "vtk/" + gridIndex);
             writeText(gridSeriesPath(), pvdText(m_gridSteps));
         }

@@ -34,7 +34,9 @@ struct VtkOptions {
     bool shadows = false;    ///< also write shadow copies (flagged by the `shadow` array)
     bool blocks = true;      ///< also write the block outlines at every output step
     /// A restarted run continues the series of the run it restarts: the entries of existing
-    /// .pvd files in `dir` with a time below this are kept (the default keeps none).
+    /// .pvd files in `dir` with a time below this are kept (the default keeps none); of the
+    /// grid series also the entry at this time, replaced if the grid is written again then
+    /// (a restart has no grid to write before its first field update).
     double keepEntriesBefore = -std::numeric_limits<double>::infinity();
 };
 

@@ -4,7 +4,7 @@
 // vtkXMLImageDataReader for one piece, vtkXMLDataParser for the grid.pvd series): block
 // count, array names and sizes, origins and spacing, every interior value bit for bit,
 // density x cell volume summing to the deposited mass, and a negative potential; on 1 and 4
-// ranks.
+// ranks. A restarted series keeps or replaces the entry of its first step.
 #include "domain/BlockForest.hpp"
 #include "gravity/GridGravity.hpp"
 #include "io/vtk/VtkOutput.hpp"
@@ -161,5 +161,23 @@ TEST(VtkGridOutput, BlocksFieldsAndSeriesReadBack) {
                 }
         EXPECT_EQ(mismatches, 0) << piece;
     }
-    world.barrier(); // nobody removes a directory another rank still reads
+    world.barrier();
+
+    // A restart from time 0.5 keeps the grid entries up to it (it has no grid to write at
+    // its first step); one that writes the grid at 0.5 again replaces that entry.
+    std::vector<std::string> const continued{"vtk/grid_00000000.vtm", "vtk/grid_00000005.vtm",
+                                             "vtk/grid_00000008.vtm"};
+    for (bool rewrite : {false, true}) {
+        io::VtkOptions again{dir, false, false};
+        again.keepEntriesBefore = 0.5;
+        io::VtkOutput resumed(world, again);
+        if (rewrite)
+            resumed.write(5, 0.5, local, grid.fields());
+        else
+            resumed.write(5, 0.5, local); // no grid yet
+        resumed.write(8, 0.8, local, grid.fields());
+        world.barrier();
+        EXPECT_EQ(pvdFiles(resumed.gridSeriesPath()), continued) << "rewrite " << rewrite;
+        world.barrier();
+    }
 }
