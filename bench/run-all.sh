@@ -59,6 +59,11 @@ done
 /usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \
     --repeats 3 --out "$out/ckpt-bench" | tee "$out/checkpoint_bench.txt"
 
+# The grid fields the driver writes for ParaView, read back with VTK and drawn (docs/results.md,
+# issue 9: docs/images/grid-fields.png).
+/usr/bin/python3 bench/io/grid_fields_figure.py --app "$build/bin/regolith" --np 2 --steps 20 \
+    --out "$out/grid-figure" | tee "$out/grid_fields_figure.txt"
+
 # Charts (issue 9; docs/results.md, "Charts"): PNG + CSV in bench/out/, PNGs copied to
 # docs/images/. Gravity error against time (Pareto) with the θ and grid-spacing stability maps,
 # on agg11100 (~1.5 min) and the paper's 38,358-grain agglomerate; DEM energy error and PUpCS
