@@ -70,3 +70,21 @@ OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscrib
 # (docs/results.md, issue 9).
 /usr/bin/python3 bench/io/checkpoint_bench.py --app "$build/bin/regolith" --np 1 2 4 \
     --repeats 3 --out "$out/ckpt-bench" | tee "$out/checkpoint_bench.txt"
+
+# The grid fields the driver writes for ParaView, read back with VTK and drawn (docs/results.md,
+# issue 9: docs/images/grid-fields.png).
+/usr/bin/python3 bench/io/grid_fields_figure.py --app "$build/bin/regolith" --np 2 --steps 20 \
+    --out "$out/grid-figure" | tee "$out/grid_fields_figure.txt"
+
+# Charts (issue 9; docs/results.md, "Charts"): PNG + CSV in bench/out/, PNGs copied to
+# docs/images/. Gravity error against time (Pareto) with the θ and grid-spacing stability maps,
+# on agg11100 (~1.5 min) and the paper's 38,358-grain agglomerate; DEM energy error and PUpCS
+# against dt and the dt-stiffness stability map; the NNS radius / block-edge map.
+/usr/bin/python3 bench/gravity/gravity_pareto.py --build "$build" --out "$out" \
+    --instance agg11100 | tee "$out/gravity_pareto_agg11100.txt"
+/usr/bin/python3 bench/gravity/gravity_pareto.py --build "$build" --out "$out" \
+    --instance agg38358 --spacings 4,2,1,0.5,0.35 | tee "$out/gravity_pareto_agg38358.txt"
+/usr/bin/python3 bench/dem/dem_timestep.py --build "$build" --out "$out" \
+    | tee "$out/dem_timestep.txt"
+/usr/bin/python3 bench/sync/nns_radius_map.py --build "$build" --out "$out" \
+    | tee "$out/nns_radius_map.txt"

@@ -27,7 +27,7 @@ struct ForestSpec {
     enum class Balance { Load, Blocks } balance = Balance::Load;
     /// Cost of one grid cell relative to one grain per step (domain.cell_weight), used by
     /// Balance::Load when a grid is used. Default measured, docs/results.md ("Coupled runs").
-    double cellWeight = 0.05;
+    double cellWeight = 1.0;
 };
 
 } // namespace regolith::domain

@@ -10,6 +10,7 @@
 #include "core/mpi/Comm.hpp"
 #include "domain/BlockForest.hpp"
 #include "gravity/field/GhostExchange.hpp"
+#include "gravity/field/GridFieldsView.hpp"
 #include "gravity/poisson/PoissonSolver.hpp"
 #include "gravity/transfer/MeshTransfer.hpp"
 
@@ -52,6 +53,11 @@ public:
     [[nodiscard]] CellField const& potential() const { return m_potential; }
     [[nodiscard]] CellField const& acceleration() const { return m_acceleration; }
     [[nodiscard]] PoissonSolver const& solver() const { return m_solver; }
+    /// The fields of the last update (density, potential, acceleration), read-only; valid
+    /// while this object lives. Not collective.
+    [[nodiscard]] GridFieldsView fields() const {
+        return {&m_layout, &m_density, &m_potential, &m_acceleration};
+    }
 
 private:
     /// Sets the ghost cells beyond free-space faces to the multipole potential.

@@ -72,6 +72,25 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
     return slice;
 }
 
+void restoreSelfGravity(io::CheckpointSlice const& slice,
+                        coupling::SelfGravityForces& selfGravity) {
+    std::vector<particles::Uid> uid;
+    std::vector<gravity::GrainRecord> records;
+    uid.reserve(slice.grains.size());
+    records.reserve(slice.grains.size());
+    for (io::GrainState const& g : slice.grains) {
+        uid.push_back(g.uid);
+        gravity::GrainRecord r;
+        for (int k = 0; k < 3; ++k) {
+            r.reference[static_cast<std::size_t>(k)] = g.gravityReference[k];
+            r.field[static_cast<std::size_t>(k)] = g.gravityField[k];
+        }
+        records.push_back(r); // NaN rows (no record) are skipped by the policy
+    }
+    selfGravity.restore({slice.info.gravityUpdates, slice.info.gravityPotentialEnergy}, uid,
+                        records);
+}
+
 CheckpointSchedule::CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene,
                                        std::string text, particles::LocalParticles const& local,
                                        TimeAt timeAt)
@@ -114,7 +133,17 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     info.stateChecksum = stateChecksum(*m_comm, masterRecords(*m_local));
     std::string const path = io::checkpointPath(m_output.dir, stepsDone);
     double const start = MPI_Wtime();
-    auto const grains = io::collectMasters(*m_local);
+    auto grains = io::collectMasters(*m_local);
+    if (m_gravity != nullptr) {
+        coupling::SelfGravityState const s = m_gravity->state();
+        info.gravityUpdates = s.updates;
+        info.gravityPotentialEnergy = s.potentialEnergy;
+        for (io::GrainState& g : grains)
+            if (gravity::GrainRecord const* r = m_gravity->record(g.uid)) {
+                g.gravityReference = core::Vec3(r->reference[0], r->reference[1], r->reference[2]);
+                g.gravityField = core::Vec3(r->field[0], r->field[1], r->field[2]);
+            }
+    }
     std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);
     double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
     if (m_comm->rank() == 0)

@@ -4,6 +4,7 @@
 #include "apps/regolith/SceneSections.hpp"
 #include "core/app/RunApp.hpp"
 #include "core/mpi/Comm.hpp"
+#include "coupling/gravity/SelfGravityForces.hpp"
 #include "io/checkpoint/CheckpointReader.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
@@ -25,6 +26,11 @@ namespace regolith::apps {
 [[nodiscard]] io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
                                               SceneDescription const& scene);
 
+/// Hands the self-gravity state of a checkpoint (this rank's slice of the per-grain records,
+/// and the run-wide state) to `selfGravity`, which brings each record to its grain's rank at
+/// the next step. Not collective.
+void restoreSelfGravity(io::CheckpointSlice const& slice, coupling::SelfGravityForces& selfGravity);
+
 /// Writes a checkpoint every output.checkpoint_every steps into output.dir, as
 /// checkpoint_<step>.h5, keeping the newest output.checkpoint_keep.
 class CheckpointSchedule {
@@ -45,10 +51,14 @@ public:
     void afterStep(std::int64_t stepsDone);
     /// Writes the checkpoint of step `stepsDone` now; returns its path. COLLECTIVE.
     std::string write(std::int64_t stepsDone);
+    /// Also store the state self-gravity keeps between updates (nullptr: none); `gravity`
+    /// must outlive this object. Not collective.
+    void setSelfGravity(coupling::SelfGravityForces const* gravity) { m_gravity = gravity; }
 
 private:
     core::Comm const* m_comm;
     particles::LocalParticles const* m_local;
+    coupling::SelfGravityForces const* m_gravity = nullptr;
     OutputSection m_output;
     double m_dt;
     domain::ForestSpec m_forest;

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <sys/ioctl.h>
 #include <unistd.h>
 #include <utility>
 
@@ -26,11 +27,22 @@ std::string duration(double seconds) {
 
 constexpr double kTerminalRedrawSeconds = 0.2;
 
+/// A terminal a person watches: a tty with a window size. Open MPI gives every rank a pseudo
+/// terminal for stdout even when mpiexec's own output goes to a file (open-mpi/ompi#7868),
+/// but that pty has no window size (0 columns, open-mpi/ompi#7900): such a rank writes log
+/// lines, so a log never fills with redrawn lines. (Under mpiexec on a real terminal this
+/// also gives log lines: the rank cannot tell the two apart.)
+bool watchedTerminal() {
+    winsize size{};
+    return ::isatty(STDOUT_FILENO) == 1 && ::ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 &&
+           size.ws_col > 0;
+}
+
 } // namespace
 
 ProgressLine::ProgressLine(ProgressSettings settings)
     : m_settings(std::move(settings))
-    , m_terminal(m_settings.enabled && ::isatty(STDOUT_FILENO) == 1)
+    , m_terminal(m_settings.enabled && watchedTerminal())
     , m_start(now())
     , m_lastPrint(m_start) {}
 

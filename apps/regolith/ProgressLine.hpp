@@ -23,7 +23,8 @@ struct ProgressSettings {
 
 class ProgressLine {
 public:
-    /// Decides once whether standard output is a terminal (isatty). Not collective.
+    /// Decides once whether standard output is a terminal a person watches (a tty with a window
+    /// size; not Open MPI's pty). Not collective.
     explicit ProgressLine(ProgressSettings settings);
     /// After each step: prints if it is time to. Not collective (rank 0 alone prints).
     void afterStep(std::int64_t stepsDone);

@@ -36,6 +36,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace regolith::apps {
 
@@ -77,10 +78,17 @@ std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
     return {};
 }
 
-/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time.
+/// The grid fields for VTK output: those of grid gravity once computed, else none.
+std::optional<gravity::GridFieldsView> gridFieldsOf(coupling::SelfGravityForces const* gravity) {
+    return gravity != nullptr ? gravity->gridFields() : std::nullopt;
+}
+
+/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time (and
+/// the checkpoint, for the self-gravity state restored once that exists).
 struct RunStart {
     std::int64_t step = 0;
     double time = 0.0;
+    std::optional<io::CheckpointSlice> checkpoint;
 };
 
 /// The masters of a restarted run, from --restart FILE (any rank count), checked against
@@ -89,7 +97,7 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
                       particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
     double const start = MPI_Wtime();
-    io::CheckpointSlice const slice = readRestart(ctx.world, path, scene);
+    io::CheckpointSlice slice = readRestart(ctx.world, path, scene);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksum(ctx.world, masterRecords(local));
     if (restored != slice.info.stateChecksum)
@@ -101,7 +109,7 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
                     "entries, read and distributed in {:.3g} s",
                     path, slice.info.step, slice.info.time, slice.info.grainCount,
                     slice.info.historyCount, seconds);
-    return {slice.info.step, slice.info.time};
+    return {slice.info.step, slice.info.time, std::move(slice)};
 }
 
 } // namespace
@@ -120,7 +128,7 @@ int runScene(core::AppContext& ctx) {
     // The particles of this rank's blocks: masters now, shadows from the set-up's sync. They
     // are placed on equally weighted blocks, then the blocks are re-assigned by their load.
     BlockPlacement placement = uniformPlacement(world, scene);
-    RunStart const start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
+    RunStart start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
     std::int64_t const startStep = start.step;
     std::vector<AutoChoice> const choices =
         restart ? refuseAutoOnRestart(scene)
@@ -136,6 +144,9 @@ int runScene(core::AppContext& ctx) {
         for (AutoChoice const& c : choices)
             fmt::print("  auto: {} = {} ({})\n", c.key, c.value, c.reason);
     auto const selfGravity = makeSelfGravity(world, forest, scene);
+    if (selfGravity && start.checkpoint)
+        restoreSelfGravity(*start.checkpoint, *selfGravity); // cached field, update policy
+    start.checkpoint.reset();                                // the grains are in `local` now
     auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
     if (ctx.isRoot() && !ctx.options.quiet)
         printSceneReport(ctx, scene, forest, counts);
@@ -172,6 +183,7 @@ int runScene(core::AppContext& ctx) {
 
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.
     CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local, timeAt);
+    checkpoints.setSelfGravity(selfGravity.get());
     std::optional<io::VtkOutput> vtk;
     if (scene.output.vtkEvery > 0) {
         // A restart continues the series of the run it restarts (the entries before it).
@@ -179,7 +191,7 @@ int runScene(core::AppContext& ctx) {
         if (restart)
             options.keepEntriesBefore = start.time;
         vtk.emplace(world, options);
-        vtk->write(startStep, start.time, local);
+        vtk->write(startStep, start.time, local, gridFieldsOf(selfGravity.get()));
     }
     ProgressLine progress(ProgressSettings{
         startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
@@ -190,7 +202,7 @@ int runScene(core::AppContext& ctx) {
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
-            vtk->write(stepsDone, timeAt(stepsDone), local);
+            vtk->write(stepsDone, timeAt(stepsDone), local, gridFieldsOf(selfGravity.get()));
         progress.afterStep(stepsDone);
     };
     LoopOutcome const loop =

@@ -8,14 +8,17 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
   radius   the paper's Fig. 7/8 analogue: PUpCS against the radius of the large sphere in one
            building block, sparse (sc, r = 0.4) and dense (hcp, r = 0.4) surroundings, 4x4x4 and
            8x8x8 blocks per building block; NNS points stop where NNS refuses. CSV + PNG.
+  radius-chart  the radius chart again from the CSV of an earlier `radius` run.
   memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
 
-usage: dem_bench.py [methods|radius|memory ...] [--build build/default] [--out bench/out]
-                    [--repeats 3] [--ranks 1 2] [--edge 40] [--radii 4 8 12 16 20 24]
+usage: dem_bench.py [methods|radius|radius-chart|memory ...] [--build build/default]
+                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40]
+                    [--radii 4 8 12 16 20 24]
 """
 import argparse
 import csv
 import os
+import shutil
 import statistics
 import sys
 
@@ -114,17 +117,38 @@ def chart_radius(a, rows):
                        if r[0] == name and r[1] == split and r[4] == m and r[7] == "ran"]
                 if pts:
                     xs, ys = zip(*pts)
-                    ax.plot(xs, ys, styles[m], label=f"{m.upper()} edge {a.edge / split:g}")
+                    line, = ax.plot(xs, ys, styles[m],
+                                    label=f"{m.upper()} edge {a.edge / split:g}")
+                    # Where a method refused (NNS: radius >= block edge), an x on the axis.
+                    refused = [r[3] for r in rows if r[0] == name and r[1] == split
+                               and r[4] == m and r[7] == "refused"]
+                    if refused:
+                        ax.plot(refused, [0.03 if split == 4 else 0.08] * len(refused), "x",
+                                color=line.get_color(), transform=ax.get_xaxis_transform(),
+                                markersize=8, markeredgewidth=2,
+                                label=f"{m.upper()} edge {a.edge / split:g} refused")
         ax.set_title(f"{name} surroundings, building block {a.edge:g}^3, "
                      f"{a.radius_ranks} rank(s)")
         ax.set_xlabel("radius of the large sphere")
         ax.grid(True, alpha=0.3)
-    axes[0].set_ylabel("PUpCS")
+    axes[0].set_ylabel("PUpCS (x near the axis: refused)")
+    axes[0].set_ylim(bottom=0.0)
     axes[1].legend(fontsize=8)
     fig.tight_layout()
     path = os.path.join(a.out, "dem_radius.png")
     fig.savefig(path, dpi=110)
     print(f"chart: {path}")
+    shutil.copyfile(path, os.path.join(ROOT, "docs", "images", "dem-radius.png"))
+
+
+def radius_chart(a):
+    """The radius chart again from <out>/dem_radius.csv (no runs)."""
+    with open(os.path.join(a.out, "dem_radius.csv"), newline="", encoding="utf-8") as f:
+        rows = [[r["surroundings"], int(r["blocks_per_axis"]), float(r["block_edge"]),
+                 float(r["large_radius"]), r["method"], r["grains"],
+                 float(r["pupcs"]) if r["pupcs"] else "", r["status"]]
+                for r in csv.DictReader(f)]
+    chart_radius(a, rows)
 
 
 def memory(a):
@@ -166,7 +190,8 @@ def main():
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     for part in a.parts:
-        {"methods": methods, "radius": radius, "memory": memory}[part](a)
+        {"methods": methods, "radius": radius, "radius-chart": radius_chart,
+         "memory": memory}[part](a)
 
 
 if __name__ == "__main__":

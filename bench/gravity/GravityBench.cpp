@@ -6,6 +6,20 @@
 //       [--methods direct,tree,mutual,occupied-cells,tree-nodes] [--thetas 0.3,0.5,0.7,0.9]
 //       [--samples 2000] [--repeat 3] [--csv out.csv] [--opening bmax-offset|bmax|edge-offset]
 //       [--leaf 8] [--group 64]
+//       [--node-spacings 2.5]                      (occupied-cells, tree-nodes)
+//       [--spacings 4,2,1,0.5] [--pm-gradient 4] [--pm-rtol 1e-6]          (method pm)
+//       [--thresholds 0.01,0.1,1,6] [--step-displacement 0.001] [--stale-theta 0.5]
+//                                                                      (method stale-tree)
+//
+// Added for the charts (issue 9; not in the default --methods): `pm`, the particle-mesh method
+// (gravity/GridGravity, TSC, PETSc CG+GAMG from a cold start, set-up not counted, best of two)
+// at cell spacings given as multiples of the largest grain diameter; `stale-tree`, the update
+// threshold (StaleFieldStudy.hpp: the tree field at --stale-theta kept until the fastest grain
+// moved the threshold, given in multiples of the smallest grain radius, one rank only; time per
+// step amortised for a fastest grain moving --step-displacement smallest radii per step).
+// The grid baselines at node spacings given as multiples of the largest diameter. θ > 1 is
+// allowed (gravity.allow_large_theta). CSV columns `spacing` (h or node spacing / the largest
+// diameter) and `threshold` (/ the smallest radius) say which parameter a row varies.
 //
 // Errors: on a sample of about `samples` grains (every k-th grain of each rank), against the
 // direct sum for those grains over all grains (double-double, DirectKernel.hpp). Time: the
@@ -16,6 +30,7 @@
 #include "gravity/baselines/GridMethods.hpp"
 #include "gravity/common/ForceError.hpp"
 #include "gravity/direct/DirectSum.hpp"
+#include "gravity/petsc/PetscSession.hpp"
 #include "gravity/samples/SyntheticBodies.hpp"
 #include "gravity/tree/BarnesHut.hpp"
 #include "gravity/tree/MutualTree.hpp"
@@ -26,9 +41,13 @@
 #include <cstdio>
 #include <ctime>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "bench/gravity/MeshEvaluation.hpp"
+#include "bench/gravity/StaleFieldStudy.hpp"
 
 using namespace regolith;
 namespace gs = regolith::gravity::samples;
@@ -129,6 +148,12 @@ int main(int argc, char** argv) {
     int leafSize = gravity::tree::TreeOptions{}.leafSize;
     auto criterion = gravity::tree::TreeOptions{}.criterion;
     int groupSize = gravity::tree::TreeOptions{}.groupSize;
+    std::string spacings = "4,2,1,0.5";
+    std::string nodeSpacings = "2.5"; // the paper's: 2.5 x the largest diameter
+    bench::MeshSetup meshSetup;
+    std::string thresholds = "0.01,0.1,1,6";
+    double stepDisplacement = 0.001;
+    double staleTheta = 0.5;
     for (int i = 1; i + 1 < argc; i += 2) {
         std::string const key = argv[i];
         std::string const value = argv[i + 1];
@@ -150,11 +175,26 @@ int main(int argc, char** argv) {
             leafSize = std::stoi(value);
         else if (key == "--group")
             groupSize = std::stoi(value);
+        else if (key == "--spacings")
+            spacings = value;
+        else if (key == "--node-spacings")
+            nodeSpacings = value;
+        else if (key == "--pm-gradient")
+            meshSetup.gradientOrder = std::stoi(value);
+        else if (key == "--pm-rtol")
+            meshSetup.rtol = std::stod(value);
+        else if (key == "--thresholds")
+            thresholds = value;
+        else if (key == "--step-displacement")
+            stepDisplacement = std::stod(value);
+        else if (key == "--stale-theta")
+            staleTheta = std::stod(value);
     }
     auto const want = split(methods);
     auto const has = [&](char const* m) {
         return std::find(want.begin(), want.end(), m) != want.end();
     };
+    std::optional<gravity::PetscSession> petsc; // opened for the first pm point
     FILE* out = nullptr;
     if (world.rank() == 0) {
         std::printf("%-13s %9s %5s %-15s %5s %11s %11s %9s %10s %10s\n", "instance", "N", "ranks",
@@ -163,7 +203,7 @@ int main(int argc, char** argv) {
             out = std::fopen(csv.c_str(), "w");
             if (out != nullptr)
                 std::fprintf(out, "instance,N,ranks,method,theta,wall_ms,cpu_ms,cpu_ns_per_grain,"
-                                  "err_median,err_p99\n");
+                                  "err_median,err_p99,spacing,threshold\n");
         }
     }
     for (std::string const& name : split(instances)) {
@@ -180,15 +220,10 @@ int main(int argc, char** argv) {
         }
         Field ref(sample.size());
         gravity::direct::directSumSerial(sample.view(), inst.body.view(), ref.out(), {});
-        auto const report = [&](char const* method, double theta, double seconds, Field const& f) {
-            std::vector<double> ax, ay, az;
-            for (std::size_t k : sampleIndex) {
-                ax.push_back(f.ax[k]);
-                ay.push_back(f.ay[k]);
-                az.push_back(f.az[k]);
-            }
-            auto const e = gravity::errorStats(
-                world, gravity::relativeErrors({ax, ay, az}, {ref.ax, ref.ay, ref.az}));
+        // `spacing`, `threshold`: the grid / threshold parameter of the row (0 if none).
+        auto const reportStats = [&](char const* method, double theta, double seconds,
+                                     gravity::ErrorStats const& e, double spacing = 0.0,
+                                     double threshold = 0.0) {
             if (world.rank() != 0)
                 return;
             double const ms = 1e3 * seconds;
@@ -199,8 +234,21 @@ int main(int argc, char** argv) {
                         e.p99);
             std::fflush(stdout);
             if (out != nullptr)
-                std::fprintf(out, "%s,%zu,%d,%s,%.2f,%.4f,%.4f,%.3f,%.4e,%.4e\n", name.c_str(), n,
-                             world.size(), method, theta, ms, cpuMs, ns, e.median, e.p99);
+                std::fprintf(out, "%s,%zu,%d,%s,%.2f,%.4f,%.4f,%.3f,%.4e,%.4e,%g,%g\n",
+                             name.c_str(), n, world.size(), method, theta, ms, cpuMs, ns, e.median,
+                             e.p99, spacing, threshold);
+        };
+        auto const report = [&](char const* method, double theta, double seconds, Field const& f,
+                                double spacing = 0.0) {
+            std::vector<double> ax, ay, az;
+            for (std::size_t k : sampleIndex) {
+                ax.push_back(f.ax[k]);
+                ay.push_back(f.ay[k]);
+                az.push_back(f.az[k]);
+            }
+            auto const e = gravity::errorStats(
+                world, gravity::relativeErrors({ax, ay, az}, {ref.ax, ref.ay, ref.az}));
+            reportStats(method, theta, seconds, e, spacing);
         };
         Field f(local.size());
         if (has("direct") && n <= 40000) {
@@ -215,6 +263,7 @@ int main(int argc, char** argv) {
             o.leafSize = leafSize;
             o.groupSize = groupSize;
             o.criterion = criterion;
+            o.allowLargeTheta = theta > 1.0; // the charts show where the criterion fails
             if (has("tree")) {
                 gravity::tree::BarnesHut tree(world, o);
                 double const t =
@@ -233,24 +282,81 @@ int main(int argc, char** argv) {
                     timeIt(world, repeat, [&] { mutual.evaluate(local.view(), f.out()); });
                 report("mutual", theta, t, f);
             }
-            if (has("tree-nodes") && inst.agglomerate) {
+            for (std::string const& ns : split(nodeSpacings)) {
+                if (!has("tree-nodes") || !inst.agglomerate)
+                    break;
                 gravity::baselines::GridMethodOptions g;
-                g.grid.spacing = 2.5 * 2.0 * inst.largestRadius;
+                g.grid.spacing = std::stod(ns) * 2.0 * inst.largestRadius;
                 g.theta = theta;
+                g.allowLargeTheta = theta > 1.0;
                 g.neighbourhood = g.grid.spacing;
                 gravity::baselines::TreeAtNodes method(g);
                 double const t = timeIt(world, std::min(repeat, 2),
                                         [&] { method.evaluate(world, local.view(), f.out()); });
-                report("tree-nodes", theta, t, f);
+                report("tree-nodes", theta, t, f, std::stod(ns));
             }
         }
-        if (has("occupied-cells") && inst.agglomerate) {
+        for (std::string const& ns : split(nodeSpacings)) {
+            if (!has("occupied-cells") || !inst.agglomerate)
+                break;
             gravity::baselines::GridMethodOptions g;
-            g.grid.spacing = 2.5 * 2.0 * inst.largestRadius;
+            g.grid.spacing = std::stod(ns) * 2.0 * inst.largestRadius;
             gravity::baselines::OccupiedCells method(g);
             double const t =
                 timeIt(world, 1, [&] { method.evaluate(world, local.view(), f.out()); });
-            report("occupied-cells", 0.0, t, f);
+            report("occupied-cells", 0.0, t, f, std::stod(ns));
+        }
+        if (has("pm") && inst.agglomerate) {
+            if (!petsc) {
+                int petscArgc = 0;
+                char** petscArgv = nullptr;
+                petsc.emplace(petscArgc, petscArgv);
+            }
+            for (std::string const& s : split(spacings)) {
+                bench::MeshSetup setup = meshSetup;
+                setup.spacing = std::stod(s) * 2.0 * inst.largestRadius;
+                bench::MeshEvaluation mesh(world, inst.body, setup);
+                double wall = 1e300;
+                double cpu = 1e300;
+                int iterations = 0;
+                for (int k = 0; k < std::min(repeat, 2); ++k) {
+                    auto const t = mesh.evaluate(local.view(), f.out());
+                    wall = std::min(wall, t.wall);
+                    cpu = std::min(cpu, t.cpu);
+                    iterations = t.iterations;
+                }
+                g_cpu = cpu;
+                report("pm", 0.0, wall, f, mesh.spacing() / (2.0 * inst.largestRadius));
+                if (world.rank() == 0)
+                    std::printf("    pm: %d^3 cells, h = %.1f m, %d iterations\n",
+                                mesh.cellsPerAxis(), mesh.spacing(), iterations);
+            }
+        }
+        if (has("stale-tree") && world.size() == 1 && inst.agglomerate) {
+            gravity::tree::TreeOptions o;
+            o.theta = staleTheta;
+            o.leafSize = leafSize;
+            o.groupSize = groupSize;
+            o.criterion = criterion;
+            gravity::tree::BarnesHut tree(world, o);
+            double const evalWall =
+                timeIt(world, repeat, [&] { tree.evaluate(local.view(), f.out()); });
+            double const evalCpu = g_cpu;
+            double rMin = 1e300;
+            for (double r : local.r)
+                rMin = std::min(rMin, r);
+            bench::StaleFieldStudy study(local, sampleIndex);
+            for (std::string const& s : split(thresholds)) {
+                double const multiple = std::stod(s);
+                auto const p = study.point(world, multiple * rMin, stepDisplacement * rMin,
+                                           {f.ax, f.ay, f.az}, evalWall, evalCpu);
+                g_cpu = p.cpuSeconds;
+                reportStats("stale-tree", staleTheta, p.wallSeconds, p.error, 0.0, multiple);
+                if (world.rank() == 0)
+                    std::printf("    stale: threshold %.3g m, an update every %.0f steps, "
+                                "check %.3f ms\n",
+                                p.threshold, p.stepsPerUpdate, 1e3 * p.dueSeconds);
+            }
         }
     }
     if (out != nullptr)

@@ -41,6 +41,8 @@ public:
         return m_grid.potentialEnergy(g);
     }
 
+    [[nodiscard]] gravity::GridFieldsView fields() const { return m_grid.fields(); }
+
 private:
     static gravity::GridGravityOptions options(SelfGravityConfig const& c) {
         gravity::GridGravityOptions o;
@@ -121,6 +123,15 @@ public:
             m_eval);
     }
 
+    /// The grid fields of a grid method, else nullopt.
+    [[nodiscard]] std::optional<gravity::GridFieldsView> gridFields() const {
+        if (auto const* mesh = std::get_if<std::unique_ptr<MeshGravity>>(&m_eval))
+            return (*mesh)->fields();
+        if (auto const* p3m = std::get_if<std::unique_ptr<P3mGravity>>(&m_eval))
+            return (*p3m)->grid().fields(); // the mesh part (points deposited)
+        return std::nullopt;
+    }
+
 private:
     /// The node methods' options: the lattice from the domain's minimum corner (validated by
     /// the methods: InputError naming gravity.grid_spacing, gravity.theta, ...).
@@ -183,18 +194,12 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         m_az.assign(n, 0.0);
         gravity::PointMasses const grains{m_x, m_y, m_z, m_m, m_r};
         m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
-        m_policy.markUpdated(m_uid, m_x, m_y, m_z);
+        // The policy keeps the field per uid for the steps until the next update.
+        m_policy.markUpdated(m_uid, m_x, m_y, m_z, m_ax, m_ay, m_az);
         ++m_stats.evaluations;
-        // Kept per uid only for the steps between updates (a threshold above 0).
-        if (m_policy.threshold() > 0.0) {
-            m_field.clear();
-            for (std::size_t k = 0; k < n; ++k)
-                m_field[m_uid[k]] = {m_ax[k], m_ay[k], m_az[k]};
-        }
     }
     // Masters in gather order: index k is the k-th master visited. Between updates the policy
-    // guarantees a stored field for every local master (a grain that was not here at the last
-    // update forces an update).
+    // guarantees a record for every local master (fetched from the rank it came from).
     std::size_t k = 0;
     for (particles::BlockParticles& bp : local.blocks()) {
         particles::ParticleStorage& ps = bp.particles;
@@ -202,13 +207,29 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
             if (updated) {
                 ps.force(i) += ps.mass(i) * core::Vec3(m_ax[k], m_ay[k], m_az[k]);
             } else {
-                auto const& a = m_field.at(ps.uid(i));
+                auto const& a = m_policy.record(ps.uid(i))->field;
                 ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);
             }
             ++k;
         });
     }
     ++m_stats.steps;
+}
+
+SelfGravityState SelfGravityForces::state() const {
+    return {m_policy.updates(), m_stats.potentialEnergy};
+}
+
+void SelfGravityForces::restore(SelfGravityState const& state, std::span<particles::Uid const> uid,
+                                std::span<gravity::GrainRecord const> records) {
+    m_policy.restore(state.updates, uid, records);
+    m_stats.potentialEnergy = state.potentialEnergy;
+}
+
+std::optional<gravity::GridFieldsView> SelfGravityForces::gridFields() const {
+    if (m_stats.evaluations == 0)
+        return std::nullopt; // zeros: nothing worth writing
+    return m_method->gridFields();
 }
 
 } // namespace regolith::coupling

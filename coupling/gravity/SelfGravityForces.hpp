@@ -7,6 +7,7 @@
 /// particles::DemStep as its body forces.
 #include "core/mpi/Comm.hpp"
 #include "domain/BlockForest.hpp"
+#include "gravity/field/GridFieldsView.hpp"
 #include "gravity/update/UpdatePolicy.hpp"
 #include "particles/storage/Uid.hpp"
 #include "particles/sync/BlockParticles.hpp"
@@ -14,8 +15,9 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace regolith::coupling {
@@ -56,6 +58,13 @@ struct SelfGravityStats {
     double potentialEnergy = 0.0; ///< ½ Σ m φ at the last update, over all ranks [J]
 };
 
+/// The state kept between updates besides the per-grain records (UpdatePolicy): what a
+/// checkpoint stores so that a restart continues bit for bit with a threshold above 0.
+struct SelfGravityState {
+    long long updates = 0;        ///< field updates so far (0: the next step updates)
+    double potentialEnergy = 0.0; ///< ½ Σ m φ of the last update [J]
+};
+
 class SelfGravityForces {
 public:
     /// Validates the options (core::InputError naming the gravity.* key, on every rank).
@@ -67,11 +76,31 @@ public:
     SelfGravityForces& operator=(SelfGravityForces const&) = delete;
 
     /// Adds m g to the force of every master of `local`; recomputes g first when the update
-    /// policy says so (no field yet, a grain moved more than the threshold, or a grain arrived
-    /// from another rank), else uses the field of the last update. COLLECTIVE.
+    /// policy says so (no field yet, a grain moved more than the threshold, or a grain has no
+    /// record on any rank), else uses the field of the last update, which a grain that changed
+    /// rank brings along. COLLECTIVE.
     void addForces(particles::LocalParticles& local);
 
     [[nodiscard]] SelfGravityStats const& stats() const { return m_stats; }
+
+    /// For checkpoints: the run-wide state, and per grain (uid) its position and field at the
+    /// last update (nullptr if it has none, as always with update_threshold = 0). Not
+    /// collective.
+    [[nodiscard]] SelfGravityState state() const;
+    [[nodiscard]] gravity::GrainRecord const* record(particles::Uid uid) const {
+        return m_policy.record(uid);
+    }
+    /// Continues from a checkpoint: `state` and the records of any grains (this rank's slice
+    /// of the file; the next addForces() brings each record to the rank holding its grain,
+    /// see UpdatePolicy::due). Not collective.
+    void restore(SelfGravityState const& state, std::span<particles::Uid const> uid,
+                 std::span<gravity::GrainRecord const> records);
+
+    /// The cell fields of a grid method (density, potential, acceleration of the last update)
+    /// for output, or nullopt for a method without a grid or before the first update of this
+    /// process (a restart with update_threshold > 0 computes them at its next update). Not
+    /// collective; the same answer on every rank.
+    [[nodiscard]] std::optional<gravity::GridFieldsView> gridFields() const;
 
 private:
     class Method;
@@ -84,9 +113,8 @@ private:
     // The local masters, in block then storage order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
-    /// The field of the last update per grain (uid): grains keep it between updates, and a
-    /// grain that moves to another block of this rank finds it there.
-    std::unordered_map<particles::Uid, std::array<double, 3>> m_field;
+    // The field of the last update per grain lives in m_policy's records (keyed by uid): it
+    // follows a grain to another block or rank.
 };
 
 } // namespace regolith::coupling

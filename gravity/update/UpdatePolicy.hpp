@@ -2,27 +2,48 @@
 /// When to recompute self-gravity (issue 7; the second paper, §3 and §6: "self-gravity is
 /// updated after at least one particle has moved more than a certain distance threshold",
 /// there twice the largest radius). Between updates the grains keep the stored field.
+///
+/// The decision depends on the grains only, not on the ranks or blocks that hold them: a
+/// grain that changed rank since the last update brings its record (position and field at
+/// the update) along (GrainRecordExchange.hpp), so with a deterministic evaluator the update
+/// steps, and hence the trajectories, are the same on any layout (reproducible mode).
 #include "core/mpi/Comm.hpp"
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_map>
 
+namespace regolith::core {
+class SparseExchange;
+}
+
 namespace regolith::gravity {
+
+/// What the policy remembers of one grain from the last update.
+struct GrainRecord {
+    std::array<double, 3> reference{}; ///< position at the last update [m]
+    std::array<double, 3> field{};     ///< acceleration computed then [m s^-2]
+};
 
 class UpdatePolicy {
 public:
     /// `threshold` in m (`gravity.update_threshold`); 0 recomputes every step. Throws
     /// core::InputError naming the key if negative or not finite.
     explicit UpdatePolicy(double threshold);
+    ~UpdatePolicy();
+    UpdatePolicy(UpdatePolicy&&) noexcept;
+    UpdatePolicy& operator=(UpdatePolicy&&) noexcept;
 
     /// True if gravity must be recomputed: no update yet, or some grain on some rank has
     /// moved more than the threshold since the last markUpdated() (global maximum), or a
-    /// grain that was not on this rank at the last update is here now (it migrated: its
-    /// displacement is unknown here, so the policy errs on the safe side). Positions in m,
-    /// grains identified by `uid`. COLLECTIVE over `comm`.
+    /// grain has no record on any rank (it did not exist at the last update). Records of
+    /// grains that arrived from another rank are fetched from there first (one sparse
+    /// exchange through a directory rank, only on steps where some grain arrived; records no
+    /// local grain claims are given away then). Positions in m, grains identified by `uid`.
+    /// COLLECTIVE over `comm` (the same communicator at every call).
     [[nodiscard]] bool due(core::Comm const& comm, std::span<std::uint64_t const> uid,
                            std::span<double const> x, std::span<double const> y,
                            std::span<double const> z);
@@ -31,6 +52,23 @@ public:
     /// collective (call it on every rank after every update).
     void markUpdated(std::span<std::uint64_t const> uid, std::span<double const> x,
                      std::span<double const> y, std::span<double const> z);
+    /// As above, also keeping each grain's field (ax, ay, az) for the steps until the next
+    /// update (record()).
+    void markUpdated(std::span<std::uint64_t const> uid, std::span<double const> x,
+                     std::span<double const> y, std::span<double const> z,
+                     std::span<double const> ax, std::span<double const> ay,
+                     std::span<double const> az);
+
+    /// The record of grain `uid` on this rank, or nullptr. After a due() that returned
+    /// false, every grain passed to it has one. Not collective.
+    [[nodiscard]] GrainRecord const* record(std::uint64_t uid) const;
+
+    /// Continues from a checkpoint: `updates` as updates(), and records of any grains (not
+    /// necessarily this rank's: the next due() brings each to the rank holding its grain).
+    /// Records with a non-finite reference are skipped (that grain counts as new); with
+    /// threshold 0 all are ignored. Not collective.
+    void restore(long long updates, std::span<std::uint64_t const> uid,
+                 std::span<GrainRecord const> records);
 
     [[nodiscard]] long long updates() const { return m_updates; }
     [[nodiscard]] double threshold() const { return m_threshold; }
@@ -44,11 +82,19 @@ public:
     /// that fraction before the next update.
     [[nodiscard]] static std::string thresholdWarning(double threshold, double spacing);
 
+    /// A record and the due() call that last found its grain here.
+    struct Entry {
+        GrainRecord record;
+        std::uint64_t seen = 0;
+    };
+
 private:
     double m_threshold;
     long long m_updates = 0;
     double m_lastMax = 0.0;
-    std::unordered_map<std::uint64_t, std::array<double, 3>> m_reference;
+    std::uint64_t m_call = 0; ///< due() calls so far (Entry::seen)
+    std::unordered_map<std::uint64_t, Entry> m_records;
+    std::unique_ptr<core::SparseExchange> m_exchange; ///< made at the first migration
 };
 
 } // namespace regolith::gravity

@@ -31,6 +31,8 @@ std::uint64_t infoHash(CheckpointInfo const& info) {
     h = fnv1a(std::as_bytes(std::span(info.stateChecksum)), h);
     h = mix(h, info.grainCount);
     h = mix(h, info.historyCount);
+    h = mix(h, info.gravityUpdates);
+    h = mix(h, info.gravityPotentialEnergy);
     return h;
 }
 

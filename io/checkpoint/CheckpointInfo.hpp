@@ -5,10 +5,11 @@
 /// File layout (HDF5, one file per checkpoint; N grains, H contact-history entries in all):
 ///   attributes of "/": format_version, step, time, dt, domain_min[3], domain_max[3],
 ///                      periodic[3], scene (text), state_checksum (text), grain_count,
-///                      history_count, checksum
+///                      history_count, gravity_updates, gravity_potential_energy, checksum
 ///   datasets: uid[N], position[N,3], velocity[N,3], angular_velocity[N,3],
 ///             orientation[N,4] (w, x, y, z), force[N,3], torque[N,3], radius[N], mass[N],
-///             type[N], flags[N], history_offset[N] (first entry of the grain),
+///             type[N], flags[N], gravity_reference[N,3], gravity_field[N,3] (NaN rows: no
+///             self-gravity record), history_offset[N] (first entry of the grain),
 ///             history_count[N], history_partner[H], history_spring[H,3], history_stamp[H]
 /// `checksum` is the FNV-1a of the attributes plus the sum over grains of grainHash: any
 /// slice of grains can be hashed by any rank, so a file is verified on any rank count.
@@ -21,7 +22,8 @@
 namespace regolith::io {
 
 /// The checkpoint format this build writes and reads. Bump it with every layout change.
-inline constexpr std::int64_t kCheckpointFormatVersion = 1;
+/// 2: self-gravity state (gravity_* attributes and datasets) added.
+inline constexpr std::int64_t kCheckpointFormatVersion = 2;
 
 struct CheckpointInfo {
     std::int64_t formatVersion = kCheckpointFormatVersion;
@@ -34,6 +36,10 @@ struct CheckpointInfo {
     std::string stateChecksum;      ///< the run's state checksum of these masters (apps), or ""
     std::uint64_t grainCount = 0;   ///< over all ranks (filled by the writer)
     std::uint64_t historyCount = 0; ///< over all ranks (filled by the writer)
+    /// Self-gravity: field updates so far (0: none, or no self-gravity) and ½ Σ m φ of the
+    /// last one [J]; the per-grain records are GrainState::gravity*.
+    std::int64_t gravityUpdates = 0;
+    double gravityPotentialEnergy = 0.0;
 };
 
 /// FNV-1a of every field of `info` (the header part of the file checksum). Not collective.

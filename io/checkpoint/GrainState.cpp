@@ -110,6 +110,8 @@ std::uint64_t grainHash(GrainState const& g) {
     h.add(g.mass);
     h.add(g.type);
     h.add(g.flags);
+    h.add(g.gravityReference);
+    h.add(g.gravityField);
     for (particles::HistoryEntry const& e : g.history) {
         h.add(e.partner);
         h.add(e.spring);

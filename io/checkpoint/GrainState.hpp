@@ -11,6 +11,7 @@
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -29,6 +30,11 @@ struct GrainState {
     std::uint32_t type = 0;                       ///< material index
     std::uint8_t flags = 0;                       ///< particles::Flags bits (Shadow never set)
     std::vector<particles::HistoryEntry> history; ///< in partner uid order
+    /// Self-gravity with update_threshold > 0: the grain's position at the last field update
+    /// and the acceleration it got then, which it keeps until the next update. NaN if it has
+    /// none (no self-gravity, threshold 0, or no update yet).
+    core::Vec3 gravityReference = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    core::Vec3 gravityField = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// The masters of every local block, in block order then storage order. Not collective.

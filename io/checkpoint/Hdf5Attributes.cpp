@@ -112,6 +112,8 @@ void writeInfoAttributes(hid_t file, CheckpointInfo const& info, std::uint64_t c
     writeText(file, "state_checksum", info.stateChecksum, context);
     u64("grain_count", info.grainCount);
     u64("history_count", info.historyCount);
+    i64("gravity_updates", info.gravityUpdates);
+    f64("gravity_potential_energy", &info.gravityPotentialEnergy, 1);
     u64("checksum", checksum);
 }
 
@@ -137,6 +139,9 @@ CheckpointInfo readInfoAttributes(hid_t file, std::uint64_t& checksum, std::stri
     info.stateChecksum = readText(file, "state_checksum", context);
     readAttr(file, "grain_count", H5T_NATIVE_UINT64, 1, &info.grainCount, context);
     readAttr(file, "history_count", H5T_NATIVE_UINT64, 1, &info.historyCount, context);
+    readAttr(file, "gravity_updates", H5T_NATIVE_INT64, 1, &info.gravityUpdates, context);
+    readAttr(file, "gravity_potential_energy", H5T_NATIVE_DOUBLE, 1, &info.gravityPotentialEnergy,
+             context);
     readAttr(file, "checksum", H5T_NATIVE_UINT64, 1, &checksum, context);
     return info;
 }

@@ -3,12 +3,14 @@
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
 #include "io/detail/AgreeOnError.hpp"
+#include "io/vtk/GridPieces.hpp"
 #include "io/vtk/VtkPieces.hpp"
 #include "io/vtk/VtkSeries.hpp"
 
 #include <fmt/format.h>
 #include <vtkObject.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -46,14 +48,16 @@ std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
     return out;
 }
 
-/// The entries of an existing series before `time` (a restart continues it).
-std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time) {
+/// The entries of an existing series before `time`, or up to it with `inclusive` (a restart
+/// continues it).
+std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, double time,
+                                                        bool inclusive = false) {
     std::vector<std::pair<double, std::string>> out;
     if (time == -std::numeric_limits<double>::infinity() || !fs::is_regular_file(pvd))
         return out;
     try {
         for (SeriesEntry const& e : readSeries(pvd))
-            if (e.time < time)
+            if (e.time < time || (inclusive && e.time == time))
                 out.emplace_back(e.time, e.file);
     } catch (core::InputError const& e) {
         core::log::warn("{}: starting the series afresh", e.what());
@@ -80,6 +84,9 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
                                                m_options.dir, ec.message()));
         m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
         m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
+        // A restart writes no grid at its first step (the field is restored per grain, not
+        // on the grid): the original run's entry of that step stays.
+        m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore, true);
     });
 }
 
@@ -91,7 +98,29 @@ std::string VtkOutput::blockSeriesPath() const {
     return (fs::path(m_options.dir) / "blocks.pvd").string();
 }
 
-void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles const& local) {
+std::string VtkOutput::gridSeriesPath() const {
+    return (fs::path(m_options.dir) / "grid.pvd").string();
+}
+
+namespace {
+
+std::string gridPiece(std::int64_t step, std::uint64_t curveIndex) {
+    return fmt::format("grid_{:08d}_b{:06d}.vti", step, curveIndex);
+}
+
+} // namespace
+
+void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles const& local,
+                      std::optional<gravity::GridFieldsView> const& grid) {
+    if (grid && !m_gridBlocksKnown) {
+        // The forest is static: every rank learns every block's curve index once.
+        std::vector<std::uint64_t> mine;
+        for (domain::Block const& b : grid->layout->forest().blocks())
+            mine.push_back(b.curveIndex);
+        m_gridBlocks = m_comm->allGatherVarying<std::uint64_t>(mine);
+        std::sort(m_gridBlocks.begin(), m_gridBlocks.end());
+        m_gridBlocksKnown = true;
+    }
     fs::path const vtkDir = fs::path(m_options.dir) / "vtk";
     auto const piece = [&](char const* kind, int rank) {
         return fmt::format("{}_{:08d}_r{:04d}.vtu", kind, step, rank);
@@ -104,6 +133,12 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
                                        local, m_options.shadows);
             if (m_options.blocks)
                 detail::writeBlockPiece((vtkDir / piece("blocks", m_comm->rank())).string(), local);
+            if (grid) {
+                auto const& blocks = grid->layout->forest().blocks();
+                for (std::size_t b = 0; b < blocks.size(); ++b)
+                    detail::writeGridPiece(
+                        (vtkDir / gridPiece(step, blocks[b].curveIndex)).string(), *grid, b);
+            }
         } catch (core::InputError const&) {
             throw;
         } catch (core::Error const& e) {
@@ -129,6 +164,16 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
                       detail::pvtuText({}, detail::blockArrays(), blockPieces));
             m_blockSteps.emplace_back(time, "vtk/" + blockIndex);
             writeText(blockSeriesPath(), pvdText(m_blockSteps));
+        }
+        if (grid) {
+            std::vector<detail::BlockPiece> gridPieces;
+            for (std::uint64_t const c : m_gridBlocks)
+                gridPieces.push_back({fmt::format("block {}", c), gridPiece(step, c)});
+            std::string const gridIndex = fmt::format("grid_{:08d}.vtm", step);
+            writeText(vtkDir / gridIndex, detail::vtmText(gridPieces));
+            std::erase_if(m_gridSteps, [&](auto const& e) { return e.first == time; });
+            m_gridSteps.emplace_back(time, "vtk/" + gridIndex);
+            writeText(gridSeriesPath(), pvdText(m_gridSteps));
         }
     });
 }

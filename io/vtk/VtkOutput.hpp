@@ -6,16 +6,23 @@
 ///     <dir>/particles.pvd, <dir>/blocks.pvd           open these in ParaView
 ///     <dir>/vtk/particles_<step>.pvtu, <dir>/vtk/particles_<step>_r<rank>.vtu
 ///     <dir>/vtk/blocks_<step>.pvtu,    <dir>/vtk/blocks_<step>_r<rank>.vtu
+///     <dir>/grid.pvd                   with grid gravity (write() given its fields)
+///     <dir>/vtk/grid_<step>.vtm,       <dir>/vtk/grid_<step>_b<curve index>.vti
 ///
 /// Particles are points (one vertex cell each) with point data uid, radius, mass, velocity,
 /// angular_velocity, force, owner_rank, and with shadows on also `shadow` (1 for a shadow
 /// copy). Blocks are hexahedra with cell data block_id, owner_rank, level, grains (masters).
+/// Grid fields are one image data piece per block (interior cells, origin at the block's
+/// lower corner, spacing the cell size) with cell data density, potential and acceleration,
+/// and a multi-block .vtm per step naming every block's piece in curve order.
 /// No VTK header is visible here: VTK is linked PRIVATE to regolith::io.
 #include "core/mpi/Comm.hpp"
+#include "gravity/field/GridFieldsView.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,7 +34,9 @@ struct VtkOptions {
     bool shadows = false;    ///< also write shadow copies (flagged by the `shadow` array)
     bool blocks = true;      ///< also write the block outlines at every output step
     /// A restarted run continues the series of the run it restarts: the entries of existing
-    /// .pvd files in `dir` with a time below this are kept (the default keeps none).
+    /// .pvd files in `dir` with a time below this are kept (the default keeps none); of the
+    /// grid series also the entry at this time, replaced if the grid is written again then
+    /// (a restart has no grid to write before its first field update).
     double keepEntriesBefore = -std::numeric_limits<double>::infinity();
 };
 
@@ -42,18 +51,26 @@ public:
     /// Writes the state of step `step` at simulated time `time`: every rank its pieces, rank
     /// 0 the .pvtu indices and both .pvd series (rewritten whole each time, via a temporary
     /// file, so they stay valid if the run stops). Throws core::InputError on every rank if a
-    /// file cannot be written. COLLECTIVE over the communicator.
-    void write(std::int64_t step, double time, particles::LocalParticles const& local);
+    /// file cannot be written. With `grid` (grid gravity's fields, given on every rank alike)
+    /// also the grid fields of every block and the grid.pvd series. COLLECTIVE over the
+    /// communicator.
+    void write(std::int64_t step, double time, particles::LocalParticles const& local,
+               std::optional<gravity::GridFieldsView> const& grid = std::nullopt);
 
     /// The .pvd files this object writes.
     [[nodiscard]] std::string particleSeriesPath() const;
     [[nodiscard]] std::string blockSeriesPath() const;
+    [[nodiscard]] std::string gridSeriesPath() const;
 
 private:
     core::Comm const* m_comm;
     VtkOptions m_options;
     std::vector<std::pair<double, std::string>> m_particleSteps; ///< (time, .pvtu) so far
     std::vector<std::pair<double, std::string>> m_blockSteps;
+    std::vector<std::pair<double, std::string>> m_gridSteps;
+    /// Every block's curve index in curve order (gathered at the first grid output).
+    std::vector<std::uint64_t> m_gridBlocks;
+    bool m_gridBlocksKnown = false;
 };
 
 } // namespace regolith::io

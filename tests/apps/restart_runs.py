@@ -1,9 +1,9 @@
 """Checkpoint and restart of `regolith` end to end (issue 9), on the scene
 tests/apps/scenes/restart.toml (1000 grains falling on a floor, reproducible mode, 40 steps).
 
-usage: restart_runs.py --mpiexec M --app APP --scene SCENE --out DIR
+usage: restart_runs.py --mpiexec M --app APP --scene SCENE --out DIR [--case plain|gravity]
 
-Checks, in order (exit 1 with the reason on the first failure):
+Case "plain" checks, in order (exit 1 with the reason on the first failure):
  1. the reference: 40 steps on 2 ranks;
  2. 20 steps on 2 ranks writing a checkpoint every 5 steps and keeping 3: exactly the
     checkpoints of steps 10, 15, 20 remain, no temporary file; its VTK output (every 10
@@ -17,6 +17,20 @@ Checks, in order (exit 1 with the reason on the first failure):
  5. a truncated file, a flipped byte, a scene with another domain and a step beyond
     time.steps are refused on 2 ranks: exit code 2, the message once on stderr naming the
     file, no crash, every checkpoint file byte-identical before and after.
+
+Case "gravity", on tests/apps/scenes/restart_gravity.toml (729 grains, direct self-gravity
+with update_threshold > 0: the field is recomputed only every few steps; between updates
+each grain keeps the field of the last update, which the checkpoint stores with the update
+policy's reference positions; grains sit on the block faces and change rank between
+updates):
+ 1. the reference: 40 steps on 2 ranks, with more than one update and fewer than one per
+    step, and a checksum other than that of the run without self-gravity;
+ 2. the same 40 steps on 3 ranks give the same checksum (the policy does not depend on the
+    layout: a grain that changes rank brings its reference and field along);
+ 3. 20 steps on 2 ranks writing checkpoints at steps 10 and 20; restarts to 40 steps from
+    step 20 on 2 ranks and from step 10 on 3 ranks give the reference's checksum; the first
+    makes exactly the updates the reference made after step 20 (no update forced by the
+    restart).
 """
 import argparse
 import hashlib
@@ -101,15 +115,51 @@ def expect_refused(runner, np, args, message, files):
         fail(f"a checkpoint file changed: {line}")
 
 
+def gravity_case(runner):
+    plain = runner.summary(2, "plain", ["--set", "gravity.self=none"])["checksum"]
+    ref = runner.summary(2, "reference", [])
+    updates = ref["gravity"]["updates"]
+    if not 1 < updates < 40:
+        fail(f"the reference made {updates} gravity updates in 40 steps; expected more than 1 "
+             "and fewer than 40 (the threshold must skip updates for this test to mean anything)")
+    if ref["checksum"] == plain:
+        fail("self-gravity did not change the final state")
+    three = runner.summary(3, "reference_np3", [])
+    if three["checksum"] != ref["checksum"]:
+        fail(f"40 steps on 3 ranks: checksum {three['checksum']}, on 2 ranks {ref['checksum']} "
+             "(the update policy depends on the layout)")
+
+    first_dir = runner.path("first")
+    first = runner.summary(2, "first", ["--steps", "20", "--output", first_dir,
+                                        "--set", "output.checkpoint_every=10"])
+    for np, step, name in ((2, 20, "restart_np2"), (3, 10, "restart_np3")):
+        start = os.path.join(first_dir, f"checkpoint_{step:08d}.h5")
+        s = runner.summary(np, name, ["--restart", start,
+                                      "--output", runner.path(name)])
+        if s["checksum"] != ref["checksum"] or s["steps"] != 40 - step:
+            fail(f"restart from {start} on {np} ranks: checksum {s['checksum']}, steps "
+                 f"{s['steps']}; expected {ref['checksum']}, {40 - step}")
+        if step == 20 and first["gravity"]["updates"] + s["gravity"]["updates"] != updates:
+            fail(f"updates: {first['gravity']['updates']} before the checkpoint + "
+                 f"{s['gravity']['updates']} after the restart, the reference made {updates} "
+                 "(the restart did not continue the update policy)")
+    print(f"restart_runs: gravity checks passed (reference checksum {ref['checksum']}, "
+          f"{updates} updates in 40 steps)")
+
+
 def main():
     parser = argparse.ArgumentParser()
     for option in ("--mpiexec", "--app", "--scene", "--out"):
         parser.add_argument(option, required=True)
+    parser.add_argument("--case", choices=("plain", "gravity"), default="plain")
     a = parser.parse_args()
-    out = os.path.join(a.out, "restart")
+    out = os.path.join(a.out, "restart" if a.case == "plain" else "restart_gravity")
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     runner = Runner(a.mpiexec, a.app, a.scene, out)
+    if a.case == "gravity":
+        gravity_case(runner)
+        return
 
     reference = runner.summary(2, "reference", [])["checksum"]
 

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 using namespace regolith;
@@ -32,6 +33,66 @@ TEST(UpdatePolicy, TriggersOnTheLargestDisplacementOfAnyRank) {
     // A grain this rank did not hold at the update counts as moved.
     uid[0] += 1000;
     EXPECT_TRUE(policy.due(world(), uid, x, y, z));
+}
+
+TEST(UpdatePolicy, GrainsThatChangeRankBringTheirRecord) {
+    // Layout independence: a grain that moved to another rank (here every grain moves to the
+    // next rank) keeps its reference and field, so no update is forced; its displacement
+    // still counts.
+    int const p = world().size();
+    int const r = world().rank();
+    gravity::UpdatePolicy policy(1.0);
+    std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(100 + r)};
+    std::vector<double> x{static_cast<double>(r)}, y{0.0}, z{0.0};
+    std::vector<double> ax{0.5 * r}, ay{-1.0}, az{2.0};
+    EXPECT_TRUE(policy.due(world(), uid, x, y, z));
+    policy.markUpdated(uid, x, y, z, ax, ay, az);
+    int const from = (r + p - 1) % p; // this rank now holds the grain of rank `from`
+    uid[0] = static_cast<std::uint64_t>(100 + from);
+    x[0] = from + 0.25;
+    EXPECT_FALSE(policy.due(world(), uid, x, y, z));
+    EXPECT_DOUBLE_EQ(policy.lastMaxDisplacement(), 0.25);
+    gravity::GrainRecord const* record = policy.record(uid[0]);
+    ASSERT_NE(record, nullptr);
+    EXPECT_EQ(record->field[0], 0.5 * from);
+    EXPECT_EQ(record->reference[0], static_cast<double>(from));
+    if (p > 1) {
+        EXPECT_EQ(policy.record(static_cast<std::uint64_t>(100 + r)), nullptr); // given away
+    }
+    // Moved on again, now past the threshold: due everywhere.
+    uid[0] = static_cast<std::uint64_t>(100 + (from + p - 1) % p);
+    x[0] = (from + p - 1) % p + 1.5;
+    EXPECT_TRUE(policy.due(world(), uid, x, y, z));
+    EXPECT_EQ(policy.updates(), 1);
+}
+
+TEST(UpdatePolicy, RestoredRecordsReachTheirGrainsOnAnyRank) {
+    // A checkpoint's records arrive wherever the file slice was read (here all on the last
+    // rank); the first due() brings each to its grain. A NaN record counts as none.
+    int const p = world().size();
+    int const r = world().rank();
+    double const nan = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::uint64_t> uids;
+    std::vector<gravity::GrainRecord> records;
+    if (r == p - 1)
+        for (int k = 0; k < p; ++k) {
+            uids.push_back(static_cast<std::uint64_t>(7 * k + 1));
+            records.push_back({{1.0 * k, 0.0, 0.0}, {3.0 * k, 0.0, 0.0}});
+        }
+    gravity::UpdatePolicy policy(0.5);
+    policy.restore(4, uids, records);
+    EXPECT_EQ(policy.updates(), 4);
+    std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(7 * r + 1)};
+    std::vector<double> x{r + 0.125}, y{0.0}, z{0.0};
+    EXPECT_FALSE(policy.due(world(), uid, x, y, z));
+    ASSERT_NE(policy.record(uid[0]), nullptr);
+    EXPECT_EQ(policy.record(uid[0])->field[0], 3.0 * r);
+
+    gravity::UpdatePolicy fresh(0.5);
+    std::vector<gravity::GrainRecord> const none{{{nan, nan, nan}, {nan, nan, nan}}};
+    std::vector<std::uint64_t> const one{uid[0]};
+    fresh.restore(4, one, none);
+    EXPECT_TRUE(fresh.due(world(), uid, x, y, z)); // no record anywhere: update
 }
 
 TEST(UpdatePolicy, WarnsWhenTheThresholdExceedsTheSpacing) {
