@@ -2,6 +2,7 @@
 
 #include "core/Error.hpp"
 
+#include <atomic>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -56,12 +57,23 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
     updateInverses(i);
+    if (tracing()) {
+        m_traceTag.push_back(kUntraced);
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), kUntraced});
+    }
     return i;
 }
 
 void ParticleStorage::remove(Index i) {
     Index const last = size() - 1;
     m_index.erase(key(i));
+    if (tracing()) {
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
+        if (i != last)
+            m_traceJournal.push_back({static_cast<std::uint32_t>(last), m_traceTag[last]});
+        m_traceTag[i] = m_traceTag[last];
+        m_traceTag.pop_back();
+    }
     if (i != last) {
         forEachArray([i, last](auto& v) { v[i] = std::move(v[last]); });
         m_index[key(i)] = i;
@@ -92,6 +104,10 @@ void ParticleStorage::setImage(Index i, CopyImage const& image) {
     (void)it;
     m_index.erase(key(i));
     m_image[i] = image;
+    if (tracing()) { // its local position jumped: a new copy for the follower
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
+        m_traceTag[i] = kUntraced;
+    }
 }
 
 void ParticleStorage::permute(std::span<Index const> newToOld) {
@@ -114,6 +130,7 @@ void ParticleStorage::permute(std::span<Index const> newToOld) {
     });
     for (Index k = 0; k < n; ++k)
         m_index[key(k)] = k;
+    m_traceBroken = tracing();
 }
 
 void ParticleStorage::reserve(std::size_t n) {
@@ -124,9 +141,27 @@ void ParticleStorage::reserve(std::size_t n) {
 void ParticleStorage::clear() {
     forEachArray([](auto& v) { v.clear(); });
     m_index.clear();
+    m_traceTag.clear();
+    m_traceJournal.clear();
+    m_traceBroken = tracing();
+}
+
+std::uint64_t ParticleStorage::startTracing() {
+    // Unique over all storages of the process, so that a follower fed another storage (or
+    // this one after a restart of the trace) notices.
+    static std::atomic<std::uint64_t> sessions{0};
+    m_traceSession = ++sessions;
+    m_traceBroken = false;
+    m_traceJournal.clear();
+    m_traceTag.resize(size());
+    for (Index k = 0, n = size(); k < n; ++k)
+        m_traceTag[k] = static_cast<std::uint32_t>(k);
+    return m_traceSession;
 }
 
 void ParticleStorage::setRadius(Index i, double radius) {
+    if (tracing() && radius != m_radius[i])
+        m_traceBroken = true; // a neighbour list's reach depends on the radii
     m_radius[i] = radius;
     updateInverses(i);
 }
@@ -188,6 +223,8 @@ std::size_t ParticleStorage::bytes() const {
     add(m_image);
     add(m_shadowHolders);
     add(m_history);
+    add(m_traceTag);
+    add(m_traceJournal);
     for (auto const& h : m_shadowHolders)
         b += h.capacity() * sizeof(CopyRef);
     for (auto const& h : m_history)
