@@ -4,6 +4,7 @@
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/CopyImage.hpp"
+#include "particles/storage/CopyIndex.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/Uid.hpp"
 
@@ -11,7 +12,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 namespace regolith::particles {
@@ -204,7 +204,7 @@ private:
     std::vector<CopyImage> m_image;
     std::vector<std::vector<CopyRef>> m_shadowHolders;
     std::vector<ContactHistory> m_history;
-    std::unordered_map<CopyKey, Index, CopyKeyHash> m_index;
+    CopyIndex m_index;
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.
     std::vector<std::uint32_t> m_traceTag;
     std::vector<TraceChange> m_traceJournal;
