@@ -165,6 +165,8 @@ std::span<core::Vec3 const> ContactDetector::bin(ParticleStorage const& ps,
     // Local positions (x + k * period) differ from the canonical geometry of PairRule by a few
     // roundings of numbers up to `scale`, and so does the cell assignment: 64 ulps of the
     // largest coordinate cover both, so the candidates include every canonical overlap.
+    if (skin != 0.0)
+        scale *= 2.0; // a Verlet list: room for copies that arrive later (addArrivals)
     double const slack = 64.0 * std::numeric_limits<double>::epsilon() * scale;
     m_stats.slack = slack;
     if (skin < 0.0) // relative: a fraction of the small radius
