@@ -107,7 +107,9 @@ double ContactDetector::largeThreshold(ParticleStorage const& ps) {
     m_scratch.assign(ps.radii().begin(), ps.radii().end());
     auto mid = m_scratch.begin() + static_cast<std::ptrdiff_t>(m_scratch.size() / 2);
     std::nth_element(m_scratch.begin(), mid, m_scratch.end());
-    return m_config.largeFactor * *mid;
+    double const median = *mid;
+    std::vector<double>().swap(m_scratch); // 8 bytes per copy, needed only here
+    return m_config.largeFactor * median;
 }
 
 std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
@@ -385,6 +387,10 @@ std::vector<std::size_t> ContactDetector::spatialOrder() const {
     std::vector<std::size_t> order(cells.begin(), cells.end());
     order.insert(order.end(), m_large.begin(), m_large.end());
     return order;
+}
+
+void ContactDetector::release() {
+    *this = ContactDetector(m_config);
 }
 
 std::size_t ContactDetector::bytes() const {

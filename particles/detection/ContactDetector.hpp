@@ -153,6 +153,8 @@ public:
 
     [[nodiscard]] DetectorStats const& stats() const { return m_stats; }
     [[nodiscard]] DetectorConfig const& config() const { return m_config; }
+    /// Frees every work array and the neighbour list (the next detect starts afresh).
+    void release();
     /// Heap bytes of the reusable work arrays.
     [[nodiscard]] std::size_t bytes() const;
 

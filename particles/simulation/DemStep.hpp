@@ -120,6 +120,11 @@ public:
     /// for NNS, a malformed message). COLLECTIVE.
     void step();
 
+    /// Frees the contact detectors' work arrays and neighbour lists and the contact lists
+    /// (e.g. after the last step, before gathering output); the next step rebuilds them.
+    /// Not collective.
+    void releaseWorkspace();
+
     /// Installs the body forces (see BodyForces); an empty function removes them. Call it
     /// before setUp(), so that the initial forces include them.
     void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
