@@ -64,6 +64,20 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
             if (hist.empty() && (records != nullptr || !hasForce))
                 continue;
             BlockRef const owner = ps.owner(i);
+            if (owner.rank == engine.rank() && records == nullptr) {
+                // The master is on this rank: added in place, not serialised. (Reproducible
+                // mode sends no forces here, only history, and keeps one path for it.)
+                std::size_t ob = 0;
+                std::size_t const m = masterIndex(local, owner.block, ps.uid(i), ob);
+                ParticleStorage& master = blocks[ob].particles;
+                master.force(m) += ps.force(i);
+                master.torque(m) += ps.torque(i);
+                for (HistoryEntry const& e : hist)
+                    master.history(m).set(e);
+                ps.force(i).setZero();
+                ps.torque(i).setZero();
+                continue;
+            }
             core::SendBuffer& out = engine.out(owner.rank);
             writeHeader(out, RecordKind::Force, owner.block);
             out << ps.uid(i) << ps.force(i) << ps.torque(i) << hist;
