@@ -42,8 +42,10 @@ inline void rotate(core::Quat& q, core::Vec3 const& angularVelocity, double dt) 
     double c = 0.0;
     double s = 0.0; // sin(a/2) / |w|
     if (a2 < 1e-4) [[likely]] {
-        c = 1.0 - a2 / 8.0 + a2 * a2 / 384.0 - a2 * a2 * a2 / 46080.0;
-        s = dt * (0.5 - a2 / 48.0 + a2 * a2 / 3840.0 - a2 * a2 * a2 / 645120.0);
+        // Horner form with the reciprocals of 8, 384, 46080 (cos) and 48, 3840, 645120 (sin):
+        // multiplications, not five divisions per grain and step.
+        c = 1.0 + a2 * (-1.0 / 8.0 + a2 * (1.0 / 384.0 - a2 * (1.0 / 46080.0)));
+        s = dt * (0.5 + a2 * (-1.0 / 48.0 + a2 * (1.0 / 3840.0 - a2 * (1.0 / 645120.0))));
     } else {
         double const w = std::sqrt(w2);
         c = std::cos(0.5 * w * dt);
