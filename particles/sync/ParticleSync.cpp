@@ -135,7 +135,8 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     }
 
     // Where copies go, in the current frame.
-    std::vector<CopyRef> targets;
+    std::vector<CopyRef>& targets = engine.scratch(0); // reused: no allocation per grain
+    targets.clear();
     if (nnsClass) {
         engine.forEachReachableLink(block, x, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, x, r))
@@ -156,7 +157,8 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     // Wrapped like blockContaining decides (clamped: x + kN * period may round onto the
     // upper domain face when x crossed the lower one by less than an ulp).
     core::Vec3 const newPosition = transfer && !isZero(kN) ? engine.forest().wrap(x) : x;
-    std::vector<CopyRef> newHolders;
+    std::vector<CopyRef>& newHolders = engine.scratch(1);
+    newHolders.clear();
     for (CopyRef const& t : targets)
         if (!(transfer && t == ownerCopy))
             newHolders.push_back(CopyRef{t.rank, t.block, subtractImages(t.image, kN)});
@@ -198,7 +200,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
         writeFull(b, ps, i, newPosition, kNoImage, newOwner, newHolders);
         return true;
     }
-    holders = std::move(newHolders);
+    holders.assign(newHolders.begin(), newHolders.end());
     return false;
 }
 
