@@ -41,6 +41,7 @@ particles::ParticleInit particleOf(particles::GrainInit const& g) {
 particles::ParticleStorage makeMasters(std::span<particles::GrainInit const> grains,
                                        domain::BlockForest const& forest, int rank) {
     particles::ParticleStorage ps;
+    ps.reserve(grains.size());
     for (auto const& g : grains) {
         domain::Block const* block = forest.localBlockContaining(g.position);
         if (block == nullptr)

@@ -47,16 +47,14 @@ namespace {
 std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneDescription& scene,
                                              domain::BlockForest const& forest,
                                              particles::LocalParticles& local) {
-    auto const grains = generateLocalGrains(ctx.world, ctx.scene, scene, forest);
-    std::vector<AutoChoice> choices;
-    {
-        auto const masters = makeMasters(grains, forest, ctx.world.rank());
-        choices = resolveAutoChoices(ctx.world, masters, scene);
-        checkInitialState(ctx.world, masters, scene);
-        warnLazyUpdateThreshold(ctx.world, masters, scene);
-        checkGridAccuracy(ctx.world, masters, scene);
-    }
-    addMasters(local, grains);
+    auto grains = generateLocalGrains(ctx.world, ctx.scene, scene, forest);
+    auto masters = makeMasters(grains, forest, ctx.world.rank());
+    std::vector<particles::GrainInit>().swap(grains); // memory: never with the storages
+    std::vector<AutoChoice> const choices = resolveAutoChoices(ctx.world, masters, scene);
+    checkInitialState(ctx.world, masters, scene);
+    warnLazyUpdateThreshold(ctx.world, masters, scene);
+    checkGridAccuracy(ctx.world, masters, scene);
+    local.adoptMasters(std::move(masters));
     return choices;
 }
 
@@ -209,6 +207,7 @@ int runScene(core::AppContext& ctx) {
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
     progress.finish();
 
+    dem.releaseWorkspace(); // the detectors' memory, before the copy of the masters below
     auto const masters = masterRecords(local);
     if (!ctx.options.dumpPath.empty())
         writeFileOnRoot(world, ctx.options.dumpPath, gatherDumpCsv(world, masters));

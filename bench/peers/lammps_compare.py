@@ -15,8 +15,8 @@ data file, so both codes start from the same bits. Contact: Regolith's spring-da
 k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k_t = 2/7 k_n,
 c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
 (gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
-nve/sphere). LAMMPS uses Verlet lists with a skin (--skin); Regolith rebuilds its cells every
-step.
+nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
+DemStep default, 0.1 for the gas).
 
 usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd]
                          [--box 30] [--steps 500] [--repeats 3] [--skin 0.1]

@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace regolith::particles {
 
@@ -106,7 +107,9 @@ double ContactDetector::largeThreshold(ParticleStorage const& ps) {
     m_scratch.assign(ps.radii().begin(), ps.radii().end());
     auto mid = m_scratch.begin() + static_cast<std::ptrdiff_t>(m_scratch.size() / 2);
     std::nth_element(m_scratch.begin(), mid, m_scratch.end());
-    return m_config.largeFactor * *mid;
+    double const median = *mid;
+    std::vector<double>().swap(m_scratch); // 8 bytes per copy, needed only here
+    return m_config.largeFactor * median;
 }
 
 std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
@@ -154,53 +157,166 @@ std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
     return positions;
 }
 
-void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
-                             core::AABB const& region, PeriodicFrame const& frame,
-                             ContactList& out) {
-    out.clear();
+std::span<core::Vec3 const> ContactDetector::bin(ParticleStorage const& ps,
+                                                 PeriodicFrame const& frame, double skin) {
     m_stats = DetectorStats{};
     m_small.clear();
     m_large.clear();
-    if (ps.empty()) {
-        m_cells.build({}, {}, {}, 1.0, 1); // forget the last grid (spatialOrder)
-        return;
-    }
-
     double rSmallMax = 0.0, scale = 0.0;
     std::span<core::Vec3 const> const positions = classify(ps, frame, rSmallMax, scale);
     // Local positions (x + k * period) differ from the canonical geometry of PairRule by a few
     // roundings of numbers up to `scale`, and so does the cell assignment: 64 ulps of the
     // largest coordinate cover both, so the candidates include every canonical overlap.
+    if (skin != 0.0)
+        scale *= 2.0; // a Verlet list: room for copies that arrive later (addArrivals)
     double const slack = 64.0 * std::numeric_limits<double>::epsilon() * scale;
     m_stats.slack = slack;
+    if (skin < 0.0) // relative: a fraction of the small radius
+        skin = -skin * rSmallMax;
+    m_stats.skin = skin;
+    m_listScale = scale;
 
-    double edge = 2.0 * rSmallMax + m_config.skin;
+    double edge = 2.0 * rSmallMax + skin;
     if (!(edge > 0.0)) // only zero radii: any positive edge is right
         edge = 1.0;
     m_cells.build(positions, ps.radii(), m_small, edge + 2.0 * slack,
-                  m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1), slack);
+                  m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1),
+                  slack + skin);
     m_stats.cellEdge = m_cells.edge();
     m_stats.cells = m_cells.numCells();
+    return positions;
+}
 
+void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
+                             core::AABB const& region, PeriodicFrame const& frame,
+                             ContactList& out) {
+    out.clear();
+    m_list.invalidate(); // the cells are rebuilt without the skin
+    if (ps.empty()) {
+        m_stats = DetectorStats{};
+        m_small.clear();
+        m_large.clear();
+        m_cells.build({}, {}, {}, 1.0, 1); // forget the last grid (spatialOrder)
+        return;
+    }
+    std::span<core::Vec3 const> const positions = bin(ps, frame, 0.0);
     PairRule rule(ps, region, frame, out.pairs, m_stats);
     m_cells.forEachOverlap(rule);
-    largePass(positions, ps, rule);
+    largePass(positions, ps, m_stats.slack, rule);
     wallPass(ps, walls, out);
 
     if (m_config.sortByUid)
         sortByUid(ps, out);
 }
 
+void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::AABB const& region,
+                             PeriodicFrame const& frame, ContactList& out) {
+    if (!(m_config.skin > 0.0) && !(m_config.relativeSkin > 0.0)) {
+        detect(std::as_const(ps), walls, region, frame, out);
+        return;
+    }
+    out.clear();
+    bool rebuild = !m_list.follow(ps, m_fresh) ||
+                   m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
+                   m_list.movedTooFar(ps) || !addArrivals(ps, frame);
+    if (rebuild)
+        rebuildList(ps, frame);
+    m_stats.rebuilt = rebuild;
+    m_stats.arrivals = rebuild ? 0 : m_fresh.size();
+    m_stats.overlapsFound = 0;
+    m_stats.listedPairs = m_list.numPairs();
+
+    PairRule rule(ps, region, frame, out.pairs, m_stats);
+    core::Vec3 const period = frame.period();
+    double const slack = m_stats.slack;
+    auto const& x = ps.positions();
+    m_list.forEachPair([&](std::size_t a, std::size_t b) {
+        // A cheap rejection first (most listed pairs are apart), generous by the slack: the
+        // rule decides exactly.
+        core::Vec3 d = x[b] - x[a];
+        if (ps.image(a) != ps.image(b))
+            d += imageOffset(imageDifference(ps.image(b), ps.image(a)), period);
+        double const reach = ps.radius(a) + ps.radius(b) + slack;
+        if (d.squaredNorm() < reach * reach)
+            rule(a, b);
+    });
+    wallPass(ps, walls, out);
+    if (m_config.sortByUid)
+        sortByUid(ps, out);
+}
+
+void ContactDetector::rebuildList(ParticleStorage& ps, PeriodicFrame const& frame) {
+    m_largeIds.clear();
+    if (ps.empty()) {
+        m_stats = DetectorStats{};
+        m_small.clear();
+        m_large.clear();
+        m_cells.build({}, {}, {}, 1.0, 1);
+        m_listScale = 0.0; // the first arrival rebuilds
+        m_list.restart(ps, 0.0);
+        return;
+    }
+    double const skin = m_config.skin > 0.0 ? m_config.skin : -m_config.relativeSkin;
+    std::span<core::Vec3 const> const positions = bin(ps, frame, skin);
+    m_listSkin = m_stats.skin;
+    m_list.restart(ps, m_listSkin); // ids = indices, as the cells' members
+    m_cells.forEachOverlap([&](std::size_t a, std::size_t b) {
+        m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
+    });
+    largePass(positions, ps, m_stats.slack + m_listSkin, [&](std::size_t a, std::size_t b) {
+        m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
+    });
+    for (Index k : m_large)
+        m_largeIds.push_back(static_cast<VerletList::Id>(k));
+}
+
+bool ContactDetector::addArrivals(ParticleStorage const& ps, PeriodicFrame const& frame) {
+    core::Vec3 const period = frame.period();
+    double const reachSlack = m_stats.slack + m_listSkin;
+    auto const arrivals = m_list.arrivals();
+    std::size_t const firstNew = arrivals.size() - m_fresh.size();
+    // Local reference position and radius of a live id (its image is that of its copy now).
+    auto referenceOf = [&](VerletList::Id id, std::size_t k) {
+        return localPosition(m_list.reference(id), ps.image(k), period);
+    };
+    for (std::size_t n = 0; n < m_fresh.size(); ++n) {
+        std::size_t const f = m_fresh[n];
+        VerletList::Id const idF = VerletList::idOf(ps, f);
+        core::Vec3 const xf = localPosition(ps.position(f), ps.image(f), period);
+        double const rf = ps.radius(f);
+        if (!(xf.cwiseAbs().maxCoeff() + 2.0 * rf <= m_listScale))
+            return false; // beyond the rounding slack of the last rebuild (or not finite)
+        auto test = [&](VerletList::Id id) {
+            std::uint32_t const k = m_list.indexOf(id);
+            if (k == VerletList::kDead)
+                return;
+            double const reach = rf + ps.radius(k) + reachSlack;
+            if ((referenceOf(id, k) - xf).squaredNorm() < reach * reach)
+                m_list.addPair(idF, id);
+        };
+        // The cells hold the small spheres' local reference positions, by id.
+        m_cells.forEachOverlapWith(xf, rf, [&](std::size_t id) {
+            if (m_list.indexOf(static_cast<VerletList::Id>(id)) != VerletList::kDead)
+                m_list.addPair(idF, static_cast<VerletList::Id>(id));
+        });
+        for (VerletList::Id id : m_largeIds)
+            test(id);
+        for (std::size_t e = 0; e < firstNew + n; ++e)
+            test(arrivals[e]);
+    }
+    return true;
+}
+
+template <class F>
 void ContactDetector::largePass(std::span<core::Vec3 const> pos, ParticleStorage const& ps,
-                                PairRule& rule) {
+                                double reachSlack, F&& f) {
     if (m_large.empty())
         return;
-    double const slack = m_stats.slack;
-    // Large against small: the cells of the ball.
+    // Large against small: the cells of the ball (their reach includes the skin).
     for (Index a : m_large) {
         m_stats.largeCellVisits += m_cells.forEachOverlapWith(pos[a], ps.radius(a), [&](Index b) {
             ++m_stats.largeCandidates;
-            rule(a, b);
+            f(a, b);
         });
     }
     // Large against large: sort by the lower bound along the axis where the large centres
@@ -220,13 +336,13 @@ void ContactDetector::largePass(std::span<core::Vec3 const> pos, ParticleStorage
     });
     for (std::size_t s = 0; s < m_large.size(); ++s) {
         Index const a = m_large[s];
-        double const upper = pos[a][axis] + ps.radius(a) + slack;
+        double const upper = pos[a][axis] + ps.radius(a) + reachSlack;
         for (std::size_t t = s + 1; t < m_large.size() && lower(m_large[t]) < upper; ++t) {
             Index const b = m_large[t];
             ++m_stats.largeCandidates;
-            double const reach = ps.radius(a) + ps.radius(b) + slack;
+            double const reach = ps.radius(a) + ps.radius(b) + reachSlack;
             if ((pos[b] - pos[a]).squaredNorm() < reach * reach)
-                rule(a, b);
+                f(a, b);
         }
     }
 }
@@ -271,6 +387,10 @@ std::vector<std::size_t> ContactDetector::spatialOrder() const {
     std::vector<std::size_t> order(cells.begin(), cells.end());
     order.insert(order.end(), m_large.begin(), m_large.end());
     return order;
+}
+
+void ContactDetector::release() {
+    *this = ContactDetector(m_config);
 }
 
 std::size_t ContactDetector::bytes() const {

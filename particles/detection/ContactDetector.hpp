@@ -5,6 +5,7 @@
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/LinkedCells.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
+#include "particles/detection/VerletList.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
@@ -15,9 +16,12 @@
 namespace regolith::particles {
 
 struct DetectorConfig {
-    /// Added to the cell edge 2 * r_small_max [length]; > 0 only pays off when the cells are
-    /// reused, so 0 by default.
+    /// Verlet skin [length]: with skin > 0 (or relativeSkin > 0), detect() on a mutable
+    /// storage keeps a neighbour list of the pairs closer than r_a + r_b + skin and reuses it
+    /// until some copy moved skin / 2 (see ContactDetector). 0: linked cells every call.
     double skin = 0.0;
+    /// If skin is 0: skin = relativeSkin * (the largest small radius) at every rebuild.
+    double relativeSkin = 0.0;
     /// Spheres with a radius above this go to the large pass [length]; 0 = automatic:
     /// `largeFactor` times the median radius of the block's spheres.
     double largeRadius = 0.0;
@@ -43,6 +47,13 @@ struct DetectorStats {
     std::size_t overlapsFound = 0;
     /// Spread of the candidate tests beyond r_a + r_b, against rounding of local positions.
     double slack = 0.0;
+    /// Verlet list (mutable detect with a skin): the skin of the last rebuild, whether this
+    /// call rebuilt, the pairs listed, the copies that arrived since the last rebuild and
+    /// were added to the list in this call.
+    double skin = 0.0;
+    bool rebuilt = false;
+    std::size_t listedPairs = 0;
+    std::size_t arrivals = 0;
 };
 
 /// A region "this block evaluates contacts whose ownership point lies in [min, max)" that
@@ -93,6 +104,17 @@ core::AABB everywhere();
 /// instances of the pair inside one block, one instance is therefore emitted, once. Without
 /// periodic axes this is region.contains(q).
 ///
+/// Verlet list. With a skin (DetectorConfig), `detect` on a mutable storage builds the same
+/// candidates with the reach r_a + r_b + skin into a VerletList and, in later calls, tests only
+/// the listed pairs (the contact decision above is unchanged, so the contacts are the same
+/// set). The list follows the storage's changes through its trace (VerletList.hpp): a copy
+/// that arrived since the last call is tested against the cells of the last rebuild (which
+/// hold the reference positions), the large spheres and the other arrivals, with the same
+/// reach. It is rebuilt when some copy moved skin / 2 since its reference time, when the
+/// trace broke (permute, clear, a radius changed), when the arrivals exceed 1/16 of the copies
+/// (plus 64), or when an arrival lies beyond the coordinate scale of the last rebuild (its
+/// rounding slack).
+///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
 /// zero), which exists in exactly one block. (The contact point lies behind the wall, outside
@@ -109,8 +131,17 @@ public:
     /// that is not periodic in `frame`. Not collective.
     void detect(ParticleStorage const& particles, WallList const& walls,
                 core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out);
+    /// The same; with a skin configured, through the Verlet list (see the class comment),
+    /// which starts tracing `particles` (ParticleStorage::startTracing) and keeps following
+    /// it. Without a skin, as the const overload.
+    void detect(ParticleStorage& particles, WallList const& walls,
+                core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out);
     /// The same without periodicity (default PeriodicFrame).
     void detect(ParticleStorage const& particles, WallList const& walls,
+                core::AABB const& evaluationRegion, ContactList& out) {
+        detect(particles, walls, evaluationRegion, PeriodicFrame{}, out);
+    }
+    void detect(ParticleStorage& particles, WallList const& walls,
                 core::AABB const& evaluationRegion, ContactList& out) {
         detect(particles, walls, evaluationRegion, PeriodicFrame{}, out);
     }
@@ -122,6 +153,8 @@ public:
 
     [[nodiscard]] DetectorStats const& stats() const { return m_stats; }
     [[nodiscard]] DetectorConfig const& config() const { return m_config; }
+    /// Frees every work array and the neighbour list (the next detect starts afresh).
+    void release();
     /// Heap bytes of the reusable work arrays.
     [[nodiscard]] std::size_t bytes() const;
 
@@ -133,8 +166,16 @@ private:
     std::span<core::Vec3 const> classify(ParticleStorage const& particles,
                                          PeriodicFrame const& frame, double& rSmallMax,
                                          double& scale);
+    /// Bins the small spheres into m_cells with candidate reach r_a + r_b + slack + skin.
+    std::span<core::Vec3 const> bin(ParticleStorage const& particles, PeriodicFrame const& frame,
+                                    double skin);
+    /// Calls f(a, b) for the candidate pairs with a large sphere (reach as bin's).
+    template <class F>
     void largePass(std::span<core::Vec3 const> positions, ParticleStorage const& particles,
-                   PairRule& rule);
+                   double reachSlack, F&& f);
+    void rebuildList(ParticleStorage& particles, PeriodicFrame const& frame);
+    /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
+    bool addArrivals(ParticleStorage const& particles, PeriodicFrame const& frame);
     void wallPass(ParticleStorage const& particles, WallList const& walls, ContactList& out);
     void sortByUid(ParticleStorage const& particles, ContactList& out) const;
 
@@ -145,6 +186,11 @@ private:
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
     std::vector<core::Vec3> m_local; ///< local positions, when some image is non-zero
+    VerletList m_list;
+    std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
+    std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
+    double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
+    double m_listSkin = 0.0;
 };
 
 } // namespace regolith::particles

@@ -88,6 +88,7 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     for (std::size_t c = numCells; c > 0; --c)
         m_start[c] = m_start[c - 1];
     m_start[0] = 0;
+    std::vector<std::uint32_t>().swap(m_cellOf); // scratch: 4 bytes per member
 }
 
 } // namespace regolith::particles

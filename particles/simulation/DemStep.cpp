@@ -83,6 +83,15 @@ void DemStep::step() {
     }
 }
 
+void DemStep::releaseWorkspace() {
+    for (ContactDetector& d : m_detectors)
+        d.release();
+    for (ContactList& c : m_contacts)
+        c = ContactList{};
+    for (auto& r : m_records)
+        std::vector<ForceRecord>().swap(r);
+}
+
 void DemStep::syncParticles() {
     {
         auto const t = m_timers->scope(kSyncTimer);

@@ -37,7 +37,9 @@ using AnyIntegrator = std::variant<VelocityVerlet, SemiImplicitEuler>;
 struct DemStepConfig {
     double dt = 0.0;                         ///< time step [time], > 0 and finite
     core::Vec3 gravity = core::Vec3::Zero(); ///< uniform external acceleration [length/time^2]
-    DetectorConfig detector{};               ///< contact detection of every block
+    /// Contact detection of every block: by default a Verlet list with a skin of a quarter of
+    /// the small grains' radius (reused across steps, see ContactDetector).
+    DetectorConfig detector{.skin = 0.0, .relativeSkin = 0.25};
     /// Check the synchronisation invariants (particles/sync/SyncInvariants.hpp) over all
     /// ranks after every sync call and throw core::Error on every rank if one fails. A
     /// debugging aid (it gathers every copy on rank 0); on by default in builds with
@@ -117,6 +119,11 @@ public:
     /// Throws what the synchronisation throws (core::Error: a grain too fast or too large
     /// for NNS, a malformed message). COLLECTIVE.
     void step();
+
+    /// Frees the contact detectors' work arrays and neighbour lists and the contact lists
+    /// (e.g. after the last step, before gathering output); the next step rebuilds them.
+    /// Not collective.
+    void releaseWorkspace();
 
     /// Installs the body forces (see BodyForces); an empty function removes them. Call it
     /// before setUp(), so that the initial forces include them.

@@ -2,6 +2,7 @@
 
 #include "core/Error.hpp"
 
+#include <atomic>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -33,11 +34,11 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     if (p.uid == kInvalidUid)
         throw core::Error("ParticleStorage::add: invalid uid");
     Index const i = size();
-    auto const [it, inserted] = m_index.try_emplace(CopyKey{p.uid, p.image}, i);
-    if (!inserted)
+    if (i >= CopyIndex::kNone)
+        throw core::Error("ParticleStorage::add: more copies than 32-bit indices");
+    if (!m_index.insert(CopyKey{p.uid, p.image}, static_cast<std::uint32_t>(i)))
         throw core::Error("ParticleStorage::add: uid " + std::to_string(p.uid) +
                           (isZero(p.image) ? "" : " (periodic image)") + " is already stored");
-    (void)it;
     m_uid.push_back(p.uid);
     m_position.push_back(p.position);
     m_velocity.push_back(p.velocity);
@@ -56,15 +57,26 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
     updateInverses(i);
+    if (tracing()) {
+        m_traceTag.push_back(kUntraced);
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), kUntraced});
+    }
     return i;
 }
 
 void ParticleStorage::remove(Index i) {
     Index const last = size() - 1;
     m_index.erase(key(i));
+    if (tracing()) {
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
+        if (i != last)
+            m_traceJournal.push_back({static_cast<std::uint32_t>(last), m_traceTag[last]});
+        m_traceTag[i] = m_traceTag[last];
+        m_traceTag.pop_back();
+    }
     if (i != last) {
         forEachArray([i, last](auto& v) { v[i] = std::move(v[last]); });
-        m_index[key(i)] = i;
+        m_index.assign(key(i), static_cast<std::uint32_t>(i));
     }
     forEachArray([](auto& v) { v.pop_back(); });
 }
@@ -78,20 +90,22 @@ bool ParticleStorage::removeUid(Uid uid, CopyImage const& image) {
 }
 
 ParticleStorage::Index ParticleStorage::find(Uid uid, CopyImage const& image) const {
-    auto it = m_index.find(CopyKey{uid, image});
-    return it == m_index.end() ? kNotFound : it->second;
+    std::uint32_t const i = m_index.find(CopyKey{uid, image});
+    return i == CopyIndex::kNone ? kNotFound : Index{i};
 }
 
 void ParticleStorage::setImage(Index i, CopyImage const& image) {
     if (image == m_image[i])
         return;
-    auto const [it, inserted] = m_index.try_emplace(CopyKey{m_uid[i], image}, i);
-    if (!inserted)
+    if (!m_index.insert(CopyKey{m_uid[i], image}, static_cast<std::uint32_t>(i)))
         throw core::Error("ParticleStorage::setImage: uid " + std::to_string(m_uid[i]) +
                           " is already stored at that periodic image");
-    (void)it;
     m_index.erase(key(i));
     m_image[i] = image;
+    if (tracing()) { // its local position jumped: a new copy for the follower
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
+        m_traceTag[i] = kUntraced;
+    }
 }
 
 void ParticleStorage::permute(std::span<Index const> newToOld) {
@@ -113,7 +127,8 @@ void ParticleStorage::permute(std::span<Index const> newToOld) {
         v.swap(out);
     });
     for (Index k = 0; k < n; ++k)
-        m_index[key(k)] = k;
+        m_index.assign(key(k), static_cast<std::uint32_t>(k));
+    m_traceBroken = tracing();
 }
 
 void ParticleStorage::reserve(std::size_t n) {
@@ -124,9 +139,27 @@ void ParticleStorage::reserve(std::size_t n) {
 void ParticleStorage::clear() {
     forEachArray([](auto& v) { v.clear(); });
     m_index.clear();
+    m_traceTag.clear();
+    m_traceJournal.clear();
+    m_traceBroken = tracing();
+}
+
+std::uint64_t ParticleStorage::startTracing() {
+    // Unique over all storages of the process, so that a follower fed another storage (or
+    // this one after a restart of the trace) notices.
+    static std::atomic<std::uint64_t> sessions{0};
+    m_traceSession = ++sessions;
+    m_traceBroken = false;
+    m_traceJournal.clear();
+    m_traceTag.resize(size());
+    for (Index k = 0, n = size(); k < n; ++k)
+        m_traceTag[k] = static_cast<std::uint32_t>(k);
+    return m_traceSession;
 }
 
 void ParticleStorage::setRadius(Index i, double radius) {
+    if (tracing() && radius != m_radius[i])
+        m_traceBroken = true; // a neighbour list's reach depends on the radii
     m_radius[i] = radius;
     updateInverses(i);
 }
@@ -137,8 +170,10 @@ void ParticleStorage::setMass(Index i, double mass) {
 }
 
 void ParticleStorage::setFlags(Index i, Flags flags) {
+    bool const fixedChanged = flags.isFixed() != m_flags[i].isFixed();
     m_flags[i] = flags;
-    updateInverses(i);
+    if (fixedChanged) // the sync sets flags every step; inverses depend only on Fixed
+        updateInverses(i);
 }
 
 void ParticleStorage::updateInverses(Index i) {
@@ -188,15 +223,13 @@ std::size_t ParticleStorage::bytes() const {
     add(m_image);
     add(m_shadowHolders);
     add(m_history);
+    add(m_traceTag);
+    add(m_traceJournal);
     for (auto const& h : m_shadowHolders)
         b += h.capacity() * sizeof(CopyRef);
     for (auto const& h : m_history)
         b += h.heapBytes();
-    // libstdc++ unordered_map: one bucket pointer per bucket and one heap node per entry
-    // (next pointer plus key/value; integer keys do not cache their hash). Allocator
-    // overhead per node is not counted.
-    b += m_index.bucket_count() * sizeof(void*);
-    b += m_index.size() * (sizeof(void*) + sizeof(std::pair<CopyKey const, Index>));
+    b += m_index.bytes();
     return b;
 }
 

@@ -4,6 +4,7 @@
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/CopyImage.hpp"
+#include "particles/storage/CopyIndex.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/Uid.hpp"
 
@@ -11,7 +12,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 namespace regolith::particles {
@@ -47,6 +47,14 @@ struct ParticleInit {
     Flags flags{};
     BlockRef owner{};
     CopyImage image = kNoImage; ///< see CopyImage.hpp; a master's is always kNoImage
+};
+
+/// One change of the storage seen by a trace (see ParticleStorage::startTracing): slot `index`
+/// was written, added or dropped; `previous` is the tag the slot held before (kUntraced for a
+/// slot that was new).
+struct TraceChange {
+    std::uint32_t index = 0;
+    std::uint32_t previous = 0;
 };
 
 /// SoA particle storage with a (uid, image) -> index map.
@@ -151,6 +159,25 @@ public:
     }
     [[nodiscard]] std::size_t countMasters() const;
 
+    // ---- tracing: let an index-based structure (VerletList) follow the storage's changes ----
+    /// The tag of a copy added (or re-keyed to another image) since tracing started.
+    static constexpr std::uint32_t kUntraced = std::numeric_limits<std::uint32_t>::max();
+    /// Starts (or restarts) tracing: every copy gets tag = its index, the journal is emptied,
+    /// and from now on every add, remove and setImage moves the tags with the copies (a copy
+    /// added or re-keyed gets kUntraced) and appends the slots it wrote to the journal. A
+    /// permute, clear or radius change breaks the trace (traceBroken()): the follower must
+    /// start again. Returns a number that identifies this trace among all storages.
+    std::uint64_t startTracing();
+    [[nodiscard]] bool tracing() const { return m_traceSession != 0; }
+    /// The identity of the running trace (0: none).
+    [[nodiscard]] std::uint64_t traceSession() const { return m_traceSession; }
+    [[nodiscard]] bool traceBroken() const { return m_traceBroken; }
+    [[nodiscard]] std::uint32_t traceTag(Index i) const { return m_traceTag[i]; }
+    /// Names a copy for the follower (not journaled). Pre: tracing().
+    void setTraceTag(Index i, std::uint32_t tag) { m_traceTag[i] = tag; }
+    [[nodiscard]] std::span<TraceChange const> traceJournal() const { return m_traceJournal; }
+    void clearTraceJournal() { m_traceJournal.clear(); }
+
     /// Bytes held by the storage: array capacities, heap of histories and shadow-holder lists,
     /// and an estimate of the uid map (buckets plus one node per entry).
     [[nodiscard]] std::size_t bytes() const;
@@ -177,7 +204,12 @@ private:
     std::vector<CopyImage> m_image;
     std::vector<std::vector<CopyRef>> m_shadowHolders;
     std::vector<ContactHistory> m_history;
-    std::unordered_map<CopyKey, Index, CopyKeyHash> m_index;
+    CopyIndex m_index;
+    // Tracing (empty while off): tag per copy, slots written since the follower last looked.
+    std::vector<std::uint32_t> m_traceTag;
+    std::vector<TraceChange> m_traceJournal;
+    std::uint64_t m_traceSession = 0;
+    bool m_traceBroken = false;
 };
 
 } // namespace regolith::particles

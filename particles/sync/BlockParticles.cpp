@@ -45,6 +45,41 @@ bool LocalParticles::addMaster(ParticleInit p) {
     return true;
 }
 
+void LocalParticles::adoptMasters(ParticleStorage&& masters) {
+    if (m_blocks.size() == 1 && m_blocks[0].particles.empty()) {
+        domain::Block const& block = *m_blocks[0].block;
+        BlockRef const owner{m_forest->rank(), block.id.raw()};
+        bool asIs = true;
+        for (std::size_t i = 0; i < masters.size() && asIs; ++i) {
+            core::Vec3 const& x = masters.position(i);
+            asIs = masters.flags(i).isMaster() && isZero(masters.image(i)) &&
+                   masters.owner(i) == owner && m_forest->insideDomain(x) &&
+                   m_forest->wrap(x) == x && block.aabb.contains(x);
+        }
+        if (asIs) {
+            m_blocks[0].particles = std::move(masters);
+            return;
+        }
+    }
+    for (std::size_t i = 0; i < masters.size(); ++i) {
+        ParticleInit const p{masters.uid(i),
+                             masters.position(i),
+                             masters.velocity(i),
+                             masters.angularVelocity(i),
+                             masters.orientation(i),
+                             masters.radius(i),
+                             masters.mass(i),
+                             masters.type(i),
+                             masters.flags(i),
+                             masters.owner(i),
+                             kNoImage};
+        if (!addMaster(p))
+            throw core::Error("particle uid " + std::to_string(p.uid) +
+                              " lies in no block of this rank");
+    }
+    masters.clear();
+}
+
 std::size_t LocalParticles::countMasters() const {
     std::size_t n = 0;
     for (BlockParticles const& b : m_blocks)

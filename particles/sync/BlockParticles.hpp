@@ -50,6 +50,12 @@ public:
     /// if the uid is already a master here.
     bool addMaster(ParticleInit p);
 
+    /// Adds every copy of `masters` as a master (addMaster; throws core::Error naming the
+    /// first uid no local block contains). If this rank has one block and every copy is
+    /// already a master of it (owner, position in its box, no image), the storage is moved in
+    /// whole instead of copied: the set-up then holds the grains once, not twice.
+    void adoptMasters(ParticleStorage&& masters);
+
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;
     [[nodiscard]] std::size_t countCopies() const;

@@ -25,13 +25,13 @@ struct Contribution {
     core::Vec3 torque = core::Vec3::Zero();
 };
 
-/// History entries of copy i evaluated in this pass.
-std::vector<HistoryEntry> touched(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp) {
-    std::vector<HistoryEntry> out;
+/// The history entries of copy i evaluated in this pass, into `out` (reused between copies).
+void touched(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
+             std::vector<HistoryEntry>& out) {
+    out.clear();
     for (HistoryEntry const& e : ps.history(i))
         if (e.stamp == stamp)
             out.push_back(e);
-    return out;
 }
 
 std::size_t masterIndex(LocalParticles& local, std::uint64_t block, Uid uid, std::size_t& b) {
@@ -54,16 +54,31 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
                                                std::uint32_t stamp, core::CommStats& stats) {
     auto blocks = local.blocks();
     std::vector<Contribution> contributions;
+    std::vector<HistoryEntry> hist;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         ParticleStorage& ps = blocks[b].particles;
         for (std::size_t i = 0; i < ps.size(); ++i) {
             if (ps.flags(i).isMaster())
                 continue;
-            auto const hist = touched(ps, i, stamp);
+            touched(ps, i, stamp, hist);
             bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
             if (hist.empty() && (records != nullptr || !hasForce))
                 continue;
             BlockRef const owner = ps.owner(i);
+            if (owner.rank == engine.rank() && records == nullptr) {
+                // The master is on this rank: added in place, not serialised. (Reproducible
+                // mode sends no forces here, only history, and keeps one path for it.)
+                std::size_t ob = 0;
+                std::size_t const m = masterIndex(local, owner.block, ps.uid(i), ob);
+                ParticleStorage& master = blocks[ob].particles;
+                master.force(m) += ps.force(i);
+                master.torque(m) += ps.torque(i);
+                for (HistoryEntry const& e : hist)
+                    master.history(m).set(e);
+                ps.force(i).setZero();
+                ps.torque(i).setZero();
+                continue;
+            }
             core::SendBuffer& out = engine.out(owner.rank);
             writeHeader(out, RecordKind::Force, owner.block);
             out << ps.uid(i) << ps.force(i) << ps.torque(i) << hist;
@@ -94,11 +109,11 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
             ParticleStorage& ps = blocks[b].particles;
             if (kind == RecordKind::Force) {
                 core::Vec3 f, t;
-                std::vector<HistoryEntry> hist;
-                in >> f >> t >> hist;
+                std::vector<HistoryEntry> entries;
+                in >> f >> t >> entries;
                 ps.force(i) += f;
                 ps.torque(i) += t;
-                for (HistoryEntry const& e : hist)
+                for (HistoryEntry const& e : entries)
                     ps.history(i).set(e);
             } else if (kind == RecordKind::ForceRecords) {
                 Contribution c{b, i, kInvalidUid, {}, {}};

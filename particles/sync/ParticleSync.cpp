@@ -81,10 +81,26 @@ ParticleSync::~ParticleSync() = default;
 
 namespace {
 
+/// The Update of shadow `t` (on this rank, same image) from master i of `ps`, applied
+/// directly; false if this rank holds no such copy (the buffered path then reports it).
+bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t i,
+                   core::Vec3 const& position, CopyRef const& t, BlockRef owner) {
+    BlockParticles* target = local.find(t.block);
+    if (target == nullptr)
+        return false;
+    std::size_t const k = target->particles.find(ps.uid(i), t.image);
+    if (k == ParticleStorage::kNotFound)
+        return false;
+    copyUpdate(ps, i, position, owner, target->particles, k);
+    if (!ps.flags(i).has(Flag::Spreads) && !target->sent.empty())
+        forgetSent(*target, ps.uid(i));
+    return true;
+}
+
 /// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`.
 /// Returns true if the master leaves this block (transferred or out of the domain).
-bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i, bool nnsClass,
-                   SyncStats& stats) {
+bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParticles& bp,
+                   std::size_t i, bool nnsClass, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
@@ -119,7 +135,8 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
     }
 
     // Where copies go, in the current frame.
-    std::vector<CopyRef> targets;
+    std::vector<CopyRef>& targets = engine.scratch(0); // reused: no allocation per grain
+    targets.clear();
     if (nnsClass) {
         engine.forEachReachableLink(block, x, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, x, r))
@@ -140,7 +157,8 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
     // Wrapped like blockContaining decides (clamped: x + kN * period may round onto the
     // upper domain face when x crossed the lower one by less than an ulp).
     core::Vec3 const newPosition = transfer && !isZero(kN) ? engine.forest().wrap(x) : x;
-    std::vector<CopyRef> newHolders;
+    std::vector<CopyRef>& newHolders = engine.scratch(1);
+    newHolders.clear();
     for (CopyRef const& t : targets)
         if (!(transfer && t == ownerCopy))
             newHolders.push_back(CopyRef{t.rank, t.block, subtractImages(t.image, kN)});
@@ -152,6 +170,14 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
         CopyImage const k = subtractImages(t.image, kN);
         core::SendBuffer& b = engine.out(t.rank);
         if (std::binary_search(holders.begin(), holders.end(), t)) {
+            // A shadow on this rank that keeps its key: written in place, not serialised.
+            // Safe before the receive round: no record of this round removes or moves it (its
+            // master sends it this update only), and it changes no index.
+            if (t.rank == me && t.image == k &&
+                updateInPlace(local, ps, i, newPosition, t, newOwner)) {
+                ++stats.updated;
+                continue;
+            }
             writeHeader(b, RecordKind::Update, t.block);
             writeUpdate(b, ps, i, newPosition, t.image, k, newOwner);
         } else {
@@ -174,7 +200,7 @@ bool processMaster(ParticleSync::Impl& engine, BlockParticles& bp, std::size_t i
         writeFull(b, ps, i, newPosition, kNoImage, newOwner, newHolders);
         return true;
     }
-    holders = std::move(newHolders);
+    holders.assign(newHolders.begin(), newHolders.end());
     return false;
 }
 
@@ -303,7 +329,7 @@ void ParticleSync::sync(LocalParticles& local) {
             }
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
-            if (processMaster(engine, bp, i, nnsClass, m_last))
+            if (processMaster(engine, local, bp, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
         }
         for (Uid uid : leaving)

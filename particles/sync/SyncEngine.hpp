@@ -98,6 +98,9 @@ public:
                (x.array() - reach < box.max.array()).all();
     }
     [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
+    /// Two work lists for the per-master code (0: targets, 1: new holders), kept between
+    /// calls so that a grain near a face costs no allocation.
+    [[nodiscard]] std::vector<CopyRef>& scratch(std::size_t k) { return m_scratch[k]; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
@@ -112,6 +115,7 @@ private:
     std::unordered_map<std::uint64_t, std::array<std::vector<std::uint32_t>, 27>>
         m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
+    std::array<std::vector<CopyRef>, 2> m_scratch;
 };
 
 } // namespace regolith::particles

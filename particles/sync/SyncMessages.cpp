@@ -71,4 +71,16 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
     setHistory(ps.history(i), u.history);
 }
 
+void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
+                BlockRef owner, ParticleStorage& to, std::size_t k) {
+    to.position(k) = position;
+    to.velocity(k) = from.velocity(i);
+    to.angularVelocity(k) = from.angularVelocity(i);
+    to.orientation(k) = from.orientation(i);
+    to.setFlags(k, Flags(from.flags(i)).set(Flag::Shadow, to.flags(k).isShadow()));
+    to.setOwner(k, owner);
+    if (!from.history(i).empty() || !to.history(k).empty())
+        setHistory(to.history(k), from.history(i).entries());
+}
+
 } // namespace regolith::particles::sync_detail

@@ -73,5 +73,9 @@ UpdateState readUpdate(core::RecvBuffer& b);
 std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master);
 /// Overwrites the dynamic state of copy i with `u` (image is re-keyed by the caller).
 void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u);
+/// What writeUpdate + readUpdate + applyUpdate do for a shadow on this rank that keeps its
+/// image, without the buffer: copy k of `to` gets master i's state with `position` and `owner`.
+void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
+                BlockRef owner, ParticleStorage& to, std::size_t k);
 
 } // namespace regolith::particles::sync_detail

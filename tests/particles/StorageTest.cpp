@@ -226,3 +226,27 @@ TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
 
 } // namespace
 } // namespace regolith::particles
+
+TEST(CopyIndex, AgreesWithAnOrderedMapUnderRandomInsertsAndErases) {
+    // Backward-shift deletion must keep every remaining key reachable, also across the wrap
+    // of the slot array and through growth.
+    regolith::particles::CopyIndex index;
+    std::map<CopyKey, std::uint32_t> reference;
+    std::mt19937_64 rng(3);
+    for (int op = 0; op < 20000; ++op) {
+        CopyKey const key{rng() % 600, CopyImage{static_cast<std::int8_t>(rng() % 3), 0, 0}};
+        auto const value = static_cast<std::uint32_t>(rng() % 1000);
+        if (rng() % 3 == 0) {
+            index.erase(key);
+            reference.erase(key);
+        } else {
+            EXPECT_EQ(index.insert(key, value), reference.emplace(key, value).second);
+        }
+        if (op % 97 == 0) {
+            for (auto const& [k, v] : reference)
+                ASSERT_EQ(index.find(k), v) << "op " << op;
+            ASSERT_EQ(index.size(), reference.size());
+        }
+    }
+    EXPECT_EQ(index.find(CopyKey{100000, kNoImage}), regolith::particles::CopyIndex::kNone);
+}

@@ -1,0 +1,96 @@
+#pragma once
+/// A Verlet neighbour list (Verlet, Phys. Rev. 159 (1967) 98; Allen & Tildesley, "Computer
+/// Simulation of Liquids", 2nd ed., sec. 5.3.1) over the copies of one ParticleStorage that
+/// survives the storage's changes between steps: the synchronisation adds and removes copies
+/// every step (shadows appearing, masters migrating), which moves other copies to new
+/// indices, yet a rebuild costs as much as a linked-cell pass over everything.
+///
+/// How it follows the storage. The list names copies by an id, not an index: at a rebuild
+/// id = index; the storage's trace (ParticleStorage::startTracing) carries each copy's id
+/// along when a removal moves it, and journals the slots it wrote. follow() reads that
+/// journal: the ids that were in written slots die unless they reappear in another written
+/// slot; copies that arrived since (or were re-keyed to another periodic image) get a new id
+/// and are reported "fresh", so that the caller can add their pairs. Work per step is
+/// O(changes), never O(N), apart from the displacement check.
+///
+/// Validity. A pair of copies is in the list if their local positions at their reference
+/// times (the rebuild, or the step a fresh copy arrived) were closer than r_a + r_b + skin
+/// (+ the caller's rounding slack). As long as no copy moved skin / 2 or more from its
+/// reference position (movedTooFar), every pair that overlaps now is therefore in the list.
+/// A copy's image never changes under one id (setImage makes it fresh), so canonical
+/// displacements equal local ones.
+#include "core/math/Vec3.hpp"
+#include "particles/storage/ParticleStorage.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+namespace regolith::particles {
+
+class VerletList {
+public:
+    using Id = std::uint32_t;
+    static constexpr std::uint32_t kDead = std::numeric_limits<std::uint32_t>::max();
+
+    /// Starts a new, empty list over `ps` as it is now: id = index for every copy, reference
+    /// positions = current positions. The caller adds the pairs (addPair, ids = indices).
+    void restart(ParticleStorage& ps, double skin);
+    /// Forgets the list: the next follow() returns false.
+    void invalidate() { m_storage = nullptr; }
+
+    void addPair(Id a, Id b) { m_pairs.push_back({a, b}); }
+
+    /// Catches up with the storage's changes since the last restart or follow (see the class
+    /// comment). Returns false if the list cannot follow: never restarted, another storage
+    /// or trace, or a broken trace (permute, clear, a radius changed). Otherwise every copy
+    /// has an id afterwards, and `fresh` receives the storage indices of the copies that got
+    /// one now (their pairs are the caller's to add, addPair with idOf()). Not collective.
+    bool follow(ParticleStorage& ps, std::vector<std::size_t>& fresh);
+
+    /// Whether some copy moved skin / 2 or more from its reference position (or is not
+    /// finite): the list may then miss a pair and must be rebuilt. O(N). Pre: follow() true.
+    [[nodiscard]] bool movedTooFar(ParticleStorage const& ps) const;
+
+    [[nodiscard]] static Id idOf(ParticleStorage const& ps, std::size_t index) {
+        return ps.traceTag(index);
+    }
+    /// Storage index of a live id, or kDead.
+    [[nodiscard]] std::uint32_t indexOf(Id id) const { return m_indexOf[id]; }
+    /// Canonical position of `id` at its reference time [length].
+    [[nodiscard]] core::Vec3 const& reference(Id id) const { return m_reference[id]; }
+    /// Ids given since the last restart (to copies that arrived), oldest first.
+    [[nodiscard]] std::span<Id const> arrivals() const { return m_arrivals; }
+    /// Copies at the last restart.
+    [[nodiscard]] std::size_t builtSize() const { return m_built; }
+    [[nodiscard]] double skin() const { return m_skin; }
+
+    /// Calls f(a, b) with the storage indices of every pair whose two copies are alive, in
+    /// the order the pairs were added.
+    template <class F>
+    void forEachPair(F&& f) const {
+        for (auto const& [ia, ib] : m_pairs) {
+            std::uint32_t const a = m_indexOf[ia], b = m_indexOf[ib];
+            if (a != kDead && b != kDead)
+                f(std::size_t{a}, std::size_t{b});
+        }
+    }
+    [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
+    /// Heap bytes held.
+    [[nodiscard]] std::size_t bytes() const;
+
+private:
+    ParticleStorage const* m_storage = nullptr;
+    std::uint64_t m_session = 0;
+    double m_skin = 0.0;
+    std::size_t m_built = 0;
+    std::vector<std::array<Id, 2>> m_pairs;
+    std::vector<std::uint32_t> m_indexOf; ///< per id
+    std::vector<core::Vec3> m_reference;  ///< per id
+    std::vector<Id> m_arrivals;
+};
+
+} // namespace regolith::particles

@@ -1,0 +1,129 @@
+// The Verlet list of ContactDetector (detect on a mutable storage with a skin) finds exactly
+// the contacts of the linked cells rebuilt every call, bit for bit, while the storage changes
+// under it as the synchronisation changes it: grains move, copies arrive, leave (moving others
+// to new indices) and change their periodic image; and it is reused, not rebuilt every call.
+#include "particles/detection/ContactDetector.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
+#include "tests/particles/ParticleTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <tuple>
+#include <vector>
+
+using namespace regolith::particles;
+using namespace regolith::particles::test;
+using regolith::core::AABB;
+
+namespace {
+
+using Key = std::tuple<Uid, Uid, CopyImage>;
+
+/// Contacts by (uid_i, uid_j, image difference), with the bits of their penetration.
+std::map<Key, std::uint64_t> byKey(ParticleStorage const& ps, ContactList const& list) {
+    std::map<Key, std::uint64_t> out;
+    for (Contact const& c : list.pairs) {
+        Key const k{ps.uid(c.i), ps.uid(c.j), subtractImages(ps.image(c.j), ps.image(c.i))};
+        EXPECT_TRUE(out.emplace(k, std::bit_cast<std::uint64_t>(c.penetration)).second)
+            << "a pair emitted twice";
+    }
+    return out;
+}
+
+struct Scene {
+    PeriodicFrame frame{AABB{Vec3::Zero(), Vec3::Constant(6.0)}, {true, true, false}};
+    AABB region{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)};
+    std::mt19937_64 rng{7};
+    Uid next = 0;
+
+    double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
+    ParticleInit randomCopy() {
+        // Mostly small grains, a few large ones; some at a periodic image on x or y.
+        double const r = uniform(0.0, 1.0) < 0.05 ? uniform(0.8, 1.5) : uniform(0.2, 0.3);
+        ParticleInit p =
+            sphere(next++, Vec3(uniform(0.0, 6.0), uniform(0.0, 6.0), uniform(0.0, 6.0)), r, 1.0);
+        if (uniform(0.0, 1.0) < 0.2)
+            p.image = CopyImage{static_cast<std::int8_t>(uniform(0.0, 1.0) < 0.5 ? -1 : 1), 0, 0};
+        if (uniform(0.0, 1.0) < 0.1)
+            p.flags.set(Flag::Shadow, true);
+        return p;
+    }
+};
+
+TEST(VerletList, SameContactsAsCellsWhileTheStorageChanges) {
+    Scene s;
+    ParticleStorage ps;
+    for (int k = 0; k < 400; ++k)
+        ps.add(s.randomCopy());
+    DetectorConfig withSkin;
+    withSkin.skin = 0.1;
+    ContactDetector listed(withSkin);
+    ContactDetector cells;
+    std::size_t rebuilds = 0, arrivals = 0, contacts = 0;
+    for (int step = 0; step < 300; ++step) {
+        // Moves of up to skin/8 per call, and now and then one far jump.
+        for (std::size_t k = 0; k < ps.size(); ++k)
+            ps.position(k) +=
+                Vec3(s.uniform(-1.0, 1.0), s.uniform(-1.0, 1.0), s.uniform(-1.0, 1.0)) * 0.0072;
+        if (step % 37 == 5)
+            ps.position(step % ps.size()) += Vec3(0.3, 0.0, 0.0);
+        // The synchronisation's changes: removals (swap with the last), arrivals, re-keys.
+        int const changes = static_cast<int>(s.uniform(0.0, 4.0));
+        for (int c = 0; c < changes; ++c) {
+            ps.remove(static_cast<std::size_t>(s.uniform(0.0, static_cast<double>(ps.size()))));
+            ps.add(s.randomCopy());
+        }
+        if (step % 11 == 3) {
+            std::size_t const k = static_cast<std::size_t>(step) % ps.size();
+            CopyImage im = ps.image(k);
+            im[1] = static_cast<std::int8_t>(im[1] == 0 ? 1 : 0);
+            ps.setImage(k, im);
+        }
+        ContactList a, b;
+        listed.detect(ps, {}, s.region, s.frame, a);
+        rebuilds += listed.stats().rebuilt ? 1 : 0;
+        arrivals += listed.stats().arrivals;
+        cells.detect(std::as_const(ps), {}, s.region, s.frame, b);
+        auto const fromList = byKey(ps, a);
+        ASSERT_EQ(fromList, byKey(ps, b)) << "step " << step;
+        contacts += fromList.size();
+    }
+    EXPECT_GT(contacts, 1000U); // the scene has contacts to find
+    EXPECT_GT(arrivals, 100U);  // copies arrived between rebuilds and were followed
+    EXPECT_LT(rebuilds, 150U);  // and the list was reused
+    EXPECT_GT(rebuilds, 5U);    // but rebuilt when grains moved skin/2
+}
+
+TEST(VerletList, RebuildsWhenTheTraceBreaks) {
+    Scene s;
+    ParticleStorage ps;
+    for (int k = 0; k < 50; ++k)
+        ps.add(s.randomCopy());
+    DetectorConfig withSkin;
+    withSkin.relativeSkin = 0.5;
+    ContactDetector listed(withSkin);
+    ContactList out;
+    listed.detect(ps, {}, s.region, s.frame, out);
+    EXPECT_TRUE(listed.stats().rebuilt);
+    EXPECT_NEAR(listed.stats().skin, 0.15, 0.01); // half the largest small radius
+    listed.detect(ps, {}, s.region, s.frame, out);
+    EXPECT_FALSE(listed.stats().rebuilt);
+    ps.setRadius(0, ps.radius(0) * 2.0);
+    listed.detect(ps, {}, s.region, s.frame, out);
+    EXPECT_TRUE(listed.stats().rebuilt);
+    ParticleStorage other = ps; // another storage with the same trace
+    listed.detect(other, {}, s.region, s.frame, out);
+    EXPECT_TRUE(listed.stats().rebuilt);
+    std::vector<std::size_t> reverse;
+    for (std::size_t k = ps.size(); k-- > 0;)
+        reverse.push_back(k);
+    other.permute(reverse);
+    listed.detect(other, {}, s.region, s.frame, out);
+    EXPECT_TRUE(listed.stats().rebuilt);
+}
+
+} // namespace
