@@ -34,7 +34,10 @@ GridGravity::GridGravity(core::Comm const& comm, domain::BlockForest const& fore
     , m_solver(m_comm, m_layout, m_options.poisson)
     , m_density(m_layout)
     , m_potential(m_layout)
-    , m_acceleration(m_layout, 3) {}
+    , m_acceleration(m_layout, 3) {
+    if (!m_solver.periodic())
+        listBoundaryGhosts();
+}
 
 SolveStats GridGravity::update(Grains const& grains) {
     m_density.fill(0.0);
@@ -54,9 +57,11 @@ SolveStats GridGravity::solveFromDensity() {
     return stats;
 }
 
-void GridGravity::fillBoundaryGhosts() {
+void GridGravity::listBoundaryGhosts() {
     auto const& n = m_layout.cellsPerBlock();
     int const g = m_layout.ghost();
+    std::vector<GlobalCell> cells;
+    std::vector<std::pair<std::size_t, std::size_t>> ghosts;
     for (std::size_t b = 0; b < m_layout.localBlockCount(); ++b) {
         auto const& o = m_layout.origin(b);
         for (int k = -g; k < n[2] + g; ++k)
@@ -65,8 +70,22 @@ void GridGravity::fillBoundaryGhosts() {
                     GlobalCell const c{o[0] + i, o[1] + j, o[2] + k};
                     if (m_layout.wrap(c))
                         continue;
-                    m_potential.at(b, i, j, k) = m_solver.boundary().at(m_layout.centre(c));
+                    cells.push_back(c);
+                    ghosts.emplace_back(b, m_layout.padIndex(i, j, k));
                 }
+    }
+    for (std::size_t i : FreeSpaceBoundary::coherentOrder(cells)) {
+        m_boundaryGhosts.push_back(ghosts[i]);
+        m_boundaryCentres.push_back(m_layout.centre(cells[i]));
+    }
+    m_boundaryPotential.resize(m_boundaryGhosts.size());
+}
+
+void GridGravity::fillBoundaryGhosts() {
+    m_solver.boundary().evaluate(m_boundaryCentres, m_boundaryPotential);
+    for (std::size_t i = 0; i < m_boundaryGhosts.size(); ++i) {
+        auto const [b, pad] = m_boundaryGhosts[i];
+        m_potential.block(b)[pad] = m_boundaryPotential[i];
     }
 }
 

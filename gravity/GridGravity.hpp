@@ -60,7 +60,10 @@ public:
     }
 
 private:
-    /// Sets the ghost cells beyond free-space faces to the multipole potential.
+    /// The ghost cells beyond free-space faces (block, padded index, centre), in
+    /// FreeSpaceBoundary::coherentOrder; empty for a periodic domain.
+    void listBoundaryGhosts();
+    /// Sets those ghost cells to the free-space potential of the last update.
     void fillBoundaryGhosts();
 
     core::Comm m_comm;
@@ -72,6 +75,9 @@ private:
     CellField m_density;
     CellField m_potential;
     CellField m_acceleration;
+    std::vector<std::pair<std::size_t, std::size_t>> m_boundaryGhosts; ///< (block, padded)
+    std::vector<core::Vec3> m_boundaryCentres;
+    std::vector<double> m_boundaryPotential;
 };
 
 } // namespace regolith::gravity

@@ -45,6 +45,11 @@ CellLayout::CellLayout(core::Comm const& comm, domain::BlockForest const& forest
                      static_cast<std::size_t>(m_n[2]);
     m_paddedCells = static_cast<std::size_t>(m_padded[0]) * static_cast<std::size_t>(m_padded[1]) *
                     static_cast<std::size_t>(m_padded[2]);
+    m_padOfInterior.reserve(m_cellsInBlock);
+    for (int k = 0; k < m_n[2]; ++k)
+        for (int j = 0; j < m_n[1]; ++j)
+            for (int i = 0; i < m_n[0]; ++i)
+                m_padOfInterior.push_back(static_cast<std::uint32_t>(padIndex(i, j, k)));
 
     // Every rank learns every block's owner and curve position: the forest keeps only the
     // neighbours, but a large grain deposits into blocks further away, and the Poisson
@@ -77,13 +82,6 @@ CellLayout::CellLayout(core::Comm const& comm, domain::BlockForest const& forest
 
 std::int64_t CellLayout::firstRow(std::size_t b) const {
     return static_cast<std::int64_t>((m_firstCurve + b) * m_cellsInBlock);
-}
-
-std::size_t CellLayout::padOfInterior(std::size_t interior) const {
-    auto const n0 = static_cast<std::size_t>(m_n[0]);
-    auto const n1 = static_cast<std::size_t>(m_n[1]);
-    return padIndex(static_cast<int>(interior % n0), static_cast<int>((interior / n0) % n1),
-                    static_cast<int>(interior / (n0 * n1)));
 }
 
 std::optional<GlobalCell> CellLayout::wrap(GlobalCell c) const {

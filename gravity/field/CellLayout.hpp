@@ -74,8 +74,10 @@ public:
                    (static_cast<std::size_t>(j + m_ghost) +
                     static_cast<std::size_t>(m_padded[1]) * static_cast<std::size_t>(k + m_ghost));
     }
-    /// Padded index of interior index `interior`.
-    [[nodiscard]] std::size_t padOfInterior(std::size_t interior) const;
+    /// Padded index of interior index `interior` (a table: hot loops over all cells).
+    [[nodiscard]] std::size_t padOfInterior(std::size_t interior) const {
+        return m_padOfInterior[interior];
+    }
 
     /// Maps c into the grid on periodic axes; nullopt if outside on a non-periodic axis.
     [[nodiscard]] std::optional<GlobalCell> wrap(GlobalCell c) const;
@@ -99,6 +101,7 @@ private:
     std::array<std::int64_t, 3> m_global{};
     core::Vec3 m_h;
     std::vector<GlobalCell> m_origins;
+    std::vector<std::uint32_t> m_padOfInterior;
     std::int64_t m_rowBegin = 0;
     std::size_t m_firstCurve = 0;
     /// Per root block (root index): owner rank and curve index.

@@ -5,14 +5,22 @@
 
 namespace regolith::gravity {
 
-MassMoments massMoments(core::Comm const& comm, CellField const& density) {
-    auto const& layout = density.layout();
-    // Moments about the domain centre, which keeps the numbers small (no cancellation of
-    // huge second moments far from the origin).
-    core::Vec3 const origin = layout.forest().domain().center();
+std::vector<double> occupiedCells(CellField const& density) {
+    std::vector<double> out;
+    forEachOccupiedCell(density, [&](core::Vec3 const& x, double m) {
+        out.insert(out.end(), {x[0], x[1], x[2], m});
+    });
+    return out;
+}
+
+MassMoments massMoments(core::Comm const& comm, std::span<double const> cells,
+                        core::Vec3 const& origin) {
+    // Moments about `origin`, which keeps the numbers small (no cancellation of huge second
+    // moments far from the origin).
     std::array<double, 11> s{}; // M, M x (3), M x x^T (xx, yy, zz, xy, xz, yz), count
-    forEachOccupiedCell(density, [&](core::Vec3 const& centre, double m) {
-        core::Vec3 const x = centre - origin;
+    for (std::size_t c = 0; c + 3 < cells.size(); c += 4) {
+        double const m = cells[c + 3];
+        core::Vec3 const x = core::Vec3(cells[c], cells[c + 1], cells[c + 2]) - origin;
         s[0] += m;
         for (int a = 0; a < 3; ++a)
             s[1 + static_cast<std::size_t>(a)] += m * x[a];
@@ -23,7 +31,7 @@ MassMoments massMoments(core::Comm const& comm, CellField const& density) {
         s[8] += m * x[0] * x[2];
         s[9] += m * x[1] * x[2];
         s[10] += 1.0;
-    });
+    }
     comm.allReduceInPlace(std::span<double>(s), core::ReduceOp::Sum);
     MassMoments out;
     out.mass = s[0];

@@ -13,6 +13,9 @@
 
 #include <Eigen/Core>
 
+#include <span>
+#include <vector>
+
 namespace regolith::gravity {
 
 struct MassMoments {
@@ -22,9 +25,15 @@ struct MassMoments {
     double occupiedCells = 0.0; ///< cells with non-zero mass, all ranks (same reduction)
 };
 
-/// Moments of the cell masses (density component 0 times cell volume, interior cells).
+/// This rank's occupied cells (density component 0 times cell volume non-zero, interior
+/// cells) as x, y, z, mass, four doubles each. Local.
+[[nodiscard]] std::vector<double> occupiedCells(CellField const& density);
+
+/// Moments of the cell masses of all ranks, from each rank's occupiedCells(); `origin` is a
+/// point near the mass, the same on every rank (e.g. the domain's centre).
 /// COLLECTIVE over `comm` (one all-reduce).
-[[nodiscard]] MassMoments massMoments(core::Comm const& comm, CellField const& density);
+[[nodiscard]] MassMoments massMoments(core::Comm const& comm, std::span<double const> cells,
+                                      core::Vec3 const& origin);
 
 /// The potential of the expansion at x [length^2 / time^2]: -G (M / d + d^T Q d / (2 d^5)),
 /// d = x - centre. Pre: x not at the centre. Local.

@@ -61,7 +61,9 @@ struct PoissonSolver::Petsc {
     KSP ksp = nullptr;
     MatNullSpace nullSpace = nullptr;
     std::vector<std::string> optionNames;
-    std::vector<BoundaryTerm> boundary;
+    std::vector<BoundaryTerm> boundary;   ///< in FreeSpaceBoundary::coherentOrder of the ghosts
+    std::vector<core::Vec3> ghostCentres; ///< centre of each term's ghost
+    std::vector<double> ghostPotential;   ///< its potential, per solve
 
     Petsc() = default;
     Petsc(Petsc const&) = delete;
@@ -135,6 +137,20 @@ PoissonSolver::PoissonSolver(core::Comm const& comm, CellLayout const& layout,
                         "MatSetValues");
                 }
     }
+    {
+        std::vector<GlobalCell> ghosts;
+        ghosts.reserve(p.boundary.size());
+        for (auto const& t : p.boundary)
+            ghosts.push_back(t.ghost);
+        std::vector<BoundaryTerm> ordered;
+        ordered.reserve(p.boundary.size());
+        for (std::size_t i : FreeSpaceBoundary::coherentOrder(ghosts)) {
+            ordered.push_back(p.boundary[i]);
+            p.ghostCentres.push_back(layout.centre(p.boundary[i].ghost));
+        }
+        p.boundary = std::move(ordered);
+        p.ghostPotential.resize(p.boundary.size());
+    }
     petscCheck(MatAssemblyBegin(p.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     petscCheck(MatAssemblyEnd(p.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
     if (m_periodic) {
@@ -197,6 +213,7 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
         shift = sum / static_cast<double>(layout.globalCellCount());
     } else {
         m_boundary.update(m_comm, density, m_options.G);
+        m_boundary.evaluate(p.ghostCentres, p.ghostPotential);
     }
     PetscScalar* b = nullptr;
     petscCheck(VecGetArray(p.b, &b), "VecGetArray");
@@ -206,8 +223,8 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
         for (std::size_t c = 0; c < cells; ++c)
             b[blk * cells + c] = -fourPiG * (rho[layout.padOfInterior(c)] - shift);
     }
-    for (auto const& t : p.boundary)
-        b[t.localRow] += t.weight * m_boundary.at(layout.centre(t.ghost));
+    for (std::size_t i = 0; i < p.boundary.size(); ++i)
+        b[p.boundary[i].localRow] += p.boundary[i].weight * p.ghostPotential[i];
     petscCheck(VecRestoreArray(p.b, &b), "VecRestoreArray");
     if (p.nullSpace)
         petscCheck(MatNullSpaceRemove(p.nullSpace, p.b), "MatNullSpaceRemove");

@@ -8,8 +8,8 @@
 ///
 /// Boundaries: all axes periodic -> periodic Laplacian with the constant null space, mean
 /// density subtracted; no axis periodic -> free space: the potential at the centres of the
-/// ghost cells beyond each domain face (FreeSpaceBoundary.hpp: direct sum over occupied
-/// cells or multipole expansion), folded into the right-hand side. Mixed periodicity is refused.
+/// ghost cells beyond each domain face (FreeSpaceBoundary.hpp: a tree over the occupied
+/// cells, or a multipole expansion), folded into the right-hand side. Mixed periodicity is refused.
 #include "core/mpi/Comm.hpp"
 #include "gravity/field/CellField.hpp"
 #include "gravity/poisson/FreeSpaceBoundary.hpp"
