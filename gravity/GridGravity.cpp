@@ -31,11 +31,16 @@ GridGravity::GridGravity(core::Comm const& comm, domain::BlockForest const& fore
     , m_layout(m_comm, forest, cellsPerBlock, m_options.gradientOrder / 2)
     , m_ghosts(m_comm, m_layout)
     , m_transfer(m_comm, m_layout, m_options.assignment)
-    , m_solver(m_comm, m_layout, m_options.poisson)
     , m_density(m_layout)
     , m_potential(m_layout)
     , m_acceleration(m_layout, 3) {
-    if (!m_solver.periodic())
+    if (m_options.poissonMethod == PoissonMethod::Fft) {
+        m_fft = std::make_unique<FftFreeSpace>(m_comm, m_layout, m_options.poisson.G);
+    } else {
+        m_solver = std::make_unique<PoissonSolver>(m_comm, m_layout, m_options.poisson);
+        m_periodic = m_solver->periodic();
+    }
+    if (!m_periodic)
         listBoundaryGhosts();
 }
 
@@ -46,11 +51,17 @@ SolveStats GridGravity::update(Grains const& grains) {
 }
 
 SolveStats GridGravity::solveFromDensity() {
-    SolveStats const stats = m_solver.solve(m_density, m_potential);
+    SolveStats stats;
+    if (m_fft) {
+        stats.solveSeconds = m_fft->solve(m_density, m_potential);
+        m_boundary.update(m_comm, m_density, m_options.poisson.G);
+    } else {
+        stats = m_solver->solve(m_density, m_potential);
+    }
     // The potential's ghost layers: neighbours' cells by exchange, while the free-space
     // boundary values are computed (they do not depend on the messages).
     m_ghosts.start(m_potential);
-    if (!m_solver.periodic())
+    if (!m_periodic)
         fillBoundaryGhosts();
     m_ghosts.wait(m_potential);
     negativeGradient(m_potential, m_acceleration, m_options.gradientOrder);
@@ -82,7 +93,8 @@ void GridGravity::listBoundaryGhosts() {
 }
 
 void GridGravity::fillBoundaryGhosts() {
-    m_solver.boundary().evaluate(m_boundaryCentres, m_boundaryPotential);
+    FreeSpaceBoundary const& boundary = m_solver ? m_solver->boundary() : m_boundary;
+    boundary.evaluate(m_boundaryCentres, m_boundaryPotential);
     for (std::size_t i = 0; i < m_boundaryGhosts.size(); ++i) {
         auto const [b, pad] = m_boundaryGhosts[i];
         m_potential.block(b)[pad] = m_boundaryPotential[i];

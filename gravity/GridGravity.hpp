@@ -1,24 +1,29 @@
 #pragma once
 /// Grid-field (particle-mesh) self-gravity on the block forest: deposit grain mass, solve
-/// ∇²φ = 4πGρ with PETSc, g = -∇φ on cells, interpolate g to grains with the deposition
-/// kernel. Owns the cell layout, the fields, the ghost-exchange plan and the solver, all
-/// built once per forest.
+/// ∇²φ = 4πGρ with PETSc (or, on a free-space domain, the FFT convolution of FftFreeSpace:
+/// faster on small uniform grids, serial on rank 0), g = -∇φ on cells, interpolate g to grains with
+/// the deposition kernel. Owns the cell layout, the fields, the ghost-exchange plan and the solver,
+/// all built once per forest.
 ///
 /// Accuracy: the mesh force is softened over ~2 cells (the kernel width): pairs closer than
 /// ~2 h get far too little force (the tests assert this); from ~4 h on the force follows
 /// 1/r^2 to about 1 %. A grain's self-force is zero up to the boundary's asymmetry.
 #include "core/mpi/Comm.hpp"
 #include "domain/BlockForest.hpp"
+#include "gravity/PoissonMethod.hpp"
+#include "gravity/fft/FftFreeSpace.hpp"
 #include "gravity/field/GhostExchange.hpp"
 #include "gravity/field/GridFieldsView.hpp"
 #include "gravity/poisson/PoissonSolver.hpp"
 #include "gravity/transfer/MeshTransfer.hpp"
 
+#include <memory>
 #include <span>
 
 namespace regolith::gravity {
 
 struct GridGravityOptions {
+    PoissonMethod poissonMethod = PoissonMethod::Petsc;
     Assignment assignment = Assignment::Tsc; ///< deposition / interpolation kernel
     int gradientOrder = 2;                   ///< 2 or 4 (gravity.gradient_order)
     PoissonOptions poisson;                  ///< G, PETSc options, tolerances
@@ -52,7 +57,8 @@ public:
     [[nodiscard]] CellField& density() { return m_density; }
     [[nodiscard]] CellField const& potential() const { return m_potential; }
     [[nodiscard]] CellField const& acceleration() const { return m_acceleration; }
-    [[nodiscard]] PoissonSolver const& solver() const { return m_solver; }
+    [[nodiscard]] double G() const { return m_options.poisson.G; }
+    [[nodiscard]] bool periodic() const { return m_periodic; }
     /// The fields of the last update (density, potential, acceleration), read-only; valid
     /// while this object lives. Not collective.
     [[nodiscard]] GridFieldsView fields() const {
@@ -71,7 +77,10 @@ private:
     CellLayout m_layout;
     GhostExchange m_ghosts;
     MeshTransfer m_transfer;
-    PoissonSolver m_solver;
+    bool m_periodic = false;
+    std::unique_ptr<PoissonSolver> m_solver; ///< PoissonMethod::Petsc
+    std::unique_ptr<FftFreeSpace> m_fft;     ///< PoissonMethod::Fft
+    FreeSpaceBoundary m_boundary;            ///< the ghosts' values with the FFT
     CellField m_density;
     CellField m_potential;
     CellField m_acceleration;

@@ -25,7 +25,7 @@ std::vector<core::Vec3> directions() {
 } // namespace
 
 GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, double cutoffCells)
-    : m_G(gravity.solver().G()) {
+    : m_G(gravity.G()) {
     if (!(cutoffCells >= 2.0))
         throw core::InputError("gravity.p3m_cutoff: expected at least 2 cells");
     auto const& layout = gravity.layout();

@@ -9,6 +9,12 @@ namespace regolith::apps {
 
 namespace {
 
+/// " (poisson fft)" for a mesh method that solves with the FFT; empty otherwise.
+std::string poissonNote(GravitySection const& g) {
+    bool const mesh = g.self == SelfGravity::Pm || g.self == SelfGravity::P3m;
+    return mesh && g.poisson != "petsc" ? " (poisson " + g.poisson + ")" : std::string();
+}
+
 std::string axes(std::array<bool, 3> const& periodic) {
     std::string out;
     for (int d = 0; d < 3; ++d)
@@ -37,11 +43,11 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
                         forest.globalBlockCount(), n[0], n[1], n[2], forest.maxLevel(),
                         ctx.world.size(), forest.idleRankCount());
     text +=
-        fmt::format("  {} steps of dt = {}, sync {}{}, contact {}, self-gravity {}, "
+        fmt::format("  {} steps of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
                     "{} walls\n",
                     scene.time.steps, scene.time.dt, toString(scene.sync.method),
                     scene.sync.reproducible ? " (reproducible)" : "", toString(scene.contact.model),
-                    toString(scene.gravity.self), scene.walls.size());
+                    toString(scene.gravity.self), poissonNote(scene.gravity), scene.walls.size());
     text += fmt::format("  {} particles from {} [[particles]] entries ({} to {} per rank)\n",
                         particles.total, scene.particles.size(), particles.minPerRank,
                         particles.maxPerRank);

@@ -106,6 +106,9 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
     s.gradientOrder = t.getOrIf<int>(
         "gradient_order", 2, [](int o) { return o == 2 || o == 4; }, "2 or 4");
+    s.poisson = t.getOrIf<std::string>(
+        "poisson", s.poisson, [](std::string const& v) { return v == "petsc" || v == "fft"; },
+        "\"petsc\" or \"fft\"");
     if (auto const petsc = t.findTable("petsc"))
         s.petscOptions = petsc->getOr<std::string>("options", "");
     s.p3mCutoff = t.getOrIf<double>(

@@ -81,10 +81,11 @@ struct GravitySection {
     bool allowLargeTheta = false;
     int gradientOrder = 2; ///< gravity.gradient_order of the mesh's g = -grad phi (2 or 4)
     std::string petscOptions;
-    double p3mCutoff = 4.0;      ///< gravity.p3m_cutoff: P3M's pair cut-off in cells (>= 2)
-    double gridSpacing = 0.0;    ///< gravity.grid_spacing: node distance of the node methods
-    double neighbourhood = -1.0; ///< gravity.neighbourhood (tree-nodes); < 0: grid_spacing
-    bool accuracyGiven = false;  ///< gravity.accuracy was set (the mesh methods then check it)
+    std::string poisson = "petsc"; ///< gravity.poisson: "petsc" | "fft" (mesh methods)
+    double p3mCutoff = 4.0;        ///< gravity.p3m_cutoff: P3M's pair cut-off in cells (>= 2)
+    double gridSpacing = 0.0;      ///< gravity.grid_spacing: node distance of the node methods
+    double neighbourhood = -1.0;   ///< gravity.neighbourhood (tree-nodes); < 0: grid_spacing
+    bool accuracyGiven = false;    ///< gravity.accuracy was set (the mesh methods then check it)
 };
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),

@@ -16,6 +16,7 @@ gravity::GridGravityOptions gridOptions(SelfGravityConfig const& c) {
     o.gradientOrder = c.gradientOrder;
     o.poisson.G = c.G;
     o.poisson.petscOptions = c.petscOptions;
+    o.poissonMethod = c.poisson;
     return o;
 }
 

@@ -49,6 +49,7 @@ private:
         o.gradientOrder = c.gradientOrder;
         o.poisson.G = c.G;
         o.poisson.petscOptions = c.petscOptions;
+        o.poissonMethod = c.poisson;
         return o;
     }
 

@@ -7,6 +7,7 @@
 /// particles::DemStep as its body forces.
 #include "core/mpi/Comm.hpp"
 #include "domain/BlockForest.hpp"
+#include "gravity/PoissonMethod.hpp"
 #include "gravity/field/GridFieldsView.hpp"
 #include "gravity/update/UpdatePolicy.hpp"
 #include "particles/storage/Uid.hpp"
@@ -41,10 +42,11 @@ struct SelfGravityConfig {
     bool allowLargeTheta = false; ///< gravity.allow_large_theta
     double updateThreshold = 0.0; ///< gravity.update_threshold [m]; 0: every step
     // Mesh only:
-    std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< domain.cells_per_block
-    std::string petscOptions;                  ///< gravity.petsc.options
-    int gradientOrder = 2;                     ///< gravity.gradient_order (2 or 4)
-    double p3mCutoffCells = 4.0;               ///< gravity.p3m_cutoff [cells] (P3M only)
+    std::array<int, 3> cellsPerBlock{0, 0, 0};                      ///< domain.cells_per_block
+    std::string petscOptions;                                       ///< gravity.petsc.options
+    gravity::PoissonMethod poisson = gravity::PoissonMethod::Petsc; ///< gravity.poisson
+    int gradientOrder = 2;       ///< gravity.gradient_order (2 or 4)
+    double p3mCutoffCells = 4.0; ///< gravity.p3m_cutoff [cells] (P3M only)
     // Node methods (occupied-cells, tree-nodes) only; the node lattice starts at the domain's
     // minimum corner:
     double gridSpacing = 0.0;   ///< gravity.grid_spacing, node distance [m] (> 0)

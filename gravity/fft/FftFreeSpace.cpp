@@ -53,8 +53,8 @@ FftFreeSpace::FftFreeSpace(core::Comm const& comm, CellLayout const& layout, dou
     , m_layout(&layout) {
     auto const& periodic = layout.forest().periodic();
     if (periodic[0] || periodic[1] || periodic[2])
-        throw core::InputError("domain.periodic: the FFT free-space solver needs a domain "
-                               "without periodic axes");
+        throw core::InputError("gravity.poisson = \"fft\": the FFT free-space solver needs a "
+                               "domain without periodic axes (domain.periodic)");
     if (m_comm.rank() != 0)
         return;
     double const t0 = MPI_Wtime();

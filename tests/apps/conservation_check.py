@@ -63,6 +63,7 @@ def main():
     p.add_argument("--com-tol", type=float, default=1e-3, help="centre-of-mass error [m]")
     p.add_argument("--set", action="append", default=[])
     a = p.parse_args()
+    os.makedirs(a.out, exist_ok=True)
     stem = os.path.join(a.out, f"conservation_{a.method}_np{a.np}")
     start, end = run(a, stem + "_start", 0), run(a, stem + "_end", a.steps)
     if len(start) != len(end):

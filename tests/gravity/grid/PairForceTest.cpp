@@ -26,11 +26,11 @@ struct Pair {
 };
 
 /// Grain A on rank 0, grain B on the last rank; both point masses (radius 0).
-class PairForce : public ::testing::TestWithParam<std::tuple<Assignment, int>> {
+class PairForce : public ::testing::TestWithParam<std::tuple<Assignment, int, PoissonMethod>> {
 protected:
     [[nodiscard]] std::string name() const {
         return std::string(toString(std::get<0>(GetParam()))) + " order " +
-               std::to_string(std::get<1>(GetParam()));
+               std::to_string(std::get<1>(GetParam())) + " " + toString(std::get<2>(GetParam()));
     }
 
     void SetUp() override {
@@ -39,6 +39,7 @@ protected:
         GridGravityOptions options;
         options.assignment = std::get<0>(GetParam());
         options.gradientOrder = std::get<1>(GetParam());
+        options.poissonMethod = std::get<2>(GetParam());
         options.poisson.G = kG;
         gravity = std::make_unique<GridGravity>(world, *forest, spec.cellsPerBlock, options);
     }
@@ -222,11 +223,13 @@ TEST_P(PairForce, LoneGrainFeelsNoSelfForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kernels, PairForce,
-                         ::testing::Values(std::tuple{Assignment::Cic, 2},
-                                           std::tuple{Assignment::Tsc, 4}),
+                         ::testing::Values(std::tuple{Assignment::Cic, 2, PoissonMethod::Petsc},
+                                           std::tuple{Assignment::Tsc, 4, PoissonMethod::Petsc},
+                                           std::tuple{Assignment::Tsc, 4, PoissonMethod::Fft}),
                          [](auto const& p) {
                              return std::string(toString(std::get<0>(p.param))) + "_order" +
-                                    std::to_string(std::get<1>(p.param));
+                                    std::to_string(std::get<1>(p.param)) + "_" +
+                                    toString(std::get<2>(p.param));
                          });
 
 } // namespace
