@@ -79,11 +79,24 @@ def normalise(raw_rows):
             for r in raw_rows]
 
 
+def number_or_label(text):
+    """A parameter as a number if it is one (θ, h / d_max), else its label (e.g. P3M's
+    "32^3 h=163m rc=2h")."""
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def param_text(param):
+    return f"{param:.3g}" if isinstance(param, float) else str(param).replace(" ", "\n")
+
+
 def read_extra(paths):
     rows = []
     for path in paths:
         for r in read_csv(path):
-            rows.append({"method": r["method"], "param": float(r["param"]),
+            rows.append({"method": r["method"], "param": number_or_label(r["param"]),
                          "median_err": float(r["median_err"]), "p99_err": float(r["p99_err"]),
                          "time_s": float(r["time_s"]), "cpu_s": float(r.get("cpu_s") or "nan"),
                          "extra": True})
@@ -116,7 +129,8 @@ def series(rows):
     for r in rows:
         groups.setdefault(series_key(r), []).append(r)
     for g in groups.values():
-        g.sort(key=lambda r: r["param"])
+        # labelled parameters (from --extra) have no order of their own: by time
+        g.sort(key=lambda r: r["param"] if isinstance(r["param"], float) else r["time_s"])
     return groups
 
 
@@ -143,12 +157,14 @@ def chart_pareto(a, rows, plt):
                 marker, colour = next(extra_styles, ("x", "black"))
             xs = [r[a.time_key] for r in g]
             ys = [max(r[key], floor) for r in g]
-            ax.plot(xs, ys, marker=marker, color=colour, linestyle=line if len(g) > 1 else "",
+            labelled = any(not isinstance(r["param"], float) for r in g)
+            ax.plot(xs, ys, marker=marker, color=colour,
+                    linestyle=line if len(g) > 1 and not labelled else "",
                     label=label, markersize=6,
                     markerfacecolor="none" if method in AMORTISED else None)
             for r, x, y in zip(g, xs, ys):
                 if pname:
-                    ax.annotate(f"{r['param']:.3g}", (x, y), textcoords="offset points",
+                    ax.annotate(param_text(r["param"]), (x, y), textcoords="offset points",
                                 xytext=(4, 3), fontsize=6.5, color=colour or "black")
         front = pareto_front([(r[a.time_key], max(r[key], floor)) for r in rows
                               if r["method"] not in AMORTISED])
