@@ -9,26 +9,10 @@ docs/results.md).
 usage: mesh_force_check.py --mpiexec M --app APP --scene kepler.toml --out DIR [--np 2]
 """
 import argparse
-import csv
 import math
-import os
-import subprocess
 import sys
 
-V0 = 0.7071067811865476  # grain 1's initial velocity along y
-
-
-def velocity_change(a, name, extra):
-    dump = os.path.join(a.out, f"mesh_force_{name}.csv")
-    command = [a.mpiexec, "-n", str(a.np), "--oversubscribe", a.app, a.scene, "--quiet",
-               "--steps", "1", "--dump", dump, *extra]
-    done = subprocess.run(command, capture_output=True, text=True, timeout=240, check=False)
-    if done.returncode != 0:
-        sys.exit(f"mesh_force_check: {' '.join(command)} exited with {done.returncode}\n"
-                 f"{done.stdout}\n{done.stderr}")
-    with open(dump, encoding="utf-8") as f:
-        grain = next(r for r in csv.DictReader(f) if r["uid"] == "1")
-    return float(grain["vx"]), float(grain["vy"]) - V0
+from kepler_step import velocity_change
 
 
 def main():
@@ -38,10 +22,10 @@ def main():
     p.add_argument("--np", type=int, default=2)
     p.add_argument("--finest-tol", type=float, default=0.02)
     a = p.parse_args()
-    reference = velocity_change(a, "direct", ["--set", "gravity.self=direct"])
+    reference = velocity_change(a, "mesh_force", "direct", ["--set", "gravity.self=direct"])
     errors = []
     for cells in (4, 8, 16):  # the domain is 8 wide over 2 blocks in x and y, 1 in z
-        dv = velocity_change(a, f"pm{cells}", [
+        dv = velocity_change(a, "mesh_force", f"pm{cells}", [
             "--set", "gravity.self=pm", "--set", "gravity.gradient_order=4",
             "--set", f"domain.cells_per_block=[{cells},{cells},{2 * cells}]"])
         errors.append(math.dist(dv, reference) / math.hypot(*reference))

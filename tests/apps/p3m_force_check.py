@@ -9,29 +9,13 @@ docs/results.md).
 usage: p3m_force_check.py --mpiexec M --app APP --scene kepler.toml --out DIR [--np 2]
 """
 import argparse
-import csv
 import math
-import os
-import subprocess
 import sys
 
-V0 = 0.7071067811865476  # grain 1's initial velocity along y
+from kepler_step import velocity_change
 
 # (cells per block on x and y, cut-off in cells, the least mesh error, the largest P3M error)
 CASES = ((4, 2, 0.3, 0.06), (8, 4, 0.08, 0.02))
-
-
-def velocity_change(a, name, extra):
-    dump = os.path.join(a.out, f"p3m_force_{name}.csv")
-    command = [a.mpiexec, "-n", str(a.np), "--oversubscribe", a.app, a.scene, "--quiet",
-               "--steps", "1", "--dump", dump, *extra]
-    done = subprocess.run(command, capture_output=True, text=True, timeout=240, check=False)
-    if done.returncode != 0:
-        sys.exit(f"p3m_force_check: {' '.join(command)} exited with {done.returncode}\n"
-                 f"{done.stdout}\n{done.stderr}")
-    with open(dump, encoding="utf-8") as f:
-        grain = next(r for r in csv.DictReader(f) if r["uid"] == "1")
-    return float(grain["vx"]), float(grain["vy"]) - V0
 
 
 def main():
@@ -40,7 +24,7 @@ def main():
         p.add_argument(k, required=True)
     p.add_argument("--np", type=int, default=2)
     a = p.parse_args()
-    reference = velocity_change(a, "direct", ["--set", "gravity.self=direct"])
+    reference = velocity_change(a, "p3m_force", "direct", ["--set", "gravity.self=direct"])
     failures = []
     for cells, cutoff, mesh_least, p3m_most in CASES:
         grid = ["--set", "gravity.gradient_order=4",
@@ -50,7 +34,7 @@ def main():
             extra = ["--set", f"gravity.self={method}", *grid]
             if method == "p3m":
                 extra += ["--set", f"gravity.p3m_cutoff={cutoff}"]
-            dv = velocity_change(a, f"{method}{cells}", extra)
+            dv = velocity_change(a, "p3m_force", f"{method}{cells}", extra)
             errors[method] = math.dist(dv, reference) / math.hypot(*reference)
         h = 4.0 / cells  # the domain is 8 wide over 2 blocks in x and y
         print(f"h = {h:g} (pair {1 / h:g} h apart): pm error {errors['pm']:.3g}, "
