@@ -3,7 +3,8 @@
 // solve time and iterations, per preconditioner, and cold versus warm start for a mass that
 // moves slowly between solves. Prints a table and writes CSV.
 //
-//   mpiexec -n 2 build/default/bin/grid_bench [--max-cells 128] [--rtol 1e-8] [--csv out.csv]
+//   mpiexec -n 2 build/default/bin/grid_bench [--min-cells 32] [--max-cells 128] [--rtol 1e-8]
+//       [--csv out.csv]
 #include "core/Error.hpp"
 #include "gravity/fft/FftFreeSpace.hpp"
 #include "gravity/field/CellLayout.hpp"
@@ -25,6 +26,7 @@ namespace {
 
 struct Args {
     int maxCells = 128;
+    int minCells = 32;
     double rtol = 1e-8;
     std::string csv = "bench/out/grid_bench.csv";
 };
@@ -35,6 +37,8 @@ Args parse(int argc, char** argv) {
         std::string const key = argv[i];
         if (key == "--max-cells")
             a.maxCells = std::atoi(argv[i + 1]);
+        else if (key == "--min-cells")
+            a.minCells = std::atoi(argv[i + 1]);
         else if (key == "--rtol")
             a.rtol = std::atof(argv[i + 1]);
         else if (key == "--csv")
@@ -99,7 +103,7 @@ int main(int argc, char** argv) {
                     "solver", "cells", "unknowns", "assemble", "setup", "solve", "its",
                     "s/unknown");
     }
-    for (int cells = 32; cells <= args.maxCells; cells *= 2) {
+    for (int cells = args.minCells; cells <= args.maxCells; cells *= 2) {
         domain::ForestSpec spec;
         spec.domain = core::AABB{core::Vec3::Constant(-2.0), core::Vec3::Constant(2.0)};
         int const bpa = blocksPerAxis(cells);
