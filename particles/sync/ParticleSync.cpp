@@ -226,6 +226,31 @@ bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& 
     return true;
 }
 
+/// The indices, ascending, of the copies of `bp` that spread may have to act on: every
+/// SOS-class shadow, and the SOS-class masters of `bp.spreadingMasters` (the others are deep
+/// inside their block, where spread would skip them). One pass over the flag bytes instead of
+/// a position test per master. The order is that of a full pass, so the records are too.
+std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, BlockParticles& bp) {
+    ParticleStorage const& ps = bp.particles;
+    std::vector<std::size_t>& order = engine.scratchIndices();
+    order.clear();
+    for (Uid const uid : bp.spreadingMasters) {
+        std::size_t const i = ps.find(uid);
+        if (i != ParticleStorage::kNotFound && ps.flags(i).isMaster() &&
+            ps.flags(i).has(Flag::Spreads))
+            order.push_back(i);
+    }
+    bp.spreadingMasters.clear();
+    constexpr std::uint8_t kShadowSpreads = Flags(Flag::Shadow | Flag::Spreads).bits();
+    std::vector<Flags> const& flags = ps.allFlags();
+    for (std::size_t i = 0; i < flags.size(); ++i)
+        if ((flags[i].bits() & kShadowSpreads) == kShadowSpreads)
+            order.push_back(i);
+    std::sort(order.begin(), order.end());
+    order.erase(std::unique(order.begin(), order.end()), order.end());
+    return order;
+}
+
 /// Alg. 2 lines 15-28 for every SOS-class copy of `bp`: create missing shadows on the
 /// neighbour blocks (one layer per call), drop shadows that no longer touch the block.
 void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
@@ -235,9 +260,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
     std::uint64_t const self = block.id.raw();
     core::Vec3 const& period = engine.period();
     std::vector<CopyKey> drop;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-        if (!ps.flags(i).has(Flag::Spreads))
-            continue;
+    for (std::size_t const i : spreadingCopies(engine, bp)) {
         Uid const uid = ps.uid(i);
         CopyImage const k = ps.image(i);
         core::Vec3 const& x = ps.position(i);
@@ -274,7 +297,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
                     return;
                 h.insert(at, t);
             } else {
-                if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}).second)
+                if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}))
                     return;
                 core::SendBuffer& b = engine.out(owner.rank);
                 writeHeader(b, RecordKind::HolderAdded, owner.block);
@@ -302,6 +325,7 @@ void ParticleSync::sync(LocalParticles& local) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
         std::vector<Uid> leaving;
+        bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {
             if (!ps.flags(i).isMaster())
                 continue;
@@ -331,6 +355,9 @@ void ParticleSync::sync(LocalParticles& local) {
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             if (processMaster(engine, local, bp, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
+            else if (twoRounds && !nnsClass &&
+                     !engine.deepInside(bp.block->aabb, ps.position(i), r))
+                bp.spreadingMasters.push_back(ps.uid(i)); // spread visits it (round 2)
         }
         for (Uid uid : leaving)
             ps.removeUid(uid);

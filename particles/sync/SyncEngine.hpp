@@ -101,6 +101,8 @@ public:
     /// Two work lists for the per-master code (0: targets, 1: new holders), kept between
     /// calls so that a grain near a face costs no allocation.
     [[nodiscard]] std::vector<CopyRef>& scratch(std::size_t k) { return m_scratch[k]; }
+    /// A work list of copy indices for spread, kept between calls.
+    [[nodiscard]] std::vector<std::size_t>& scratchIndices() { return m_scratchIndices; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
@@ -116,6 +118,7 @@ private:
         m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
     std::array<std::vector<CopyRef>, 2> m_scratch;
+    std::vector<std::size_t> m_scratchIndices;
 };
 
 } // namespace regolith::particles
