@@ -17,10 +17,15 @@ struct BlockParticles {
     domain::Block const* block = nullptr;
     ParticleStorage particles;
     SentCache sent; ///< SOS: creation orders this block sent (SentCache.hpp)
-    /// ParticleSync's work list within one call: uids of the SOS-class masters of this block
-    /// that may reach beyond it (not deep inside after the first round, or promoted here in
-    /// it), so that the second round visits them without a pass over every master.
-    std::vector<Uid> spreadingMasters;
+    /// A master and where it was when listed (the index is a hint: round 1 may move it).
+    struct MasterHint {
+        Uid uid = kInvalidUid;
+        std::size_t index = 0;
+    };
+    /// ParticleSync's work list within one call: the SOS-class masters of this block that
+    /// may reach beyond it (not deep inside after the first round, or promoted here in it),
+    /// so that the second round visits them without a pass over every master.
+    std::vector<MasterHint> spreadingMasters;
 };
 
 /// All local blocks' particles, in the order of forest.blocks().

@@ -281,7 +281,7 @@ void ParticleSync::sync(LocalParticles& local) {
                 leaving.push_back(ps.uid(i));
             else if (twoRounds && !nnsClass &&
                      !engine.deepInside(deep, bp.block->aabb, ps.position(i), r))
-                bp.spreadingMasters.push_back(ps.uid(i)); // spread visits it (round 2)
+                bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)
         }
         for (Uid uid : leaving)
             ps.removeUid(uid);

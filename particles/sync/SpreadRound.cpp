@@ -19,8 +19,12 @@ std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, Bloc
     ParticleStorage const& ps = bp.particles;
     std::vector<std::size_t>& order = engine.scratchIndices();
     order.clear();
-    for (Uid const uid : bp.spreadingMasters) {
-        std::size_t const i = ps.find(uid);
+    for (BlockParticles::MasterHint const& m : bp.spreadingMasters) {
+        // Round 1 moves few copies (a removal moves the last one into its slot), so the
+        // index noted then is nearly always still right; a hash look-up is the fallback.
+        bool const still =
+            m.index < ps.size() && ps.uid(m.index) == m.uid && ps.flags(m.index).isMaster();
+        std::size_t const i = still ? m.index : ps.find(m.uid);
         if (i != ParticleStorage::kNotFound && ps.flags(i).isMaster() &&
             ps.flags(i).has(Flag::Spreads))
             order.push_back(i);

@@ -140,9 +140,9 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
         ++stats.updated;
     }
     for (Promotion const& p : box.promotions) {
-        addFull(ps, p.state, true);
+        std::size_t const i = addFull(ps, p.state, true);
         if (p.state.init.flags.has(Flag::Spreads))
-            bp.spreadingMasters.push_back(p.state.init.uid); // spreads in round 2 (Alg. 2)
+            bp.spreadingMasters.push_back({p.state.init.uid, i}); // spreads in round 2 (Alg. 2)
         if (!isZero(p.oldImage))
             frameShifts[p.state.init.uid] = p.oldImage;
         ++stats.transferred;
