@@ -52,17 +52,15 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         std::sort(nbs.begin(), nbs.end());
         nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
         m_edgeAround[b.id.raw()] = edge;
-        core::AABB deep = b.aabb;
-        double const far = std::numeric_limits<double>::infinity();
+        FaceWeights& w = m_faceWeights[b.id.raw()];
         for (int a = 0; a < 3; ++a) {
             if (forest.periodic()[static_cast<std::size_t>(a)])
                 continue;
             if (b.aabb.min[a] <= d.min[a])
-                deep.min[a] = -far;
+                w.lo[a] = 0.0;
             if (b.aabb.max[a] >= d.max[a])
-                deep.max[a] = far;
+                w.hi[a] = 0.0;
         }
-        m_deepBox[b.id.raw()] = deep;
         auto& groups = m_linksByDirection[b.id.raw()];
         for (std::size_t k = 0; k < b.neighbours.size(); ++k) {
             core::AABB const box = b.neighbours[k].imageBox();
@@ -247,7 +245,7 @@ void ParticleSync::sync(LocalParticles& local) {
     for (BlockParticles& bp : local.blocks()) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
-        core::AABB const& deep = engine.deepBox(bp.block->id.raw());
+        auto const& deep = engine.faceWeights(bp.block->id.raw());
         std::vector<Uid> leaving;
         bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {

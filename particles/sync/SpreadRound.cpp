@@ -50,7 +50,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
     int const me = engine.rank();
     std::uint64_t const self = block.id.raw();
     core::Vec3 const& period = engine.period();
-    core::AABB const& deep = engine.deepBox(self);
+    auto const& deep = engine.faceWeights(self);
     std::vector<CopyKey> drop;
     for (std::size_t const i : spreadingCopies(engine, bp)) {
         Uid const uid = ps.uid(i);
