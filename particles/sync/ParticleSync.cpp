@@ -52,15 +52,18 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         std::sort(nbs.begin(), nbs.end());
         nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
         m_edgeAround[b.id.raw()] = edge;
-        FaceWeights& w = m_faceWeights[b.id.raw()];
+        DeepTest& t = m_deepTest[b.id.raw()];
+        t.reachBox = t.box = b.aabb;
+        double const far = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
             if (forest.periodic()[static_cast<std::size_t>(a)])
                 continue;
             if (b.aabb.min[a] <= d.min[a])
-                w.lo[a] = 0.0;
+                t.reachBox.min[a] = -far;
             if (b.aabb.max[a] >= d.max[a])
-                w.hi[a] = 0.0;
+                t.reachBox.max[a] = far;
         }
+        t.open = t.reachBox.min != t.box.min || t.reachBox.max != t.box.max;
         auto& groups = m_linksByDirection[b.id.raw()];
         for (std::size_t k = 0; k < b.neighbours.size(); ++k) {
             core::AABB const box = b.neighbours[k].imageBox();
@@ -245,7 +248,7 @@ void ParticleSync::sync(LocalParticles& local) {
     for (BlockParticles& bp : local.blocks()) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
-        auto const& deep = engine.faceWeights(bp.block->id.raw());
+        auto const& deep = engine.deepTest(bp.block->id.raw());
         std::vector<Uid> leaving;
         bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -256,7 +259,7 @@ void ParticleSync::sync(LocalParticles& local) {
             // The common case: a small grain deep inside its block, with no shadows to update
             // or remove, needs nothing sent (Alg. 1/2 would find no target).
             if (small && ps.shadowHolders(i).empty() &&
-                engine.deepInside(deep, bp.block->aabb, ps.position(i), r)) {
+                engine.deepInside(deep, ps.position(i), r)) {
                 bool const spreads = m_config.method == SyncMethod::ShadowOwner;
                 if (ps.flags(i).has(Flag::Spreads) != spreads)
                     ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, spreads));
@@ -277,8 +280,7 @@ void ParticleSync::sync(LocalParticles& local) {
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             if (processMaster(engine, local, bp, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
-            else if (twoRounds && !nnsClass &&
-                     !engine.deepInside(deep, bp.block->aabb, ps.position(i), r))
+            else if (twoRounds && !nnsClass && !engine.deepInside(deep, ps.position(i), r))
                 bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)
         }
         for (Uid uid : leaving)

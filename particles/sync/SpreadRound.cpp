@@ -5,11 +5,41 @@
 #include "particles/sync/SyncMessages.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace regolith::particles::sync_detail {
 
 namespace {
+
+/// Calls f(i), ascending, for every i whose flags have both Shadow and Spreads. Most copies
+/// of a scene are masters or NNS-class, so the flags are read eight at a time: a word with no
+/// byte holding both bits is skipped in a few instructions.
+template <class F>
+void forEachSpreadingShadow(std::vector<Flags> const& flags, F&& f) {
+    static_assert(sizeof(Flags) == 1);
+    constexpr std::uint8_t kBoth = Flags(Flag::Shadow | Flag::Spreads).bits();
+    constexpr unsigned kShift = 3; // Spreads is bit 3, Shadow bit 0 of a byte
+    static_assert(Flags(Flag::Shadow).bits() == 1U && Flags(Flag::Spreads).bits() == 1U << kShift);
+    constexpr std::uint64_t kLowBits = 0x0101010101010101ULL;
+    std::size_t const n = flags.size();
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        std::uint64_t w = 0;
+        std::memcpy(&w, &flags[i], 8);
+        // Bit 0 of each byte: Shadow and Spreads of that byte (the shift brings bits of the
+        // next byte only into bits 5-7, which the mask drops).
+        if ((w & (w >> kShift) & kLowBits) == 0)
+            continue;
+        for (std::size_t j = i; j < i + 8; ++j)
+            if ((flags[j].bits() & kBoth) == kBoth)
+                f(j);
+    }
+    for (; i < n; ++i)
+        if ((flags[i].bits() & kBoth) == kBoth)
+            f(i);
+}
 
 /// The indices, ascending, of the copies of `bp` that spread may have to act on: every
 /// SOS-class shadow, and the SOS-class masters of `bp.spreadingMasters` (the others are deep
@@ -30,11 +60,7 @@ std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, Bloc
             order.push_back(i);
     }
     bp.spreadingMasters.clear();
-    constexpr std::uint8_t kShadowSpreads = Flags(Flag::Shadow | Flag::Spreads).bits();
-    std::vector<Flags> const& flags = ps.allFlags();
-    for (std::size_t i = 0; i < flags.size(); ++i)
-        if ((flags[i].bits() & kShadowSpreads) == kShadowSpreads)
-            order.push_back(i);
+    forEachSpreadingShadow(ps.allFlags(), [&](std::size_t i) { order.push_back(i); });
     std::sort(order.begin(), order.end());
     order.erase(std::unique(order.begin(), order.end()), order.end());
     return order;
@@ -50,7 +76,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
     int const me = engine.rank();
     std::uint64_t const self = block.id.raw();
     core::Vec3 const& period = engine.period();
-    auto const& deep = engine.faceWeights(self);
+    auto const& deep = engine.deepTest(self);
     std::vector<CopyKey> drop;
     for (std::size_t const i : spreadingCopies(engine, bp)) {
         Uid const uid = ps.uid(i);
@@ -59,7 +85,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
         double const r = ps.radius(i);
         BlockRef const owner = ps.owner(i);
         bool const master = ps.flags(i).isMaster();
-        if (master && engine.deepInside(deep, block.aabb, x, r))
+        if (master && engine.deepInside(deep, x, r))
             continue; // no neighbour block can need a copy
         if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
             drop.push_back(ps.key(i));

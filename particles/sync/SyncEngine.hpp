@@ -77,28 +77,30 @@ public:
                         f(block.neighbours[l]);
     }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
-    /// Per face of a block, whether deepInside needs the reach there: 1 for a face with
-    /// blocks beyond it, 0 for a face on an open (non-periodic) domain boundary.
-    struct FaceWeights {
-        core::Vec3 lo{1.0, 1.0, 1.0};
-        core::Vec3 hi{1.0, 1.0, 1.0};
+    /// What deepInside measures against in one block: the box from which the reach is
+    /// measured (the block's box with every face on an open, non-periodic, domain boundary
+    /// moved to infinity: no block lies beyond it), and the block's box itself, which the
+    /// centre must then lie strictly inside (the master stays in its block).
+    struct DeepTest {
+        core::AABB reachBox;
+        core::AABB box;
+        bool open = false; ///< some face lies on an open domain boundary
     };
-    /// Whether the ball (x, r) of a master of a block with box `box` lies so deep inside it
-    /// that no other block can need a copy of it: its distance to every face exceeds the copy
-    /// criterion's reach plus an absolute slack that covers the rounding of periodic images
-    /// (x + k * period). A face on an open domain boundary has no block beyond it, so there
-    /// (weight 0) the centre need only lie strictly inside (the master stays in its block).
-    /// `w` is the block's faceWeights. The common case of a small grain; lets the sync skip
-    /// the link loop (copyNeeded would be false for every link).
-    [[nodiscard]] bool deepInside(FaceWeights const& w, core::AABB const& box, core::Vec3 const& x,
-                                  double r) const {
+    /// Whether the ball (x, r) of a master of a block lies so deep inside it that no other
+    /// block can need a copy of it: its distance to every face with blocks beyond it exceeds
+    /// the copy criterion's reach plus an absolute slack that covers the rounding of periodic
+    /// images (x + k * period). `t` is the block's deepTest. The common case of a small grain;
+    /// lets the sync skip the link loop (copyNeeded would be false for every link). A block
+    /// with no open face pays what the plain reach test costs.
+    [[nodiscard]] bool deepInside(DeepTest const& t, core::Vec3 const& x, double r) const {
         double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
-        return (x.array() - box.min.array() > reach * w.lo.array()).all() &&
-               (box.max.array() - x.array() > reach * w.hi.array()).all();
+        if (!((x.array() - t.reachBox.min.array() > reach).all() &&
+              (t.reachBox.max.array() - x.array() > reach).all()))
+            return false;
+        return !t.open ||
+               ((x.array() > t.box.min.array()).all() && (x.array() < t.box.max.array()).all());
     }
-    [[nodiscard]] FaceWeights const& faceWeights(std::uint64_t id) const {
-        return m_faceWeights.at(id);
-    }
+    [[nodiscard]] DeepTest const& deepTest(std::uint64_t id) const { return m_deepTest.at(id); }
     /// A cheap pre-test for copyNeeded through a link: false only if the ball at local
     /// position `x` (the holder's frame) certainly misses the link's image box (box against
     /// box, with the same slack as deepInside).
@@ -126,7 +128,7 @@ private:
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
     std::unordered_map<std::uint64_t, double> m_edgeAround;
-    std::unordered_map<std::uint64_t, FaceWeights> m_faceWeights;
+    std::unordered_map<std::uint64_t, DeepTest> m_deepTest;
     std::unordered_map<std::uint64_t, std::array<std::vector<std::uint32_t>, 27>>
         m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
