@@ -10,7 +10,7 @@ LocalParticles::LocalParticles(domain::BlockForest const& forest)
     : m_forest(&forest) {
     m_blocks.reserve(forest.blocks().size());
     for (domain::Block const& b : forest.blocks())
-        m_blocks.push_back(BlockParticles{&b, ParticleStorage{}, {}});
+        m_blocks.push_back(BlockParticles{&b, ParticleStorage{}, {}, {}});
 }
 
 BlockParticles* LocalParticles::find(std::uint64_t blockId) {

@@ -5,30 +5,27 @@
 #include "domain/Block.hpp"
 #include "domain/BlockForest.hpp"
 #include "particles/storage/ParticleStorage.hpp"
+#include "particles/sync/SentCache.hpp"
 
 #include <cstdint>
-#include <set>
 #include <span>
-#include <tuple>
 #include <vector>
 
 namespace regolith::particles {
 
-/// SOS's per-block cache (Eibl & Ruede 2018, sec. 3.3): the copies this block has already
-/// ordered its neighbours to create, so that a copy does not re-send creation orders every
-/// call. An entry is forgotten when the target block reports that it dropped the copy, or
-/// when this block drops its own copy of the particle.
-struct SentEntry {
-    std::uint64_t block = 0; ///< the neighbour block (BlockId::raw)
-    Uid uid = kInvalidUid;
-    CopyImage image = kNoImage; ///< the image of the copy on the neighbour
-    friend auto operator<=>(SentEntry const&, SentEntry const&) = default;
-};
-
 struct BlockParticles {
     domain::Block const* block = nullptr;
     ParticleStorage particles;
-    std::set<SentEntry> sent;
+    SentCache sent; ///< SOS: creation orders this block sent (SentCache.hpp)
+    /// A master and where it was when listed (the index is a hint: round 1 may move it).
+    struct MasterHint {
+        Uid uid = kInvalidUid;
+        std::size_t index = 0;
+    };
+    /// ParticleSync's work list within one call: the SOS-class masters of this block that
+    /// may reach beyond it (not deep inside after the first round, or promoted here in it),
+    /// so that the second round visits them without a pass over every master.
+    std::vector<MasterHint> spreadingMasters;
 };
 
 /// All local blocks' particles, in the order of forest.blocks().

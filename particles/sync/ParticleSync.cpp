@@ -1,6 +1,7 @@
 #include "particles/sync/ParticleSync.hpp"
 
 #include "core/Error.hpp"
+#include "particles/sync/SpreadRound.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncInbox.hpp"
 #include "particles/sync/SyncMessages.hpp"
@@ -51,6 +52,18 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         std::sort(nbs.begin(), nbs.end());
         nbs.erase(std::unique(nbs.begin(), nbs.end()), nbs.end());
         m_edgeAround[b.id.raw()] = edge;
+        DeepTest& t = m_deepTest[b.id.raw()];
+        t.reachBox = t.box = b.aabb;
+        double const far = std::numeric_limits<double>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            if (forest.periodic()[static_cast<std::size_t>(a)])
+                continue;
+            if (b.aabb.min[a] <= d.min[a])
+                t.reachBox.min[a] = -far;
+            if (b.aabb.max[a] >= d.max[a])
+                t.reachBox.max[a] = far;
+        }
+        t.open = t.reachBox.min != t.box.min || t.reachBox.max != t.box.max;
         auto& groups = m_linksByDirection[b.id.raw()];
         for (std::size_t k = 0; k < b.neighbours.size(); ++k) {
             core::AABB const box = b.neighbours[k].imageBox();
@@ -226,72 +239,6 @@ bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& 
     return true;
 }
 
-/// Alg. 2 lines 15-28 for every SOS-class copy of `bp`: create missing shadows on the
-/// neighbour blocks (one layer per call), drop shadows that no longer touch the block.
-void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
-    ParticleStorage& ps = bp.particles;
-    domain::Block const& block = *bp.block;
-    int const me = engine.rank();
-    std::uint64_t const self = block.id.raw();
-    core::Vec3 const& period = engine.period();
-    std::vector<CopyKey> drop;
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-        if (!ps.flags(i).has(Flag::Spreads))
-            continue;
-        Uid const uid = ps.uid(i);
-        CopyImage const k = ps.image(i);
-        core::Vec3 const& x = ps.position(i);
-        double const r = ps.radius(i);
-        BlockRef const owner = ps.owner(i);
-        bool const master = ps.flags(i).isMaster();
-        if (master && engine.deepInside(block.aabb, x, r))
-            continue; // no neighbour block can need a copy
-        if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
-            drop.push_back(ps.key(i));
-            core::SendBuffer& b = engine.out(owner.rank);
-            writeHeader(b, RecordKind::HolderRemoved, owner.block);
-            b << uid << CopyRef{me, self, k};
-            for (BlockRef const& nb : engine.neighbourBlocks(self)) {
-                writeHeader(engine.out(nb.rank), RecordKind::ForgetSent, nb.block);
-                engine.out(nb.rank) << SentEntry{self, uid, k};
-            }
-            continue;
-        }
-        core::Vec3 const local = localPosition(x, k, period);
-        engine.forEachReachableLink(block, local, r, [&](domain::BlockLink const& l) {
-            if (!engine.mayReach(l, local, r))
-                return;
-            CopyImage const kt = imageThroughLink(k, l.image);
-            if (!copyNeeded(l.aabb, x, kt, r, period))
-                return;
-            if (l.id.raw() == owner.block && isZero(kt))
-                return; // the master itself
-            CopyRef const t{l.owner, l.id.raw(), kt};
-            if (master) {
-                auto& h = ps.shadowHolders(i);
-                auto const at = std::lower_bound(h.begin(), h.end(), t);
-                if (at != h.end() && *at == t)
-                    return;
-                h.insert(at, t);
-            } else {
-                if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}).second)
-                    return;
-                core::SendBuffer& b = engine.out(owner.rank);
-                writeHeader(b, RecordKind::HolderAdded, owner.block);
-                b << uid << t;
-            }
-            core::SendBuffer& b = engine.out(l.owner);
-            writeHeader(b, RecordKind::Copy, l.id.raw());
-            writeFull(b, ps, i, x, kt, owner, {});
-        });
-    }
-    for (CopyKey const& key : drop) {
-        ps.removeUid(key.uid, key.image);
-        forgetSent(bp, key.uid);
-        ++stats.removed;
-    }
-}
-
 } // namespace
 
 void ParticleSync::sync(LocalParticles& local) {
@@ -301,7 +248,9 @@ void ParticleSync::sync(LocalParticles& local) {
     for (BlockParticles& bp : local.blocks()) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
+        auto const& deep = engine.deepTest(bp.block->id.raw());
         std::vector<Uid> leaving;
+        bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {
             if (!ps.flags(i).isMaster())
                 continue;
@@ -310,7 +259,7 @@ void ParticleSync::sync(LocalParticles& local) {
             // The common case: a small grain deep inside its block, with no shadows to update
             // or remove, needs nothing sent (Alg. 1/2 would find no target).
             if (small && ps.shadowHolders(i).empty() &&
-                engine.deepInside(bp.block->aabb, ps.position(i), r)) {
+                engine.deepInside(deep, ps.position(i), r)) {
                 bool const spreads = m_config.method == SyncMethod::ShadowOwner;
                 if (ps.flags(i).has(Flag::Spreads) != spreads)
                     ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, spreads));
@@ -331,6 +280,8 @@ void ParticleSync::sync(LocalParticles& local) {
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             if (processMaster(engine, local, bp, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
+            else if (twoRounds && !nnsClass && !engine.deepInside(deep, ps.position(i), r))
+                bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)
         }
         for (Uid uid : leaving)
             ps.removeUid(uid);

@@ -77,16 +77,30 @@ public:
                         f(block.neighbours[l]);
     }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
-    /// Whether the ball (x, r) of a master lies so deep inside `box` that no other block can
-    /// need a copy of it: its distance to every face exceeds the copy criterion's reach plus
-    /// an absolute slack that covers the rounding of periodic images (x + k * period). The
-    /// common case of a small grain; lets the sync skip the link loop (copyNeeded would be
-    /// false for every link).
-    [[nodiscard]] bool deepInside(core::AABB const& box, core::Vec3 const& x, double r) const {
+    /// What deepInside measures against in one block: the box from which the reach is
+    /// measured (the block's box with every face on an open, non-periodic, domain boundary
+    /// moved to infinity: no block lies beyond it), and the block's box itself, which the
+    /// centre must then lie strictly inside (the master stays in its block).
+    struct DeepTest {
+        core::AABB reachBox;
+        core::AABB box;
+        bool open = false; ///< some face lies on an open domain boundary
+    };
+    /// Whether the ball (x, r) of a master of a block lies so deep inside it that no other
+    /// block can need a copy of it: its distance to every face with blocks beyond it exceeds
+    /// the copy criterion's reach plus an absolute slack that covers the rounding of periodic
+    /// images (x + k * period). `t` is the block's deepTest. The common case of a small grain;
+    /// lets the sync skip the link loop (copyNeeded would be false for every link). A block
+    /// with no open face pays what the plain reach test costs.
+    [[nodiscard]] bool deepInside(DeepTest const& t, core::Vec3 const& x, double r) const {
         double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
-        return (x.array() - box.min.array() > reach).all() &&
-               (box.max.array() - x.array() > reach).all();
+        if (!((x.array() - t.reachBox.min.array() > reach).all() &&
+              (t.reachBox.max.array() - x.array() > reach).all()))
+            return false;
+        return !t.open ||
+               ((x.array() > t.box.min.array()).all() && (x.array() < t.box.max.array()).all());
     }
+    [[nodiscard]] DeepTest const& deepTest(std::uint64_t id) const { return m_deepTest.at(id); }
     /// A cheap pre-test for copyNeeded through a link: false only if the ball at local
     /// position `x` (the holder's frame) certainly misses the link's image box (box against
     /// box, with the same slack as deepInside).
@@ -101,6 +115,8 @@ public:
     /// Two work lists for the per-master code (0: targets, 1: new holders), kept between
     /// calls so that a grain near a face costs no allocation.
     [[nodiscard]] std::vector<CopyRef>& scratch(std::size_t k) { return m_scratch[k]; }
+    /// A work list of copy indices for spread, kept between calls.
+    [[nodiscard]] std::vector<std::size_t>& scratchIndices() { return m_scratchIndices; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
@@ -112,10 +128,12 @@ private:
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
     std::unordered_map<std::uint64_t, double> m_edgeAround;
+    std::unordered_map<std::uint64_t, DeepTest> m_deepTest;
     std::unordered_map<std::uint64_t, std::array<std::vector<std::uint32_t>, 27>>
         m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
     std::array<std::vector<CopyRef>, 2> m_scratch;
+    std::vector<std::size_t> m_scratchIndices;
 };
 
 } // namespace regolith::particles

@@ -84,23 +84,6 @@ void parse(core::RecvBuffer& in, int from, std::map<std::uint64_t, Inbox>& boxes
     }
 }
 
-/// Moves every cache entry of `uid` by -delta (the grain's frame moved).
-void shiftSent(BlockParticles& bp, Uid uid, CopyImage const& delta) {
-    std::vector<SentEntry> moved;
-    for (auto it = bp.sent.begin(); it != bp.sent.end();) {
-        if (it->uid == uid) {
-            moved.push_back(*it);
-            it = bp.sent.erase(it);
-        } else {
-            ++it;
-        }
-    }
-    for (SentEntry e : moved) {
-        e.image = subtractImages(e.image, delta);
-        bp.sent.insert(e);
-    }
-}
-
 void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     std::uint64_t const self = bp.block->id.raw();
@@ -157,13 +140,15 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
         ++stats.updated;
     }
     for (Promotion const& p : box.promotions) {
-        addFull(ps, p.state, true);
+        std::size_t const i = addFull(ps, p.state, true);
+        if (p.state.init.flags.has(Flag::Spreads))
+            bp.spreadingMasters.push_back({p.state.init.uid, i}); // spreads in round 2 (Alg. 2)
         if (!isZero(p.oldImage))
             frameShifts[p.state.init.uid] = p.oldImage;
         ++stats.transferred;
     }
     for (auto const& [uid, delta] : frameShifts)
-        shiftSent(bp, uid, delta);
+        bp.sent.shift(uid, delta);
     for (FullState const& s : box.copies) {
         if (ps.contains(s.init.uid, s.init.image)) {
             ++stats.duplicates;
@@ -197,8 +182,7 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
 } // namespace
 
 void forgetSent(BlockParticles& bp, Uid uid) {
-    for (auto it = bp.sent.begin(); it != bp.sent.end();)
-        it = it->uid == uid ? bp.sent.erase(it) : std::next(it);
+    bp.sent.forget(uid);
 }
 
 void receiveRound(ParticleSync::Impl& engine, LocalParticles& local, SyncStats& stats) {

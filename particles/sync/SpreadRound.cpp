@@ -1,0 +1,136 @@
+#include "particles/sync/SpreadRound.hpp"
+
+#include "particles/sync/SyncEngine.hpp"
+#include "particles/sync/SyncInbox.hpp"
+#include "particles/sync/SyncMessages.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+namespace regolith::particles::sync_detail {
+
+namespace {
+
+/// Calls f(i), ascending, for every i whose flags have both Shadow and Spreads. Most copies
+/// of a scene are masters or NNS-class, so the flags are read eight at a time: a word with no
+/// byte holding both bits is skipped in a few instructions.
+template <class F>
+void forEachSpreadingShadow(std::vector<Flags> const& flags, F&& f) {
+    static_assert(sizeof(Flags) == 1);
+    constexpr std::uint8_t kBoth = Flags(Flag::Shadow | Flag::Spreads).bits();
+    constexpr unsigned kShift = 3; // Spreads is bit 3, Shadow bit 0 of a byte
+    static_assert(Flags(Flag::Shadow).bits() == 1U && Flags(Flag::Spreads).bits() == 1U << kShift);
+    constexpr std::uint64_t kLowBits = 0x0101010101010101ULL;
+    std::size_t const n = flags.size();
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+        std::uint64_t w = 0;
+        std::memcpy(&w, &flags[i], 8);
+        // Bit 0 of each byte: Shadow and Spreads of that byte (the shift brings bits of the
+        // next byte only into bits 5-7, which the mask drops).
+        if ((w & (w >> kShift) & kLowBits) == 0)
+            continue;
+        for (std::size_t j = i; j < i + 8; ++j)
+            if ((flags[j].bits() & kBoth) == kBoth)
+                f(j);
+    }
+    for (; i < n; ++i)
+        if ((flags[i].bits() & kBoth) == kBoth)
+            f(i);
+}
+
+/// The indices, ascending, of the copies of `bp` that spread may have to act on: every
+/// SOS-class shadow, and the SOS-class masters of `bp.spreadingMasters` (the others are deep
+/// inside their block, where spread would skip them). One pass over the flag bytes instead of
+/// a position test per master. The order is that of a full pass, so the records are too.
+std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, BlockParticles& bp) {
+    ParticleStorage const& ps = bp.particles;
+    std::vector<std::size_t>& order = engine.scratchIndices();
+    order.clear();
+    for (BlockParticles::MasterHint const& m : bp.spreadingMasters) {
+        // Round 1 moves few copies (a removal moves the last one into its slot), so the
+        // index noted then is nearly always still right; a hash look-up is the fallback.
+        bool const still =
+            m.index < ps.size() && ps.uid(m.index) == m.uid && ps.flags(m.index).isMaster();
+        std::size_t const i = still ? m.index : ps.find(m.uid);
+        if (i != ParticleStorage::kNotFound && ps.flags(i).isMaster() &&
+            ps.flags(i).has(Flag::Spreads))
+            order.push_back(i);
+    }
+    bp.spreadingMasters.clear();
+    forEachSpreadingShadow(ps.allFlags(), [&](std::size_t i) { order.push_back(i); });
+    std::sort(order.begin(), order.end());
+    order.erase(std::unique(order.begin(), order.end()), order.end());
+    return order;
+}
+
+} // namespace
+
+/// Alg. 2 lines 15-28 for every SOS-class copy of `bp`: create missing shadows on the
+/// neighbour blocks (one layer per call), drop shadows that no longer touch the block.
+void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
+    ParticleStorage& ps = bp.particles;
+    domain::Block const& block = *bp.block;
+    int const me = engine.rank();
+    std::uint64_t const self = block.id.raw();
+    core::Vec3 const& period = engine.period();
+    auto const& deep = engine.deepTest(self);
+    std::vector<CopyKey> drop;
+    for (std::size_t const i : spreadingCopies(engine, bp)) {
+        Uid const uid = ps.uid(i);
+        CopyImage const k = ps.image(i);
+        core::Vec3 const& x = ps.position(i);
+        double const r = ps.radius(i);
+        BlockRef const owner = ps.owner(i);
+        bool const master = ps.flags(i).isMaster();
+        if (master && engine.deepInside(deep, x, r))
+            continue; // no neighbour block can need a copy
+        if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
+            drop.push_back(ps.key(i));
+            core::SendBuffer& b = engine.out(owner.rank);
+            writeHeader(b, RecordKind::HolderRemoved, owner.block);
+            b << uid << CopyRef{me, self, k};
+            for (BlockRef const& nb : engine.neighbourBlocks(self)) {
+                writeHeader(engine.out(nb.rank), RecordKind::ForgetSent, nb.block);
+                engine.out(nb.rank) << SentEntry{self, uid, k};
+            }
+            continue;
+        }
+        core::Vec3 const local = localPosition(x, k, period);
+        engine.forEachReachableLink(block, local, r, [&](domain::BlockLink const& l) {
+            if (!engine.mayReach(l, local, r))
+                return;
+            CopyImage const kt = imageThroughLink(k, l.image);
+            if (!copyNeeded(l.aabb, x, kt, r, period))
+                return;
+            if (l.id.raw() == owner.block && isZero(kt))
+                return; // the master itself
+            CopyRef const t{l.owner, l.id.raw(), kt};
+            if (master) {
+                auto& h = ps.shadowHolders(i);
+                auto const at = std::lower_bound(h.begin(), h.end(), t);
+                if (at != h.end() && *at == t)
+                    return;
+                h.insert(at, t);
+            } else {
+                if (!bp.sent.insert(SentEntry{l.id.raw(), uid, kt}))
+                    return;
+                core::SendBuffer& b = engine.out(owner.rank);
+                writeHeader(b, RecordKind::HolderAdded, owner.block);
+                b << uid << t;
+            }
+            core::SendBuffer& b = engine.out(l.owner);
+            writeHeader(b, RecordKind::Copy, l.id.raw());
+            writeFull(b, ps, i, x, kt, owner, {});
+        });
+    }
+    for (CopyKey const& key : drop) {
+        ps.removeUid(key.uid, key.image);
+        forgetSent(bp, key.uid);
+        ++stats.removed;
+    }
+}
+
+} // namespace regolith::particles::sync_detail
