@@ -146,7 +146,8 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
     }
     out.clear();
     updateList(ps, region, frame);
-    listedPass(ps, region, frame, out, [](Contact const&, std::uint8_t&) {});
+    listedPass(
+        ps, region, frame, out, [](Contact const&, std::uint8_t&) {}, true);
     wallPass(ps, walls, out);
     if (m_config.sortByUid)
         sortByUid(ps, out);

@@ -106,6 +106,7 @@ void DemStep::syncParticles() {
 
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
+    bool const keepPairs = m_config.keepContacts || stamp == 0;
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();
@@ -131,10 +132,12 @@ void DemStep::computeForces(std::uint32_t stamp) {
                                            core::Vec3 const& tq) {
                             out.push_back(ForceRecord{k, partner, f, tq});
                         };
-                        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b],
-                                              [&](Contact const& c, std::uint8_t& hint) {
-                                                  evaluatePair(ps, c, model, dt, stamp, hint, sink);
-                                              });
+                        m_detectors[b].detect(
+                            ps, m_walls, box, m_frame, m_contacts[b],
+                            [&](Contact const& c, std::uint8_t& hint) {
+                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
+                            },
+                            keepPairs);
                         evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
                     } else {
                         auto sink = [&ps](std::size_t k, Uid, core::Vec3 const& f,
@@ -142,10 +145,12 @@ void DemStep::computeForces(std::uint32_t stamp) {
                             ps.force(k) += f;
                             ps.torque(k) += tq;
                         };
-                        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b],
-                                              [&](Contact const& c, std::uint8_t& hint) {
-                                                  evaluatePair(ps, c, model, dt, stamp, hint, sink);
-                                              });
+                        m_detectors[b].detect(
+                            ps, m_walls, box, m_frame, m_contacts[b],
+                            [&](Contact const& c, std::uint8_t& hint) {
+                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
+                            },
+                            keepPairs);
                         evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
                     }
                 },
