@@ -127,7 +127,7 @@ particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
 particles::AnyIntegrator makeIntegrator(SceneDescription const& scene) {
     if (scene.time.integrator == Integrator::Euler)
         return particles::SemiImplicitEuler{};
-    return particles::VelocityVerlet{};
+    return particles::VelocityVerlet{.orientation = scene.time.orientation};
 }
 
 particles::WallList makeWalls(SceneDescription const& scene) {

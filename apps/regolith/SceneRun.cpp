@@ -166,6 +166,7 @@ int runScene(core::AppContext& ctx) {
     particles::DemStepConfig stepConfig;
     stepConfig.dt = scene.time.dt;
     stepConfig.gravity = scene.gravity.external;
+    stepConfig.keepContacts = false; // read after setUp only (checkOverlapsAcrossBlocks)
     particles::DemStep dem(world, sync, local, makeContactModel(scene), makeIntegrator(scene),
                            makeWalls(scene), stepConfig, timers);
     // Self-gravity as the step's body forces (after contacts and their reduction).

@@ -52,6 +52,10 @@ TimeSection parseTime(core::ConfigTable const& t) {
     s.allowUnstable = t.getOr<bool>("allow_unstable", false);
     s.integrator = static_cast<Integrator>(t.getChoiceOr(
         "integrator", kIntegratorNames, static_cast<std::size_t>(Integrator::Verlet)));
+    s.orientation = t.getOr<bool>("orientation", true);
+    if (!s.orientation && s.integrator != Integrator::Verlet)
+        t.failExpected("orientation", "true with integrator = \"euler\" (only velocity Verlet "
+                                      "can leave orientations out)");
     return s;
 }
 

@@ -28,13 +28,16 @@ enum class Integrator { Euler, Verlet };
 
 /// [time] dt (> 0, finite, required), steps (>= 0, required), allow_unstable (default false:
 /// a later stability check refuses a dt too large for the contact stiffness), integrator
-/// ("euler": semi-implicit Euler, or "verlet": velocity Verlet, the default).
+/// ("euler": semi-implicit Euler, or "verlet": velocity Verlet, the default), orientation
+/// (default true; false: velocity Verlet leaves the grains' orientation quaternions as they
+/// are, for runs whose output needs none -- see particles::VelocityVerlet::orientation).
 struct TimeSection {
     double dt = 0.0;     ///< 0 until resolved when dtAuto
     bool dtAuto = false; ///< time.dt = "auto": from the contact and orbital times (AutoChoices)
     std::int64_t steps = 0;
     bool allowUnstable = false;
     Integrator integrator = Integrator::Verlet;
+    bool orientation = true;
 };
 
 /// [sync] method ("nns" | "sos" | "hybrid"; default "hybrid", the scenes' default),

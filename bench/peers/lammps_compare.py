@@ -18,8 +18,12 @@ c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same nu
 nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
 DemStep default, 0.1 for the gas).
 
+--set KEY=VALUE (repeatable) passes a scene override to every Regolith run, e.g.
+--set time.orientation=false: LAMMPS's fix nve/sphere keeps no orientation, and Regolith then
+skips the quaternion update too (positions, velocities and spins stay bit for bit the same).
+
 usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd]
-                         [--box 30] [--steps 500] [--repeats 3] [--skin 0.1]
+                         [--box 30] [--steps 500] [--repeats 3] [--skin 0.1] [--set KEY=VALUE]
 """
 import argparse
 import csv
@@ -122,6 +126,8 @@ def main():
     p.add_argument("--steps", type=int, default=500)
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--skin", type=float, default=0.1)
+    p.add_argument("--set", action="append", default=[], dest="overrides",
+                   help="scene override for the Regolith runs (repeatable)")
     a = p.parse_args()
     app = os.path.join(a.build, "bin", "regolith")
     os.makedirs(a.out, exist_ok=True)
@@ -132,6 +138,8 @@ def main():
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
             args = case_args(case, a.box)
+            for o in a.overrides:
+                args += ["--set", o]
             dump = os.path.join(tmp, "init.csv")
             regolith(app, args, os.path.join(tmp, "init.json"), ["--steps", "0", "--dump", dump])
             data = os.path.join(tmp, "grains.data")

@@ -12,81 +12,9 @@
 
 namespace regolith::particles {
 
-namespace {
-
 using Index = ParticleStorage::Index;
-
-/// image(j) - image(i) per axis, unchecked (both are within +-kMaxImage, so it fits).
-CopyImage imageDifference(CopyImage const& kj, CopyImage const& ki) {
-    CopyImage out{};
-    for (std::size_t a = 0; a < 3; ++a)
-        out[a] = static_cast<std::int8_t>(kj[a] - ki[a]);
-    return out;
-}
-
-} // namespace
-
-/// The pair half of the class comment: canonical geometry and the contact-point rule for one
-/// candidate pair of copies.
-class ContactDetector::PairRule {
-public:
-    PairRule(ParticleStorage const& ps, core::AABB const& region, PeriodicFrame const& frame,
-             std::vector<Contact>& out, DetectorStats& stats)
-        : m_ps(ps)
-        , m_region(region)
-        , m_frame(frame)
-        , m_period(frame.period())
-        , m_out(out)
-        , m_stats(stats) {}
-
-    /// Tests candidate copies a and b (any order) and appends their contact if this block
-    /// evaluates it.
-    void operator()(Index a, Index b) {
-        ParticleStorage const& ps = m_ps;
-        if (ps.uid(a) == ps.uid(b))
-            return; // a grain and its own periodic image
-        Index const i = ps.uid(a) < ps.uid(b) ? a : b;
-        Index const j = i == a ? b : a;
-        CopyImage const& ki = ps.image(i);
-        core::Vec3 const shiftJ = imageOffset(imageDifference(ps.image(j), ki), m_period);
-        core::Vec3 const& xi = ps.position(i);
-        // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
-        core::Vec3 const xj = ps.position(j) + shiftJ;
-        double const ri = ps.radius(i), rj = ps.radius(j);
-        core::Vec3 const d = xj - xi;
-        double const dist = d.norm();
-        if (!(dist < ri + rj))
-            return;
-        ++m_stats.overlapsFound;
-        if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
-            return;
-        // Coincident centres have no direction; any unit normal is as good, this one is fixed.
-        core::Vec3 const n = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
-        double const delta = ri + rj - dist;
-        core::Vec3 const p = xi + (ri - 0.5 * delta) * n;
-
-        // p = x_i + (r_i - delta/2) n lies at distance |r_i - delta/2| from x_i and
-        // |r_j - delta/2| from x_j along the normal: strictly inside both balls unless one has
-        // swallowed the other's centre (no square roots needed).
-        core::Vec3 q = p;
-        if (!(std::abs(ri - 0.5 * delta) < ri && std::abs(rj - 0.5 * delta) < rj))
-            q = ri < rj ? xi : xj; // a swallowed centre: the smaller sphere's (ties: j)
-        auto const [w, o] = m_frame.wrap(q);
-        for (std::size_t ax = 0; ax < 3; ++ax)
-            if (ki[ax] != -o[ax])
-                return; // another image instance of this pair (or another block) evaluates it
-        if (m_region.contains(w))
-            m_out.push_back(Contact{i, j, p, n, delta, shiftJ});
-    }
-
-private:
-    ParticleStorage const& m_ps;
-    core::AABB const& m_region;
-    PeriodicFrame const& m_frame;
-    core::Vec3 m_period;
-    std::vector<Contact>& m_out;
-    DetectorStats& m_stats;
-};
+using detection_detail::imageDifference;
+using detection_detail::PairRule;
 
 core::AABB everywhere() {
     double const inf = std::numeric_limits<double>::infinity();
@@ -200,9 +128,10 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
         return;
     }
     std::span<core::Vec3 const> const positions = bin(ps, frame, 0.0);
-    PairRule rule(ps, region, frame, out.pairs, m_stats);
-    m_cells.forEachOverlap(rule);
-    largePass(positions, ps, m_stats.slack, rule);
+    PairRule const rule(ps, region, frame, m_stats);
+    auto emit = [&](std::size_t a, std::size_t b) { rule(a, b, out.pairs); };
+    m_cells.forEachOverlap(emit);
+    largePass(positions, ps, m_stats.slack, emit);
     wallPass(ps, walls, out);
 
     if (m_config.sortByUid)
@@ -211,41 +140,75 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
 
 void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::AABB const& region,
                              PeriodicFrame const& frame, ContactList& out) {
-    if (!(m_config.skin > 0.0) && !(m_config.relativeSkin > 0.0)) {
+    if (!listed()) {
         detect(std::as_const(ps), walls, region, frame, out);
         return;
     }
     out.clear();
-    bool rebuild = !m_list.follow(ps, m_fresh) ||
-                   m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
-                   m_list.movedTooFar(ps) || !addArrivals(ps, frame);
-    if (rebuild)
-        rebuildList(ps, frame);
-    m_stats.rebuilt = rebuild;
-    m_stats.arrivals = rebuild ? 0 : m_fresh.size();
-    m_stats.overlapsFound = 0;
-    m_stats.listedPairs = m_list.numPairs();
-
-    PairRule rule(ps, region, frame, out.pairs, m_stats);
-    core::Vec3 const period = frame.period();
-    double const slack = m_stats.slack;
-    auto const& x = ps.positions();
-    m_list.forEachPair([&](std::size_t a, std::size_t b) {
-        // A cheap rejection first (most listed pairs are apart), generous by the slack: the
-        // rule decides exactly.
-        core::Vec3 d = x[b] - x[a];
-        if (ps.image(a) != ps.image(b))
-            d += imageOffset(imageDifference(ps.image(b), ps.image(a)), period);
-        double const reach = ps.radius(a) + ps.radius(b) + slack;
-        if (d.squaredNorm() < reach * reach)
-            rule(a, b);
-    });
+    updateList(ps, region, frame);
+    listedPass(
+        ps, region, frame, out, [](Contact const&, std::uint8_t&) {}, true);
     wallPass(ps, walls, out);
     if (m_config.sortByUid)
         sortByUid(ps, out);
 }
 
-void ContactDetector::rebuildList(ParticleStorage& ps, PeriodicFrame const& frame) {
+void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
+                                 PeriodicFrame const& frame) {
+    // The settled pairs (classifyListed) hold for one region and frame only.
+    bool const sameFrame = region.min == m_listRegion.min && region.max == m_listRegion.max &&
+                           frame.domain.min == m_listFrame.domain.min &&
+                           frame.domain.max == m_listFrame.domain.max &&
+                           frame.periodic == m_listFrame.periodic;
+    bool rebuild = !sameFrame || !m_list.follow(ps, m_fresh) ||
+                   m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
+                   m_list.movedTooFar(ps) || !addArrivals(ps, region, frame);
+    if (rebuild)
+        rebuildList(ps, region, frame);
+    m_stats.rebuilt = rebuild;
+    m_stats.arrivals = rebuild ? 0 : m_fresh.size();
+    m_stats.overlapsFound = 0;
+    m_stats.listedPairs = m_list.numPairs();
+    m_stats.settledPairs = m_list.numOwned();
+}
+
+void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
+                                     PeriodicFrame const& frame, std::size_t first) {
+    core::Vec3 const period = frame.period();
+    // 4 x the candidate slack (64 ulps of the coordinate scale) covers the rounding of the
+    // midpoint, the ownership point and the wrap, which are a few ulps of the same numbers.
+    double const rounding = 4.0 * m_stats.slack;
+    m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
+        std::size_t ka = m_list.indexOf(a), kb = m_list.indexOf(b);
+        if (ps.uid(ka) == ps.uid(kb))
+            return VerletList::kDrop; // a grain and its own periodic image: never a contact
+        if (ps.uid(kb) < ps.uid(ka)) {
+            std::swap(a, b);
+            std::swap(ka, kb);
+        }
+        if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
+            return static_cast<int>(PairMode::Check); // rare: the rule skips them
+        core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
+                                      localPosition(m_list.reference(b), ps.image(kb), period));
+        double const ri = ps.radius(ka), rj = ps.radius(kb);
+        double const reach =
+            ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
+        switch (settleOwnership(mid, reach, region, frame)) {
+        case Settled::Never:
+            return VerletList::kDrop;
+        case Settled::Always:
+            return static_cast<int>(PairMode::Owned);
+        case Settled::Open:
+            break;
+        }
+        return static_cast<int>(PairMode::Check);
+    });
+}
+
+void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
+                                  PeriodicFrame const& frame) {
+    m_listRegion = region;
+    m_listFrame = frame;
     m_largeIds.clear();
     if (ps.empty()) {
         m_stats = DetectorStats{};
@@ -268,10 +231,13 @@ void ContactDetector::rebuildList(ParticleStorage& ps, PeriodicFrame const& fram
     });
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
+    classifyListed(ps, region, frame, 0);
 }
 
-bool ContactDetector::addArrivals(ParticleStorage const& ps, PeriodicFrame const& frame) {
+bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& region,
+                                  PeriodicFrame const& frame) {
     core::Vec3 const period = frame.period();
+    std::size_t const firstPair = m_list.numPairs();
     double const reachSlack = m_stats.slack + m_listSkin;
     auto const arrivals = m_list.arrivals();
     std::size_t const firstNew = arrivals.size() - m_fresh.size();
@@ -304,6 +270,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, PeriodicFrame const
         for (std::size_t e = 0; e < firstNew + n; ++e)
             test(arrivals[e]);
     }
+    classifyListed(ps, region, frame, firstPair);
     return true;
 }
 

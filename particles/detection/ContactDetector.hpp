@@ -3,58 +3,21 @@
 /// cells sized for the small grains, plus a separate pass for the few large ones.
 #include "core/math/AABB.hpp"
 #include "particles/detection/Contact.hpp"
+#include "particles/detection/DetectorConfig.hpp"
 #include "particles/detection/LinkedCells.hpp"
+#include "particles/detection/PairOwnership.hpp"
+#include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
 #include "particles/detection/VerletList.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
 namespace regolith::particles {
-
-struct DetectorConfig {
-    /// Verlet skin [length]: with skin > 0 (or relativeSkin > 0), detect() on a mutable
-    /// storage keeps a neighbour list of the pairs closer than r_a + r_b + skin and reuses it
-    /// until some copy moved skin / 2 (see ContactDetector). 0: linked cells every call.
-    double skin = 0.0;
-    /// If skin is 0: skin = relativeSkin * (the largest small radius) at every rebuild.
-    double relativeSkin = 0.0;
-    /// Spheres with a radius above this go to the large pass [length]; 0 = automatic:
-    /// `largeFactor` times the median radius of the block's spheres.
-    double largeRadius = 0.0;
-    double largeFactor = 2.0;
-    /// The cell grid has at most this many cells per small sphere (the edge grows otherwise).
-    std::size_t maxCellsPerSphere = 8;
-    /// Sort the output by (uid_i, uid_j, image(j) - image(i)) and (uid, wall), so that forces
-    /// are summed in an order independent of storage order (reproducible mode). Costs
-    /// O(C log C).
-    bool sortByUid = false;
-};
-
-/// What the last `detect` call did (for tests and benchmarks).
-struct DetectorStats {
-    std::size_t smallSpheres = 0;
-    std::size_t largeSpheres = 0;
-    double largeThreshold = 0.0; ///< radius above which a sphere was large
-    double cellEdge = 0.0;
-    std::size_t cells = 0;
-    std::size_t largeCellVisits = 0; ///< cells visited by the large pass in total
-    std::size_t largeCandidates = 0; ///< sphere pairs the large pass tested
-    /// Overlaps (Fixed pairs too) before the ownership rule, every image instance counted.
-    std::size_t overlapsFound = 0;
-    /// Spread of the candidate tests beyond r_a + r_b, against rounding of local positions.
-    double slack = 0.0;
-    /// Verlet list (mutable detect with a skin): the skin of the last rebuild, whether this
-    /// call rebuilt, the pairs listed, the copies that arrived since the last rebuild and
-    /// were added to the list in this call.
-    double skin = 0.0;
-    bool rebuilt = false;
-    std::size_t listedPairs = 0;
-    std::size_t arrivals = 0;
-};
 
 /// A region "this block evaluates contacts whose ownership point lies in [min, max)" that
 /// contains every point: for a single block.
@@ -115,6 +78,18 @@ core::AABB everywhere();
 /// (plus 64), or when an arrival lies beyond the coordinate scale of the last rebuild (its
 /// rounding slack).
 ///
+/// Settled pairs and the fused loop. When a pair is listed (rebuild or arrival), the detector
+/// decides once what the contact-point rule will answer for it while the list holds
+/// (PairOwnership.hpp: the ownership point stays within skin/2 + |r_i - r_j|/2 of the pair's
+/// reference midpoint): pairs some other block or image instance evaluates are dropped, pairs
+/// this block evaluates whenever they overlap are stored in canonical order (PairMode::Owned),
+/// and only pairs near a block or domain face keep the rule (PairMode::Check). Per step a
+/// listed pair then costs the canonical distance test (PairRule.hpp's overlapGeometry, the
+/// same bits as the rule's) and, with the callback overload of detect, its evaluation right
+/// away, with the history slot hint kept beside the pair (LAMMPS's half list with shear
+/// history beside each pair does the same in one loop). The contacts are the same set as the
+/// full rule finds (tests/particles/VerletListTest.cpp).
+///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
 /// zero), which exists in exactly one block. (The contact point lies behind the wall, outside
@@ -136,6 +111,18 @@ public:
     /// it. Without a skin, as the const overload.
     void detect(ParticleStorage& particles, WallList const& walls,
                 core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out);
+    /// The mutable detect that also hands every pair contact it emits to `onPair(contact,
+    /// hint)` at once (before the wall pass), `hint` being the pair's history slot hint
+    /// (std::uint8_t&, for ContactHistory::touch) kept beside it in the Verlet list, so that
+    /// detection and evaluation are one loop. The pair contacts are appended to `out` as well
+    /// unless `keepPairs` is false (then out.pairs may stay empty: writing 96 bytes per
+    /// contact and step is a tenth of the static lattice's CPU time); the wall contacts always
+    /// are. Without a list (no skin) or with sortByUid, the contacts are handed over after the
+    /// sort, in `out`'s order, with a fresh hint. Not collective.
+    template <class OnPair>
+    void detect(ParticleStorage& particles, WallList const& walls,
+                core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out,
+                OnPair&& onPair, bool keepPairs = true);
     /// The same without periodicity (default PeriodicFrame).
     void detect(ParticleStorage const& particles, WallList const& walls,
                 core::AABB const& evaluationRegion, ContactList& out) {
@@ -159,7 +146,18 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
-    class PairRule;
+    [[nodiscard]] bool listed() const { return m_config.skin > 0.0 || m_config.relativeSkin > 0.0; }
+    /// Follows the storage's changes, adds the arrivals' pairs or rebuilds the list.
+    void updateList(ParticleStorage& particles, core::AABB const& region,
+                    PeriodicFrame const& frame);
+    /// Settles the listed pairs from the `first`-th on (see the class comment).
+    void classifyListed(ParticleStorage const& particles, core::AABB const& region,
+                        PeriodicFrame const& frame, std::size_t first);
+    /// The per-step loop over the listed pairs: appends the contacts this block evaluates to
+    /// `out` and calls onPair on each.
+    template <class OnPair>
+    void listedPass(ParticleStorage const& particles, core::AABB const& region,
+                    PeriodicFrame const& frame, ContactList& out, OnPair&& onPair, bool keepPairs);
 
     double largeThreshold(ParticleStorage const& particles);
     /// The positions binning uses: ps.positions() or m_local. Fills m_small, m_large, stats.
@@ -173,9 +171,11 @@ private:
     template <class F>
     void largePass(std::span<core::Vec3 const> positions, ParticleStorage const& particles,
                    double reachSlack, F&& f);
-    void rebuildList(ParticleStorage& particles, PeriodicFrame const& frame);
+    void rebuildList(ParticleStorage& particles, core::AABB const& region,
+                     PeriodicFrame const& frame);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
-    bool addArrivals(ParticleStorage const& particles, PeriodicFrame const& frame);
+    bool addArrivals(ParticleStorage const& particles, core::AABB const& region,
+                     PeriodicFrame const& frame);
     void wallPass(ParticleStorage const& particles, WallList const& walls, ContactList& out);
     void sortByUid(ParticleStorage const& particles, ContactList& out) const;
 
@@ -191,6 +191,61 @@ private:
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
     double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
+    core::AABB m_listRegion;   ///< the region the list's pairs were settled for
+    PeriodicFrame m_listFrame; ///< and the frame
 };
+
+// ---- templates ------------------------------------------------------------------------------
+
+template <class OnPair>
+void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::AABB const& region,
+                             PeriodicFrame const& frame, ContactList& out, OnPair&& onPair,
+                             bool keepPairs) {
+    if (!listed() || m_config.sortByUid) {
+        detect(ps, walls, region, frame, out);
+        for (Contact const& c : out.pairs) {
+            std::uint8_t hint = 0;
+            onPair(c, hint);
+        }
+        return;
+    }
+    out.clear();
+    updateList(ps, region, frame);
+    listedPass(ps, region, frame, out, onPair, keepPairs);
+    wallPass(ps, walls, out);
+}
+
+template <class OnPair>
+void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& region,
+                                 PeriodicFrame const& frame, ContactList& out, OnPair&& onPair,
+                                 bool keepPairs) {
+    detection_detail::PairRule const rule(ps, region, frame, m_stats);
+    core::Vec3 const& period = rule.period();
+    double const slack = m_stats.slack;
+    auto const& x = ps.positions();
+    std::size_t overlaps = 0;
+    Contact c;
+    m_list.forEachPair([&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
+        if (mode == PairMode::Owned) {
+            if (!detection_detail::overlapGeometry(ps, a, b, period, c))
+                return;
+            ++overlaps;
+        } else {
+            // A cheap rejection first (most listed pairs are apart), generous by the slack:
+            // the rule decides exactly.
+            core::Vec3 d = x[b] - x[a];
+            if (ps.image(a) != ps.image(b))
+                d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a)),
+                                 period);
+            double const reach = ps.radius(a) + ps.radius(b) + slack;
+            if (!(d.squaredNorm() < reach * reach) || !rule(a, b, c))
+                return;
+        }
+        if (keepPairs)
+            out.pairs.push_back(c);
+        onPair(c, hint);
+    });
+    m_stats.overlapsFound += overlaps;
+}
 
 } // namespace regolith::particles

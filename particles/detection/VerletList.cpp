@@ -14,6 +14,9 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_skin = skin;
     m_built = ps.size();
     m_pairs.clear();
+    m_owned = 0;
+    m_mode.clear();
+    m_hint.clear();
     m_arrivals.clear();
     m_indexOf.resize(m_built);
     for (std::size_t k = 0; k < m_built; ++k)
@@ -64,7 +67,8 @@ bool VerletList::movedTooFar(ParticleStorage const& ps) const {
 }
 
 std::size_t VerletList::bytes() const {
-    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_indexOf.capacity() * sizeof(std::uint32_t) +
+    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
+           m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(core::Vec3) + m_arrivals.capacity() * sizeof(Id);
 }
 

@@ -19,6 +19,12 @@
 /// reference position (movedTooFar), every pair that overlaps now is therefore in the list.
 /// A copy's image never changes under one id (setImage makes it fresh), so canonical
 /// displacements equal local ones.
+///
+/// Beside each pair the list keeps what its user decided once for the pair's life (a
+/// PairMode, see ContactDetector: whether the contact-point rule must run every step) and a
+/// one-byte hint where the pair's tangential spring sat in its owner's ContactHistory last
+/// time (ContactHistory::touch with a hint), so that the per-step loop neither repeats the
+/// rule nor searches the history.
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
@@ -31,10 +37,21 @@
 
 namespace regolith::particles {
 
+/// What the per-step loop does with a listed pair.
+enum class PairMode : std::uint8_t {
+    /// Run the full contact-point rule (the pair may change hands before the next rebuild).
+    Check = 0,
+    /// Stored in canonical order (uid(first) < uid(second)); whenever the two overlap, this
+    /// block evaluates them (decided at listing time for the list's life).
+    Owned = 1,
+};
+
 class VerletList {
 public:
     using Id = std::uint32_t;
     static constexpr std::uint32_t kDead = std::numeric_limits<std::uint32_t>::max();
+    /// Returned by a classifier (classifyFrom) to drop a pair from the list.
+    static constexpr int kDrop = -1;
 
     /// Starts a new, empty list over `ps` as it is now: id = index for every copy, reference
     /// positions = current positions. The caller adds the pairs (addPair, ids = indices).
@@ -42,7 +59,33 @@ public:
     /// Forgets the list: the next follow() returns false.
     void invalidate() { m_storage = nullptr; }
 
-    void addPair(Id a, Id b) { m_pairs.push_back({a, b}); }
+    /// Adds a pair in mode Check (any order).
+    void addPair(Id a, Id b) {
+        m_pairs.push_back({a, b});
+        m_mode.push_back(PairMode::Check);
+        m_hint.push_back(0);
+    }
+    /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
+    /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or drops it
+    /// (kDrop), preserving order.
+    template <class D>
+    void classifyFrom(std::size_t first, D&& decide) {
+        std::size_t out = first;
+        for (std::size_t p = first; p < m_pairs.size(); ++p) {
+            auto pair = m_pairs[p];
+            int const mode = decide(pair[0], pair[1]);
+            if (mode == kDrop)
+                continue;
+            m_pairs[out] = pair;
+            m_mode[out] = static_cast<PairMode>(mode);
+            m_owned += mode == static_cast<int>(PairMode::Owned) ? 1 : 0;
+            m_hint[out] = 0;
+            ++out;
+        }
+        m_pairs.resize(out);
+        m_mode.resize(out);
+        m_hint.resize(out);
+    }
 
     /// Catches up with the storage's changes since the last restart or follow (see the class
     /// comment). Returns false if the list cannot follow: never restarted, another storage
@@ -68,17 +111,21 @@ public:
     [[nodiscard]] std::size_t builtSize() const { return m_built; }
     [[nodiscard]] double skin() const { return m_skin; }
 
-    /// Calls f(a, b) with the storage indices of every pair whose two copies are alive, in
-    /// the order the pairs were added.
+    /// Calls f(a, b, mode, hint) with the storage indices of every pair whose two copies are
+    /// alive, its mode, and its history hint (a std::uint8_t& the callee may update), in the
+    /// order the pairs were added.
     template <class F>
-    void forEachPair(F&& f) const {
-        for (auto const& [ia, ib] : m_pairs) {
-            std::uint32_t const a = m_indexOf[ia], b = m_indexOf[ib];
+    void forEachPair(F&& f) {
+        std::size_t const n = m_pairs.size();
+        for (std::size_t p = 0; p < n; ++p) {
+            std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
             if (a != kDead && b != kDead)
-                f(std::size_t{a}, std::size_t{b});
+                f(std::size_t{a}, std::size_t{b}, m_mode[p], m_hint[p]);
         }
     }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
+    /// Pairs classified PairMode::Owned since the last restart.
+    [[nodiscard]] std::size_t numOwned() const { return m_owned; }
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const;
 
@@ -87,7 +134,10 @@ private:
     std::uint64_t m_session = 0;
     double m_skin = 0.0;
     std::size_t m_built = 0;
+    std::size_t m_owned = 0;
     std::vector<std::array<Id, 2>> m_pairs;
+    std::vector<PairMode> m_mode;         ///< per pair
+    std::vector<std::uint8_t> m_hint;     ///< per pair: history slot of its spring, last time
     std::vector<std::uint32_t> m_indexOf; ///< per id
     std::vector<core::Vec3> m_reference;  ///< per id
     std::vector<Id> m_arrivals;

@@ -7,8 +7,16 @@
 namespace regolith::particles {
 
 struct VelocityVerlet {
+    /// Integrate the orientation quaternions (the default). A sphere's orientation enters no
+    /// force, no contact and no other grain's motion; it is output only (checkpoints, the state
+    /// checksum). A run whose output needs no orientation may switch it off (scene key
+    /// time.orientation = false): the orientations then stay as they were, every other bit of
+    /// the trajectory is the same, and the update costs no quaternion product per grain and
+    /// step (LAMMPS's fix nve/sphere keeps no orientation at all).
+    bool orientation = true;
+
     /// Half kick with the old forces, then drift: v += dt/2 (F/m + g); x += dt v;
-    /// omega += dt/2 tau / I; q rotated by omega dt.
+    /// omega += dt/2 tau / I; q rotated by omega dt (if `orientation`).
     void preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
     /// Second half kick with the new forces: v += dt/2 (F/m + g); omega += dt/2 tau / I.
     void postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;

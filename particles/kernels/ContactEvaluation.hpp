@@ -36,27 +36,29 @@ concept ContactSink = requires(S& s, std::size_t copy, Uid partner, core::Vec3 c
     s(copy, partner, f, t);
 };
 
-/// The per-contact code both evaluations share: evaluates every contact of `contacts` with
-/// `model` and hands each participant's force and torque to `sink` -- for a pair first j's
-/// (partner uid(i)), then i's (partner uid(j)); for a wall contact the sphere's (partner the
-/// wall's uid) -- and subtracts the sphere's force from `walls.force`. A pair's tangential
-/// spring is the history entry on i keyed by uid(j); a wall contact's is on the sphere keyed by
-/// the wall's uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps, stamp)`
-/// afterwards drops the contacts that broke. Torques use the lever arms point - x_i and
-/// point - partnerCentre(j): the same bits whichever block (image) evaluates. Not collective.
+/// One pair contact of evaluateContactsWith: its spring is the history entry on i keyed by
+/// uid(j), stamped `stamp` (found through `hint`, see ContactHistory::touch); `sink` receives
+/// j's share (partner uid(i)), then i's (partner uid(j)). Torques use the lever arms
+/// point - x_i and point - partnerCentre(j): the same bits whichever block (image) evaluates.
+/// The fused Verlet loop (ContactDetector::detect with a callback) calls this as soon as it
+/// finds the contact. Not collective.
 template <ContactModel M, ContactSink S>
-void evaluateContactsWith(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
-                          M const& model, double dt, std::uint32_t stamp, S&& sink) {
-    for (Contact const& c : contacts.pairs) {
-        ContactState const s = pairState(ps, c);
-        core::Vec3& spring = ps.history(c.i).touch(ps.uid(c.j), stamp).spring;
-        ContactResponse const r = model(s, spring, dt);
-        core::Vec3 const torqueJ = (c.point - partnerCentre(ps, c)).cross(r.force) + r.torque;
-        core::Vec3 const torqueI = (c.point - ps.position(c.i)).cross(r.force) + r.torque;
-        sink(c.j, ps.uid(c.i), r.force, torqueJ);
-        sink(c.i, ps.uid(c.j), core::Vec3(-r.force), core::Vec3(-torqueI));
-    }
-    for (WallContact const& c : contacts.walls) {
+void evaluatePair(ParticleStorage& ps, Contact const& c, M const& model, double dt,
+                  std::uint32_t stamp, std::uint8_t& hint, S&& sink) {
+    ContactState const s = pairState(ps, c);
+    core::Vec3& spring = ps.history(c.i).touch(ps.uid(c.j), stamp, hint).spring;
+    ContactResponse const r = model(s, spring, dt);
+    core::Vec3 const torqueJ = (c.point - partnerCentre(ps, c)).cross(r.force) + r.torque;
+    core::Vec3 const torqueI = (c.point - ps.position(c.i)).cross(r.force) + r.torque;
+    sink(c.j, ps.uid(c.i), r.force, torqueJ);
+    sink(c.i, ps.uid(c.j), core::Vec3(-r.force), core::Vec3(-torqueI));
+}
+
+/// The sphere-wall half of evaluateContactsWith. Not collective.
+template <ContactModel M, ContactSink S>
+void evaluateWallsWith(ParticleStorage& ps, WallList& walls, std::vector<WallContact> const& list,
+                       M const& model, double dt, std::uint32_t stamp, S&& sink) {
+    for (WallContact const& c : list) {
         ContactState const s = wallState(ps, walls, c);
         Uid const wall = walls[c.wall].uid;
         core::Vec3& spring = ps.history(c.particle).touch(wall, stamp).spring;
@@ -65,6 +67,23 @@ void evaluateContactsWith(ParticleStorage& ps, WallList& walls, ContactList cons
              core::Vec3((c.point - ps.position(c.particle)).cross(r.force) + r.torque));
         walls.force(c.wall) -= r.force;
     }
+}
+
+/// The per-contact code both evaluations share: evaluates every contact of `contacts` with
+/// `model` and hands each participant's force and torque to `sink` -- for a pair first j's
+/// (partner uid(i)), then i's (partner uid(j)); for a wall contact the sphere's (partner the
+/// wall's uid) -- and subtracts the sphere's force from `walls.force`. A pair's tangential
+/// spring is the history entry on i keyed by uid(j); a wall contact's is on the sphere keyed by
+/// the wall's uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps, stamp)`
+/// afterwards drops the contacts that broke. Not collective.
+template <ContactModel M, ContactSink S>
+void evaluateContactsWith(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
+                          M const& model, double dt, std::uint32_t stamp, S&& sink) {
+    for (Contact const& c : contacts.pairs) {
+        std::uint8_t hint = 0;
+        evaluatePair(ps, c, model, dt, stamp, hint, sink);
+    }
+    evaluateWallsWith(ps, walls, contacts.walls, model, dt, stamp, sink);
 }
 
 /// Evaluates `contacts` (see evaluateContactsWith) and adds the forces and torques to

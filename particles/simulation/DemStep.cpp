@@ -106,6 +106,7 @@ void DemStep::syncParticles() {
 
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
+    bool const keepPairs = m_config.keepContacts || stamp == 0;
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();
@@ -118,14 +119,40 @@ void DemStep::computeForces(std::uint32_t stamp) {
             // (DESIGN.md: exactly one block per contact). Walls are global: every block tests
             // its copies against all of them, and the detector keeps a sphere-wall contact
             // only for the sphere's master, so it too is evaluated once.
-            m_detectors[b].detect(ps, m_walls, blocks[b].block->aabb, m_frame, m_contacts[b]);
+            // Detection and evaluation in one loop over the Verlet list: each contact is
+            // evaluated as soon as it is found, its history slot hint kept beside the pair.
+            // Same contacts, same order, same arithmetic as detecting first: same bits.
             std::visit(
                 [&](auto const& model) {
-                    if (reproducible)
-                        evaluateContactsRecorded(ps, m_walls, m_contacts[b], model, m_config.dt,
-                                                 stamp, m_records[b]);
-                    else
-                        evaluateContacts(ps, m_walls, m_contacts[b], model, m_config.dt, stamp);
+                    double const dt = m_config.dt;
+                    core::AABB const& box = blocks[b].block->aabb;
+                    if (reproducible) {
+                        std::vector<ForceRecord>& out = m_records[b];
+                        auto sink = [&out](std::size_t k, Uid partner, core::Vec3 const& f,
+                                           core::Vec3 const& tq) {
+                            out.push_back(ForceRecord{k, partner, f, tq});
+                        };
+                        m_detectors[b].detect(
+                            ps, m_walls, box, m_frame, m_contacts[b],
+                            [&](Contact const& c, std::uint8_t& hint) {
+                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
+                            },
+                            keepPairs);
+                        evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
+                    } else {
+                        auto sink = [&ps](std::size_t k, Uid, core::Vec3 const& f,
+                                          core::Vec3 const& tq) {
+                            ps.force(k) += f;
+                            ps.torque(k) += tq;
+                        };
+                        m_detectors[b].detect(
+                            ps, m_walls, box, m_frame, m_contacts[b],
+                            [&](Contact const& c, std::uint8_t& hint) {
+                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
+                            },
+                            keepPairs);
+                        evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
+                    }
                 },
                 m_model);
         }

@@ -45,6 +45,10 @@ struct DemStepConfig {
     /// debugging aid (it gathers every copy on rank 0); on by default in builds with
     /// REGOLITH_CHECK_INVARIANTS.
     bool checkInvariants = kCheckSyncInvariants;
+    /// Keep every step's contacts for contacts(). false: contacts() holds the wall contacts of
+    /// the last force computation and the pair contacts of the set-up's only (stamp 0, what
+    /// the driver checks), which saves writing every pair contact (96 bytes) each step.
+    bool keepContacts = true;
 };
 
 /// One DEM run's time stepping over the blocks of `LocalParticles`. It holds one contact
@@ -137,7 +141,8 @@ public:
     [[nodiscard]] std::uint64_t leftDomain() const { return m_leftDomain; }
     /// The contacts each local block evaluated in the last force computation (indices into
     /// that block's storage; valid until the next synchronisation), in the order of
-    /// LocalParticles::blocks().
+    /// LocalParticles::blocks(). With DemStepConfig::keepContacts false, the pair contacts
+    /// are those of setUp() only (empty after a step).
     [[nodiscard]] std::span<ContactList const> contacts() const { return m_contacts; }
     [[nodiscard]] WallList const& walls() const { return m_walls; }
     [[nodiscard]] DemStepConfig const& config() const { return m_config; }

@@ -28,6 +28,14 @@ HistoryEntry& ContactHistory::touch(Uid partner, std::uint32_t stamp) {
     return *it;
 }
 
+HistoryEntry& ContactHistory::touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
+    HistoryEntry& e = touch(partner, stamp);
+    auto const slot = static_cast<std::size_t>(&e - m_entries.data());
+    // Beyond 255 entries the hint saturates and always misses (then touch() searches).
+    hint = static_cast<std::uint8_t>(std::min<std::size_t>(slot, 255));
+    return e;
+}
+
 void ContactHistory::set(HistoryEntry const& entry) {
     auto it = std::lower_bound(m_entries.begin(), m_entries.end(), entry.partner, byPartner);
     if (it != m_entries.end() && it->partner == entry.partner)

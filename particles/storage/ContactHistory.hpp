@@ -33,6 +33,16 @@ public:
     [[nodiscard]] HistoryEntry* find(Uid partner);
     /// The entry for `partner` (created with a zero spring if absent), stamped with `stamp`.
     HistoryEntry& touch(Uid partner, std::uint32_t stamp);
+    /// touch() that first tries slot `hint` (where the entry sat last time, e.g. kept by a
+    /// neighbour list beside the pair) and updates it: no search while the partners of this
+    /// particle stay the same. A wrong hint only costs the search.
+    HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
+        if (hint < m_entries.size() && m_entries[hint].partner == partner) [[likely]] {
+            m_entries[hint].stamp = stamp;
+            return m_entries[hint];
+        }
+        return touchSlow(partner, stamp, hint);
+    }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
     /// Removes the entry for `partner`; returns whether there was one.
@@ -57,6 +67,7 @@ public:
 
 private:
     std::size_t keepOnlySlow(std::uint32_t stamp);
+    HistoryEntry& touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint);
 
     std::vector<HistoryEntry> m_entries;
 };

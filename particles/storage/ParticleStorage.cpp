@@ -171,6 +171,8 @@ void ParticleStorage::setMass(Index i, double mass) {
 
 void ParticleStorage::setFlags(Index i, Flags flags) {
     bool const fixedChanged = flags.isFixed() != m_flags[i].isFixed();
+    if (tracing() && fixedChanged)
+        m_traceBroken = true; // a neighbour list skips pairs of two Fixed copies
     m_flags[i] = flags;
     if (fixedChanged) // the sync sets flags every step; inverses depend only on Fixed
         updateInverses(i);

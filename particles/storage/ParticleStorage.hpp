@@ -165,8 +165,9 @@ public:
     /// Starts (or restarts) tracing: every copy gets tag = its index, the journal is emptied,
     /// and from now on every add, remove and setImage moves the tags with the copies (a copy
     /// added or re-keyed gets kUntraced) and appends the slots it wrote to the journal. A
-    /// permute, clear or radius change breaks the trace (traceBroken()): the follower must
-    /// start again. Returns a number that identifies this trace among all storages.
+    /// permute, clear, radius change or change of the Fixed flag breaks the trace (traceBroken()):
+    /// the follower must start again. Returns a number that identifies this trace among all
+    /// storages.
     std::uint64_t startTracing();
     [[nodiscard]] bool tracing() const { return m_traceSession != 0; }
     /// The identity of the running trace (0: none).

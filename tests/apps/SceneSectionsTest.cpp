@@ -114,6 +114,8 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(s.time.dt, 0.01);
     EXPECT_EQ(s.time.steps, 10);
     EXPECT_EQ(s.time.integrator, apps::Integrator::Verlet);
+    EXPECT_TRUE(s.time.orientation); // the default
+    EXPECT_FALSE(parse({"time.orientation=false"}).time.orientation);
     EXPECT_EQ(s.sync.method, particles::SyncMethod::ShadowOwner);
     EXPECT_FALSE(s.sync.reproducible); // the default
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
@@ -235,6 +237,9 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "\"verlet\", got \"leapfrog\"");
     EXPECT_EQ(errorWith("time.allow_unstable=1"),
               "--set time.allow_unstable=1: time.allow_unstable: expected a boolean, got 1 (an "
+              "integer)");
+    EXPECT_EQ(errorWith("time.orientation=0"),
+              "--set time.orientation=0: time.orientation: expected a boolean, got 0 (an "
               "integer)");
     EXPECT_EQ(errorWith("sync.method=sso"),
               "--set sync.method=sso: sync.method: expected one of \"nns\", \"sos\", \"hybrid\", "

@@ -87,6 +87,30 @@ TEST(Integration, RotationIsTheExactQuaternionOfOmegaDt) {
     EXPECT_NEAR(ps.angularVelocity(0).z(), 0.1 / (0.4 * 2.0 * 0.25), 1e-14);
 }
 
+TEST(Integration, WithoutOrientationOnlyTheQuaternionStays) {
+    // time.orientation = false: x, v and omega bit for bit as with the rotation, q untouched.
+    Vec3 const g(0, 0, -9.81);
+    auto run = [&](VelocityVerlet const& vv) {
+        ParticleStorage ps;
+        ps.add(sphere(1, Vec3(1, 2, 3), 0.5, 2.0, Vec3(0.5, -1, 4)));
+        ps.angularVelocity(0) = Vec3(0.3, -1.2, 2.0);
+        for (int k = 0; k < 100; ++k) {
+            vv.preForce(ps, 0.01, g);
+            ps.force(0) = Vec3(0.1 * k, -0.2, 0.3);
+            ps.torque(0) = Vec3(0.01, 0.02 * k, -0.03);
+            vv.postForce(ps, 0.01, g);
+        }
+        return ps;
+    };
+    ParticleStorage const with = run(VelocityVerlet{});
+    ParticleStorage const without = run(VelocityVerlet{.orientation = false});
+    EXPECT_EQ(with.position(0), without.position(0));
+    EXPECT_EQ(with.velocity(0), without.velocity(0));
+    EXPECT_EQ(with.angularVelocity(0), without.angularVelocity(0));
+    EXPECT_GT(with.orientation(0).angularDistance(regolith::core::Quat::Identity()), 0.1);
+    EXPECT_EQ(without.orientation(0).coeffs(), regolith::core::Quat::Identity().coeffs());
+}
+
 TEST(ContactEvaluation, ForcesOnBothPartnersIncludingShadows) {
     LinearContactParams p;
     p.stiffness = 1000.0;

@@ -69,6 +69,22 @@ TEST(ContactHistory, SortedByPartnerAndPrunedByStamp) {
     EXPECT_EQ(h.heapBytes(), 0U);
 }
 
+TEST(ContactHistory, TouchWithAHintFindsTheEntryWhereverTheHintPoints) {
+    ContactHistory h;
+    std::uint8_t hint20 = 0, hint30 = 7; // 7: beyond the end, a miss
+    h.touch(30, 1, hint30).spring = Vec3(3, 0, 0);
+    EXPECT_EQ(hint30, 0U);
+    h.touch(20, 1, hint20).spring = Vec3(2, 0, 0); // inserted before 30: hint30 is now stale
+    EXPECT_EQ(hint20, 0U);
+    EXPECT_EQ(h.touch(30, 2, hint30).spring.x(), 3.0); // stale hint: searched, and refreshed
+    EXPECT_EQ(hint30, 1U);
+    EXPECT_EQ(h.touch(30, 2, hint30).spring.x(), 3.0); // hit
+    EXPECT_EQ(h.find(30)->stamp, 2U);
+    EXPECT_EQ(h.touch(20, 2, hint20).spring.x(), 2.0);
+    EXPECT_EQ(h.size(), 2U);
+    EXPECT_EQ(h.keepOnly(2), 0U);
+}
+
 TEST(ParticleStorage, InversesFollowMassRadiusAndFixedFlag) {
     ParticleStorage ps;
     auto const i = ps.add(sphere(7, Vec3::Zero(), 0.5, 2.0));

@@ -132,11 +132,12 @@ struct RunResult {
     std::uint64_t steps = 0;
     std::uint64_t contactCalls = 0;
     std::uint64_t integrateCalls = 0;
+    std::size_t pairContactsListed = 0; ///< pair contacts in contacts() after the last step
 };
 
 /// Runs the scene on the ranks of `comm` with `spec`. COLLECTIVE.
 RunResult run(core::Comm const& comm, domain::ForestSpec const& spec, SyncConfig config,
-              int steps = kSteps) {
+              int steps = kSteps, bool keepContacts = true) {
     domain::BlockForest const forest(comm, spec);
     LocalParticles local(forest);
     for (ParticleInit const& p : grains())
@@ -147,12 +148,16 @@ RunResult run(core::Comm const& comm, domain::ForestSpec const& spec, SyncConfig
     c.dt = kDt;
     c.gravity = Vec3(0.0, 0.0, -2.0);
     c.checkInvariants = true; // after every sync: throws on every rank
+    c.keepContacts = keepContacts;
     DemStep dem(comm, sync, local, model(), VelocityVerlet{}, walls(), c, timers);
     RunResult r;
     try {
         dem.setUp();
-        for (int n = 0; n < steps; ++n)
+        for (int n = 0; n < steps; ++n) {
             dem.step();
+            for (ContactList const& list : dem.contacts())
+                r.pairContactsListed += list.pairs.size();
+        }
     } catch (core::Error const& e) {
         r.violation = e.what();
     }
@@ -241,6 +246,21 @@ TEST(DemStep, EveryMethodAndLayoutEqualsOneBlock) {
         refined.refine.push_back({core::AABB{Vec3(0.0, 0.0, 0.0), Vec3(4.0, 8.0, 4.0)}, 1});
         expectSameTrajectory(run(world, refined, config), reference);
     }
+}
+
+TEST(DemStep, NotKeepingContactsChangesNothingButTheList) {
+    // DemStepConfig::keepContacts = false (the driver's setting): the same bits, and no pair
+    // contacts listed after the steps (the reference scene has pair contacts to list).
+    core::Comm const world;
+    SyncConfig config;
+    config.reproducible = true;
+    RunResult const kept = run(world, boxSpec({2, 2, 2}), config);
+    RunResult const dropped = run(world, boxSpec({2, 2, 2}), config, kSteps, false);
+    expectSameTrajectory(dropped, serialReference());
+    expectSameTrajectory(kept, serialReference());
+    EXPECT_EQ(dropped.pairContactsListed, 0u);
+    EXPECT_GT(world.allReduce(static_cast<long long>(kept.pairContactsListed), core::ReduceOp::Sum),
+              0);
 }
 
 TEST(DemStep, GrainsLeavingAnOpenDomainAreCounted) {

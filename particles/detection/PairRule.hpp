@@ -1,0 +1,121 @@
+#pragma once
+/// The pair half of ContactDetector (see its class comment): the canonical geometry of two
+/// copies and the contact-point rule that decides which block (and which image instance of the
+/// pair) evaluates their contact. Inline, because the Verlet list's fused loop
+/// (ContactDetector::detect with a pair callback) runs the geometry once per listed pair and
+/// step, and must produce the same bits as the full rule.
+#include "core/math/AABB.hpp"
+#include "particles/detection/Contact.hpp"
+#include "particles/detection/DetectorConfig.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
+#include "particles/storage/ParticleStorage.hpp"
+
+#include <cmath>
+#include <cstddef>
+
+namespace regolith::particles::detection_detail {
+
+/// image(j) - image(i) per axis, unchecked (both are within +-kMaxImage, so it fits).
+[[nodiscard]] inline CopyImage imageDifference(CopyImage const& kj, CopyImage const& ki) {
+    CopyImage out{};
+    for (std::size_t a = 0; a < 3; ++a)
+        out[a] = static_cast<std::int8_t>(kj[a] - ki[a]);
+    return out;
+}
+
+/// The canonical geometry of copies i, j (uid(i) < uid(j)): if |x_j + shiftJ - x_i| < r_i +
+/// r_j, fills c (i, j, point, normal, penetration, shiftJ) and returns true. The one place these
+/// bits are computed, so that every path (full rule, fused Verlet loop) agrees.
+[[nodiscard]] inline bool overlapGeometry(ParticleStorage const& ps, std::size_t i, std::size_t j,
+                                          core::Vec3 const& period, Contact& c) {
+    core::Vec3 const shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
+    core::Vec3 const& xi = ps.position(i);
+    // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
+    core::Vec3 const xj = ps.position(j) + shiftJ;
+    double const ri = ps.radius(i), rj = ps.radius(j);
+    core::Vec3 const d = xj - xi;
+    double const d2 = d.squaredNorm();
+    double const reach = ri + rj;
+    // sqrt is correctly rounded and monotonic: beyond reach^2 (with room for the rounding of
+    // reach * reach) the distance cannot be below reach. Most listed pairs end here.
+    if (d2 > reach * reach * (1.0 + 1e-12))
+        return false;
+    double const dist = std::sqrt(d2);
+    if (!(dist < reach))
+        return false;
+    c.i = i;
+    c.j = j;
+    c.shiftJ = shiftJ;
+    // Coincident centres have no direction; any unit normal is as good, this one is fixed.
+    c.normal = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
+    c.penetration = reach - dist;
+    c.point = xi + (ri - 0.5 * c.penetration) * c.normal;
+    return true;
+}
+
+/// The full rule for one candidate pair of copies: canonical order, geometry, Fixed pairs,
+/// ownership point, periodic wrap and the evaluation region.
+class PairRule {
+public:
+    PairRule(ParticleStorage const& ps, core::AABB const& region, PeriodicFrame const& frame,
+             DetectorStats& stats)
+        : m_ps(ps)
+        , m_region(region)
+        , m_frame(frame)
+        , m_period(frame.period())
+        , m_stats(stats) {}
+
+    /// Tests candidate copies a and b (any order); true (and `c` filled) if this block
+    /// evaluates their contact.
+    bool operator()(std::size_t a, std::size_t b, Contact& c) const {
+        ParticleStorage const& ps = m_ps;
+        if (ps.uid(a) == ps.uid(b))
+            return false; // a grain and its own periodic image
+        std::size_t const i = ps.uid(a) < ps.uid(b) ? a : b;
+        std::size_t const j = i == a ? b : a;
+        if (!overlapGeometry(ps, i, j, m_period, c))
+            return false;
+        ++m_stats.overlapsFound;
+        if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
+            return false;
+        return owns(c);
+    }
+
+    /// Appends the contact of a and b to `out` if this block evaluates it.
+    void operator()(std::size_t a, std::size_t b, std::vector<Contact>& out) const {
+        Contact c;
+        if ((*this)(a, b, c))
+            out.push_back(c);
+    }
+
+    /// The contact-point rule for an overlapping pair.
+    [[nodiscard]] bool owns(Contact const& c) const {
+        ParticleStorage const& ps = m_ps;
+        double const ri = ps.radius(c.i), rj = ps.radius(c.j);
+        double const delta = c.penetration;
+        // p = x_i + (r_i - delta/2) n lies at distance |r_i - delta/2| from x_i and
+        // |r_j - delta/2| from x_j along the normal: strictly inside both balls unless one has
+        // swallowed the other's centre (no square roots needed).
+        core::Vec3 q = c.point;
+        if (!(std::abs(ri - 0.5 * delta) < ri && std::abs(rj - 0.5 * delta) < rj))
+            q = ri < rj ? ps.position(c.i) : core::Vec3(ps.position(c.j) + c.shiftJ);
+        auto const [w, o] = m_frame.wrap(q);
+        CopyImage const& ki = ps.image(c.i);
+        for (std::size_t ax = 0; ax < 3; ++ax)
+            if (ki[ax] != -o[ax])
+                return false; // another image instance of this pair (or another block)
+        return m_region.contains(w);
+    }
+
+    [[nodiscard]] core::Vec3 const& period() const { return m_period; }
+    [[nodiscard]] DetectorStats& stats() const { return m_stats; }
+
+private:
+    ParticleStorage const& m_ps;
+    core::AABB const& m_region;
+    PeriodicFrame const& m_frame;
+    core::Vec3 m_period;
+    DetectorStats& m_stats;
+};
+
+} // namespace regolith::particles::detection_detail
