@@ -1,6 +1,7 @@
 #include "particles/detection/VerletList.hpp"
 
 #include "core/Error.hpp"
+#include "core/memory/GentleGrowth.hpp"
 
 #include <cmath>
 
@@ -40,6 +41,8 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
                 return false; // out of ids: rebuild
             id = static_cast<Id>(m_indexOf.size());
             ps.setTraceTag(c.index, id);
+            core::reserveForAppend(m_indexOf); // per-copy arrays sized at restart: no doubling
+            core::reserveForAppend(m_reference);
             m_indexOf.push_back(kDead);
             m_reference.push_back(ps.position(c.index));
             m_arrivals.push_back(id);

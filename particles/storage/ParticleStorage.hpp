@@ -62,9 +62,9 @@ struct TraceChange {
 /// Invariants: `find(uid(i), image(i)) == i` for every index, (uid, image) keys are unique (a
 /// block that is its own periodic neighbour may hold one particle at several images); `invMass` and
 /// `invInertia` follow mass, radius and the Fixed flag (zero when fixed; a sphere's inertia
-/// is 2/5 m r^2). Adding is amortised O(1); removing is O(1) by moving the last particle into
-/// the freed slot, which changes that particle's index (never its uid). Indices are therefore
-/// only valid until the next removal.
+/// is 2/5 m r^2): they are computed from them on every call. Adding is amortised O(1); removing is
+/// O(1) by moving the last particle into the freed slot, which changes that particle's index (never
+/// its uid). Indices are therefore only valid until the next removal.
 class ParticleStorage {
 public:
     using Index = std::size_t;
@@ -111,12 +111,21 @@ public:
     [[nodiscard]] core::Vec3 const& torque(Index i) const { return m_torque[i]; }
     [[nodiscard]] double radius(Index i) const { return m_radius[i]; }
     [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
-    [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
-    /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
-    [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }
+    /// 1 / mass, 0 for a Fixed particle. Computed on use, not stored (16 bytes per copy
+    /// saved with invInertia): the same expression every time, so the same bits as a stored
+    /// value, and a division is cheap next to the memory traffic of another array.
+    [[nodiscard]] double invMass(Index i) const {
+        return m_flags[i].isFixed() ? 0.0 : 1.0 / m_mass[i];
+    }
+    /// Inverse of the (scalar) moment of inertia of the sphere about its centre,
+    /// 1 / (2/5 m r^2); 0 for a Fixed particle. Computed on use, like invMass.
+    [[nodiscard]] double invInertia(Index i) const {
+        double const r = m_radius[i];
+        return m_flags[i].isFixed() ? 0.0 : 1.0 / (0.4 * m_mass[i] * r * r);
+    }
     [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
     [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
-    [[nodiscard]] BlockRef owner(Index i) const { return m_owner[i]; }
+    [[nodiscard]] BlockRef owner(Index i) const { return m_owners[m_ownerSlot[i]]; }
     [[nodiscard]] CopyImage const& image(Index i) const { return m_image[i]; }
     [[nodiscard]] CopyKey key(Index i) const { return {m_uid[i], m_image[i]}; }
     /// Where the master knows its shadows to be (masters only; sorted, unique).
@@ -127,12 +136,12 @@ public:
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
 
-    /// Setters for properties that others depend on (inverse mass and inertia).
+    /// Setters (a radius change breaks a running trace, see startTracing).
     void setRadius(Index i, double radius);
     void setMass(Index i, double mass);
     void setFlags(Index i, Flags flags);
     void setType(Index i, std::uint32_t type) { m_type[i] = type; }
-    void setOwner(Index i, BlockRef owner) { m_owner[i] = owner; }
+    void setOwner(Index i, BlockRef owner) { m_ownerSlot[i] = ownerSlot(owner); }
     /// Re-keys copy i to `image`; throws core::Error if (uid, image) is held already.
     void setImage(Index i, CopyImage const& image);
 
@@ -183,9 +192,14 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
-    void updateInverses(Index i);
     template <class F>
     void forEachArray(F&& f);
+    /// Reads the key of a stored copy for m_index, which keeps no keys (see CopyIndex).
+    [[nodiscard]] auto keyAt() const {
+        return [this](std::uint32_t i) { return CopyKey{m_uid[i], m_image[i]}; };
+    }
+    /// The slot of `owner` in m_owners, appended if new.
+    [[nodiscard]] std::uint32_t ownerSlot(BlockRef const& owner);
 
     std::vector<Uid> m_uid;
     std::vector<core::Vec3> m_position;
@@ -196,11 +210,14 @@ private:
     std::vector<core::Vec3> m_torque;
     std::vector<double> m_radius;
     std::vector<double> m_mass;
-    std::vector<double> m_invMass;
-    std::vector<double> m_invInertia;
     std::vector<Flags> m_flags;
     std::vector<std::uint32_t> m_type;
-    std::vector<BlockRef> m_owner;
+    // The owner block of each copy as a 4-byte slot in a table of the distinct owners seen
+    // (12 bytes per copy less than a BlockRef): a block's copies have few owners, its own
+    // block and the neighbours whose grains reach it. The table only grows (until clear()).
+    std::vector<std::uint32_t> m_ownerSlot;
+    std::vector<BlockRef> m_owners;
+    std::uint32_t m_lastOwnerSlot = 0; ///< where the last look-up hit: most hit it again
     std::vector<CopyImage> m_image;
     std::vector<std::vector<CopyRef>> m_shadowHolders;
     std::vector<ContactHistory> m_history;
