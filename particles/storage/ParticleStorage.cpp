@@ -231,7 +231,7 @@ std::size_t ParticleStorage::bytes() const {
     add(m_traceTag);
     add(m_traceJournal);
     for (auto const& h : m_shadowHolders)
-        b += h.capacity() * sizeof(CopyRef);
+        b += h.heapBytes();
     for (auto const& h : m_history)
         b += h.heapBytes();
     b += m_index.bytes();

@@ -6,6 +6,7 @@
 #include "particles/storage/CopyImage.hpp"
 #include "particles/storage/CopyIndex.hpp"
 #include "particles/storage/ParticleFlags.hpp"
+#include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
 
 #include <cstddef>
@@ -33,6 +34,9 @@ struct CopyRef {
     friend bool operator==(CopyRef const&, CopyRef const&) = default;
     friend auto operator<=>(CopyRef const&, CopyRef const&) = default;
 };
+
+/// The shadow holders of a master: one pointer per copy, null while empty (ThinList).
+using HolderList = ThinList<CopyRef>;
 
 /// Everything needed to create a particle. Force, torque and history start empty.
 struct ParticleInit {
@@ -129,10 +133,8 @@ public:
     [[nodiscard]] CopyImage const& image(Index i) const { return m_image[i]; }
     [[nodiscard]] CopyKey key(Index i) const { return {m_uid[i], m_image[i]}; }
     /// Where the master knows its shadows to be (masters only; sorted, unique).
-    [[nodiscard]] std::vector<CopyRef>& shadowHolders(Index i) { return m_shadowHolders[i]; }
-    [[nodiscard]] std::vector<CopyRef> const& shadowHolders(Index i) const {
-        return m_shadowHolders[i];
-    }
+    [[nodiscard]] HolderList& shadowHolders(Index i) { return m_shadowHolders[i]; }
+    [[nodiscard]] HolderList const& shadowHolders(Index i) const { return m_shadowHolders[i]; }
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
 
@@ -219,7 +221,7 @@ private:
     std::vector<BlockRef> m_owners;
     std::uint32_t m_lastOwnerSlot = 0; ///< where the last look-up hit: most hit it again
     std::vector<CopyImage> m_image;
-    std::vector<std::vector<CopyRef>> m_shadowHolders;
+    std::vector<HolderList> m_shadowHolders;
     std::vector<ContactHistory> m_history;
     CopyIndex m_index;
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <vector>
@@ -81,6 +82,36 @@ TEST(StorageMemory, EmptyHistoriesHoldNoHeapAndCopiesAreDeep) {
     EXPECT_TRUE(c.erase(3)); // the last entry gone: the heap block too
     EXPECT_TRUE(c.empty());
     EXPECT_EQ(c.heapBytes(), 0U);
+}
+
+TEST(StorageMemory, HolderListsAreOnePointerAndBehaveLikeSortedVectors) {
+    static_assert(sizeof(HolderList) == sizeof(void*), "one pointer per copy");
+    HolderList h;
+    EXPECT_TRUE(h.empty());
+    EXPECT_EQ(h.begin(), h.end());
+    EXPECT_EQ(h.heapBytes(), 0U);
+    // Sorted inserts as the synchronisation does them (lower_bound + insert).
+    for (int r : {3, 1, 2, 1}) {
+        CopyRef const t{r, 7, kNoImage};
+        auto* at = std::lower_bound(h.begin(), h.end(), t);
+        if (at == h.end() || !(*at == t))
+            h.insert(at, t);
+    }
+    ASSERT_EQ(h.size(), 3U);
+    EXPECT_EQ(h.at(0).rank, 1);
+    EXPECT_EQ(h.back().rank, 3);
+    HolderList copy = h; // deep
+    h.erase(std::remove(h.begin(), h.end(), CopyRef{2, 7, kNoImage}), h.end());
+    EXPECT_EQ(h.size(), 2U);
+    EXPECT_EQ(copy.size(), 3U);
+    h.erase(h.begin(), h.end()); // the last ones gone: the heap block too
+    EXPECT_TRUE(h.empty());
+    EXPECT_EQ(h.heapBytes(), 0U);
+    h = std::vector<CopyRef>{{5, 1, kNoImage}};
+    EXPECT_EQ(h.vector(), (std::vector<CopyRef>{{5, 1, kNoImage}}));
+    h.pop_back();
+    EXPECT_TRUE(h.empty());
+    EXPECT_TRUE(h.vector().empty());
 }
 
 TEST(StorageMemory, ReservedStorageGrowsGentlyNotByDoubling) {
