@@ -16,6 +16,11 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_built = ps.size();
     m_pairs.clear();
     m_arrivals.clear();
+    // Room for the copies that arrive before the next rebuild (follow), so that the first
+    // arrival does not reallocate these per-copy arrays: a reallocation holds the old and
+    // the new array at once, 28 more bytes per copy at that moment (the run's peak).
+    m_indexOf.reserve(core::gentleCapacity(m_built));
+    m_reference.reserve(core::gentleCapacity(m_built));
     m_indexOf.resize(m_built);
     for (std::size_t k = 0; k < m_built; ++k)
         m_indexOf[k] = static_cast<std::uint32_t>(k);

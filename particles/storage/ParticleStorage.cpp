@@ -165,6 +165,7 @@ std::uint64_t ParticleStorage::startTracing() {
     m_traceSession = ++sessions;
     m_traceBroken = false;
     m_traceJournal.clear();
+    m_traceTag.reserve(core::gentleCapacity(size())); // arrivals: no reallocation (peak)
     m_traceTag.resize(size());
     for (Index k = 0, n = size(); k < n; ++k)
         m_traceTag[k] = static_cast<std::uint32_t>(k);
