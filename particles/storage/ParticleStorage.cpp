@@ -21,6 +21,8 @@ void ParticleStorage::forEachArray(F&& f) {
     f(m_torque);
     f(m_radius);
     f(m_mass);
+    f(m_invMass);
+    f(m_invInertia);
     f(m_flags);
     f(m_type);
     f(m_ownerSlot);
@@ -51,12 +53,15 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_torque.push_back(core::Vec3::Zero());
     m_radius.push_back(p.radius);
     m_mass.push_back(p.mass);
+    m_invMass.push_back(0.0);
+    m_invInertia.push_back(0.0);
     m_flags.push_back(p.flags);
     m_type.push_back(p.type);
     m_ownerSlot.push_back(ownerSlot(p.owner));
     m_image.push_back(p.image);
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
+    updateInverses(i);
     if (tracing()) {
         core::reserveForAppend(m_traceTag);
         m_traceTag.push_back(kUntraced);
@@ -176,14 +181,32 @@ void ParticleStorage::setRadius(Index i, double radius) {
     if (tracing() && radius != m_radius[i])
         m_traceBroken = true; // a neighbour list's reach depends on the radii
     m_radius[i] = radius;
+    updateInverses(i);
 }
 
 void ParticleStorage::setMass(Index i, double mass) {
     m_mass[i] = mass;
+    updateInverses(i);
 }
 
 void ParticleStorage::setFlags(Index i, Flags flags) {
+    bool const fixedChanged = flags.isFixed() != m_flags[i].isFixed();
     m_flags[i] = flags;
+    if (fixedChanged) // the sync sets flags every step; inverses depend only on Fixed
+        updateInverses(i);
+}
+
+void ParticleStorage::updateInverses(Index i) {
+    if (m_flags[i].isFixed()) {
+        m_invMass[i] = 0.0;
+        m_invInertia[i] = 0.0;
+        return;
+    }
+    // Solid sphere about its centre: I = 2/5 m r^2. Invalid mass or radius gives inf or NaN
+    // here; validateParticles reports those before a run starts.
+    double const r = m_radius[i];
+    m_invMass[i] = 1.0 / m_mass[i];
+    m_invInertia[i] = 1.0 / (0.4 * m_mass[i] * r * r);
 }
 
 std::uint32_t ParticleStorage::ownerSlot(BlockRef const& owner) {
@@ -222,6 +245,8 @@ std::size_t ParticleStorage::bytes() const {
     add(m_torque);
     add(m_radius);
     add(m_mass);
+    add(m_invMass);
+    add(m_invInertia);
     add(m_flags);
     add(m_type);
     add(m_ownerSlot);

@@ -66,7 +66,7 @@ struct TraceChange {
 /// Invariants: `find(uid(i), image(i)) == i` for every index, (uid, image) keys are unique (a
 /// block that is its own periodic neighbour may hold one particle at several images); `invMass` and
 /// `invInertia` follow mass, radius and the Fixed flag (zero when fixed; a sphere's inertia
-/// is 2/5 m r^2): they are computed from them on every call. Adding is amortised O(1); removing is
+/// is 2/5 m r^2). Adding is amortised O(1); removing is
 /// O(1) by moving the last particle into the freed slot, which changes that particle's index (never
 /// its uid). Indices are therefore only valid until the next removal.
 class ParticleStorage {
@@ -115,18 +115,12 @@ public:
     [[nodiscard]] core::Vec3 const& torque(Index i) const { return m_torque[i]; }
     [[nodiscard]] double radius(Index i) const { return m_radius[i]; }
     [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
-    /// 1 / mass, 0 for a Fixed particle. Computed on use, not stored (16 bytes per copy
-    /// saved with invInertia): the same expression every time, so the same bits as a stored
-    /// value, and a division is cheap next to the memory traffic of another array.
-    [[nodiscard]] double invMass(Index i) const {
-        return m_flags[i].isFixed() ? 0.0 : 1.0 / m_mass[i];
-    }
-    /// Inverse of the (scalar) moment of inertia of the sphere about its centre,
-    /// 1 / (2/5 m r^2); 0 for a Fixed particle. Computed on use, like invMass.
-    [[nodiscard]] double invInertia(Index i) const {
-        double const r = m_radius[i];
-        return m_flags[i].isFixed() ? 0.0 : 1.0 / (0.4 * m_mass[i] * r * r);
-    }
+    /// 1 / mass, 0 for a Fixed particle. Stored, not computed on use: recomputing both
+    /// inverses in the integrators' loops (two divisions per grain and half-step) cost ~7 %
+    /// of the sparse gas's step rate for 16 bytes per copy (docs/results.md, "Memory").
+    [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
+    /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
+    [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }
     [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
     [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
     [[nodiscard]] BlockRef owner(Index i) const { return m_owners[m_ownerSlot[i]]; }
@@ -138,7 +132,8 @@ public:
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
 
-    /// Setters (a radius change breaks a running trace, see startTracing).
+    /// Setters for properties that others depend on (inverse mass and inertia; a radius
+    /// change also breaks a running trace, see startTracing).
     void setRadius(Index i, double radius);
     void setMass(Index i, double mass);
     void setFlags(Index i, Flags flags);
@@ -194,6 +189,7 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
+    void updateInverses(Index i);
     template <class F>
     void forEachArray(F&& f);
     /// Reads the key of a stored copy for m_index, which keeps no keys (see CopyIndex).
@@ -212,6 +208,8 @@ private:
     std::vector<core::Vec3> m_torque;
     std::vector<double> m_radius;
     std::vector<double> m_mass;
+    std::vector<double> m_invMass;
+    std::vector<double> m_invInertia;
     std::vector<Flags> m_flags;
     std::vector<std::uint32_t> m_type;
     // The owner block of each copy as a 4-byte slot in a table of the distinct owners seen
