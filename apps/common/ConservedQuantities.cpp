@@ -7,9 +7,14 @@ namespace regolith::apps {
 RunSummary::Conserved conservedQuantities(core::Comm const& comm,
                                           std::span<MasterRecord const> local,
                                           core::Vec3 const& gravity) {
+    return conservedQuantitiesFrom(comm, sourceOf(local), gravity);
+}
+
+RunSummary::Conserved conservedQuantitiesFrom(core::Comm const& comm, MasterSource const& local,
+                                              core::Vec3 const& gravity) {
     // One reduction: momentum (3), angular momentum (3), kinetic, potential, mass, m x (3).
     std::array<double, 12> sums{};
-    for (auto const& m : local) {
+    local([&](MasterRecord const& m) {
         core::Vec3 const p = m.mass * m.velocity;
         double const inertia = 0.4 * m.mass * m.radius * m.radius;
         core::Vec3 const l = m.position.cross(p) + inertia * m.angularVelocity;
@@ -23,7 +28,7 @@ RunSummary::Conserved conservedQuantities(core::Comm const& comm,
             0.5 * (m.mass * m.velocity.squaredNorm() + inertia * m.angularVelocity.squaredNorm());
         sums[7] -= m.mass * gravity.dot(m.position);
         sums[8] += m.mass;
-    }
+    });
     comm.allReduceInPlace(std::span<double>(sums), core::ReduceOp::Sum);
     RunSummary::Conserved c;
     c.momentum = core::Vec3(sums[0], sums[1], sums[2]);

@@ -24,5 +24,9 @@ namespace regolith::apps {
 [[nodiscard]] RunSummary::Conserved conservedQuantities(core::Comm const& comm,
                                                         std::span<MasterRecord const> local,
                                                         core::Vec3 const& gravity);
+/// The same from a source of masters (same order, same sums bit for bit). COLLECTIVE.
+[[nodiscard]] RunSummary::Conserved conservedQuantitiesFrom(core::Comm const& comm,
+                                                            MasterSource const& local,
+                                                            core::Vec3 const& gravity);
 
 } // namespace regolith::apps

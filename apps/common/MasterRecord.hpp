@@ -5,6 +5,8 @@
 #include "core/math/Vec3.hpp"
 
 #include <cstdint>
+#include <functional>
+#include <span>
 
 namespace regolith::apps {
 
@@ -16,5 +18,19 @@ struct MasterRecord {
     double radius = 0.0;                             ///< [length]
     double mass = 0.0;                               ///< [mass]
 };
+
+/// The local masters visited one by one, in a fixed order, without a list of them: a call
+/// `source(visit)` calls `visit(record)` for every master. The end-of-run summary of millions
+/// of grains then needs no 96-byte record per grain beside the particle storage.
+using MasterVisit = std::function<void(MasterRecord const&)>;
+using MasterSource = std::function<void(MasterVisit const&)>;
+
+/// The records of `masters` as a source (same order). `masters` must outlive the source.
+[[nodiscard]] inline MasterSource sourceOf(std::span<MasterRecord const> masters) {
+    return [masters](MasterVisit const& visit) {
+        for (MasterRecord const& m : masters)
+            visit(m);
+    };
+}
 
 } // namespace regolith::apps

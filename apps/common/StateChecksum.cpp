@@ -36,10 +36,16 @@ std::uint64_t masterDigest(MasterRecord const& m) {
 }
 
 std::string stateChecksum(core::Comm const& comm, std::span<MasterRecord const> local) {
+    return stateChecksumFrom(comm, sourceOf(local));
+}
+
+std::string stateChecksumFrom(core::Comm const& comm, MasterSource const& local) {
     // [count, sum of digests]; unsigned addition wraps modulo 2^64, in MPI_SUM as in C++.
-    std::array<std::uint64_t, 2> totals{local.size(), 0};
-    for (auto const& m : local)
+    std::array<std::uint64_t, 2> totals{0, 0};
+    local([&](MasterRecord const& m) {
+        ++totals[0];
         totals[1] += masterDigest(m);
+    });
     comm.allReduceInPlace(std::span<std::uint64_t>(totals), core::ReduceOp::Sum);
     StateChecksum digest;
     digest.add(totals[0]);

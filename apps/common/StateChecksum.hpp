@@ -55,5 +55,7 @@ private:
 /// on every rank. COLLECTIVE over `comm`.
 [[nodiscard]] std::string stateChecksum(core::Comm const& comm,
                                         std::span<MasterRecord const> local);
+/// The same from a source of masters. COLLECTIVE over `comm`.
+[[nodiscard]] std::string stateChecksumFrom(core::Comm const& comm, MasterSource const& local);
 
 } // namespace regolith::apps

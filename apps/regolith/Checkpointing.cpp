@@ -130,7 +130,7 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     info.domain = m_forest.domain;
     info.periodic = m_forest.periodic;
     info.scene = m_text;
-    info.stateChecksum = stateChecksum(*m_comm, masterRecords(*m_local));
+    info.stateChecksum = stateChecksumFrom(*m_comm, masterSource(*m_local));
     std::string const path = io::checkpointPath(m_output.dir, stepsDone);
     double const start = MPI_Wtime();
     auto grains = io::collectMasters(*m_local);

@@ -7,6 +7,7 @@
 #include "core/mpi/Comm.hpp"
 #include "domain/BlockForest.hpp"
 #include "particles/generators/GrainInit.hpp"
+#include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
 #include <cstdint>
@@ -31,6 +32,23 @@ namespace regolith::apps {
 generateLocalGrains(core::Comm const& comm, core::ConfigTable const& sceneRoot,
                     SceneDescription const& scene, domain::BlockForest const& forest);
 
+/// The grains of generateLocalGrains, in the same order, passed one by one to `sink` (same
+/// rules and errors; COLLECTIVE). The list form above holds every grain as a 112-byte record.
+void generateLocalGrains(core::Comm const& comm, core::ConfigTable const& sceneRoot,
+                         SceneDescription const& scene, domain::BlockForest const& forest,
+                         particles::GrainSink const& sink);
+
+/// The grains of generateLocalGrains as masters in one storage (each owned by the local
+/// block containing its centre), for the checks of the initial state. Memory: the scene is
+/// generated twice, once to count the grains and once to store them into arrays reserved to
+/// exactly that count, so no grain is ever held twice (record list + storage) and no array
+/// carries the slack of doubling growth; the set-up's peak is the storage itself. Throws as
+/// generateLocalGrains, and core::Error if a grain lies in no local block. COLLECTIVE.
+[[nodiscard]] particles::ParticleStorage generateLocalMasters(core::Comm const& comm,
+                                                              core::ConfigTable const& sceneRoot,
+                                                              SceneDescription const& scene,
+                                                              domain::BlockForest const& forest);
+
 /// The grains as reported masters (uid, position, velocities, radius, mass), same order.
 /// Not collective.
 [[nodiscard]] std::vector<MasterRecord>
@@ -38,7 +56,7 @@ toMasterRecords(std::span<particles::GrainInit const> grains);
 
 /// How many of `masters` overlap one of `walls` (signed distance of the centre from the
 /// wall below the radius; touching is no overlap). Not collective.
-[[nodiscard]] std::int64_t countWallOverlaps(std::span<MasterRecord const> masters,
+[[nodiscard]] std::int64_t countWallOverlaps(MasterSource const& masters,
                                              std::span<particles::Wall const> walls);
 
 } // namespace regolith::apps

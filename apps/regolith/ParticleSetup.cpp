@@ -38,19 +38,14 @@ particles::ParticleInit particleOf(particles::GrainInit const& g) {
 
 } // namespace
 
-particles::ParticleStorage makeMasters(std::span<particles::GrainInit const> grains,
-                                       domain::BlockForest const& forest, int rank) {
-    particles::ParticleStorage ps;
-    ps.reserve(grains.size());
-    for (auto const& g : grains) {
-        domain::Block const* block = forest.localBlockContaining(g.position);
-        if (block == nullptr)
-            notLocal(g);
-        particles::ParticleInit p = particleOf(g);
-        p.owner = {rank, block->id.raw()};
-        ps.add(p);
-    }
-    return ps;
+void addGeneratedMaster(particles::ParticleStorage& masters, particles::GrainInit const& g,
+                        domain::BlockForest const& forest, int rank) {
+    domain::Block const* block = forest.localBlockContaining(g.position);
+    if (block == nullptr)
+        notLocal(g);
+    particles::ParticleInit p = particleOf(g);
+    p.owner = {rank, block->id.raw()};
+    masters.add(p);
 }
 
 void addMasters(particles::LocalParticles& local, std::span<particles::GrainInit const> grains) {

@@ -23,11 +23,12 @@ namespace regolith::apps {
                                                          particles::ParticleStorage const& ps,
                                                          SceneDescription const& scene);
 
-/// Masters for `grains` (each inside one of this rank's blocks, as generateLocalGrains
-/// guarantees) in one storage, for the checks of the initial state. Throws core::Error if a
-/// grain lies in no local block. Not collective.
-[[nodiscard]] particles::ParticleStorage makeMasters(std::span<particles::GrainInit const> grains,
-                                                     domain::BlockForest const& forest, int rank);
+/// Appends `g` to `masters` as a master owned by (`rank`, the local block of `forest` that
+/// contains its centre), for the checks of the initial state. Throws core::Error if no local
+/// block contains it (generateLocalGrains gives each rank only grains of its blocks). Not
+/// collective.
+void addGeneratedMaster(particles::ParticleStorage& masters, particles::GrainInit const& g,
+                        domain::BlockForest const& forest, int rank);
 
 /// Adds every grain as a master to the local block containing its centre
 /// (LocalParticles::addMaster). generateLocalGrains returns each grain of the scene on exactly

@@ -47,9 +47,7 @@ namespace {
 std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneDescription& scene,
                                              domain::BlockForest const& forest,
                                              particles::LocalParticles& local) {
-    auto grains = generateLocalGrains(ctx.world, ctx.scene, scene, forest);
-    auto masters = makeMasters(grains, forest, ctx.world.rank());
-    std::vector<particles::GrainInit>().swap(grains); // memory: never with the storages
+    auto masters = generateLocalMasters(ctx.world, ctx.scene, scene, forest);
     std::vector<AutoChoice> const choices = resolveAutoChoices(ctx.world, masters, scene);
     checkInitialState(ctx.world, masters, scene);
     warnLazyUpdateThreshold(ctx.world, masters, scene);
@@ -97,7 +95,7 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
     double const start = MPI_Wtime();
     io::CheckpointSlice slice = readRestart(ctx.world, path, scene);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
-    std::string const restored = stateChecksum(ctx.world, masterRecords(local));
+    std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
     if (restored != slice.info.stateChecksum)
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
@@ -152,9 +150,9 @@ int runScene(core::AppContext& ctx) {
         core::log::warn("{} of {} ranks own no block: use more blocks (domain.blocks) or fewer "
                         "ranks",
                         forest.idleRankCount(), world.size());
-    auto const wallOverlaps = world.allReduce(
-        static_cast<long long>(countWallOverlaps(masterRecords(local), scene.walls)),
-        core::ReduceOp::Sum);
+    auto const wallOverlaps =
+        world.allReduce(static_cast<long long>(countWallOverlaps(masterSource(local), scene.walls)),
+                        core::ReduceOp::Sum);
     if (wallOverlaps > 0 && !restart)
         core::log::warn("{} of {} grains overlap a wall at the start", wallOverlaps, counts.total);
 
@@ -208,10 +206,12 @@ int runScene(core::AppContext& ctx) {
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
     progress.finish();
 
-    dem.releaseWorkspace(); // the detectors' memory, before the copy of the masters below
-    auto const masters = masterRecords(local);
+    dem.releaseWorkspace(); // the detectors' memory, before the summary below
+    // The summary reads the masters from the storages (no record list of every grain: that
+    // was the run's memory peak); only --dump gathers them, and frees them again at once.
+    MasterSource const masters = masterSource(local);
     if (!ctx.options.dumpPath.empty())
-        writeFileOnRoot(world, ctx.options.dumpPath, gatherDumpCsv(world, masters));
+        writeFileOnRoot(world, ctx.options.dumpPath, gatherDumpCsv(world, masterRecords(local)));
 
     RunSummary summary;
     summary.scene = scene.name;
@@ -220,7 +220,7 @@ int runScene(core::AppContext& ctx) {
     summary.sync = std::string(toString(scene.sync.method));
     fillLoopSummary(world, loop, local, summary);
     summary.peakRssBytes = peakRssBytes(world);
-    summary.conserved = conservedQuantities(world, masters, scene.gravity.external);
+    summary.conserved = conservedQuantitiesFrom(world, masters, scene.gravity.external);
     summary.gravity.method = std::string(toString(scene.gravity.self));
     for (AutoChoice const& c : choices)
         summary.autoChoices.push_back({c.key, c.value, c.reason});
@@ -230,7 +230,7 @@ int runScene(core::AppContext& ctx) {
         summary.conserved.potentialEnergy += selfGravity->stats().potentialEnergy;
         summary.gravity.updates = selfGravity->stats().evaluations;
     }
-    summary.checksum = stateChecksum(world, masters);
+    summary.checksum = stateChecksumFrom(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);
     if (!ctx.options.jsonPath.empty())

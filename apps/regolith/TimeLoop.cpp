@@ -33,6 +33,18 @@ LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
     return out;
 }
 
+MasterSource masterSource(particles::LocalParticles const& local) {
+    return [&local](MasterVisit const& visit) {
+        for (particles::BlockParticles const& bp : local.blocks()) {
+            particles::ParticleStorage const& ps = bp.particles;
+            ps.forEachMaster([&](std::size_t i) {
+                visit({ps.uid(i), ps.position(i), ps.velocity(i), ps.angularVelocity(i),
+                       ps.radius(i), ps.mass(i)});
+            });
+        }
+    };
+}
+
 std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local) {
     std::vector<MasterRecord> out;
     out.reserve(local.countMasters());

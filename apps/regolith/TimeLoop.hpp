@@ -43,6 +43,9 @@ using AfterStep = std::function<void(std::int64_t stepsDone)>;
 /// The masters of every local block as reported records (block order, then storage order).
 /// Not collective.
 [[nodiscard]] std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local);
+/// The same records as a source, read from the storages when visited (`local` must outlive
+/// it). Not collective.
+[[nodiscard]] MasterSource masterSource(particles::LocalParticles const& local);
 
 /// Fills the loop's keys of `summary`: steps, wall_s, timing_s (average over ranks of each
 /// phase, gravity from the body-force timer), comm (messages and bytes summed over ranks per

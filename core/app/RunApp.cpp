@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 #include "core/config/ConfigFile.hpp"
 #include "core/log/Log.hpp"
+#include "core/memory/HeapPolicy.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -46,6 +47,7 @@ void printInputError(std::string_view appName, std::string_view message) {
 
 int runApp(int argc, char** argv, std::string_view appName, std::string_view defaultSceneToml,
            std::function<int(AppContext&)> const& body) {
+    useReturningHeap(); // peak memory: large set-up temporaries must not stay resident
     std::optional<MpiEnvironment> mpi;
     try {
         mpi.emplace(argc, argv);

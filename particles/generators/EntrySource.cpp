@@ -31,14 +31,6 @@ core::Vec3 latticeVelocity(VelocitySpec const& velocity, std::uint64_t uid) {
     return {x, y, z};
 }
 
-void sortUnique(std::vector<GrainInit>& grains) {
-    std::sort(grains.begin(), grains.end(),
-              [](GrainInit const& a, GrainInit const& b) { return a.uid < b.uid; });
-    grains.erase(std::unique(grains.begin(), grains.end(),
-                             [](GrainInit const& a, GrainInit const& b) { return a.uid == b.uid; }),
-                 grains.end());
-}
-
 } // namespace
 
 EntrySource::EntrySource(ParticleSpec const& spec, std::size_t index, GeneratorDomain const& domain)
@@ -114,7 +106,7 @@ std::vector<GrainInit> EntrySource::candidatesIn(RegionSet const& region,
     if (region.empty())
         return out;
     if (m_lattice)
-        latticeCandidates(region, uidBegin, out);
+        latticeCandidates(region, uidBegin, [&](GrainInit const& g) { out.push_back(g); });
     else if (std::holds_alternative<ListSpec>(m_spec->kind))
         listCandidates(region, uidBegin, out);
     else if (std::holds_alternative<FileSpec>(m_spec->kind))
@@ -124,25 +116,56 @@ std::vector<GrainInit> EntrySource::candidatesIn(RegionSet const& region,
     return out;
 }
 
-void EntrySource::latticeCandidates(RegionSet const& region, std::uint64_t uidBegin,
-                                    std::vector<GrainInit>& out) const {
+void EntrySource::forEachCandidateIn(RegionSet const& region, std::uint64_t uidBegin,
+                                     GrainSink const& sink) const {
+    if (region.empty())
+        return;
+    if (m_lattice) {
+        latticeCandidates(region, uidBegin, sink);
+        return;
+    }
+    // Lists and files are held whole by the spec or the CSV table anyway.
+    for (GrainInit const& g : candidatesIn(region, uidBegin))
+        sink(g);
+}
+
+GrainInit EntrySource::latticeGrain(std::uint64_t site, core::Vec3 const& centre,
+                                    std::uint64_t uidBegin) const {
     auto const& spec = std::get<LatticeSpec>(m_spec->kind);
-    double const mass = sphereMass(spec.radius, spec.density);
-    for (auto const& box : region.boxes())
-        m_lattice->forEachSiteIn(box, [&](std::uint64_t site, core::Vec3 const& centre) {
-            GrainInit g;
-            g.uid = uidBegin + site;
-            g.position = centre;
-            g.velocity = latticeVelocity(spec.velocity, g.uid);
-            g.radius = spec.radius;
-            g.density = spec.density;
-            g.mass = mass;
-            g.type = m_spec->type;
-            g.entry = m_entry;
-            out.push_back(g);
+    GrainInit g;
+    g.uid = uidBegin + site;
+    g.position = centre;
+    g.velocity = latticeVelocity(spec.velocity, g.uid);
+    g.radius = spec.radius;
+    g.density = spec.density;
+    g.mass = sphereMass(spec.radius, spec.density);
+    g.type = m_spec->type;
+    g.entry = m_entry;
+    return g;
+}
+
+void EntrySource::latticeCandidates(RegionSet const& region, std::uint64_t uidBegin,
+                                    GrainSink const& sink) const {
+    auto const boxes = region.boxes();
+    if (boxes.size() == 1) { // sites come in increasing linear index: uid order already
+        m_lattice->forEachSiteIn(boxes[0], [&](std::uint64_t site, core::Vec3 const& centre) {
+            sink(latticeGrain(site, centre, uidBegin));
         });
-    if (region.boxes().size() > 1)
-        sortUnique(out);
+        return;
+    }
+    // Boxes may overlap and interleave in index order: sort the site indices, not grains.
+    std::vector<std::uint64_t> sites;
+    for (auto const& box : boxes)
+        m_lattice->forEachSiteIn(
+            box, [&](std::uint64_t site, core::Vec3 const&) { sites.push_back(site); });
+    std::sort(sites.begin(), sites.end());
+    sites.erase(std::unique(sites.begin(), sites.end()), sites.end());
+    auto const n = m_lattice->extents();
+    for (std::uint64_t const site : sites) {
+        auto const s = static_cast<std::int64_t>(site);
+        std::int64_t const i = s % n[0], j = (s / n[0]) % n[1], k = s / n[0] / n[1];
+        sink(latticeGrain(site, m_lattice->centre(i, j, k), uidBegin));
+    }
 }
 
 void EntrySource::listCandidates(RegionSet const& region, std::uint64_t uidBegin,

@@ -37,11 +37,18 @@ public:
     /// sorted by uid, each once. Pre: not an agglomerate.
     [[nodiscard]] std::vector<GrainInit> candidatesIn(RegionSet const& region,
                                                       std::uint64_t uidBegin) const;
+    /// The same grains, in the same order, passed to `sink` one by one. A lattice (the
+    /// large entries) keeps no grain list: one box is walked in uid order, several boxes
+    /// through a sorted list of site indices (8 bytes per site). Pre: not an agglomerate.
+    void forEachCandidateIn(RegionSet const& region, std::uint64_t uidBegin,
+                            GrainSink const& sink) const;
 
 private:
     void prepareFile(FileSpec const& file, GeneratorDomain const& domain);
     void latticeCandidates(RegionSet const& region, std::uint64_t uidBegin,
-                           std::vector<GrainInit>& out) const;
+                           GrainSink const& sink) const;
+    [[nodiscard]] GrainInit latticeGrain(std::uint64_t site, core::Vec3 const& centre,
+                                         std::uint64_t uidBegin) const;
     void listCandidates(RegionSet const& region, std::uint64_t uidBegin,
                         std::vector<GrainInit>& out) const;
     void fileCandidates(RegionSet const& region, std::uint64_t uidBegin,

@@ -5,6 +5,7 @@
 #include "particles/storage/Uid.hpp"
 
 #include <cstdint>
+#include <functional>
 
 namespace regolith::particles {
 
@@ -22,6 +23,11 @@ struct GrainInit {
     std::uint32_t type = 0;                          ///< material index (ParticleSpec::type)
     std::uint32_t entry = 0;                         ///< index of the [[particles]] entry
 };
+
+/// Receives generated grains one at a time (generateGrains, EntrySource): the grains go
+/// straight to their consumer (a particle storage) instead of into a list of GrainInit
+/// records, which would double the set-up's memory (112 bytes per grain).
+using GrainSink = std::function<void(GrainInit const&)>;
 
 /// Mass of a homogeneous sphere, 4/3 pi r^3 density, computed the same way everywhere so
 /// that every rank gets bit-identical masses.

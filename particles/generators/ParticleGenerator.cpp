@@ -51,9 +51,11 @@ bool inAnyBox(core::Vec3 const& p, std::span<core::AABB const> boxes) {
 
 } // namespace
 
-GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB const& domainBox,
-                               std::array<bool, 3> const& periodic,
-                               std::span<core::AABB const> boxes) {
+std::vector<std::uint64_t> generateGrains(std::span<ParticleSpec const> specs,
+                                          core::AABB const& domainBox,
+                                          std::array<bool, 3> const& periodic,
+                                          std::span<core::AABB const> boxes,
+                                          GrainSink const& sink) {
     GeneratorDomain const domain{domainBox, periodic};
     validateParticleSpecs(specs, domain);
     if (specs.size() > std::numeric_limits<std::uint32_t>::max())
@@ -61,20 +63,19 @@ GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB c
 
     std::vector<EntrySource> entries;
     entries.reserve(specs.size());
-    GeneratedGrains result;
-    result.entryUidBegin.assign(1, 0);
+    std::vector<std::uint64_t> entryUidBegin(1, 0);
     std::uint64_t const uidLimit = kUidCounterMask; // generated uids fit the counter field
     for (std::size_t k = 0; k < specs.size(); ++k) {
         entries.emplace_back(specs[k], k, domain);
-        std::uint64_t const begin = result.entryUidBegin.back();
+        std::uint64_t const begin = entryUidBegin.back();
         if (entries.back().capacity() > uidLimit - begin)
             throw core::InputError(
                 fmt::format("{}: the entries up to this one need more than 2^{} - 1 grain uids",
                             entries.back().key(), kUidCounterBits));
-        result.entryUidBegin.push_back(begin + entries.back().capacity());
+        entryUidBegin.push_back(begin + entries.back().capacity());
     }
     if (entries.empty())
-        return result;
+        return entryUidBegin;
 
     std::vector<double> maxRadius;
     for (auto const& e : entries)
@@ -95,18 +96,27 @@ GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB c
     OverlapIndex placed(domain);
     for (std::size_t k = 0; k < entries.size(); ++k) {
         EntrySource const& entry = entries[k];
-        std::uint64_t const uidBegin = result.entryUidBegin[k];
+        std::uint64_t const uidBegin = entryUidBegin[k];
+        RegionSet needed;
+        if (!entry.isAgglomerate())
+            for (std::size_t s = 0; s < sources.size(); ++s)
+                if (sources[s].anchor >= k)
+                    for (auto const& box : sources[s].boxes)
+                        needed.add(box, margins[s][k], domain);
+        if (k + 1 == entries.size() && !entry.isAgglomerate()) {
+            // No later entry tests against this one: stream it, keep nothing.
+            entry.forEachCandidateIn(needed, uidBegin, [&](GrainInit const& g) {
+                if (inAnyBox(g.position, boxes) && !placed.overlaps(g.position, g.radius))
+                    sink(g);
+            });
+            break;
+        }
         std::vector<GrainInit> kept;
         if (entry.isAgglomerate()) {
             kept =
                 packAgglomerate(std::get<AgglomerateSpec>(specs[k].kind), uidBegin, specs[k].type,
                                 static_cast<std::uint32_t>(k), domain, placed, entry.key());
         } else {
-            RegionSet needed;
-            for (std::size_t s = 0; s < sources.size(); ++s)
-                if (sources[s].anchor >= k)
-                    for (auto const& box : sources[s].boxes)
-                        needed.add(box, margins[s][k], domain);
             kept = entry.candidatesIn(needed, uidBegin);
             std::erase_if(
                 kept, [&](GrainInit const& g) { return placed.overlaps(g.position, g.radius); });
@@ -115,10 +125,19 @@ GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB c
         if (k + 1 < entries.size())
             for (auto const& g : kept)
                 placed.insert(g.position, g.radius);
-        for (auto& g : kept)
+        for (auto const& g : kept)
             if (inAnyBox(g.position, boxes))
-                result.grains.push_back(g);
+                sink(g);
     }
+    return entryUidBegin;
+}
+
+GeneratedGrains generateGrains(std::span<ParticleSpec const> specs, core::AABB const& domain,
+                               std::array<bool, 3> const& periodic,
+                               std::span<core::AABB const> boxes) {
+    GeneratedGrains result;
+    result.entryUidBegin = generateGrains(specs, domain, periodic, boxes,
+                                          [&](GrainInit const& g) { result.grains.push_back(g); });
     return result;
 }
 

@@ -59,6 +59,16 @@ struct GeneratedGrains {
                                              std::array<bool, 3> const& periodic,
                                              std::span<core::AABB const> boxes);
 
+/// The same grains, in the same order (by uid), passed to `sink` one by one; returns
+/// entryUidBegin. The last entry (in the scenes with millions of grains, the lattice that
+/// fills the domain) is streamed without a list of its grains, so a caller that stores the
+/// grains as they come holds each grain once. Same errors as above; the sink may have been
+/// called for some grains before one is thrown. Not collective.
+std::vector<std::uint64_t> generateGrains(std::span<ParticleSpec const> specs,
+                                          core::AABB const& domain,
+                                          std::array<bool, 3> const& periodic,
+                                          std::span<core::AABB const> boxes, GrainSink const& sink);
+
 /// All grains of the domain: generateGrains with the one box `domain`.
 [[nodiscard]] GeneratedGrains generateGrains(std::span<ParticleSpec const> specs,
                                              core::AABB const& domain,

@@ -10,54 +10,84 @@ bool byPartner(HistoryEntry const& e, Uid uid) {
 }
 } // namespace
 
+ContactHistory::ContactHistory(ContactHistory const& other)
+    : m_entries(other.m_entries ? std::make_unique<std::vector<HistoryEntry>>(*other.m_entries)
+                                : nullptr) {}
+
+ContactHistory& ContactHistory::operator=(ContactHistory const& other) {
+    if (this != &other)
+        m_entries = other.m_entries ? std::make_unique<std::vector<HistoryEntry>>(*other.m_entries)
+                                    : nullptr;
+    return *this;
+}
+
+std::vector<HistoryEntry>& ContactHistory::ensure() {
+    if (!m_entries)
+        m_entries = std::make_unique<std::vector<HistoryEntry>>();
+    return *m_entries;
+}
+
 HistoryEntry const* ContactHistory::find(Uid partner) const {
-    auto it = std::lower_bound(m_entries.begin(), m_entries.end(), partner, byPartner);
-    return it != m_entries.end() && it->partner == partner ? &*it : nullptr;
+    auto const& v = entries();
+    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
+    return it != v.end() && it->partner == partner ? &*it : nullptr;
 }
 
 HistoryEntry* ContactHistory::find(Uid partner) {
-    auto it = std::lower_bound(m_entries.begin(), m_entries.end(), partner, byPartner);
-    return it != m_entries.end() && it->partner == partner ? &*it : nullptr;
+    if (!m_entries)
+        return nullptr;
+    auto& v = *m_entries;
+    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
+    return it != v.end() && it->partner == partner ? &*it : nullptr;
 }
 
 HistoryEntry& ContactHistory::touch(Uid partner, std::uint32_t stamp) {
-    auto it = std::lower_bound(m_entries.begin(), m_entries.end(), partner, byPartner);
-    if (it == m_entries.end() || it->partner != partner)
-        it = m_entries.insert(it, HistoryEntry{partner, core::Vec3::Zero(), stamp});
+    auto& v = ensure();
+    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
+    if (it == v.end() || it->partner != partner)
+        it = v.insert(it, HistoryEntry{partner, core::Vec3::Zero(), stamp});
     it->stamp = stamp;
     return *it;
 }
 
 HistoryEntry& ContactHistory::touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
     HistoryEntry& e = touch(partner, stamp);
-    auto const slot = static_cast<std::size_t>(&e - m_entries.data());
+    auto const slot = static_cast<std::size_t>(&e - m_entries->data());
     // Beyond 255 entries the hint saturates and always misses (then touch() searches).
     hint = static_cast<std::uint8_t>(std::min<std::size_t>(slot, 255));
     return e;
 }
 
 void ContactHistory::set(HistoryEntry const& entry) {
-    auto it = std::lower_bound(m_entries.begin(), m_entries.end(), entry.partner, byPartner);
-    if (it != m_entries.end() && it->partner == entry.partner)
+    auto& v = ensure();
+    auto it = std::lower_bound(v.begin(), v.end(), entry.partner, byPartner);
+    if (it != v.end() && it->partner == entry.partner)
         *it = entry;
     else
-        m_entries.insert(it, entry);
+        v.insert(it, entry);
 }
 
 bool ContactHistory::erase(Uid partner) {
-    auto it = std::lower_bound(m_entries.begin(), m_entries.end(), partner, byPartner);
-    if (it == m_entries.end() || it->partner != partner)
+    if (!m_entries)
         return false;
-    m_entries.erase(it);
+    auto& v = *m_entries;
+    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
+    if (it == v.end() || it->partner != partner)
+        return false;
+    v.erase(it);
+    if (v.empty())
+        m_entries.reset();
     return true;
 }
 
 std::size_t ContactHistory::keepOnlySlow(std::uint32_t stamp) {
-    auto const before = m_entries.size();
-    std::erase_if(m_entries, [stamp](HistoryEntry const& e) { return e.stamp != stamp; });
-    if (m_entries.empty())
-        m_entries.shrink_to_fit(); // a particle that lost all contacts gives its memory back
-    return before - m_entries.size();
+    auto& v = *m_entries;
+    auto const before = v.size();
+    std::erase_if(v, [stamp](HistoryEntry const& e) { return e.stamp != stamp; });
+    std::size_t const dropped = before - v.size();
+    if (v.empty())
+        m_entries.reset(); // a particle that lost all contacts gives its memory back
+    return dropped;
 }
 
 } // namespace regolith::particles

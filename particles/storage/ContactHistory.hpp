@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace regolith::particles {
@@ -26,8 +27,19 @@ struct HistoryEntry {
 /// A small vector of `HistoryEntry` sorted by partner uid: look-up is a binary search over a
 /// handful of entries, iteration order is canonical (by uid), and an empty history costs no
 /// heap memory.
+///
+/// Memory: every copy of every grain has one, and most (a sparse gas: nearly all) are empty,
+/// so it is a single pointer (8 bytes) to a vector that exists only while there are entries,
+/// instead of an inline std::vector (24 bytes).
 class ContactHistory {
 public:
+    ContactHistory() = default;
+    ContactHistory(ContactHistory const& other);
+    ContactHistory& operator=(ContactHistory const& other);
+    ContactHistory(ContactHistory&&) noexcept = default;
+    ContactHistory& operator=(ContactHistory&&) noexcept = default;
+    ~ContactHistory() = default;
+
     /// The entry for `partner`, or nullptr.
     [[nodiscard]] HistoryEntry const* find(Uid partner) const;
     [[nodiscard]] HistoryEntry* find(Uid partner);
@@ -37,9 +49,11 @@ public:
     /// neighbour list beside the pair) and updates it: no search while the partners of this
     /// particle stay the same. A wrong hint only costs the search.
     HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
-        if (hint < m_entries.size() && m_entries[hint].partner == partner) [[likely]] {
-            m_entries[hint].stamp = stamp;
-            return m_entries[hint];
+        if (m_entries && hint < m_entries->size() && (*m_entries)[hint].partner == partner)
+            [[likely]] {
+            auto& e = (*m_entries)[hint];
+            e.stamp = stamp;
+            return e;
         }
         return touchSlow(partner, stamp, hint);
     }
@@ -50,26 +64,32 @@ public:
     /// Drops every entry whose stamp differs from `stamp`: the contacts not evaluated in the
     /// current pass are broken. Returns how many were dropped.
     std::size_t keepOnly(std::uint32_t stamp) {
-        return m_entries.empty() ? 0 : keepOnlySlow(stamp); // most grains: no contact
+        return m_entries ? keepOnlySlow(stamp) : 0; // most grains: no contact
     }
 
-    [[nodiscard]] std::size_t size() const { return m_entries.size(); }
-    [[nodiscard]] bool empty() const { return m_entries.empty(); }
-    void clear() { m_entries.clear(); }
-    [[nodiscard]] auto begin() const { return m_entries.begin(); }
-    [[nodiscard]] auto end() const { return m_entries.end(); }
+    [[nodiscard]] std::size_t size() const { return m_entries ? m_entries->size() : 0; }
+    [[nodiscard]] bool empty() const { return !m_entries; }
+    void clear() { m_entries.reset(); }
+    [[nodiscard]] auto begin() const { return entries().begin(); }
+    [[nodiscard]] auto end() const { return entries().end(); }
     /// Heap bytes held (capacity, not size).
     [[nodiscard]] std::size_t heapBytes() const {
-        return m_entries.capacity() * sizeof(HistoryEntry);
+        return m_entries ? sizeof(*m_entries) + m_entries->capacity() * sizeof(HistoryEntry) : 0;
     }
     /// The entries in uid order (for packing into messages).
-    [[nodiscard]] std::vector<HistoryEntry> const& entries() const { return m_entries; }
+    [[nodiscard]] std::vector<HistoryEntry> const& entries() const {
+        return m_entries ? *m_entries : kNoEntries;
+    }
 
 private:
     std::size_t keepOnlySlow(std::uint32_t stamp);
     HistoryEntry& touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint);
+    /// The vector to insert into, created if there is none.
+    std::vector<HistoryEntry>& ensure();
 
-    std::vector<HistoryEntry> m_entries;
+    static inline std::vector<HistoryEntry> const kNoEntries{}; // constant-initialised
+    /// Null when empty (invariant: never points to an empty vector).
+    std::unique_ptr<std::vector<HistoryEntry>> m_entries;
 };
 
 } // namespace regolith::particles

@@ -1,54 +1,22 @@
 #include "particles/storage/CopyIndex.hpp"
 
+#include "core/Error.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <utility>
 
 namespace regolith::particles {
 
-std::size_t CopyIndex::probe(CopyKey const& key) const {
-    std::size_t const mask = m_slots.size() - 1;
-    for (std::size_t s = home(key);; s = (s + 1) & mask) {
-        Slot const& slot = m_slots[s];
-        if (slot.uid == kInvalidUid || (slot.uid == key.uid && slot.image == key.image))
-            return s;
-    }
-}
-
-std::uint32_t CopyIndex::find(CopyKey const& key) const {
-    if (m_size == 0)
-        return kNone;
-    Slot const& slot = m_slots[probe(key)];
-    return slot.uid == kInvalidUid ? kNone : slot.index;
-}
-
-bool CopyIndex::insert(CopyKey const& key, std::uint32_t index) {
-    if (4 * (m_size + 1) > 3 * m_slots.size())
-        grow(m_size + 1);
-    Slot& slot = m_slots[probe(key)];
-    if (slot.uid != kInvalidUid)
-        return false;
-    slot = Slot{key.uid, key.image, index};
-    ++m_size;
-    return true;
-}
-
-void CopyIndex::assign(CopyKey const& key, std::uint32_t index) {
-    if (!insert(key, index))
-        m_slots[probe(key)].index = index;
-}
-
-void CopyIndex::erase(CopyKey const& key) {
-    if (m_size == 0)
+void CopyIndex::eraseSlot(std::size_t hole) {
+    if (m_slots[hole].index == kNone)
         return;
     std::size_t const mask = m_slots.size() - 1;
-    std::size_t hole = probe(key);
-    if (m_slots[hole].uid == kInvalidUid)
-        return;
     // Backward shift: move every later entry of the run whose home is not cyclically in
-    // (hole, s] into the hole, so that probing never needs tombstones.
-    for (std::size_t s = (hole + 1) & mask; m_slots[s].uid != kInvalidUid; s = (s + 1) & mask) {
-        std::size_t const h = home(CopyKey{m_slots[s].uid, m_slots[s].image});
+    // (hole, s] into the hole, so that probing never needs tombstones. The home comes from the
+    // tag: no key is needed.
+    for (std::size_t s = (hole + 1) & mask; m_slots[s].index != kNone; s = (s + 1) & mask) {
+        std::size_t const h = homeOfTag(m_slots[s].tag);
         bool const stays = hole <= s ? (hole < h && h <= s) : (hole < h || h <= s);
         if (!stays) {
             m_slots[hole] = m_slots[s];
@@ -75,11 +43,19 @@ void CopyIndex::grow(std::size_t minKeys) {
     std::size_t slots = std::bit_ceil(std::max<std::size_t>(16, (4 * minKeys + 2) / 3));
     if (slots <= m_slots.size())
         slots = 2 * m_slots.size();
+    if (slots > (std::size_t{1} << 32U)) // the home must fit the 32 tag bits
+        throw core::Error("CopyIndex: more than 2^32 slots");
     std::vector<Slot> old = std::exchange(m_slots, std::vector<Slot>(slots));
     m_shift = 64U - static_cast<unsigned>(std::countr_zero(slots));
+    std::size_t const mask = slots - 1;
+    // Keys are distinct, so a rehash only needs the first empty slot from each home.
     for (Slot const& s : old)
-        if (s.uid != kInvalidUid)
-            m_slots[probe(CopyKey{s.uid, s.image})] = s;
+        if (s.index != kNone) {
+            std::size_t at = homeOfTag(s.tag);
+            while (m_slots[at].index != kNone)
+                at = (at + 1) & mask;
+            m_slots[at] = s;
+        }
 }
 
 } // namespace regolith::particles

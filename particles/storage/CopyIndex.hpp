@@ -1,9 +1,18 @@
 #pragma once
 /// The (uid, image) -> storage index map of ParticleStorage: an open-addressing hash table
 /// with linear probing and backward-shift deletion (Knuth, TAOCP vol. 3, sec. 6.4, Algorithm
-/// R), in one flat array of 16-byte slots. Why not std::unordered_map: one heap node per copy
+/// R), in one flat array of 8-byte slots. Why not std::unordered_map: one heap node per copy
 /// (~56 bytes with its bucket) and a pointer chase per look-up, on the synchronisation's hot
 /// path (every shadow update looks its copy up).
+///
+/// Memory: a slot holds the index and 32 bits of the key's hash, not the key: the key is
+/// already stored by the owner (ParticleStorage's uid and image arrays), which every call
+/// passes as `keyAt` (index -> CopyKey). A hash match is confirmed there, so equal hash bits
+/// of two keys cost one more comparison, never a wrong answer. At most 3/4 full, a slot
+/// array of 2^k: 11-21 bytes per key instead of 21-43 with the key in the slot.
+///
+/// Contract for `keyAt`: for every index stored in the table, keyAt(index) returns the key
+/// it was stored under (the owner keeps its arrays and the table in step).
 #include "particles/storage/CopyImage.hpp"
 
 #include <cstddef>
@@ -18,13 +27,43 @@ public:
     static constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
     /// The index stored for `key`, or kNone.
-    [[nodiscard]] std::uint32_t find(CopyKey const& key) const;
-    /// Stores key -> index unless the key is present; returns whether it inserted.
-    bool insert(CopyKey const& key, std::uint32_t index);
+    template <class KeyAt>
+    [[nodiscard]] std::uint32_t find(CopyKey const& key, KeyAt const& keyAt) const {
+        if (m_size == 0)
+            return kNone;
+        return m_slots[probe(key, keyAt)].index;
+    }
+    /// Stores key -> index unless the key is present; returns whether it inserted. `index`
+    /// need not be valid for keyAt yet (ParticleStorage inserts before it appends).
+    template <class KeyAt>
+    bool insert(CopyKey const& key, std::uint32_t index, KeyAt const& keyAt) {
+        if (4 * (m_size + 1) > 3 * m_slots.size())
+            grow(m_size + 1);
+        Slot& slot = m_slots[probe(key, keyAt)];
+        if (slot.index != kNone)
+            return false;
+        slot = Slot{index, tagOf(key)};
+        ++m_size;
+        return true;
+    }
     /// Stores key -> index, replacing any index the key had.
-    void assign(CopyKey const& key, std::uint32_t index);
+    template <class KeyAt>
+    void assign(CopyKey const& key, std::uint32_t index, KeyAt const& keyAt) {
+        if (4 * (m_size + 1) > 3 * m_slots.size())
+            grow(m_size + 1);
+        Slot& slot = m_slots[probe(key, keyAt)];
+        if (slot.index == kNone) {
+            slot.tag = tagOf(key);
+            ++m_size;
+        }
+        slot.index = index;
+    }
     /// Removes the key (no-op if absent).
-    void erase(CopyKey const& key);
+    template <class KeyAt>
+    void erase(CopyKey const& key, KeyAt const& keyAt) {
+        if (m_size != 0)
+            eraseSlot(probe(key, keyAt));
+    }
     /// Room for `n` keys without growing.
     void reserve(std::size_t n);
     void clear();
@@ -34,20 +73,38 @@ public:
 
 private:
     struct Slot {
-        Uid uid = kInvalidUid; ///< kInvalidUid: empty
-        CopyImage image = kNoImage;
-        std::uint32_t index = kNone;
+        std::uint32_t index = kNone; ///< kNone: empty
+        std::uint32_t tag = 0;       ///< the top 32 bits of the key's mixed hash
     };
-    [[nodiscard]] std::size_t home(CopyKey const& key) const {
-        return CopyKeyHash{}(key)*0x9E3779B97F4A7C15ULL >> m_shift;
+    /// The key's hash, mixed so that its top bits are good: the home slot is its top
+    /// log2(slots) bits, the tag its top 32 bits (so home = tag >> (32 - log2(slots)), and the
+    /// table can be rehashed and shifted without the keys).
+    [[nodiscard]] static std::uint64_t mixed(CopyKey const& key) {
+        return CopyKeyHash{}(key)*0x9E3779B97F4A7C15ULL;
+    }
+    [[nodiscard]] static std::uint32_t tagOf(CopyKey const& key) {
+        return static_cast<std::uint32_t>(mixed(key) >> 32U);
+    }
+    [[nodiscard]] std::size_t homeOfTag(std::uint32_t tag) const {
+        return m_shift >= 64 ? 0 : static_cast<std::size_t>(tag) >> (m_shift - 32U);
     }
     /// The slot holding `key`, or the empty slot where it would go.
-    [[nodiscard]] std::size_t probe(CopyKey const& key) const;
-    void grow(std::size_t minSlots);
+    template <class KeyAt>
+    [[nodiscard]] std::size_t probe(CopyKey const& key, KeyAt const& keyAt) const {
+        std::uint32_t const tag = tagOf(key);
+        std::size_t const mask = m_slots.size() - 1;
+        for (std::size_t s = homeOfTag(tag);; s = (s + 1) & mask) {
+            Slot const& slot = m_slots[s];
+            if (slot.index == kNone || (slot.tag == tag && keyAt(slot.index) == key))
+                return s;
+        }
+    }
+    void eraseSlot(std::size_t hole);
+    void grow(std::size_t minKeys);
 
-    std::vector<Slot> m_slots; ///< power-of-two size, at most 3/4 full
+    std::vector<Slot> m_slots; ///< power-of-two size (at most 2^32), at most 3/4 full
     std::size_t m_size = 0;
-    unsigned m_shift = 64; ///< 64 - log2(slots)
+    unsigned m_shift = 64; ///< 64 - log2(slots), >= 32
 };
 
 } // namespace regolith::particles

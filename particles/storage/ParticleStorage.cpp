@@ -1,6 +1,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 
 #include "core/Error.hpp"
+#include "core/memory/GentleGrowth.hpp"
 
 #include <atomic>
 #include <string>
@@ -24,7 +25,7 @@ void ParticleStorage::forEachArray(F&& f) {
     f(m_invInertia);
     f(m_flags);
     f(m_type);
-    f(m_owner);
+    f(m_ownerSlot);
     f(m_image);
     f(m_shadowHolders);
     f(m_history);
@@ -36,9 +37,13 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     Index const i = size();
     if (i >= CopyIndex::kNone)
         throw core::Error("ParticleStorage::add: more copies than 32-bit indices");
-    if (!m_index.insert(CopyKey{p.uid, p.image}, static_cast<std::uint32_t>(i)))
+    if (!m_index.insert(CopyKey{p.uid, p.image}, static_cast<std::uint32_t>(i), keyAt()))
         throw core::Error("ParticleStorage::add: uid " + std::to_string(p.uid) +
                           (isZero(p.image) ? "" : " (periodic image)") + " is already stored");
+    // Every array is full at once: grow all by a sixteenth, not by push_back's doubling (the
+    // first shadow after a set-up reserved to the masters would double the whole storage).
+    if (i == m_uid.capacity())
+        forEachArray([i](auto& v) { v.reserve(core::gentleCapacity(i)); });
     m_uid.push_back(p.uid);
     m_position.push_back(p.position);
     m_velocity.push_back(p.velocity);
@@ -52,12 +57,13 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_invInertia.push_back(0.0);
     m_flags.push_back(p.flags);
     m_type.push_back(p.type);
-    m_owner.push_back(p.owner);
+    m_ownerSlot.push_back(ownerSlot(p.owner));
     m_image.push_back(p.image);
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
     updateInverses(i);
     if (tracing()) {
+        core::reserveForAppend(m_traceTag);
         m_traceTag.push_back(kUntraced);
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), kUntraced});
     }
@@ -66,7 +72,7 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
 
 void ParticleStorage::remove(Index i) {
     Index const last = size() - 1;
-    m_index.erase(key(i));
+    m_index.erase(key(i), keyAt());
     if (tracing()) {
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
         if (i != last)
@@ -75,8 +81,10 @@ void ParticleStorage::remove(Index i) {
         m_traceTag.pop_back();
     }
     if (i != last) {
+        // The index finds `last` through its key in the arrays: re-point it while the
+        // arrays still hold that key at `last` too (before the pop).
         forEachArray([i, last](auto& v) { v[i] = std::move(v[last]); });
-        m_index.assign(key(i), static_cast<std::uint32_t>(i));
+        m_index.assign(key(i), static_cast<std::uint32_t>(i), keyAt());
     }
     forEachArray([](auto& v) { v.pop_back(); });
 }
@@ -90,18 +98,24 @@ bool ParticleStorage::removeUid(Uid uid, CopyImage const& image) {
 }
 
 ParticleStorage::Index ParticleStorage::find(Uid uid, CopyImage const& image) const {
-    std::uint32_t const i = m_index.find(CopyKey{uid, image});
+    std::uint32_t const i = m_index.find(CopyKey{uid, image}, keyAt());
     return i == CopyIndex::kNone ? kNotFound : Index{i};
 }
 
 void ParticleStorage::setImage(Index i, CopyImage const& image) {
     if (image == m_image[i])
         return;
-    if (!m_index.insert(CopyKey{m_uid[i], image}, static_cast<std::uint32_t>(i)))
+    // The index confirms keys in m_image: drop the old key first, so that slot i is never
+    // listed under two keys at once, then add the new one (or restore the old on failure).
+    CopyImage const old = m_image[i];
+    m_index.erase(key(i), keyAt());
+    m_image[i] = image;
+    if (!m_index.insert(CopyKey{m_uid[i], image}, static_cast<std::uint32_t>(i), keyAt())) {
+        m_image[i] = old;
+        (void)m_index.insert(CopyKey{m_uid[i], old}, static_cast<std::uint32_t>(i), keyAt());
         throw core::Error("ParticleStorage::setImage: uid " + std::to_string(m_uid[i]) +
                           " is already stored at that periodic image");
-    m_index.erase(key(i));
-    m_image[i] = image;
+    }
     if (tracing()) { // its local position jumped: a new copy for the follower
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
         m_traceTag[i] = kUntraced;
@@ -126,8 +140,11 @@ void ParticleStorage::permute(std::span<Index const> newToOld) {
             out.push_back(std::move(v[k]));
         v.swap(out);
     });
+    // The index's slots hold old indices whose keys the arrays no longer hold there: rebuild.
+    m_index.clear();
+    m_index.reserve(n);
     for (Index k = 0; k < n; ++k)
-        m_index.assign(key(k), static_cast<std::uint32_t>(k));
+        (void)m_index.insert(key(k), static_cast<std::uint32_t>(k), keyAt());
     m_traceBroken = tracing();
 }
 
@@ -138,6 +155,8 @@ void ParticleStorage::reserve(std::size_t n) {
 
 void ParticleStorage::clear() {
     forEachArray([](auto& v) { v.clear(); });
+    m_owners.clear();
+    m_lastOwnerSlot = 0;
     m_index.clear();
     m_traceTag.clear();
     m_traceJournal.clear();
@@ -151,6 +170,7 @@ std::uint64_t ParticleStorage::startTracing() {
     m_traceSession = ++sessions;
     m_traceBroken = false;
     m_traceJournal.clear();
+    m_traceTag.reserve(core::gentleCapacity(size())); // arrivals: no reallocation (peak)
     m_traceTag.resize(size());
     for (Index k = 0, n = size(); k < n; ++k)
         m_traceTag[k] = static_cast<std::uint32_t>(k);
@@ -191,6 +211,16 @@ void ParticleStorage::updateInverses(Index i) {
     m_invInertia[i] = 1.0 / (0.4 * m_mass[i] * r * r);
 }
 
+std::uint32_t ParticleStorage::ownerSlot(BlockRef const& owner) {
+    if (m_lastOwnerSlot < m_owners.size() && m_owners[m_lastOwnerSlot] == owner)
+        return m_lastOwnerSlot;
+    for (std::size_t s = 0; s < m_owners.size(); ++s)
+        if (m_owners[s] == owner)
+            return m_lastOwnerSlot = static_cast<std::uint32_t>(s);
+    m_owners.push_back(owner);
+    return m_lastOwnerSlot = static_cast<std::uint32_t>(m_owners.size() - 1);
+}
+
 void ParticleStorage::resetForces() {
     for (Index i = 0, n = size(); i < n; ++i) {
         m_force[i].setZero();
@@ -221,14 +251,15 @@ std::size_t ParticleStorage::bytes() const {
     add(m_invInertia);
     add(m_flags);
     add(m_type);
-    add(m_owner);
+    add(m_ownerSlot);
+    add(m_owners);
     add(m_image);
     add(m_shadowHolders);
     add(m_history);
     add(m_traceTag);
     add(m_traceJournal);
     for (auto const& h : m_shadowHolders)
-        b += h.capacity() * sizeof(CopyRef);
+        b += h.heapBytes();
     for (auto const& h : m_history)
         b += h.heapBytes();
     b += m_index.bytes();

@@ -6,6 +6,7 @@
 #include "particles/storage/CopyImage.hpp"
 #include "particles/storage/CopyIndex.hpp"
 #include "particles/storage/ParticleFlags.hpp"
+#include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
 
 #include <cstddef>
@@ -33,6 +34,9 @@ struct CopyRef {
     friend bool operator==(CopyRef const&, CopyRef const&) = default;
     friend auto operator<=>(CopyRef const&, CopyRef const&) = default;
 };
+
+/// The shadow holders of a master: one pointer per copy, null while empty (ThinList).
+using HolderList = ThinList<CopyRef>;
 
 /// Everything needed to create a particle. Force, torque and history start empty.
 struct ParticleInit {
@@ -62,9 +66,9 @@ struct TraceChange {
 /// Invariants: `find(uid(i), image(i)) == i` for every index, (uid, image) keys are unique (a
 /// block that is its own periodic neighbour may hold one particle at several images); `invMass` and
 /// `invInertia` follow mass, radius and the Fixed flag (zero when fixed; a sphere's inertia
-/// is 2/5 m r^2). Adding is amortised O(1); removing is O(1) by moving the last particle into
-/// the freed slot, which changes that particle's index (never its uid). Indices are therefore
-/// only valid until the next removal.
+/// is 2/5 m r^2). Adding is amortised O(1); removing is
+/// O(1) by moving the last particle into the freed slot, which changes that particle's index (never
+/// its uid). Indices are therefore only valid until the next removal.
 class ParticleStorage {
 public:
     using Index = std::size_t;
@@ -111,28 +115,30 @@ public:
     [[nodiscard]] core::Vec3 const& torque(Index i) const { return m_torque[i]; }
     [[nodiscard]] double radius(Index i) const { return m_radius[i]; }
     [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
+    /// 1 / mass, 0 for a Fixed particle. Stored, not computed on use: recomputing both
+    /// inverses in the integrators' loops (two divisions per grain and half-step) cost ~7 %
+    /// of the sparse gas's step rate for 16 bytes per copy (docs/results.md, "Memory").
     [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
     /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
     [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }
     [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
     [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
-    [[nodiscard]] BlockRef owner(Index i) const { return m_owner[i]; }
+    [[nodiscard]] BlockRef owner(Index i) const { return m_owners[m_ownerSlot[i]]; }
     [[nodiscard]] CopyImage const& image(Index i) const { return m_image[i]; }
     [[nodiscard]] CopyKey key(Index i) const { return {m_uid[i], m_image[i]}; }
     /// Where the master knows its shadows to be (masters only; sorted, unique).
-    [[nodiscard]] std::vector<CopyRef>& shadowHolders(Index i) { return m_shadowHolders[i]; }
-    [[nodiscard]] std::vector<CopyRef> const& shadowHolders(Index i) const {
-        return m_shadowHolders[i];
-    }
+    [[nodiscard]] HolderList& shadowHolders(Index i) { return m_shadowHolders[i]; }
+    [[nodiscard]] HolderList const& shadowHolders(Index i) const { return m_shadowHolders[i]; }
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
 
-    /// Setters for properties that others depend on (inverse mass and inertia).
+    /// Setters for properties that others depend on (inverse mass and inertia; a radius
+    /// change also breaks a running trace, see startTracing).
     void setRadius(Index i, double radius);
     void setMass(Index i, double mass);
     void setFlags(Index i, Flags flags);
     void setType(Index i, std::uint32_t type) { m_type[i] = type; }
-    void setOwner(Index i, BlockRef owner) { m_owner[i] = owner; }
+    void setOwner(Index i, BlockRef owner) { m_ownerSlot[i] = ownerSlot(owner); }
     /// Re-keys copy i to `image`; throws core::Error if (uid, image) is held already.
     void setImage(Index i, CopyImage const& image);
 
@@ -187,6 +193,12 @@ private:
     void updateInverses(Index i);
     template <class F>
     void forEachArray(F&& f);
+    /// Reads the key of a stored copy for m_index, which keeps no keys (see CopyIndex).
+    [[nodiscard]] auto keyAt() const {
+        return [this](std::uint32_t i) { return CopyKey{m_uid[i], m_image[i]}; };
+    }
+    /// The slot of `owner` in m_owners, appended if new.
+    [[nodiscard]] std::uint32_t ownerSlot(BlockRef const& owner);
 
     std::vector<Uid> m_uid;
     std::vector<core::Vec3> m_position;
@@ -201,9 +213,14 @@ private:
     std::vector<double> m_invInertia;
     std::vector<Flags> m_flags;
     std::vector<std::uint32_t> m_type;
-    std::vector<BlockRef> m_owner;
+    // The owner block of each copy as a 4-byte slot in a table of the distinct owners seen
+    // (12 bytes per copy less than a BlockRef): a block's copies have few owners, its own
+    // block and the neighbours whose grains reach it. The table only grows (until clear()).
+    std::vector<std::uint32_t> m_ownerSlot;
+    std::vector<BlockRef> m_owners;
+    std::uint32_t m_lastOwnerSlot = 0; ///< where the last look-up hit: most hit it again
     std::vector<CopyImage> m_image;
-    std::vector<std::vector<CopyRef>> m_shadowHolders;
+    std::vector<HolderList> m_shadowHolders;
     std::vector<ContactHistory> m_history;
     CopyIndex m_index;
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.

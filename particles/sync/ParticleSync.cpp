@@ -127,7 +127,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     bool transfer = false;
     BlockRef newOwner{me, block.id.raw()};
     CopyImage kN = kNoImage; // image of the new owner's copy in the current frame
-    std::vector<CopyRef>& holders = ps.shadowHolders(i);
+    HolderList& holders = ps.shadowHolders(i);
     if (!block.aabb.contains(x)) {
         auto const loc = engine.forest().blockContaining(block, x);
         if (!loc && engine.forest().insideDomain(x))
@@ -159,7 +159,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
                 targets.push_back(CopyRef{l.owner, l.id.raw(), k});
         });
     } else {
-        targets = holders;
+        targets.assign(holders.begin(), holders.end());
     }
     if (transfer && (!nnsClass || copyNeeded(block.aabb, x, kNoImage, r, period)))
         targets.push_back(CopyRef{me, block.id.raw(), kNoImage}); // the old master's block

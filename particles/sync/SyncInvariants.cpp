@@ -62,7 +62,7 @@ std::string packLocal(LocalParticles const& local) {
               << ps.velocity(i) << ps.angularVelocity(i) << ps.orientation(i) << ps.radius(i)
               << ps.mass(i);
             if (ps.flags(i).isMaster())
-                b << ps.shadowHolders(i);
+                b << ps.shadowHolders(i).vector();
         }
     }
     auto const bytes = b.bytes();
