@@ -30,14 +30,9 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
         c.method = coupling::GrainGravityMethod::MutualTree;
         break;
     case SelfGravity::Pm:
-        c.method = coupling::GrainGravityMethod::Mesh;
-        c.cellsPerBlock = scene.forest.cellsPerBlock;
-        c.petscOptions = g.petscOptions;
-        c.poisson = gravity::parsePoissonMethod(g.poisson);
-        c.gradientOrder = g.gradientOrder;
-        break;
     case SelfGravity::P3m:
-        c.method = coupling::GrainGravityMethod::P3m;
+        c.method = g.self == SelfGravity::Pm ? coupling::GrainGravityMethod::Mesh
+                                             : coupling::GrainGravityMethod::P3m;
         c.cellsPerBlock = scene.forest.cellsPerBlock;
         c.petscOptions = g.petscOptions;
         c.poisson = gravity::parsePoissonMethod(g.poisson);

@@ -9,9 +9,7 @@
 
 namespace regolith::coupling {
 
-namespace {
-
-gravity::GridGravityOptions gridOptions(SelfGravityConfig const& c) {
+gravity::GridGravityOptions gridGravityOptions(SelfGravityConfig const& c) {
     gravity::GridGravityOptions o;
     o.gradientOrder = c.gradientOrder;
     o.poisson.G = c.G;
@@ -19,6 +17,8 @@ gravity::GridGravityOptions gridOptions(SelfGravityConfig const& c) {
     o.poissonMethod = c.poisson;
     return o;
 }
+
+namespace {
 
 /// The calibration of GridShortRange puts a unit mass at the domain centre and probes the
 /// mesh force out to the cut-off: the grid must hold the cut-off on both sides with a margin
@@ -49,7 +49,7 @@ P3mGravity::P3mGravity(core::Comm const& comm, domain::BlockForest const& forest
     , m_comm(comm.duplicate())
     , m_forest(&forest)
     , m_softening(c.softening)
-    , m_grid(comm, forest, c.cellsPerBlock, gridOptions(c))
+    , m_grid(comm, forest, c.cellsPerBlock, gridGravityOptions(c))
     , m_shortRange(comm, checkedForCalibration(m_grid, c.p3mCutoffCells), c.p3mCutoffCells)
     , m_halo(comm, forest, m_grid.layout(), m_shortRange.cutoff()) {}
 

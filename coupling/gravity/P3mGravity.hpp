@@ -24,6 +24,9 @@
 
 namespace regolith::coupling {
 
+/// The grid-gravity options of the mesh methods (pm, p3m) from the scene's configuration.
+[[nodiscard]] gravity::GridGravityOptions gridGravityOptions(SelfGravityConfig const& c);
+
 class P3mGravity {
 public:
     /// Builds the grid (domain.cells_per_block), calibrates the pair table (four Poisson

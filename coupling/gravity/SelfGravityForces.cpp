@@ -23,7 +23,7 @@ public:
     MeshGravity(core::Comm const& comm, domain::BlockForest const& forest,
                 SelfGravityConfig const& c)
         : m_session(m_argc, m_argv)
-        , m_grid(comm, forest, c.cellsPerBlock, options(c)) {}
+        , m_grid(comm, forest, c.cellsPerBlock, gridGravityOptions(c)) {}
 
     double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) {
         m_position.resize(grains.size());
@@ -44,15 +44,6 @@ public:
     [[nodiscard]] gravity::GridFieldsView fields() const { return m_grid.fields(); }
 
 private:
-    static gravity::GridGravityOptions options(SelfGravityConfig const& c) {
-        gravity::GridGravityOptions o;
-        o.gradientOrder = c.gradientOrder;
-        o.poisson.G = c.G;
-        o.poisson.petscOptions = c.petscOptions;
-        o.poissonMethod = c.poisson;
-        return o;
-    }
-
     int m_argc = 0;
     char** m_argv = nullptr;
     gravity::PetscSession m_session;
