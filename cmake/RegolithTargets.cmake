@@ -4,8 +4,27 @@
 set(REGOLITH_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wshadow -Wnon-virtual-dtor
     -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
 
+# Code generation, for every target:
+# -fno-math-errno   sqrt compiles to the instruction, so loops that take roots vectorise
+#                   (SpringDashpotBatch); nothing here reads errno after a math call.
+# -ffp-contract=off no fused multiply-add contraction: an expression gives the same bits
+#                   wherever the compiler inlines it and whatever the instruction set, which the
+#                   "same bits on every path" rules rely on (PairRule.hpp, reproducible mode).
+# REGOLITH_NATIVE   -march=native: the instruction set of the machine that builds (and runs)
+#                   the code, as waLBerla's WALBERLA_OPTIMIZE_FOR_LOCALHOST; results are the
+#                   same bits with or without it (no contraction, no reassociation). Without
+#                   AVX-512 (-mno-avx512f: at most AVX2): GCC 12 warns falsely in its AVX-512
+#                   headers through Eigen (GCC bug 105593, maybe-uninitialized), and Zen 4, the
+#                   machine these figures come from, runs 512-bit operations as two 256-bit
+#                   halves anyway.
+option(REGOLITH_NATIVE "Optimise for the building machine (-march=native)" ON)
+set(REGOLITH_CODEGEN -fno-math-errno -ffp-contract=off)
+if(REGOLITH_NATIVE)
+  list(APPEND REGOLITH_CODEGEN -march=native -mno-avx512f)
+endif()
+
 function(regolith_target_defaults target)
-  target_compile_options(${target} PRIVATE ${REGOLITH_WARNINGS})
+  target_compile_options(${target} PRIVATE ${REGOLITH_WARNINGS} ${REGOLITH_CODEGEN})
   target_compile_features(${target} PUBLIC cxx_std_20)
 endfunction()
 

@@ -26,8 +26,11 @@ namespace regolith::particles::detection_detail {
 /// The canonical geometry of copies i, j (uid(i) < uid(j)): if |x_j + shiftJ - x_i| < r_i +
 /// r_j, fills c (i, j, point, normal, penetration, shiftJ) and returns true. The one place these
 /// bits are computed, so that every path (full rule, fused Verlet loop) agrees.
-[[nodiscard]] inline bool overlapGeometry(ParticleStorage const& ps, std::size_t i, std::size_t j,
-                                          core::Vec3 const& period, Contact& c) {
+/// Always inlined: it runs once per listed pair and step.
+[[nodiscard, gnu::always_inline]] inline bool overlapGeometry(ParticleStorage const& ps,
+                                                              std::size_t i, std::size_t j,
+                                                              core::Vec3 const& period,
+                                                              Contact& c) {
     core::Vec3 const shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
     core::Vec3 const& xi = ps.position(i);
     // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.

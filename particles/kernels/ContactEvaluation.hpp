@@ -17,15 +17,31 @@
 
 namespace regolith::particles {
 
-/// The ContactState of the pair contact `c` (i, j in canonical order; j's lever arm taken
-/// from partnerCentre).
-ContactState pairState(ParticleStorage const& ps, Contact const& c);
 /// The ContactState of the sphere–wall contact `c` (the wall is i).
 ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallContact const& c);
 
 /// j's centre in i's canonical frame: position(j) + shiftJ (Contact.hpp) [length].
 [[nodiscard]] inline core::Vec3 partnerCentre(ParticleStorage const& ps, Contact const& c) {
     return ps.position(c.j) + c.shiftJ;
+}
+
+/// The ContactState of the pair contact `c` (i, j in canonical order; j's lever arm taken
+/// from partnerCentre). Inline: once per contact and step in the fused loop.
+inline ContactState pairState(ParticleStorage const& ps, Contact const& c) {
+    core::Vec3 const ri = c.point - ps.position(c.i);
+    core::Vec3 const rj = c.point - partnerCentre(ps, c);
+    core::Vec3 const vi = ps.velocity(c.i) + ps.angularVelocity(c.i).cross(ri);
+    core::Vec3 const vj = ps.velocity(c.j) + ps.angularVelocity(c.j).cross(rj);
+    double const a = ps.radius(c.i), b = ps.radius(c.j);
+    return ContactState{c.normal,
+                        c.penetration,
+                        vj - vi,
+                        ps.angularVelocity(c.j) - ps.angularVelocity(c.i),
+                        1.0 / (ps.invMass(c.i) + ps.invMass(c.j)),
+                        a * b / (a + b),
+                        ps.invInertia(c.i) + ps.invInertia(c.j),
+                        ps.type(c.i),
+                        ps.type(c.j)};
 }
 
 /// Something that receives one participant's share of one contact:

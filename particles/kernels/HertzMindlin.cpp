@@ -1,7 +1,6 @@
 #include "particles/kernels/HertzMindlin.hpp"
 
 #include "core/Error.hpp"
-#include "particles/kernels/TangentialSpring.hpp"
 
 #include <fmt/format.h>
 
@@ -48,26 +47,6 @@ HertzMindlin::HertzMindlin(MaterialTable<HertzMindlinParams> materials)
         double const beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
         m_beta.set(a, b, -2.0 * std::sqrt(5.0 / 6.0) * beta);
     });
-}
-
-ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec3& spring,
-                                         double dt) const {
-    HertzMindlinParams const& p = m_materials(s.typeI, s.typeJ);
-    double const damping = m_beta(s.typeI, s.typeJ);
-    double const a = std::sqrt(s.effectiveRadius * s.penetration);
-    double const sn = 2.0 * p.effectiveYoungsModulus * a;
-    double const st = 8.0 * p.effectiveShearModulus * a;
-    double const vn = s.relativeVelocity.dot(s.normal);
-    core::Vec3 const vt = s.relativeVelocity - vn * s.normal;
-    double const fn = (4.0 / 3.0) * p.effectiveYoungsModulus * a * s.penetration -
-                      damping * std::sqrt(sn * s.effectiveMass) * vn;
-
-    ContactResponse r;
-    r.force = fn * s.normal;
-    r.force += tangentialForce(spring, s.normal, vt, st, damping * std::sqrt(st * s.effectiveMass),
-                               p.friction * std::max(fn, 0.0), dt);
-    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
-    return r;
 }
 
 double HertzMindlin::contactTime(HertzMindlinParams const& p, double effectiveMass,

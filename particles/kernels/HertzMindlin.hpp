@@ -5,6 +5,10 @@
 /// LIGGGHTS' hertz/history; optional rolling resistance.
 #include "particles/kernels/ContactState.hpp"
 #include "particles/kernels/MaterialTable.hpp"
+#include "particles/kernels/TangentialSpring.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace regolith::particles {
 
@@ -40,6 +44,7 @@ public:
     /// Throws core::InputError naming the type pair if a parameter is out of range.
     explicit HertzMindlin(MaterialTable<HertzMindlinParams> materials);
 
+    /// Inline: the fused contact loop runs it once per contact and step.
     ContactResponse operator()(ContactState const& s, core::Vec3& spring, double dt) const;
 
     [[nodiscard]] MaterialTable<HertzMindlinParams> const& materials() const { return m_materials; }
@@ -55,5 +60,25 @@ private:
 };
 
 static_assert(ContactModel<HertzMindlin>);
+
+inline ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec3& spring,
+                                                double dt) const {
+    HertzMindlinParams const& p = m_materials(s.typeI, s.typeJ);
+    double const damping = m_beta(s.typeI, s.typeJ);
+    double const a = std::sqrt(s.effectiveRadius * s.penetration);
+    double const sn = 2.0 * p.effectiveYoungsModulus * a;
+    double const st = 8.0 * p.effectiveShearModulus * a;
+    double const vn = s.relativeVelocity.dot(s.normal);
+    core::Vec3 const vt = s.relativeVelocity - vn * s.normal;
+    double const fn = (4.0 / 3.0) * p.effectiveYoungsModulus * a * s.penetration -
+                      damping * std::sqrt(sn * s.effectiveMass) * vn;
+
+    ContactResponse r;
+    r.force = fn * s.normal;
+    r.force += tangentialForce(spring, s.normal, vt, st, damping * std::sqrt(st * s.effectiveMass),
+                               p.friction * std::max(fn, 0.0), dt);
+    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
+    return r;
+}
 
 } // namespace regolith::particles

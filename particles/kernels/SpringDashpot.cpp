@@ -1,7 +1,6 @@
 #include "particles/kernels/SpringDashpot.hpp"
 
 #include "core/Error.hpp"
-#include "particles/kernels/TangentialSpring.hpp"
 
 #include <fmt/format.h>
 
@@ -28,23 +27,6 @@ SpringDashpot::SpringDashpot(MaterialTable<LinearContactParams> materials)
         check.nonNegative("rolling_friction", p.rollingFriction);
         m_dampingRatio.set(a, b, dampingRatioFromRestitution(p.restitution));
     });
-}
-
-ContactResponse SpringDashpot::operator()(ContactState const& s, core::Vec3& spring,
-                                          double dt) const {
-    LinearContactParams const& p = m_materials(s.typeI, s.typeJ);
-    double const cn =
-        2.0 * m_dampingRatio(s.typeI, s.typeJ) * std::sqrt(p.stiffness * s.effectiveMass);
-    double const vn = s.relativeVelocity.dot(s.normal);
-    core::Vec3 const vt = s.relativeVelocity - vn * s.normal;
-    double const fn = p.stiffness * s.penetration - cn * vn;
-
-    ContactResponse r;
-    r.force = fn * s.normal;
-    r.force += tangentialForce(spring, s.normal, vt, p.tangentialStiffness,
-                               p.tangentialDampingRatio * cn, p.friction * std::max(fn, 0.0), dt);
-    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
-    return r;
 }
 
 double SpringDashpot::contactTime(LinearContactParams const& p, double effectiveMass) {

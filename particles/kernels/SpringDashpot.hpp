@@ -4,6 +4,10 @@
 /// restitution coefficient as in Schwager & Poeschel, Granular Matter 9 (2007) 465).
 #include "particles/kernels/ContactState.hpp"
 #include "particles/kernels/MaterialTable.hpp"
+#include "particles/kernels/TangentialSpring.hpp"
+
+#include <algorithm>
+#include <cmath>
 
 namespace regolith::particles {
 
@@ -37,10 +41,15 @@ public:
     /// Throws core::InputError naming the type pair if a parameter is out of range.
     explicit SpringDashpot(MaterialTable<LinearContactParams> materials);
 
+    /// Inline: the fused contact loop runs it once per contact and step.
     ContactResponse operator()(ContactState const& s, core::Vec3& spring, double dt) const;
 
     [[nodiscard]] MaterialTable<LinearContactParams> const& materials() const {
         return m_materials;
+    }
+    /// gamma / omega_0 of the pair of types (a, b) (dampingRatioFromRestitution).
+    [[nodiscard]] double dampingRatio(std::uint32_t a, std::uint32_t b) const {
+        return m_dampingRatio(a, b);
     }
     /// Duration of a free normal collision: pi / sqrt(k/m_eff - gamma^2) [time].
     static double contactTime(LinearContactParams const& p, double effectiveMass);
@@ -51,5 +60,22 @@ private:
 };
 
 static_assert(ContactModel<SpringDashpot>);
+
+inline ContactResponse SpringDashpot::operator()(ContactState const& s, core::Vec3& spring,
+                                                 double dt) const {
+    LinearContactParams const& p = m_materials(s.typeI, s.typeJ);
+    double const cn =
+        2.0 * m_dampingRatio(s.typeI, s.typeJ) * std::sqrt(p.stiffness * s.effectiveMass);
+    double const vn = s.relativeVelocity.dot(s.normal);
+    core::Vec3 const vt = s.relativeVelocity - vn * s.normal;
+    double const fn = p.stiffness * s.penetration - cn * vn;
+
+    ContactResponse r;
+    r.force = fn * s.normal;
+    r.force += tangentialForce(spring, s.normal, vt, p.tangentialStiffness,
+                               p.tangentialDampingRatio * cn, p.friction * std::max(fn, 0.0), dt);
+    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
+    return r;
+}
 
 } // namespace regolith::particles

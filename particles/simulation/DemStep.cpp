@@ -2,9 +2,12 @@
 
 #include "core/Error.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
+#include "particles/kernels/SpringDashpotBatch.hpp"
 
 #include <cmath>
+#include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace regolith::particles {
@@ -104,6 +107,33 @@ void DemStep::syncParticles() {
                               "DemStep step " + std::to_string(m_steps + 1));
 }
 
+template <class Model, class Sink>
+void DemStep::evaluateBlock(std::size_t b, Model const& model, std::uint32_t stamp, bool keepPairs,
+                            Sink&& sink) {
+    ParticleStorage& ps = m_local->blocks()[b].particles;
+    core::AABB const& box = m_local->blocks()[b].block->aabb;
+    double const dt = m_config.dt;
+    // Detection and evaluation in one loop over the Verlet list: each contact is evaluated as
+    // soon as the loop finds it (spring-dashpot: in batches, SpringDashpotBatch), its history
+    // slot hint kept beside the pair. Same contacts, same order, same arithmetic as detecting
+    // first: same bits.
+    if constexpr (std::is_same_v<Model, SpringDashpot>) {
+        if (!m_batch)
+            m_batch = std::make_unique<SpringDashpotBatch>();
+        BatchedSpringDashpot pairs(ps, model, dt, stamp, *m_batch, sink);
+        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], pairs, keepPairs);
+        pairs.finish();
+    } else {
+        m_detectors[b].detect(
+            ps, m_walls, box, m_frame, m_contacts[b],
+            [&](Contact const& c, std::uint8_t& hint) {
+                evaluatePair(ps, c, model, dt, stamp, hint, sink);
+            },
+            keepPairs);
+    }
+    evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
+}
+
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
     bool const keepPairs = m_config.keepContacts || stamp == 0;
@@ -119,39 +149,22 @@ void DemStep::computeForces(std::uint32_t stamp) {
             // (DESIGN.md: exactly one block per contact). Walls are global: every block tests
             // its copies against all of them, and the detector keeps a sphere-wall contact
             // only for the sphere's master, so it too is evaluated once.
-            // Detection and evaluation in one loop over the Verlet list: each contact is
-            // evaluated as soon as it is found, its history slot hint kept beside the pair.
-            // Same contacts, same order, same arithmetic as detecting first: same bits.
             std::visit(
                 [&](auto const& model) {
-                    double const dt = m_config.dt;
-                    core::AABB const& box = blocks[b].block->aabb;
                     if (reproducible) {
                         std::vector<ForceRecord>& out = m_records[b];
-                        auto sink = [&out](std::size_t k, Uid partner, core::Vec3 const& f,
-                                           core::Vec3 const& tq) {
-                            out.push_back(ForceRecord{k, partner, f, tq});
-                        };
-                        m_detectors[b].detect(
-                            ps, m_walls, box, m_frame, m_contacts[b],
-                            [&](Contact const& c, std::uint8_t& hint) {
-                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
-                            },
-                            keepPairs);
-                        evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
+                        evaluateBlock(b, model, stamp, keepPairs,
+                                      [&out](std::size_t k, Uid partner, core::Vec3 const& f,
+                                             core::Vec3 const& tq) {
+                                          out.push_back(ForceRecord{k, partner, f, tq});
+                                      });
                     } else {
-                        auto sink = [&ps](std::size_t k, Uid, core::Vec3 const& f,
-                                          core::Vec3 const& tq) {
-                            ps.force(k) += f;
-                            ps.torque(k) += tq;
-                        };
-                        m_detectors[b].detect(
-                            ps, m_walls, box, m_frame, m_contacts[b],
-                            [&](Contact const& c, std::uint8_t& hint) {
-                                evaluatePair(ps, c, model, dt, stamp, hint, sink);
-                            },
-                            keepPairs);
-                        evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
+                        evaluateBlock(
+                            b, model, stamp, keepPairs,
+                            [&ps](std::size_t k, Uid, core::Vec3 const& f, core::Vec3 const& tq) {
+                                ps.force(k) += f;
+                                ps.torque(k) += tq;
+                            });
                     }
                 },
                 m_model);

@@ -14,6 +14,7 @@
 #include "particles/kernels/ForceRecord.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
+#include "particles/kernels/SpringDashpotBatch.hpp"
 #include "particles/storage/WallList.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
@@ -21,6 +22,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string_view>
 #include <utility>
@@ -152,6 +154,11 @@ private:
     void syncParticles();
     /// Detection, evaluation and reduction with stamp `stamp`. COLLECTIVE.
     void computeForces(std::uint32_t stamp);
+    /// Detection and evaluation of block b's contacts with `model`, each participant's share
+    /// handed to `sink` (ContactSink). Not collective.
+    template <class Model, class Sink>
+    void evaluateBlock(std::size_t b, Model const& model, std::uint32_t stamp, bool keepPairs,
+                       Sink&& sink);
 
     core::Comm const* m_comm;
     ParticleSync* m_sync;
@@ -165,6 +172,7 @@ private:
     std::vector<ContactDetector> m_detectors;        ///< one per local block
     std::vector<ContactList> m_contacts;             ///< one per local block
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
+    std::unique_ptr<SpringDashpotBatch> m_batch;     ///< the spring-dashpot lanes, reused
     BodyForces m_bodyForces;
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;

@@ -67,6 +67,13 @@ void ContactHistory::set(HistoryEntry const& entry) {
         v.insert(it, entry);
 }
 
+void ContactHistory::assign(std::vector<HistoryEntry> const& entries) {
+    if (entries.empty())
+        m_entries.reset();
+    else
+        ensure().assign(entries.begin(), entries.end());
+}
+
 bool ContactHistory::erase(Uid partner) {
     if (!m_entries)
         return false;

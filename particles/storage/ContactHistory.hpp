@@ -57,8 +57,26 @@ public:
         }
         return touchSlow(partner, stamp, hint);
     }
+    /// touch() with a hint that also tells whether the entry had been stamped `stamp` already
+    /// (`again`): touched earlier in the same pass, e.g. a pair that meets through two periodic
+    /// images, whose second evaluation must see the spring the first one left.
+    HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint, bool& again) {
+        if (m_entries && hint < m_entries->size() && (*m_entries)[hint].partner == partner)
+            [[likely]] {
+            auto& e = (*m_entries)[hint];
+            again = e.stamp == stamp;
+            e.stamp = stamp;
+            return e;
+        }
+        HistoryEntry const* e = find(partner);
+        again = e != nullptr && e->stamp == stamp;
+        return touchSlow(partner, stamp, hint);
+    }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
+    /// Replaces every entry by `entries` (sorted by partner uid, unique: another history's
+    /// entries), reusing the heap block: a shadow takes its master's history every step.
+    void assign(std::vector<HistoryEntry> const& entries);
     /// Removes the entry for `partner`; returns whether there was one.
     bool erase(Uid partner);
     /// Drops every entry whose stamp differs from `stamp`: the contacts not evaluated in the

@@ -39,23 +39,13 @@ UpdateState readUpdate(core::RecvBuffer& b) {
     return u;
 }
 
-namespace {
-
-void setHistory(ContactHistory& h, std::vector<HistoryEntry> const& entries) {
-    h.clear();
-    for (HistoryEntry const& e : entries)
-        h.set(e);
-}
-
-} // namespace
-
 std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master) {
     ParticleInit p = s.init;
     p.flags.set(Flag::Shadow, !master);
     std::size_t const i = ps.add(p);
     ps.force(i) = s.force;
     ps.torque(i) = s.torque;
-    setHistory(ps.history(i), s.history);
+    ps.history(i).assign(s.history);
     if (master)
         ps.shadowHolders(i) = s.holders;
     return i;
@@ -68,7 +58,7 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
     ps.orientation(i) = u.orientation;
     ps.setFlags(i, Flags(u.flags).set(Flag::Shadow, ps.flags(i).isShadow()));
     ps.setOwner(i, u.owner);
-    setHistory(ps.history(i), u.history);
+    ps.history(i).assign(u.history);
 }
 
 void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
@@ -80,7 +70,7 @@ void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
     to.setFlags(k, Flags(from.flags(i)).set(Flag::Shadow, to.flags(k).isShadow()));
     to.setOwner(k, owner);
     if (!from.history(i).empty() || !to.history(k).empty())
-        setHistory(to.history(k), from.history(i).entries());
+        to.history(k).assign(from.history(i).entries());
 }
 
 } // namespace regolith::particles::sync_detail

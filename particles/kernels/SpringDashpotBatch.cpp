@@ -1,0 +1,160 @@
+#include "particles/kernels/SpringDashpotBatch.hpp"
+
+#include <cmath>
+
+namespace regolith::particles {
+
+void SpringDashpotBatch::add(ParticleStorage const& ps, Contact const& c, core::Vec3 const& spring,
+                             std::uint8_t hint) {
+    std::size_t const k = m_size++;
+    std::size_t const i = c.i, j = c.j;
+    m_i[k] = i;
+    m_j[k] = j;
+    m_hint[k] = hint;
+    m_typeI[k] = ps.type(i);
+    m_typeJ[k] = ps.type(j);
+    // The lever arms as pairState and evaluatePair compute them.
+    core::Vec3 const& xi = ps.position(i);
+    core::Vec3 const& xj = ps.position(j);
+    double const cjx = xj.x() + c.shiftJ.x(), cjy = xj.y() + c.shiftJ.y(),
+                 cjz = xj.z() + c.shiftJ.z();
+    m_ri[0][k] = c.point.x() - xi.x();
+    m_ri[1][k] = c.point.y() - xi.y();
+    m_ri[2][k] = c.point.z() - xi.z();
+    m_rj[0][k] = c.point.x() - cjx;
+    m_rj[1][k] = c.point.y() - cjy;
+    m_rj[2][k] = c.point.z() - cjz;
+    auto put = [k](Lane3& lane, core::Vec3 const& v) {
+        lane[0][k] = v.x();
+        lane[1][k] = v.y();
+        lane[2][k] = v.z();
+    };
+    put(m_n, c.normal);
+    put(m_vi, ps.velocity(i));
+    put(m_vj, ps.velocity(j));
+    put(m_wi, ps.angularVelocity(i));
+    put(m_wj, ps.angularVelocity(j));
+    put(m_s, spring);
+    m_pen[k] = c.penetration;
+    m_invMi[k] = ps.invMass(i);
+    m_invMj[k] = ps.invMass(j);
+    m_invIi[k] = ps.invInertia(i);
+    m_invIj[k] = ps.invInertia(j);
+    m_radI[k] = ps.radius(i);
+    m_radJ[k] = ps.radius(j);
+}
+
+namespace {
+/// a x b, component `c`, in Eigen's order of operations.
+inline double cross(int c, double ax, double ay, double az, double bx, double by, double bz) {
+    return c == 0 ? ay * bz - az * by : (c == 1 ? az * bx - ax * bz : ax * by - ay * bx);
+}
+} // namespace
+
+void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
+    std::size_t const n = m_size;
+    auto const& materials = model.materials();
+    for (std::size_t k = 0; k < n; ++k) {
+        LinearContactParams const& p = materials(m_typeI[k], m_typeJ[k]);
+        m_k[k] = p.stiffness;
+        m_kt[k] = p.tangentialStiffness;
+        m_ratio[k] = model.dampingRatio(m_typeI[k], m_typeJ[k]);
+        m_mu[k] = p.friction;
+        m_ctRatio[k] = p.tangentialDampingRatio;
+        m_muRoll[k] = p.rollingFriction;
+    }
+    // One contact per iteration, no calls, every operation done in every lane and the scalar
+    // code's branches as selects between the results: the loop GCC vectorises (this file is
+    // compiled with -fno-trapping-math, which lets it evaluate a division or root whose result
+    // a lane then discards; the bits of the results kept are the same). The comments name the
+    // scalar code each part mirrors (same operations, same order).
+    for (std::size_t k = 0; k < n; ++k) {
+        double const nx = m_n[0][k], ny = m_n[1][k], nz = m_n[2][k];
+        double const rix = m_ri[0][k], riy = m_ri[1][k], riz = m_ri[2][k];
+        double const rjx = m_rj[0][k], rjy = m_rj[1][k], rjz = m_rj[2][k];
+        double const wix = m_wi[0][k], wiy = m_wi[1][k], wiz = m_wi[2][k];
+        double const wjx = m_wj[0][k], wjy = m_wj[1][k], wjz = m_wj[2][k];
+        // pairState: v + w x r at the contact point, relative velocity and spin, m_eff, R_eff.
+        double const vix = m_vi[0][k] + cross(0, wix, wiy, wiz, rix, riy, riz);
+        double const viy = m_vi[1][k] + cross(1, wix, wiy, wiz, rix, riy, riz);
+        double const viz = m_vi[2][k] + cross(2, wix, wiy, wiz, rix, riy, riz);
+        double const vjx = m_vj[0][k] + cross(0, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjy = m_vj[1][k] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjz = m_vj[2][k] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const ux = vjx - vix, uy = vjy - viy, uz = vjz - viz;
+        double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
+        double const meff = 1.0 / (m_invMi[k] + m_invMj[k]);
+        double const a = m_radI[k], b = m_radJ[k];
+        double const reff = a * b / (a + b);
+        double const invIsum = m_invIi[k] + m_invIj[k];
+        // SpringDashpot::operator(): normal force.
+        double const cn = 2.0 * m_ratio[k] * std::sqrt(m_k[k] * meff);
+        double const vn = ux * nx + uy * ny + uz * nz;
+        double const vtx = ux - vn * nx, vty = uy - vn * ny, vtz = uz - vn * nz;
+        double const fn = m_k[k] * m_pen[k] - cn * vn;
+        double const kt = m_kt[k];
+        double const ct = m_ctRatio[k] * cn;
+        double const limit = m_mu[k] * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)
+        // tangentialForce: projectSpring, grow, trial force, Coulomb limit.
+        double sx = m_s[0][k], sy = m_s[1][k], sz = m_s[2][k];
+        double const before = sx * sx + sy * sy + sz * sz;
+        double const along = sx * nx + sy * ny + sz * nz;
+        double const px = sx - along * nx, py = sy - along * ny, pz = sz - along * nz;
+        double const after = px * px + py * py + pz * pz;
+        bool const keepLength = after > 1e-24 * before;
+        double const scale = std::sqrt(before / after); // used where keepLength only
+        bool const projected = before != 0.0;
+        sx = projected ? (keepLength ? px * scale : 0.0) : sx;
+        sy = projected ? (keepLength ? py * scale : 0.0) : sy;
+        sz = projected ? (keepLength ? pz * scale : 0.0) : sz;
+        sx += vtx * dt;
+        sy += vty * dt;
+        sz += vtz * dt;
+        double tx = -kt * sx - ct * vtx, ty = -kt * sy - ct * vty, tz = -kt * sz - ct * vtz;
+        double const f2 = tx * tx + ty * ty + tz * tz;
+        bool const slides = f2 > limit * limit;
+        double const cut = limit / std::sqrt(f2); // used where slides only
+        double const cx = tx * cut, cy = ty * cut, cz = tz * cut;
+        double const ux2 = -(cx + ct * vtx) / kt, uy2 = -(cy + ct * vty) / kt,
+                     uz2 = -(cz + ct * vtz) / kt;
+        sx = slides ? ux2 : sx;
+        sy = slides ? uy2 : sy;
+        sz = slides ? uz2 : sz;
+        tx = slides ? cx : tx;
+        ty = slides ? cy : ty;
+        tz = slides ? cz : tz;
+        bool const tangential = kt > 0.0 && limit > 0.0;
+        tx = tangential ? tx : 0.0;
+        ty = tangential ? ty : 0.0;
+        tz = tangential ? tz : 0.0;
+        m_s[0][k] = tangential ? sx : 0.0;
+        m_s[1][k] = tangential ? sy : 0.0;
+        m_s[2][k] = tangential ? sz : 0.0;
+        double const fx = fn * nx + tx, fy = fn * ny + ty, fz = fn * nz + tz;
+        // rollingTorque.
+        double const muRoll = m_muRoll[k];
+        double const spin = ox * nx + oy * ny + oz * nz;
+        double const qx = ox - spin * nx, qy = oy - spin * ny, qz = oz - spin * nz;
+        double const qNorm = std::sqrt(qx * qx + qy * qy + qz * qz);
+        double magnitude = muRoll * reff * fn;
+        double const stop = qNorm / (dt * invIsum);
+        magnitude = invIsum > 0.0 && stop < magnitude ? stop : magnitude; // std::min
+        double const rolling = -magnitude / qNorm;                        // used where rolls only
+        bool const rolls = muRoll > 0.0 && fn > 0.0 && qNorm != 0.0;
+        double const mx = rolls ? rolling * qx : 0.0;
+        double const my = rolls ? rolling * qy : 0.0;
+        double const mz = rolls ? rolling * qz : 0.0;
+        // evaluatePair: the torques about each centre.
+        m_f[0][k] = fx;
+        m_f[1][k] = fy;
+        m_f[2][k] = fz;
+        m_tj[0][k] = cross(0, rjx, rjy, rjz, fx, fy, fz) + mx;
+        m_tj[1][k] = cross(1, rjx, rjy, rjz, fx, fy, fz) + my;
+        m_tj[2][k] = cross(2, rjx, rjy, rjz, fx, fy, fz) + mz;
+        m_ti[0][k] = cross(0, rix, riy, riz, fx, fy, fz) + mx;
+        m_ti[1][k] = cross(1, rix, riy, riz, fx, fy, fz) + my;
+        m_ti[2][k] = cross(2, rix, riy, riz, fx, fy, fz) + mz;
+    }
+}
+
+} // namespace regolith::particles

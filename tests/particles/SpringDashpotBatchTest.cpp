@@ -1,0 +1,197 @@
+// The batched spring-dashpot evaluation (SpringDashpotBatch, BatchedSpringDashpot) against
+// evaluatePair one contact at a time: the same sink calls with the same bits, and the same
+// springs and stamps in the histories, over several passes of a dense random pack with two
+// materials, sliding and sticking contacts, rolling resistance, springs that are zero, tiny,
+// along the normal or far beyond the Coulomb limit, and a pair met twice in one pass.
+#include "particles/kernels/SpringDashpotBatch.hpp"
+
+#include "particles/detection/ContactDetector.hpp"
+#include "particles/kernels/ContactEvaluation.hpp"
+#include "tests/particles/ParticleTestUtil.hpp"
+#include "tests/particles/PeriodicTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+using namespace regolith::particles;
+using namespace regolith::particles::test;
+
+namespace {
+
+/// Types 0 and 1: (0, 0) frictional with rolling resistance, (0, 1) without a tangential
+/// spring (k_t = 0), (1, 1) nearly frictionless (slides at once).
+SpringDashpot twoMaterials() {
+    MaterialTable<LinearContactParams> table(2);
+    LinearContactParams p;
+    p.stiffness = 2000.0;
+    p.tangentialStiffness = 600.0;
+    p.restitution = 0.7;
+    p.friction = 0.5;
+    p.rollingFriction = 0.05;
+    table.set(0, 0, p);
+    LinearContactParams q = p;
+    q.tangentialStiffness = 0.0;
+    q.restitution = 0.4;
+    table.set(0, 1, q);
+    LinearContactParams s = p;
+    s.stiffness = 5000.0;
+    s.friction = 0.01;
+    s.rollingFriction = 0.0;
+    s.tangentialDampingRatio = 0.3;
+    table.set(1, 1, s);
+    return SpringDashpot{table};
+}
+
+ParticleStorage randomPack(std::uint64_t seed, std::size_t n, double box) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    ParticleStorage ps;
+    for (std::size_t k = 0; k < n; ++k) {
+        ParticleInit p =
+            sphere(makeUid(0, k + 1), box * Vec3(u(rng), u(rng), u(rng)), 0.35 + 0.3 * u(rng),
+                   1.0 + u(rng), Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5));
+        p.angularVelocity = 6.0 * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+        p.type = static_cast<std::uint32_t>(k % 3 == 0 ? 1 : 0);
+        ps.add(p);
+    }
+    return ps;
+}
+
+struct Share {
+    std::size_t copy;
+    Uid partner;
+    Vec3 force;
+    Vec3 torque;
+};
+
+/// Springs of every kind the scalar code branches on, on the first contacts' histories.
+void seedSprings(ParticleStorage& ps, std::vector<Contact> const& pairs) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        Contact const& c = pairs[k];
+        Vec3& s = ps.history(c.i).touch(ps.uid(c.j), 0).spring;
+        switch (k % 5) {
+        case 0:
+            s = Vec3(u(rng), u(rng), u(rng)) * 1e-3;
+            break; // sticks
+        case 1:
+            s = Vec3(u(rng), u(rng), u(rng));
+            break; // far beyond mu F_n: slides
+        case 2:
+            s = 0.01 * c.normal;
+            break; // along the normal: dropped
+        case 3:
+            s = Vec3(1e-170, 0.0, 0.0);
+            break; // |s|^2 underflows to zero
+        default:
+            break; // a fresh contact
+        }
+    }
+}
+
+} // namespace
+
+TEST(SpringDashpotBatch, SameSharesAndSpringsAsEvaluatePairOverSeveralPasses) {
+    SpringDashpot const model = twoMaterials();
+    double const dt = 2e-3;
+    ParticleStorage one = randomPack(3, 600, 7.0);
+    WallList walls;
+    ContactDetector detector;
+    ContactList contacts;
+    detector.detect(one, walls, everywhere(), contacts);
+    ASSERT_GT(contacts.pairs.size(), 2 * SpringDashpotBatch::kCapacity);
+    seedSprings(one, contacts.pairs);
+    ParticleStorage batched = one;
+
+    SpringDashpotBatch batch;
+    for (std::uint32_t stamp = 1; stamp <= 4; ++stamp) {
+        detector.detect(one, walls, everywhere(), contacts);
+        std::vector<Share> expected, got;
+        auto recordInto = [](std::vector<Share>& out) {
+            return [&out](std::size_t k, Uid partner, Vec3 const& f, Vec3 const& t) {
+                out.push_back(Share{k, partner, f, t});
+            };
+        };
+        auto scalarSink = recordInto(expected);
+        for (Contact const& c : contacts.pairs) {
+            std::uint8_t hint = 0;
+            evaluatePair(one, c, model, dt, stamp, hint, scalarSink);
+        }
+        auto batchSink = recordInto(got);
+        BatchedSpringDashpot pairs(batched, model, dt, stamp, batch, batchSink);
+        for (Contact const& c : contacts.pairs) {
+            std::uint8_t hint = 0;
+            pairs(c, hint);
+        }
+        pairs.finish();
+
+        ASSERT_EQ(got.size(), expected.size());
+        for (std::size_t k = 0; k < got.size(); ++k) {
+            ASSERT_EQ(got[k].copy, expected[k].copy) << "share " << k;
+            ASSERT_EQ(got[k].partner, expected[k].partner) << "share " << k;
+            EXPECT_TRUE(sameBits(got[k].force, expected[k].force)) << "share " << k;
+            EXPECT_TRUE(sameBits(got[k].torque, expected[k].torque)) << "share " << k;
+        }
+        for (std::size_t k = 0; k < one.size(); ++k) {
+            auto const& a = one.history(k).entries();
+            auto const& b = batched.history(k).entries();
+            ASSERT_EQ(a.size(), b.size()) << "uid " << one.uid(k);
+            for (std::size_t e = 0; e < a.size(); ++e) {
+                EXPECT_EQ(a[e].partner, b[e].partner);
+                EXPECT_EQ(a[e].stamp, b[e].stamp);
+                EXPECT_TRUE(sameBits(a[e].spring, b[e].spring)) << "uid " << one.uid(k);
+            }
+        }
+        for (ParticleStorage* ps : {&one, &batched})
+            for (std::size_t k = 0; k < ps->size(); ++k) {
+                ps->position(k) += dt * ps->velocity(k);
+                ps->history(k).keepOnly(stamp);
+            }
+    }
+}
+
+TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation) {
+    // The same contact handed over twice (as a pair touching through two periodic images is),
+    // with batch-mates before and between: the second evaluation must start from the spring
+    // the first one left, as with evaluatePair.
+    SpringDashpot const model = twoMaterials();
+    ParticleStorage one = randomPack(5, 300, 5.0);
+    WallList walls;
+    ContactDetector detector;
+    ContactList contacts;
+    detector.detect(one, walls, everywhere(), contacts);
+    ASSERT_GT(contacts.pairs.size(), 10U);
+    // A frictional pair (types 0 and 0: its spring changes the force) to repeat.
+    std::size_t rep = 0;
+    while (one.type(contacts.pairs[rep].i) != 0 || one.type(contacts.pairs[rep].j) != 0)
+        ++rep;
+    ASSERT_LT(rep, 10U);
+    std::vector<Contact> stream(contacts.pairs.begin(), contacts.pairs.begin() + 10);
+    stream.push_back(contacts.pairs[rep]);
+    stream.push_back(contacts.pairs[rep == 7 ? 8 : 7]);
+    stream.push_back(contacts.pairs[rep]);
+    ParticleStorage batched = one;
+
+    std::vector<Vec3> expected, got;
+    auto scalarSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const&) { expected.push_back(f); };
+    auto batchSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const&) { got.push_back(f); };
+    SpringDashpotBatch batch;
+    BatchedSpringDashpot pairs(batched, model, 1e-2, 1, batch, batchSink);
+    for (Contact const& c : stream) {
+        std::uint8_t h1 = 0, h2 = 0;
+        evaluatePair(one, c, model, 1e-2, 1, h1, scalarSink);
+        pairs(c, h2);
+    }
+    pairs.finish();
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t k = 0; k < got.size(); ++k)
+        EXPECT_TRUE(sameBits(got[k], expected[k])) << "share " << k;
+    // The repeats changed the force: the test would see a stale spring.
+    EXPECT_FALSE(sameBits(expected[2 * rep], expected[2 * 12]));
+    Contact const& c = contacts.pairs[rep];
+    EXPECT_TRUE(sameBits(one.history(c.i).find(one.uid(c.j))->spring,
+                         batched.history(c.i).find(batched.uid(c.j))->spring));
+}
