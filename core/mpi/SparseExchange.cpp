@@ -102,13 +102,13 @@ void SparseExchange::start() {
 
     ++m_call;
     int const tag = currentTag();
-    m_localError = kNoError;
+    m_local = {kNoError, 0};
     CommStats stats;
     for (auto& [dest, buffer] : m_send) {
         if (dest == me)
             continue;
         if (buffer.size() > m_maxMessageBytes) { // not sent; every rank learns of it in wait()
-            m_localError = std::min(m_localError, std::int64_t{me} * m_comm.size() + dest);
+            m_local[0] = std::min(m_local[0], std::int64_t{me} * m_comm.size() + dest);
             continue;
         }
         // Synchronous mode: completion means the receiver has matched the message, which is
@@ -154,8 +154,8 @@ void SparseExchange::progress() {
                      "MPI_Testall");
             if (sent) {
                 m_sendRequests.clear();
-                mpiCheck(MPI_Iallreduce(&m_localError, &m_globalError, 1, MPI_INT64_T, MPI_MIN, raw,
-                                        &m_closing),
+                mpiCheck(MPI_Iallreduce(m_local.data(), m_global.data(), 2, MPI_INT64_T, MPI_MIN,
+                                        raw, &m_closing),
                          "MPI_Iallreduce");
                 m_phase = Phase::Closing;
             }
@@ -190,6 +190,12 @@ void SparseExchange::completeDiscarding() noexcept {
     m_send.clear();
 }
 
+void SparseExchange::raiseFlag() {
+    if (m_phase != Phase::Sending)
+        throw Error("SparseExchange::raiseFlag called without a call in flight");
+    m_local[1] = -1;
+}
+
 std::vector<SparseExchange::Message> SparseExchange::wait() {
     requireUsable();
     if (!inFlight())
@@ -203,11 +209,11 @@ std::vector<SparseExchange::Message> SparseExchange::wait() {
     }
     std::vector<Message> received = std::move(m_received);
     m_received.clear();
-    if (m_globalError != kNoError) {
+    if (m_global[0] != kNoError) {
         int const p = m_comm.size();
         throw Error(fmt::format("SparseExchange: rank {} has a message for rank {} larger than "
                                 "the limit of {} bytes",
-                                m_globalError / p, m_globalError % p, m_maxMessageBytes));
+                                m_global[0] / p, m_global[0] % p, m_maxMessageBytes));
     }
     // Arrival order is a race; delivery order must not be. One message per source and call.
     std::sort(received.begin(), received.end(),

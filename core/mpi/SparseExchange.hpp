@@ -9,6 +9,7 @@
 #include <climits>
 #include <mpi.h>
 
+#include <array>
 #include <concepts>
 #include <cstdint>
 #include <map>
@@ -111,6 +112,15 @@ public:
     /// As wait(callback), returning the messages in ascending source rank.
     [[nodiscard]] std::vector<Message> wait();
 
+    /// Raises this rank's flag in the call in flight (between start() and wait()); after
+    /// wait(), flagRaised() is true on every rank iff some rank raised it. The flag rides on
+    /// the closing reduction, so it costs no message: e.g. "some rank has work for a second
+    /// round", which lets every rank skip that round together. Throws core::Error without a
+    /// call in flight.
+    void raiseFlag();
+    /// Whether some rank raised its flag in the last completed call.
+    [[nodiscard]] bool flagRaised() const { return m_global[1] != 0; }
+
     /// True between start() and wait().
     [[nodiscard]] bool inFlight() const { return m_phase != Phase::Idle; }
     /// The limit given to the constructor, in bytes.
@@ -141,10 +151,11 @@ private:
     std::map<int, SendBuffer> m_send; ///< destinations of the current call, ascending
     std::vector<MPI_Request> m_sendRequests;
     MPI_Request m_closing = MPI_REQUEST_NULL; ///< the Iallreduce that ends a call
-    std::int64_t m_localError = 0;            ///< Iallreduce input: error key or kNoError
-    std::int64_t m_globalError = 0;           ///< Iallreduce output: lowest error key
-    std::vector<Message> m_received;          ///< this call's messages so far (self included)
-    std::uint64_t m_call = 0;                 ///< calls started so far; parity selects the tag
+    /// Iallreduce input (MPI_MIN): {error key or kNoError, -1 if this rank raised the flag}.
+    std::array<std::int64_t, 2> m_local{};
+    std::array<std::int64_t, 2> m_global{}; ///< Iallreduce output: lowest error key, -any flag
+    std::vector<Message> m_received;        ///< this call's messages so far (self included)
+    std::uint64_t m_call = 0;               ///< calls started so far; parity selects the tag
     Phase m_phase = Phase::Idle;
     std::string m_mpiError; ///< non-empty once an MPI call failed: the object is unusable
     CommCounters m_counters;

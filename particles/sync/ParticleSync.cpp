@@ -245,6 +245,12 @@ void ParticleSync::sync(LocalParticles& local) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
     bool const twoRounds = m_config.method != SyncMethod::NextNeighbour;
+    // Whether this rank has copies round 2 (spread) may act on: SOS-class shadows, and
+    // SOS-class masters processed below. Shadows and promotions that round 1 brings come from
+    // SOS-class masters, whose senders say so; if no rank does, round 2 has nothing to do
+    // anywhere and every rank skips it (hybrid with only NNS-class grains: one exchange per
+    // call, as NNS).
+    bool spreadWork = false;
     for (BlockParticles& bp : local.blocks()) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
@@ -252,8 +258,10 @@ void ParticleSync::sync(LocalParticles& local) {
         std::vector<Uid> leaving;
         bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {
-            if (!ps.flags(i).isMaster())
+            if (!ps.flags(i).isMaster()) {
+                spreadWork = spreadWork || ps.flags(i).has(Flag::Spreads);
                 continue;
+            }
             double const r = ps.radius(i);
             bool const small = r < edge;
             // The common case: a small grain deep inside its block, with no shadows to update
@@ -278,6 +286,7 @@ void ParticleSync::sync(LocalParticles& local) {
             }
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
+            spreadWork = spreadWork || !nnsClass;
             if (processMaster(engine, local, bp, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
             else if (twoRounds && !nnsClass && !engine.deepInside(deep, ps.position(i), r))
@@ -286,12 +295,14 @@ void ParticleSync::sync(LocalParticles& local) {
         for (Uid uid : leaving)
             ps.removeUid(uid);
     }
-    receiveRound(engine, local, m_last);
-    if (twoRounds) {
+    receiveRound(engine, local, m_last, spreadWork);
+    if (twoRounds && engine.flagRaised()) {
         for (BlockParticles& bp : local.blocks())
             spread(engine, bp, m_last);
         receiveRound(engine, local, m_last);
     }
+    for (BlockParticles& bp : local.blocks())
+        bp.spreadingMasters.clear(); // (spread empties it; empty anyway when skipped)
     m_counters.record(m_last.comm);
 }
 

@@ -23,14 +23,17 @@ public:
     /// The buffer for `rank` in the current round.
     core::SendBuffer& out(int rank);
     /// Sends the round's buffers and hands every received buffer to `f(from, buffer)` in
-    /// ascending source rank; adds the traffic to `stats`. COLLECTIVE.
+    /// ascending source rank; adds the traffic to `stats`. With the sparse exchange (SOS,
+    /// hybrid), `raiseFlag` is this rank's say in flagRaised() afterwards. COLLECTIVE.
     template <class F>
-    void exchange(core::CommStats& stats, F&& f) {
+    void exchange(core::CommStats& stats, F&& f, bool raiseFlag = false) {
         if (m_neighbour) {
             m_neighbour->start();
             m_neighbour->wait(f);
         } else {
             m_sparse->start();
+            if (raiseFlag)
+                m_sparse->raiseFlag();
             m_sparse->wait(f);
         }
         // The exchange's own count of this call: NNS sends its size messages to every
@@ -41,6 +44,9 @@ public:
         stats.bytes += call.bytes;
         stats.peers = std::max(stats.peers, call.peers);
     }
+
+    /// Whether some rank raised its flag in the last sparse exchange (false with NNS's).
+    [[nodiscard]] bool flagRaised() const { return m_sparse && m_sparse->flagRaised(); }
 
     /// Smallest edge of block `id` and of all its neighbours (NNS limit), by raw id.
     [[nodiscard]] double edgeAround(std::uint64_t id) const { return m_edgeAround.at(id); }

@@ -185,10 +185,12 @@ void forgetSent(BlockParticles& bp, Uid uid) {
     bp.sent.forget(uid);
 }
 
-void receiveRound(ParticleSync::Impl& engine, LocalParticles& local, SyncStats& stats) {
+void receiveRound(ParticleSync::Impl& engine, LocalParticles& local, SyncStats& stats,
+                  bool raiseFlag) {
     std::map<std::uint64_t, Inbox> boxes;
-    engine.exchange(stats.comm,
-                    [&](int from, core::RecvBuffer& in) { parse(in, from, boxes, local); });
+    engine.exchange(
+        stats.comm, [&](int from, core::RecvBuffer& in) { parse(in, from, boxes, local); },
+        raiseFlag);
     for (auto& [block, box] : boxes)
         apply(*local.find(block), box, stats);
 }

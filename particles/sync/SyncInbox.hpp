@@ -11,8 +11,10 @@ namespace regolith::particles::sync_detail {
 /// re-key a copy (ownership moved across a periodic boundary), in-place updates, promotions,
 /// creations (a copy already held is a duplicate and discarded, SOS), then the holder and
 /// cache notices. Throws core::Error for a record that contradicts the local state (an
-/// update for a copy this block does not hold) or a malformed message. COLLECTIVE.
-void receiveRound(ParticleSync::Impl& engine, LocalParticles& local, SyncStats& stats);
+/// update for a copy this block does not hold) or a malformed message. `raiseFlag`: this
+/// rank's say in the exchange's flag (ParticleSync::Impl::flagRaised). COLLECTIVE.
+void receiveRound(ParticleSync::Impl& engine, LocalParticles& local, SyncStats& stats,
+                  bool raiseFlag = false);
 
 /// Drops `bp`'s sent-cache entries of `uid` (its local copy is gone, or it stopped spreading).
 void forgetSent(BlockParticles& bp, Uid uid);

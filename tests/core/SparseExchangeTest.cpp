@@ -142,6 +142,25 @@ TEST(SparseExchange, EmptyBufferIsDeliveredAsNotification) {
     EXPECT_EQ(ex.counters().last(), expected);
 }
 
+TEST(SparseExchange, FlagIsRaisedOnEveryRankIffSomeRankRaisedIt) {
+    Comm world;
+    int const p = world.size();
+    SparseExchange ex(world);
+    EXPECT_FALSE(ex.flagRaised());
+    EXPECT_THROW(ex.raiseFlag(), Error) << "no call in flight";
+    // Call c: rank c % p raises it (for c < p), none in call p; messages go round a ring.
+    for (int c = 0; c <= p; ++c) {
+        ex.sendBuffer((world.rank() + 1) % p) << c;
+        ex.start();
+        if (c < p && world.rank() == c)
+            ex.raiseFlag();
+        auto msgs = ex.wait();
+        ASSERT_EQ(msgs.size(), 1u);
+        EXPECT_EQ(read<int>(msgs[0].buffer), c);
+        EXPECT_EQ(ex.flagRaised(), c < p) << "call " << c;
+    }
+}
+
 TEST(SparseExchange, MisuseThrows) {
     Comm world;
     SparseExchange ex(world);
