@@ -4,10 +4,11 @@
 /// evaluated in one branch-free loop the compiler vectorises across contacts, and handed to
 /// the sink in the order they were found.
 ///
-/// Why: evaluated one by one (evaluatePair), a contact costs ~540 instructions of scalar
-/// Eigen code on 3-vectors (callgrind, static lattice), most of it moving the same numbers
-/// between structs; here each lane is a plain double array and the loop runs 2-8 contacts per
-/// instruction (SSE2 to AVX-512), as LAMMPS's KOKKOS and MESA-PD's vectorised kernels do.
+/// Why: evaluated one by one (evaluatePair), a contact cost ~540 instructions of scalar Eigen
+/// code on 3-vectors (callgrind, static lattice), much of it moving the same numbers between
+/// structs; here each lane is a plain double array and the model runs 4 contacts per AVX2
+/// instruction. The lattice's step runs 22 % fewer instructions, but not measurably faster:
+/// what is left is memory access (docs/results.md, issue 5, "Contact loop in batches").
 ///
 /// Same bits as evaluatePair with SpringDashpot: every lane computes the same IEEE operations in
 /// the same order as pairState, SpringDashpot::operator(), tangentialForce, projectSpring and
