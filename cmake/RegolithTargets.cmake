@@ -11,8 +11,10 @@ set(REGOLITH_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wshadow -Wnon-virtual-dt
 #                   wherever the compiler inlines it and whatever the instruction set, which the
 #                   "same bits on every path" rules rely on (PairRule.hpp, reproducible mode).
 # REGOLITH_NATIVE   -march=native: the instruction set of the machine that builds (and runs)
-#                   the code, as waLBerla's WALBERLA_OPTIMIZE_FOR_LOCALHOST; results are the
-#                   same bits with or without it (no contraction, no reassociation). Without
+#                   the code, as waLBerla's WALBERLA_OPTIMIZE_FOR_LOCALHOST. Our own loops give
+#                   the same bits with or without it (no contraction, no reassociation: the DEM
+#                   checksums are unchanged); Eigen's vectorised sums over long vectors (gravity)
+#                   may add in another order at another vector width. Without
 #                   AVX-512 (-mno-avx512f: at most AVX2): GCC 12 warns falsely in its AVX-512
 #                   headers through Eigen (GCC bug 105593, maybe-uninitialized), and Zen 4, the
 #                   machine these figures come from, runs 512-bit operations as two 256-bit
