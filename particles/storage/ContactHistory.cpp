@@ -42,16 +42,25 @@ HistoryEntry* ContactHistory::find(Uid partner) {
 }
 
 HistoryEntry& ContactHistory::touch(Uid partner, std::uint32_t stamp) {
+    bool again = false;
+    return touchAt(partner, stamp, again);
+}
+
+HistoryEntry& ContactHistory::touchAt(Uid partner, std::uint32_t stamp, bool& again) {
     auto& v = ensure();
     auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
     if (it == v.end() || it->partner != partner)
         it = v.insert(it, HistoryEntry{partner, core::Vec3::Zero(), stamp});
+    else
+        again = it->stamp == stamp;
     it->stamp = stamp;
     return *it;
 }
 
-HistoryEntry& ContactHistory::touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
-    HistoryEntry& e = touch(partner, stamp);
+HistoryEntry& ContactHistory::touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint,
+                                        bool& again) {
+    again = false;
+    HistoryEntry& e = touchAt(partner, stamp, again);
     auto const slot = static_cast<std::size_t>(&e - m_entries->data());
     // Beyond 255 entries the hint saturates and always misses (then touch() searches).
     hint = static_cast<std::uint8_t>(std::min<std::size_t>(slot, 255));

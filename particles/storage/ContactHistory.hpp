@@ -49,13 +49,8 @@ public:
     /// neighbour list beside the pair) and updates it: no search while the partners of this
     /// particle stay the same. A wrong hint only costs the search.
     HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint) {
-        if (m_entries && hint < m_entries->size() && (*m_entries)[hint].partner == partner)
-            [[likely]] {
-            auto& e = (*m_entries)[hint];
-            e.stamp = stamp;
-            return e;
-        }
-        return touchSlow(partner, stamp, hint);
+        bool again = false;
+        return touch(partner, stamp, hint, again);
     }
     /// touch() with a hint that also tells whether the entry had been stamped `stamp` already
     /// (`again`): touched earlier in the same pass, e.g. a pair that meets through two periodic
@@ -68,9 +63,7 @@ public:
             e.stamp = stamp;
             return e;
         }
-        HistoryEntry const* e = find(partner);
-        again = e != nullptr && e->stamp == stamp;
-        return touchSlow(partner, stamp, hint);
+        return touchSlow(partner, stamp, hint, again);
     }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
@@ -101,7 +94,9 @@ public:
 
 private:
     std::size_t keepOnlySlow(std::uint32_t stamp);
-    HistoryEntry& touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint);
+    /// touch() by search; `again` as in the hinted touch (left alone for a new entry).
+    HistoryEntry& touchAt(Uid partner, std::uint32_t stamp, bool& again);
+    HistoryEntry& touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint, bool& again);
     /// The vector to insert into, created if there is none.
     std::vector<HistoryEntry>& ensure();
 

@@ -301,8 +301,6 @@ void ParticleSync::sync(LocalParticles& local) {
             spread(engine, bp, m_last);
         receiveRound(engine, local, m_last);
     }
-    for (BlockParticles& bp : local.blocks())
-        bp.spreadingMasters.clear(); // (spread empties it; empty anyway when skipped)
     m_counters.record(m_last.comm);
 }
 
