@@ -39,13 +39,36 @@ inline constexpr int kMaxImage = 7;
     return isZero(k) ? canonical : core::Vec3(canonical + imageOffset(k, period));
 }
 
+namespace copy_image_detail {
+/// Throws core::Error for the first axis of `k` beyond +-kMaxImage (out of line: never taken
+/// in a valid scene, so the inline callers stay small).
+[[noreturn]] void throwBeyondMaxImage(std::array<int, 3> const& k);
+
+[[nodiscard]] inline CopyImage checked(std::array<int, 3> const& k) {
+    if (k[0] < -kMaxImage || k[0] > kMaxImage || k[1] < -kMaxImage || k[1] > kMaxImage ||
+        k[2] < -kMaxImage || k[2] > kMaxImage) [[unlikely]]
+        throwBeyondMaxImage(k);
+    return {static_cast<std::int8_t>(k[0]), static_cast<std::int8_t>(k[1]),
+            static_cast<std::int8_t>(k[2])};
+}
+} // namespace copy_image_detail
+
 /// a + b per axis; throws core::Error beyond +-kMaxImage.
-CopyImage addImages(CopyImage const& a, CopyImage const& b);
+[[nodiscard]] inline CopyImage addImages(CopyImage const& a, CopyImage const& b) {
+    return copy_image_detail::checked({a[0] + b[0], a[1] + b[1], a[2] + b[2]});
+}
 /// a - b per axis; throws core::Error beyond +-kMaxImage.
-CopyImage subtractImages(CopyImage const& a, CopyImage const& b);
+[[nodiscard]] inline CopyImage subtractImages(CopyImage const& a, CopyImage const& b) {
+    return copy_image_detail::checked({a[0] - b[0], a[1] - b[1], a[2] - b[2]});
+}
 /// The image of a copy made through a block link with periodic image `linkImage` (see
 /// domain::BlockLink: shift = -image * extent) from a copy with image `from`.
-CopyImage imageThroughLink(CopyImage const& from, std::array<int, 3> const& linkImage);
+[[nodiscard]] inline CopyImage imageThroughLink(CopyImage const& from,
+                                                std::array<int, 3> const& linkImage) {
+    // x in the sender's frame is x + shift = x - linkImage * extent in the neighbour's frame.
+    return copy_image_detail::checked(
+        {from[0] - linkImage[0], from[1] - linkImage[1], from[2] - linkImage[2]});
+}
 
 /// Key of one copy in a block: a uid may be held several times at different images.
 struct CopyKey {

@@ -15,12 +15,6 @@ namespace regolith::particles {
 
 using namespace sync_detail;
 
-bool copyNeeded(core::AABB const& box, core::Vec3 const& x, CopyImage const& k, double r,
-                core::Vec3 const& period) {
-    return box.intersectsSphere(localPosition(x, k, period),
-                                r * (1.0 + ParticleSync::kOverlapMargin));
-}
-
 // ---- Impl: forest view and exchange ---------------------------------------------------------
 
 ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& forest,
@@ -113,7 +107,8 @@ bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t
 /// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`.
 /// Returns true if the master leaves this block (transferred or out of the domain).
 bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParticles& bp,
-                   std::size_t i, bool nnsClass, SyncStats& stats) {
+                   ParticleSync::Impl::LinkGroups const& links, std::size_t i, bool nnsClass,
+                   SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
@@ -151,7 +146,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     std::vector<CopyRef>& targets = engine.scratch(0); // reused: no allocation per grain
     targets.clear();
     if (nnsClass) {
-        engine.forEachReachableLink(block, x, r, [&](domain::BlockLink const& l) {
+        engine.forEachReachableLink(block, links, x, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, x, r))
                 return;
             CopyImage const k = imageThroughLink(kNoImage, l.image);
@@ -255,6 +250,7 @@ void ParticleSync::sync(LocalParticles& local) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
         auto const& deep = engine.deepTest(bp.block->id.raw());
+        auto const& links = engine.linksByDirection(bp.block->id.raw());
         std::vector<Uid> leaving;
         bp.spreadingMasters.clear();
         for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -287,7 +283,7 @@ void ParticleSync::sync(LocalParticles& local) {
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             spreadWork = spreadWork || !nnsClass;
-            if (processMaster(engine, local, bp, i, nnsClass, m_last))
+            if (processMaster(engine, local, bp, links, i, nnsClass, m_last))
                 leaving.push_back(ps.uid(i));
             else if (twoRounds && !nnsClass && !engine.deepInside(deep, ps.position(i), r))
                 bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)

@@ -60,8 +60,13 @@ std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, Bloc
             order.push_back(i);
     }
     bp.spreadingMasters.clear();
+    // Two ascending runs (round 1 noted the masters in index order; a removal can break
+    // that) merged in place: no O(n log n) sort per call.
+    auto const masters = static_cast<std::ptrdiff_t>(order.size());
+    if (!std::is_sorted(order.begin(), order.end()))
+        std::sort(order.begin(), order.end());
     forEachSpreadingShadow(ps.allFlags(), [&](std::size_t i) { order.push_back(i); });
-    std::sort(order.begin(), order.end());
+    std::inplace_merge(order.begin(), order.begin() + masters, order.end());
     order.erase(std::unique(order.begin(), order.end()), order.end());
     return order;
 }
@@ -76,7 +81,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
     int const me = engine.rank();
     std::uint64_t const self = block.id.raw();
     core::Vec3 const& period = engine.period();
-    auto const& deep = engine.deepTest(self);
+    auto const& links = engine.linksByDirection(self);
     std::vector<CopyKey> drop;
     for (std::size_t const i : spreadingCopies(engine, bp)) {
         Uid const uid = ps.uid(i);
@@ -85,8 +90,6 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
         double const r = ps.radius(i);
         BlockRef const owner = ps.owner(i);
         bool const master = ps.flags(i).isMaster();
-        if (master && engine.deepInside(deep, x, r))
-            continue; // no neighbour block can need a copy
         if (!master && !copyNeeded(block.aabb, x, k, r, period)) {
             drop.push_back(ps.key(i));
             core::SendBuffer& b = engine.out(owner.rank);
@@ -99,14 +102,17 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
             continue;
         }
         core::Vec3 const local = localPosition(x, k, period);
-        engine.forEachReachableLink(block, local, r, [&](domain::BlockLink const& l) {
+        engine.forEachReachableLink(block, links, local, r, [&](domain::BlockLink const& l) {
+            // The master itself first (image k - l.image = 0): a shadow's ball always reaches
+            // back into its master's block, so this link is the commonest; no geometry.
+            if (l.id.raw() == owner.block && k[0] == l.image[0] && k[1] == l.image[1] &&
+                k[2] == l.image[2])
+                return;
             if (!engine.mayReach(l, local, r))
                 return;
             CopyImage const kt = imageThroughLink(k, l.image);
             if (!copyNeeded(l.aabb, x, kt, r, period))
                 return;
-            if (l.id.raw() == owner.block && isZero(kt))
-                return; // the master itself
             CopyRef const t{l.owner, l.id.raw(), kt};
             if (master) {
                 auto& h = ps.shadowHolders(i);

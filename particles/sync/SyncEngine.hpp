@@ -58,28 +58,28 @@ public:
     /// {-1, 0, 1}^3 from the block, at (dx + 1) + 3 (dy + 1) + 9 (dz + 1). A link is filed
     /// under 0 on an axis unless its image box lies wholly beyond a face there, so the
     /// grouping errs on the inclusive side.
-    [[nodiscard]] std::array<std::vector<std::uint32_t>, 27> const&
-    linksByDirection(std::uint64_t id) const {
+    using LinkGroups = std::array<std::vector<std::uint32_t>, 27>;
+    [[nodiscard]] LinkGroups const& linksByDirection(std::uint64_t id) const {
         return m_linksByDirection.at(id);
     }
     /// Calls f(link) for every link of `block` whose direction the ball (x, r) may reach:
     /// only the faces the ball crosses (with deepInside's slack) can lead to a neighbour it
-    /// overlaps, so a grain near one face visits a few links, not all 26 or more.
+    /// overlaps, so a grain near one face visits a few links, not all 26 or more. `groups` is
+    /// linksByDirection(block), looked up once by callers that visit many grains.
     template <class F>
-    void forEachReachableLink(domain::Block const& block, core::Vec3 const& x, double r,
-                              F&& f) const {
+    void forEachReachableLink(domain::Block const& block, LinkGroups const& groups,
+                              core::Vec3 const& x, double r, F&& f) const {
         double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
-        std::array<int, 3> lo{}, hi{};
-        for (int a = 0; a < 3; ++a) {
-            lo[static_cast<std::size_t>(a)] = x[a] - reach < block.aabb.min[a] ? -1 : 0;
-            hi[static_cast<std::size_t>(a)] = x[a] + reach > block.aabb.max[a] ? 1 : 0;
-        }
-        auto const& groups = linksByDirection(block.id.raw());
-        for (int dz = lo[2]; dz <= hi[2]; ++dz)
-            for (int dy = lo[1]; dy <= hi[1]; ++dy)
-                for (int dx = lo[0]; dx <= hi[0]; ++dx)
-                    for (std::uint32_t l :
-                         groups[static_cast<std::size_t>((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1))])
+        core::Vec3 const& lo = block.aabb.min;
+        core::Vec3 const& hi = block.aabb.max;
+        // Group index (dx + 1) + 3 (dy + 1) + 9 (dz + 1): the range of d per axis, scaled.
+        int const x0 = x[0] - reach < lo[0] ? 0 : 1, x1 = x[0] + reach > hi[0] ? 2 : 1;
+        int const y0 = x[1] - reach < lo[1] ? 0 : 3, y1 = x[1] + reach > hi[1] ? 6 : 3;
+        int const z0 = x[2] - reach < lo[2] ? 0 : 9, z1 = x[2] + reach > hi[2] ? 18 : 9;
+        for (int z = z0; z <= z1; z += 9)
+            for (int y = y0; y <= y1; y += 3)
+                for (int g = z + y + x0; g <= z + y + x1; ++g)
+                    for (std::uint32_t l : groups[static_cast<std::size_t>(g)])
                         f(block.neighbours[l]);
     }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
@@ -135,8 +135,7 @@ private:
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank
     std::unordered_map<std::uint64_t, double> m_edgeAround;
     std::unordered_map<std::uint64_t, DeepTest> m_deepTest;
-    std::unordered_map<std::uint64_t, std::array<std::vector<std::uint32_t>, 27>>
-        m_linksByDirection;
+    std::unordered_map<std::uint64_t, LinkGroups> m_linksByDirection;
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
     std::array<std::vector<CopyRef>, 2> m_scratch;
     std::vector<std::size_t> m_scratchIndices;
