@@ -11,8 +11,8 @@ void SemiImplicitEuler::postForce(ParticleStorage& ps, double dt, core::Vec3 con
         ps.position(i) += dt * ps.velocity(i);
         // A sphere's inertia is isotropic, so there is no gyroscopic term: dw/dt = tau / I.
         ps.angularVelocity(i) += dt * ps.invInertia(i) * ps.torque(i);
-        rotate(ps.orientation(i), ps.angularVelocity(i), dt);
     }
+    rotateMoving(ps, dt); // with the new angular velocity
 }
 
 } // namespace regolith::particles

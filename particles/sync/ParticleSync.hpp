@@ -102,8 +102,8 @@ private:
 
 /// The overlap predicate of the synchronisation (see kOverlapMargin): does the ball at
 /// canonical position `x`, image `k`, radius `r` reach into `box`? Invariant checks use it.
-[[nodiscard]] inline bool copyNeeded(core::AABB const& box, core::Vec3 const& x,
-                                     CopyImage const& k, double r, core::Vec3 const& period) {
+[[nodiscard]] inline bool copyNeeded(core::AABB const& box, core::Vec3 const& x, CopyImage const& k,
+                                     double r, core::Vec3 const& period) {
     return box.intersectsSphere(localPosition(x, k, period),
                                 r * (1.0 + ParticleSync::kOverlapMargin));
 }
