@@ -2,6 +2,7 @@
 // history ("reduce forces/torques shadow->master" of the time step in DESIGN.md).
 #include "core/Error.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
+#include "particles/sync/CopyScan.hpp"
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncMessages.hpp"
@@ -57,13 +58,12 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
     std::vector<HistoryEntry> hist;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         ParticleStorage& ps = blocks[b].particles;
-        for (std::size_t i = 0; i < ps.size(); ++i) {
-            if (ps.flags(i).isMaster())
-                continue;
+        constexpr std::uint8_t kShadow = Flags(Flag::Shadow).bits();
+        forEachWithFlags<kShadow>(ps.allFlags(), [&](std::size_t i) {
             touched(ps, i, stamp, hist);
             bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
             if (hist.empty() && (records != nullptr || !hasForce))
-                continue;
+                return;
             BlockRef const owner = ps.owner(i);
             if (owner.rank == engine.rank() && records == nullptr) {
                 // The master is on this rank: added in place, not serialised. (Reproducible
@@ -77,14 +77,14 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
                     master.history(m).set(e);
                 ps.force(i).setZero();
                 ps.torque(i).setZero();
-                continue;
+                return;
             }
             core::SendBuffer& out = engine.out(owner.rank);
             writeHeader(out, RecordKind::Force, owner.block);
             out << ps.uid(i) << ps.force(i) << ps.torque(i) << hist;
             ps.force(i).setZero();
             ps.torque(i).setZero();
-        }
+        });
         if (records == nullptr)
             continue;
         for (ForceRecord const& r : (*records)[b]) {

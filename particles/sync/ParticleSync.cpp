@@ -1,6 +1,7 @@
 #include "particles/sync/ParticleSync.hpp"
 
 #include "core/Error.hpp"
+#include "particles/sync/CopyScan.hpp"
 #include "particles/sync/SpreadRound.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncInbox.hpp"
@@ -246,6 +247,7 @@ void ParticleSync::sync(LocalParticles& local) {
     // anywhere and every rank skips it (hybrid with only NNS-class grains: one exchange per
     // call, as NNS).
     bool spreadWork = false;
+    bool const spreads = m_config.method == SyncMethod::ShadowOwner;
     for (BlockParticles& bp : local.blocks()) {
         ParticleStorage& ps = bp.particles;
         double const edge = engine.edgeAround(bp.block->id.raw());
@@ -253,20 +255,16 @@ void ParticleSync::sync(LocalParticles& local) {
         auto const& links = engine.linksByDirection(bp.block->id.raw());
         std::vector<Uid> leaving;
         bp.spreadingMasters.clear();
-        for (std::size_t i = 0; i < ps.size(); ++i) {
-            if (!ps.flags(i).isMaster()) {
-                spreadWork = spreadWork || ps.flags(i).has(Flag::Spreads);
-                continue;
-            }
+        // The common case, a small grain deep inside its block with no shadows to update or
+        // remove, needs nothing sent (Alg. 1/2 would find no target): the scan leaves it out.
+        MasterScan const scan = scanMasters(engine, bp, spreads, engine.scratchMasters());
+        spreadWork = spreadWork || scan.spreadingShadows;
+        for (std::size_t const i : scan.visit) {
             double const r = ps.radius(i);
             bool const small = r < edge;
-            // The common case: a small grain deep inside its block, with no shadows to update
-            // or remove, needs nothing sent (Alg. 1/2 would find no target).
             if (small && ps.shadowHolders(i).empty() &&
                 engine.deepInside(deep, ps.position(i), r)) {
-                bool const spreads = m_config.method == SyncMethod::ShadowOwner;
-                if (ps.flags(i).has(Flag::Spreads) != spreads)
-                    ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, spreads));
+                ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, spreads));
                 continue;
             }
             bool const reachable =

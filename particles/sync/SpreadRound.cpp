@@ -1,45 +1,17 @@
 #include "particles/sync/SpreadRound.hpp"
 
+#include "particles/sync/CopyScan.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncInbox.hpp"
 #include "particles/sync/SyncMessages.hpp"
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 namespace regolith::particles::sync_detail {
 
 namespace {
-
-/// Calls f(i), ascending, for every i whose flags have both Shadow and Spreads. Most copies
-/// of a scene are masters or NNS-class, so the flags are read eight at a time: a word with no
-/// byte holding both bits is skipped in a few instructions.
-template <class F>
-void forEachSpreadingShadow(std::vector<Flags> const& flags, F&& f) {
-    static_assert(sizeof(Flags) == 1);
-    constexpr std::uint8_t kBoth = Flags(Flag::Shadow | Flag::Spreads).bits();
-    constexpr unsigned kShift = 3; // Spreads is bit 3, Shadow bit 0 of a byte
-    static_assert(Flags(Flag::Shadow).bits() == 1U && Flags(Flag::Spreads).bits() == 1U << kShift);
-    constexpr std::uint64_t kLowBits = 0x0101010101010101ULL;
-    std::size_t const n = flags.size();
-    std::size_t i = 0;
-    for (; i + 8 <= n; i += 8) {
-        std::uint64_t w = 0;
-        std::memcpy(&w, &flags[i], 8);
-        // Bit 0 of each byte: Shadow and Spreads of that byte (the shift brings bits of the
-        // next byte only into bits 5-7, which the mask drops).
-        if ((w & (w >> kShift) & kLowBits) == 0)
-            continue;
-        for (std::size_t j = i; j < i + 8; ++j)
-            if ((flags[j].bits() & kBoth) == kBoth)
-                f(j);
-    }
-    for (; i < n; ++i)
-        if ((flags[i].bits() & kBoth) == kBoth)
-            f(i);
-}
 
 /// The indices, ascending, of the copies of `bp` that spread may have to act on: every
 /// SOS-class shadow, and the SOS-class masters of `bp.spreadingMasters` (the others are deep
@@ -65,7 +37,8 @@ std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, Bloc
     auto const masters = static_cast<std::ptrdiff_t>(order.size());
     if (!std::is_sorted(order.begin(), order.end()))
         std::sort(order.begin(), order.end());
-    forEachSpreadingShadow(ps.allFlags(), [&](std::size_t i) { order.push_back(i); });
+    constexpr std::uint8_t kSpreadingShadow = Flags(Flag::Shadow | Flag::Spreads).bits();
+    forEachWithFlags<kSpreadingShadow>(ps.allFlags(), [&](std::size_t i) { order.push_back(i); });
     std::inplace_merge(order.begin(), order.begin() + masters, order.end());
     order.erase(std::unique(order.begin(), order.end()), order.end());
     return order;

@@ -9,6 +9,7 @@
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <unordered_map>
@@ -100,11 +101,17 @@ public:
     /// with no open face pays what the plain reach test costs.
     [[nodiscard]] bool deepInside(DeepTest const& t, core::Vec3 const& x, double r) const {
         double const reach = r * (1.0 + ParticleSync::kOverlapMargin) + m_imageSlack;
-        if (!((x.array() - t.reachBox.min.array() > reach).all() &&
-              (t.reachBox.max.array() - x.array() > reach).all()))
-            return false;
-        return !t.open ||
-               ((x.array() > t.box.min.array()).all() && (x.array() < t.box.max.array()).all());
+        // Non-short-circuit `&`: no branch per face, so that the scan over every master of a
+        // block (CopyScan) runs without mispredictions where deep and shallow grains alternate.
+        bool deep = true;
+        for (int a = 0; a < 3; ++a)
+            deep = deep & (std::min(x[a] - t.reachBox.min[a], t.reachBox.max[a] - x[a]) > reach);
+        if (!t.open)
+            return deep;
+        bool inside = true;
+        for (int a = 0; a < 3; ++a)
+            inside = inside & (x[a] > t.box.min[a]) & (x[a] < t.box.max[a]);
+        return deep & inside;
     }
     [[nodiscard]] DeepTest const& deepTest(std::uint64_t id) const { return m_deepTest.at(id); }
     /// A cheap pre-test for copyNeeded through a link: false only if the ball at local
@@ -123,6 +130,8 @@ public:
     [[nodiscard]] std::vector<CopyRef>& scratch(std::size_t k) { return m_scratch[k]; }
     /// A work list of copy indices for spread, kept between calls.
     [[nodiscard]] std::vector<std::size_t>& scratchIndices() { return m_scratchIndices; }
+    /// The masters round 1 visits in one block (scanMasters), kept between calls.
+    [[nodiscard]] std::vector<std::size_t>& scratchMasters() { return m_scratchMasters; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
@@ -139,6 +148,7 @@ private:
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
     std::array<std::vector<CopyRef>, 2> m_scratch;
     std::vector<std::size_t> m_scratchIndices;
+    std::vector<std::size_t> m_scratchMasters;
 };
 
 } // namespace regolith::particles

@@ -1,0 +1,38 @@
+#include "particles/sync/CopyScan.hpp"
+
+namespace regolith::particles::sync_detail {
+
+MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& bp, bool spreads,
+                       std::vector<std::size_t>& scratch) {
+    ParticleStorage const& ps = bp.particles;
+    std::uint64_t const id = bp.block->id.raw();
+    double const edge = engine.edgeAround(id);
+    ParticleSync::Impl::DeepTest const deep = engine.deepTest(id);
+    std::size_t const n = ps.size();
+    if (scratch.size() < n) // grown, never shrunk: no per-call initialisation
+        scratch.resize(n);
+    if (n == 0)
+        return {};
+    // Raw pointers and a local copy of the test: nothing the loop stores (indices) can then
+    // be taken to change them, so they stay in registers.
+    core::Vec3 const* x = ps.positions().data();
+    double const* r = ps.radii().data();
+    Flags const* flags = ps.allFlags().data();
+    HolderList const* holders = &ps.shadowHolders(0);
+    std::size_t* out = scratch.data();
+    std::size_t count = 0;
+    bool spreadingShadow = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        Flags const f = flags[i];
+        bool const shadow = f.isShadow();
+        bool const flagged = f.has(Flag::Spreads);
+        spreadingShadow = spreadingShadow | (shadow & flagged);
+        bool const settled = (r[i] < edge) & holders[i].empty() & (flagged == spreads) &
+                             engine.deepInside(deep, x[i], r[i]);
+        out[count] = i; // kept only if counted: no branch on the outcome
+        count += static_cast<std::size_t>(!(shadow | settled));
+    }
+    return {std::span<std::size_t const>(out, count), spreadingShadow};
+}
+
+} // namespace regolith::particles::sync_detail
