@@ -1,5 +1,6 @@
 #pragma once
-/// Per-particle state bits (mesa_pd's `Flags`): shadow or master, fixed, global.
+/// Per-particle state bits (mesa_pd's `Flags`): shadow or master, fixed, global, and the
+/// synchronisation class of the grain.
 #include <cstdint>
 
 namespace regolith::particles {
@@ -14,6 +15,11 @@ enum class Flag : std::uint8_t {
     /// The grain's copies spread shadows to their neighbours (SOS class, see
     /// particles/sync/ParticleSync.hpp); absent: its master alone manages its shadows (NNS).
     Spreads = 1U << 3U,
+    /// (SOS class) The master's block and its neighbours hold the whole ball (the NNS
+    /// condition) and the master stayed in its block at the last sync: the master itself then
+    /// ordered, in round 1, a copy on every block the grain overlaps, so its shadows only test
+    /// whether they still overlap theirs (particles/sync/ParticleSync.cpp, SpreadRound.cpp).
+    MasterReachesAll = 1U << 4U,
 };
 
 /// A set of `Flag`s in one byte.

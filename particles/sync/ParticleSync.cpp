@@ -109,7 +109,7 @@ bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t
 /// Returns true if the master leaves this block (transferred or out of the domain).
 bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParticles& bp,
                    ParticleSync::Impl::LinkGroups const& links, std::size_t i, bool nnsClass,
-                   SyncStats& stats) {
+                   bool reachable, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
@@ -117,7 +117,6 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     Uid const uid = ps.uid(i);
     core::Vec3 const x = ps.position(i);
     double const r = ps.radius(i);
-    ps.setFlags(i, Flags(ps.flags(i)).set(Flag::Spreads, !nnsClass));
 
     // Ownership (Alg. 1 l. 16-24, Alg. 2 l. 4-12): the block whose box holds the centre.
     bool transfer = false;
@@ -143,10 +142,22 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
         newOwner = BlockRef{loc->owner, loc->id.raw()};
     }
 
+    // An SOS-class grain whose ball the block's neighbourhood holds, and that stays in its
+    // block, has its master spread here rather than in round 2: the same copy test on the
+    // same position finds the same blocks (Alg. 2 l. 15-28 for the master), and its shadows
+    // then only test in round 2 whether they still overlap theirs. The class travels with
+    // every record below; after a transfer the new block's neighbourhood may not hold the
+    // ball, and its copies spread in full for this call.
+    bool const spreadsHere = !nnsClass && reachable && !transfer;
+    Flags const flags =
+        Flags(ps.flags(i)).set(Flag::Spreads, !nnsClass).set(Flag::MasterReachesAll, spreadsHere);
+    if (flags != ps.flags(i))
+        ps.setFlags(i, flags);
+
     // Where copies go, in the current frame.
     std::vector<CopyRef>& targets = engine.scratch(0); // reused: no allocation per grain
     targets.clear();
-    if (nnsClass) {
+    if (nnsClass || spreadsHere) {
         engine.forEachReachableLink(block, links, x, r, [&](domain::BlockLink const& l) {
             if (!engine.mayReach(l, x, r))
                 return;
@@ -154,24 +165,29 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
             if (copyNeeded(l.aabb, x, k, r, period))
                 targets.push_back(CopyRef{l.owner, l.id.raw(), k});
         });
-    } else {
-        targets.assign(holders.begin(), holders.end());
     }
+    if (!nnsClass) // SOS: every holder is updated; a shadow that left its block drops itself
+        targets.insert(targets.end(), holders.begin(), holders.end());
     if (transfer && (!nnsClass || copyNeeded(block.aabb, x, kNoImage, r, period)))
         targets.push_back(CopyRef{me, block.id.raw(), kNoImage}); // the old master's block
     std::sort(targets.begin(), targets.end());
+    if (spreadsHere)
+        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
 
     // The frame after a transfer across a periodic boundary moves every image by -kN.
     CopyRef const ownerCopy{newOwner.rank, newOwner.block, kN};
     // Wrapped like blockContaining decides (clamped: x + kN * period may round onto the
     // upper domain face when x crossed the lower one by less than an ulp).
     core::Vec3 const newPosition = transfer && !isZero(kN) ? engine.forest().wrap(x) : x;
-    std::vector<CopyRef>& newHolders = engine.scratch(1);
-    newHolders.clear();
-    for (CopyRef const& t : targets)
-        if (!(transfer && t == ownerCopy))
-            newHolders.push_back(CopyRef{t.rank, t.block, subtractImages(t.image, kN)});
-    std::sort(newHolders.begin(), newHolders.end());
+    // Without a transfer the frame stays (kN = 0) and the new holders are the targets.
+    std::vector<CopyRef>& newHolders = transfer ? engine.scratch(1) : targets;
+    if (transfer) {
+        newHolders.clear();
+        for (CopyRef const& t : targets)
+            if (!(t == ownerCopy))
+                newHolders.push_back(CopyRef{t.rank, t.block, subtractImages(t.image, kN)});
+        std::sort(newHolders.begin(), newHolders.end());
+    }
 
     for (CopyRef const& t : targets) {
         if (transfer && t == ownerCopy)
@@ -209,7 +225,8 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
         writeFull(b, ps, i, newPosition, kNoImage, newOwner, newHolders);
         return true;
     }
-    holders.assign(newHolders.begin(), newHolders.end());
+    if (!std::equal(holders.begin(), holders.end(), newHolders.begin(), newHolders.end()))
+        holders.assign(newHolders.begin(), newHolders.end());
     return false;
 }
 
@@ -281,9 +298,10 @@ void ParticleSync::sync(LocalParticles& local) {
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             spreadWork = spreadWork || !nnsClass;
-            if (processMaster(engine, local, bp, links, i, nnsClass, m_last))
+            if (processMaster(engine, local, bp, links, i, nnsClass, reachable, m_last))
                 leaving.push_back(ps.uid(i));
-            else if (twoRounds && !nnsClass && !engine.deepInside(deep, ps.position(i), r))
+            else if (twoRounds && !nnsClass && !ps.flags(i).has(Flag::MasterReachesAll) &&
+                     !engine.deepInside(deep, ps.position(i), r))
                 bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)
         }
         for (Uid uid : leaving)

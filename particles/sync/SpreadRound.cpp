@@ -74,6 +74,10 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
             }
             continue;
         }
+        // The master ordered a copy on every block the ball overlaps in round 1: nothing left
+        // for this shadow to order (Flag::MasterReachesAll).
+        if (!master && ps.flags(i).has(Flag::MasterReachesAll))
+            continue;
         core::Vec3 const local = localPosition(x, k, period);
         engine.forEachReachableLink(block, links, local, r, [&](domain::BlockLink const& l) {
             // The master itself first (image k - l.image = 0): a shadow's ball always reaches
