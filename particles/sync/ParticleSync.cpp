@@ -193,7 +193,6 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
         if (transfer && t == ownerCopy)
             continue;
         CopyImage const k = subtractImages(t.image, kN);
-        core::SendBuffer& b = engine.out(t.rank);
         if (std::binary_search(holders.begin(), holders.end(), t)) {
             // A shadow on this rank that keeps its key: written in place, not serialised.
             // Safe before the receive round: no record of this round removes or moves it (its
@@ -203,9 +202,11 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
                 ++stats.updated;
                 continue;
             }
+            core::SendBuffer& b = engine.out(t.rank);
             writeHeader(b, RecordKind::Update, t.block);
             writeUpdate(b, ps, i, newPosition, t.image, k, newOwner);
         } else {
+            core::SendBuffer& b = engine.out(t.rank);
             writeHeader(b, RecordKind::Copy, t.block);
             writeFull(b, ps, i, newPosition, k, newOwner, {});
         }
