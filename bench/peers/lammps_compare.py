@@ -9,6 +9,10 @@ Cases:
            velocities uniform in [-0.1, 0.1], periodic), --box^3 grains
   mesapd   MESA-PD's static "GranularGas" geometry: sc spacing 1, r = 0.6, every sphere
            overlapping its six neighbours, at rest, periodic
+  ramp     the dense ramp of scenes/dense-ramp.toml (hcp of touching spheres r = 0.5, walls
+           at z = 0 and 8, periodic x/y, gravity 1 tilted 30 degrees, 0.1 down the ramp),
+           --box x (--box sqrt(3)/2) x 8; LAMMPS walls are fix wall/gran hooke/history with
+           Regolith's sphere-wall damping (effective mass m, not m/2)
 
 The initial state comes from Regolith itself (--steps 0 --dump) and is written as a LAMMPS
 data file, so both codes start from the same bits. Contact: Regolith's spring-dashpot with
@@ -16,13 +20,13 @@ k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k
 c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
 (gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
 nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
-DemStep default, 0.1 for the gas).
+DemStep default, 0.1 for the gas). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
 
 --set KEY=VALUE (repeatable) passes a scene override to every Regolith run, e.g.
 --set time.orientation=false: LAMMPS's fix nve/sphere keeps no orientation, and Regolith then
 skips the quaternion update too (positions, velocities and spins stay bit for bit the same).
 
-usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd]
+usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd ramp]
                          [--box 30] [--steps 500] [--repeats 3] [--skin 0.1] [--set KEY=VALUE]
 """
 import argparse
@@ -35,35 +39,56 @@ import statistics
 import subprocess
 import sys
 import tempfile
+from dataclasses import dataclass, field
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-SCENE = os.path.join(ROOT, "scenes", "granular-gas.toml")
-DECK = os.path.join(HERE, "granular.in")
 ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 
-STIFFNESS = 50.0
-RESTITUTION = 0.9
-FRICTION = 0.5
-DT = 0.01
+
+@dataclass(frozen=True)
+class Case:
+    """One comparison: the Regolith scene and overrides, the contact parameters both codes
+    use, and the LAMMPS deck with its extra variables."""
+    scene: str
+    deck: str
+    stiffness: float
+    restitution: float
+    friction: float
+    dt: float
+    args: list = field(default_factory=list)
+    extent: tuple = (0.0, 0.0, 0.0)
+    lammps_vars: dict = field(default_factory=dict)
 
 
-def case_args(case, box):
-    """Regolith --set arguments of a case."""
-    common = ["--set", "granular_gas.scaling=strong", "--set", f"granular_gas.box=[{box},{box},{box}]",
-              "--set", f"contact.stiffness={STIFFNESS}", "--set", f"contact.restitution={RESTITUTION}",
-              "--set", f"contact.friction={FRICTION}", "--set", f"time.dt={DT}"]
-    if case == "sparse":
-        return common
-    if case == "mesapd":
-        return common + ["--set", "particles[0].radius=0.6", "--set",
-                         "particles[0].velocity={random=[0.0,0.0],seed=1}",
-                         "--set", "contact.initial_overlap=0.5"]
-    sys.exit(f"lammps_compare: unknown case {case}")
+def make_case(name, box):
+    """The Case `name` for a box of edge `box` (the ramp: box x box sqrt(3)/2 x 8)."""
+    gas = os.path.join(ROOT, "scenes", "granular-gas.toml")
+    cube = os.path.join(HERE, "granular.in")
+    contact = ["--set", "contact.stiffness=50.0", "--set", "contact.restitution=0.9",
+               "--set", "contact.friction=0.5", "--set", "time.dt=0.01"]
+    common = ["--set", "granular_gas.scaling=strong",
+              "--set", f"granular_gas.box=[{box},{box},{box}]", *contact]
+    if name == "sparse":
+        return Case(gas, cube, 50.0, 0.9, 0.5, 0.01, common, (box, box, box))
+    if name == "mesapd":
+        return Case(gas, cube, 50.0, 0.9, 0.5, 0.01,
+                    common + ["--set", "particles[0].radius=0.6", "--set",
+                              "particles[0].velocity={random=[0.0,0.0],seed=1}",
+                              "--set", "contact.initial_overlap=0.5"], (box, box, box))
+    if name == "ramp":
+        # Regolith's weak-scaling layout on one rank: the run of dem_bench.py for box 30.
+        extent = (float(box), box * math.sqrt(3.0) / 2.0, 8.0)
+        angle = math.radians(30.0)
+        return Case(os.path.join(ROOT, "scenes", "dense-ramp.toml"),
+                    os.path.join(HERE, "ramp.in"), 2000.0, 0.5, 0.5, 0.002,
+                    ["--set", f"dense_ramp.per_rank=[{extent[0]!r},{extent[1]!r},{extent[2]!r}]"],
+                    extent, {"gx": math.sin(angle), "gz": -math.cos(angle)})
+    sys.exit(f"lammps_compare: unknown case {name}")
 
 
-def regolith(app, args, json_path, extra=()):
-    command = [app, SCENE, *args, *extra, "--quiet", "--json", json_path]
+def regolith(app, case, args, json_path, extra=()):
+    command = [app, case.scene, *args, *extra, "--quiet", "--json", json_path]
     done = subprocess.run(command, capture_output=True, text=True, env=ENV, check=False)
     if done.returncode != 0:
         sys.exit(f"lammps_compare: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
@@ -71,13 +96,15 @@ def regolith(app, args, json_path, extra=()):
         return json.load(f)
 
 
-def write_data(dump_csv, box, path):
+def write_data(dump_csv, extent, path):
     """LAMMPS data file (atom_style sphere: id type diameter density x y z) from a dump."""
     with open(dump_csv, encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     with open(path, "w", encoding="utf-8") as f:
         f.write(f"Regolith initial state\n\n{len(rows)} atoms\n1 atom types\n\n")
-        f.write(f"0 {box} xlo xhi\n0 {box} ylo yhi\n0 {box} zlo zhi\n\nAtoms # sphere\n\n")
+        for axis, length in zip("xyz", extent):
+            f.write(f"0 {length!r} {axis}lo {axis}hi\n")
+        f.write("\nAtoms # sphere\n\n")
         for r in rows:
             radius, mass = float(r["radius"]), float(r["mass"])
             density = mass / (4.0 / 3.0 * math.pi * radius ** 3)
@@ -90,22 +117,31 @@ def write_data(dump_csv, box, path):
     return rows
 
 
-def lammps_params(mass):
-    """gran/hooke/history parameters equal to Regolith's spring-dashpot for equal grains."""
-    m_eff = mass / 2.0
-    ln_e = math.log(RESTITUTION)
-    gamma = -ln_e * math.sqrt(STIFFNESS / m_eff) / math.sqrt(math.pi ** 2 + ln_e ** 2)
-    gamma_n = 2.0 * gamma  # c_n = 2 m_eff gamma = m_eff gamma_n
-    return {"kn": STIFFNESS, "kt": 2.0 / 7.0 * STIFFNESS, "gamman": gamma_n,
-            "gammat": gamma_n / 2.0, "xmu": FRICTION}
+def lammps_params(case, mass):
+    """gran/hooke/history parameters equal to Regolith's spring-dashpot for equal grains:
+    c_n = 2 zeta sqrt(k m_eff) with zeta from the restitution, so gamma_n = c_n / m_eff =
+    2 zeta sqrt(k / m_eff); m_eff = m/2 between two grains, m against a wall."""
+    ln_e = math.log(case.restitution)
+    zeta = -ln_e / math.sqrt(math.pi ** 2 + ln_e ** 2)
+    gamma_pair = 2.0 * zeta * math.sqrt(case.stiffness / (mass / 2.0))
+    gamma_wall = 2.0 * zeta * math.sqrt(case.stiffness / mass)
+    return {"kn": case.stiffness, "kt": 2.0 / 7.0 * case.stiffness, "gamman": gamma_pair,
+            "gammat": gamma_pair / 2.0, "xmu": case.friction, "gammanw": gamma_wall,
+            "gammatw": gamma_wall / 2.0, "zhi": case.extent[2], **case.lammps_vars}
 
 
-def lammps(data, params, steps, skin, workdir):
-    log = os.path.join(workdir, "lmp.log")
-    command = ["lmp", "-in", DECK, "-log", log, "-screen", "none", "-var", "data", data,
-               "-var", "dt", str(DT), "-var", "steps", str(steps), "-var", "skin", str(skin)]
+def lammps_command(case, data, params, steps, skin, log):
+    command = ["lmp", "-in", case.deck, "-log", log, "-screen", "none", "-var", "data", data,
+               "-var", "dt", repr(case.dt), "-var", "steps", str(steps), "-var", "skin",
+               str(skin)]
     for k, v in params.items():
         command += ["-var", k, repr(v)]
+    return command
+
+
+def lammps(case, data, params, steps, skin, workdir):
+    log = os.path.join(workdir, "lmp.log")
+    command = lammps_command(case, data, params, steps, skin, log)
     done = subprocess.run(command, capture_output=True, text=True, cwd=workdir, check=False)
     if done.returncode != 0:
         sys.exit(f"lammps_compare: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
@@ -121,7 +157,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
-    p.add_argument("--cases", nargs="*", default=["sparse", "mesapd"])
+    p.add_argument("--cases", nargs="*", default=["sparse", "mesapd", "ramp"])
     p.add_argument("--box", type=int, default=30)
     p.add_argument("--steps", type=int, default=500)
     p.add_argument("--repeats", type=int, default=3)
@@ -137,18 +173,21 @@ def main():
     print("|---|---|---|---|---|---|---|")
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
-            args = case_args(case, a.box)
+            c = make_case(case, a.box)
+            args = list(c.args)
             for o in a.overrides:
                 args += ["--set", o]
             dump = os.path.join(tmp, "init.csv")
-            regolith(app, args, os.path.join(tmp, "init.json"), ["--steps", "0", "--dump", dump])
+            regolith(app, c, args, os.path.join(tmp, "init.json"),
+                     ["--steps", "0", "--dump", dump])
             data = os.path.join(tmp, "grains.data")
-            grains = write_data(dump, a.box, data)
-            params = lammps_params(float(grains[0]["mass"]))
+            grains = write_data(dump, c.extent, data)
+            params = lammps_params(c, float(grains[0]["mass"]))
             ours, theirs, ratios = [], [], []
             for repeat in range(a.repeats):
-                s = regolith(app, args, os.path.join(tmp, "run.json"), ["--steps", str(a.steps)])
-                loop, steps, atoms, _ = lammps(data, params, a.steps, a.skin, tmp)
+                s = regolith(app, c, args, os.path.join(tmp, "run.json"),
+                             ["--steps", str(a.steps)])
+                loop, steps, atoms, _ = lammps(c, data, params, a.steps, a.skin, tmp)
                 if atoms != s["particles"] or steps != s["steps"]:
                     sys.exit(f"lammps_compare: LAMMPS ran {atoms} atoms x {steps} steps, Regolith "
                              f"{s['particles']} x {s['steps']}")

@@ -4,7 +4,7 @@ machine shared with other jobs: `perf stat -e task-clock` of each whole process,
 process run with 0 steps (set-up and output), alternating Regolith and LAMMPS. Descheduling
 does not count; cache and memory-bandwidth contention from co-running jobs still does.
 
-usage: lammps_cpu.py [--build build/default] [--case sparse|mesapd] [--box 30] [--steps 300]
+usage: lammps_cpu.py [--build build/default] [--case sparse|mesapd|ramp] [--box 30] [--steps 300]
                      [--repeats 3] [--set KEY=VALUE ...]
 """
 import argparse
@@ -31,7 +31,7 @@ def cpu_seconds(command, cwd=None):
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(lc.ROOT, "build", "default"))
-    p.add_argument("--case", default="mesapd", choices=["sparse", "mesapd"])
+    p.add_argument("--case", default="mesapd", choices=["sparse", "mesapd", "ramp"])
     p.add_argument("--box", type=int, default=30)
     p.add_argument("--steps", type=int, default=300)
     p.add_argument("--repeats", type=int, default=3)
@@ -39,27 +39,25 @@ def main():
     p.add_argument("--set", action="append", default=[], dest="overrides")
     a = p.parse_args()
     app = os.path.join(a.build, "bin", "regolith")
-    args = lc.case_args(a.case, a.box)
+    case = lc.make_case(a.case, a.box)
+    args = list(case.args)
     for o in a.overrides:
         args += ["--set", o]
     with tempfile.TemporaryDirectory() as tmp:
         dump = os.path.join(tmp, "init.csv")
-        lc.regolith(app, args, os.path.join(tmp, "init.json"), ["--steps", "0", "--dump", dump])
+        lc.regolith(app, case, args, os.path.join(tmp, "init.json"),
+                    ["--steps", "0", "--dump", dump])
         data = os.path.join(tmp, "grains.data")
-        grains = lc.write_data(dump, a.box, data)
-        params = lc.lammps_params(float(grains[0]["mass"]))
+        grains = lc.write_data(dump, case.extent, data)
+        params = lc.lammps_params(case, float(grains[0]["mass"]))
 
         def ours(steps):
-            return cpu_seconds([app, lc.SCENE, *args, "--quiet", "--steps", str(steps),
+            return cpu_seconds([app, case.scene, *args, "--quiet", "--steps", str(steps),
                                 "--json", os.path.join(tmp, "run.json")])
 
         def theirs(steps):
-            command = ["lmp", "-in", lc.DECK, "-log", os.path.join(tmp, "lmp.log"), "-screen",
-                       "none", "-var", "data", data, "-var", "dt", str(lc.DT), "-var", "steps",
-                       str(steps), "-var", "skin", str(a.skin)]
-            for k, v in params.items():
-                command += ["-var", k, repr(v)]
-            return cpu_seconds(command, cwd=tmp)
+            return cpu_seconds(lc.lammps_command(case, data, params, steps, a.skin,
+                                                 os.path.join(tmp, "lmp.log")), cwd=tmp)
 
         print(f"case {a.case}, {len(grains)} grains, {a.steps} steps, overrides {a.overrides}")
         for repeat in range(a.repeats):
