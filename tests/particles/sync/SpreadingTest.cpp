@@ -129,3 +129,45 @@ TEST(Spreading, SyncUntilConvergedNeedsAtMostOneCallMoreThanTheLayers) {
     auto const v = checkSyncInvariants(local, world, true);
     EXPECT_TRUE(v.empty()) << joined(v);
 }
+
+// A small SOS grain (its master's block and the neighbours hold the ball) is spread by its
+// master alone, in round 1 (Flag::MasterReachesAll): when it newly reaches an edge block while
+// it has a shadow across a face, only the master orders that copy -- with the shadows
+// searching too, the face shadow ordered it as well and the receiver dropped a duplicate. Every
+// call leaves every copy in place (no call is needed to converge).
+TEST(Spreading, SosSmallGrainIsSpreadByItsMasterAlone) {
+    Comm world;
+    domain::BlockForest const forest(
+        world, forestSpec(Vec3::Zero(), Vec3::Constant(30.0), {3, 3, 3}, allAxes(false)));
+    LocalParticles local(forest);
+    ParticleSync sync(world, forest, SyncConfig{SyncMethod::ShadowOwner, false});
+    Uid const uid = makeUid(1, 0);
+    double const r = 2.0;
+    // In the centre block, its ball across the face x = 10 only.
+    addAll(local, world, {grain(uid, Vec3(10.5, 14.25, 14.0), r)});
+    sync.syncUntilConverged(local);
+    for (int move = 1; move <= 6; ++move) { // down in y: across the face y = 10 at move 5
+        if (auto const [bp, i] = findMaster(local, uid); bp != nullptr)
+            bp->particles.position(i) += Vec3(0.0, -0.5, 0.0);
+        sync.sync(local);
+        std::uint64_t const created = world.allReduce(sync.lastStats().created, ReduceOp::Sum);
+        std::uint64_t const duplicates =
+            world.allReduce(sync.lastStats().duplicates, ReduceOp::Sum);
+        EXPECT_EQ(duplicates, 0U) << "move " << move;
+        if (move == 5) {
+            EXPECT_EQ(created, 2U) << "the copies in the y- and the x-y- edge blocks";
+        }
+        auto const v = checkSyncInvariants(local, world, true);
+        EXPECT_TRUE(v.empty()) << "move " << move << joined(v);
+        std::uint64_t shadows = 0, flagged = 0;
+        for (BlockParticles const& bp : local.blocks())
+            for (std::size_t i = 0; i < bp.particles.size(); ++i)
+                if (bp.particles.uid(i) == uid && bp.particles.flags(i).isShadow()) {
+                    ++shadows;
+                    flagged += bp.particles.flags(i).has(Flag::MasterReachesAll) ? 1U : 0U;
+                }
+        EXPECT_EQ(world.allReduce(flagged, ReduceOp::Sum), world.allReduce(shadows, ReduceOp::Sum))
+            << "move " << move;
+        EXPECT_EQ(world.allReduce(shadows, ReduceOp::Sum), move < 5 ? 1U : 3U) << "move " << move;
+    }
+}
