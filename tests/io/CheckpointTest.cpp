@@ -54,7 +54,13 @@ std::vector<io::GrainState> allGrains() {
         g.radius = 0.4 + 1e-3 * k;
         g.mass = 4.0 * g.radius * g.radius * g.radius;
         g.type = static_cast<std::uint32_t>(k % 3);
-        g.flags = k % 5 == 0 ? static_cast<std::uint8_t>(particles::Flag::Fixed) : 0;
+        // Fixed on every fifth grain; the synchronisation class (SOS, and SOS spread by its
+        // master alone) on others: every flag a master carries must survive a restart.
+        particles::Flags flags;
+        flags.set(particles::Flag::Fixed, k % 5 == 0);
+        flags.set(particles::Flag::Spreads, k % 7 < 2);
+        flags.set(particles::Flag::MasterReachesAll, k % 7 == 0);
+        g.flags = flags.bits();
         if (k % 3 == 0)
             for (int e = 0; e <= k % 3 + k % 2; ++e)
                 g.history.push_back({g.uid + 1 + static_cast<particles::Uid>(e),
@@ -156,6 +162,14 @@ TEST(Checkpoint, RoundTripIsBitwise) {
     particles::LocalParticles restored(forest);
     io::restoreGrains(world, restored, slice.grains, "test");
     expectSame(expected, sortedMasters(restored));
+    // Every flag byte as written, the synchronisation class included.
+    std::vector<io::GrainState> const written = allGrains();
+    for (io::GrainState const& g : sortedMasters(restored)) {
+        auto const it = std::find_if(written.begin(), written.end(),
+                                     [&](io::GrainState const& w) { return w.uid == g.uid; });
+        ASSERT_NE(it, written.end());
+        EXPECT_EQ(int{g.flags}, int{it->flags}) << "uid " << g.uid;
+    }
 }
 
 TEST(Checkpoint, SelfGravityStateSurvivesBitForBit) {
