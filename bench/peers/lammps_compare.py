@@ -49,7 +49,8 @@ ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONF
 @dataclass(frozen=True)
 class Case:
     """One comparison: the Regolith scene and overrides, the contact parameters both codes
-    use, and the LAMMPS deck with its extra variables."""
+    use (passed to Regolith from here too, so that the two cannot differ), and the LAMMPS deck
+    with its extra variables."""
     scene: str
     deck: str
     stiffness: float
@@ -60,30 +61,42 @@ class Case:
     extent: tuple = (0.0, 0.0, 0.0)
     lammps_vars: dict = field(default_factory=dict)
 
+    def regolith_args(self, overrides=()):
+        """The --set arguments of the Regolith runs: the case's, its contact parameters and
+        time step, then `overrides` (KEY=VALUE)."""
+        out = list(self.args)
+        for key, value in (("contact.stiffness", self.stiffness),
+                           ("contact.restitution", self.restitution),
+                           ("contact.friction", self.friction), ("time.dt", self.dt)):
+            out += ["--set", f"{key}={value!r}"]
+        for o in overrides:
+            out += ["--set", o]
+        return out
+
 
 def make_case(name, box):
     """The Case `name` for a box of edge `box` (the ramp: box x box sqrt(3)/2 x 8)."""
-    gas = os.path.join(ROOT, "scenes", "granular-gas.toml")
-    cube = os.path.join(HERE, "granular.in")
-    contact = ["--set", "contact.stiffness=50.0", "--set", "contact.restitution=0.9",
-               "--set", "contact.friction=0.5", "--set", "time.dt=0.01"]
-    common = ["--set", "granular_gas.scaling=strong",
-              "--set", f"granular_gas.box=[{box},{box},{box}]", *contact]
-    if name == "sparse":
-        return Case(gas, cube, 50.0, 0.9, 0.5, 0.01, common, (box, box, box))
-    if name == "mesapd":
-        return Case(gas, cube, 50.0, 0.9, 0.5, 0.01,
-                    common + ["--set", "particles[0].radius=0.6", "--set",
-                              "particles[0].velocity={random=[0.0,0.0],seed=1}",
-                              "--set", "contact.initial_overlap=0.5"], (box, box, box))
+    if name in ("sparse", "mesapd"):
+        gas = ["--set", "granular_gas.scaling=strong",
+               "--set", f"granular_gas.box=[{box},{box},{box}]"]
+        if name == "mesapd":
+            gas += ["--set", "particles[0].radius=0.6", "--set",
+                    "particles[0].velocity={random=[0.0,0.0],seed=1}",
+                    "--set", "contact.initial_overlap=0.5"]
+        return Case(os.path.join(ROOT, "scenes", "granular-gas.toml"),
+                    os.path.join(HERE, "granular.in"), 50.0, 0.9, 0.5, 0.01, gas,
+                    (box, box, box))
     if name == "ramp":
         # Regolith's weak-scaling layout on one rank: the run of dem_bench.py for box 30.
         extent = (float(box), box * math.sqrt(3.0) / 2.0, 8.0)
-        angle = math.radians(30.0)
+        gravity, inclination = 1.0, 30.0
+        angle = math.radians(inclination)
         return Case(os.path.join(ROOT, "scenes", "dense-ramp.toml"),
                     os.path.join(HERE, "ramp.in"), 2000.0, 0.5, 0.5, 0.002,
-                    ["--set", f"dense_ramp.per_rank=[{extent[0]!r},{extent[1]!r},{extent[2]!r}]"],
-                    extent, {"gx": math.sin(angle), "gz": -math.cos(angle)})
+                    ["--set", f"dense_ramp.per_rank=[{extent[0]!r},{extent[1]!r},{extent[2]!r}]",
+                     "--set", f"dense_ramp.gravity={gravity!r}",
+                     "--set", f"dense_ramp.inclination={inclination!r}"],
+                    extent, {"g": gravity, "gx": math.sin(angle), "gz": -math.cos(angle)})
     sys.exit(f"lammps_compare: unknown case {name}")
 
 
@@ -174,9 +187,7 @@ def main():
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
             c = make_case(case, a.box)
-            args = list(c.args)
-            for o in a.overrides:
-                args += ["--set", o]
+            args = c.regolith_args(a.overrides)
             dump = os.path.join(tmp, "init.csv")
             regolith(app, c, args, os.path.join(tmp, "init.json"),
                      ["--steps", "0", "--dump", dump])

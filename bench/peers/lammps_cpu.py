@@ -40,9 +40,7 @@ def main():
     a = p.parse_args()
     app = os.path.join(a.build, "bin", "regolith")
     case = lc.make_case(a.case, a.box)
-    args = list(case.args)
-    for o in a.overrides:
-        args += ["--set", o]
+    args = case.regolith_args(a.overrides)
     with tempfile.TemporaryDirectory() as tmp:
         dump = os.path.join(tmp, "init.csv")
         lc.regolith(app, case, args, os.path.join(tmp, "init.json"),

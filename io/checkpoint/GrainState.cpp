@@ -39,10 +39,8 @@ particles::ParticleInit toParticleInit(GrainState const& g) {
     p.radius = g.radius;
     p.mass = g.mass;
     p.type = g.type;
-    // Flags has no constructor from raw bits: rebuild the set flag by flag.
-    for (auto f : {particles::Flag::Fixed, particles::Flag::Global, particles::Flag::Spreads,
-                   particles::Flag::MasterReachesAll})
-        p.flags.set(f, (g.flags & static_cast<std::uint8_t>(f)) != 0);
+    // Every stored flag as written; a restored grain is a master.
+    p.flags = particles::Flags::fromBits(g.flags).set(particles::Flag::Shadow, false);
     return p;
 }
 

@@ -28,6 +28,12 @@ public:
     constexpr Flags() = default;
     constexpr Flags(Flag f) // NOLINT(google-explicit-constructor): a flag is a one-flag set
         : m_bits(static_cast<std::uint8_t>(f)) {}
+    /// The set whose byte is `bits` (as bits() gave it, e.g. read back from a checkpoint).
+    [[nodiscard]] static constexpr Flags fromBits(std::uint8_t bits) {
+        Flags f;
+        f.m_bits = bits;
+        return f;
+    }
 
     [[nodiscard]] constexpr bool has(Flag f) const {
         return (m_bits & static_cast<std::uint8_t>(f)) != 0;

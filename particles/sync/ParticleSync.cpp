@@ -171,8 +171,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     if (transfer && (!nnsClass || copyNeeded(block.aabb, x, kNoImage, r, period)))
         targets.push_back(CopyRef{me, block.id.raw(), kNoImage}); // the old master's block
     std::sort(targets.begin(), targets.end());
-    if (spreadsHere)
-        targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+    targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
 
     // The frame after a transfer across a periodic boundary moves every image by -kN.
     CopyRef const ownerCopy{newOwner.rank, newOwner.block, kN};
