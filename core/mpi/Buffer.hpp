@@ -90,8 +90,9 @@ inline SendBuffer& operator<<(SendBuffer& b, std::string const& s) {
     b.writeBytes(s.data(), s.size());
     return b;
 }
+/// A span goes as a std::vector (count, elements): it is received into one.
 template <class T>
-SendBuffer& operator<<(SendBuffer& b, std::vector<T> const& v) {
+SendBuffer& operator<<(SendBuffer& b, std::span<T const> v) {
     std::uint64_t const n = v.size();
     b.writeBytes(&n, sizeof n);
     if constexpr (Packable<T>) {
@@ -101,6 +102,10 @@ SendBuffer& operator<<(SendBuffer& b, std::vector<T> const& v) {
             b << x;
     }
     return b;
+}
+template <class T>
+SendBuffer& operator<<(SendBuffer& b, std::vector<T> const& v) {
+    return b << std::span<T const>(v);
 }
 /// Fixed-size Eigen matrices and quaternions (not trivially copyable, but plain storage).
 template <class S, int R, int C, int O>

@@ -22,7 +22,7 @@ std::vector<GrainState> collectMasters(particles::LocalParticles const& local) {
             g.mass = ps.mass(i);
             g.type = ps.type(i);
             g.flags = ps.flags(i).bits();
-            g.history = ps.history(i).entries();
+            g.history.assign(ps.history(i).begin(), ps.history(i).end());
             out.push_back(std::move(g));
         });
     }

@@ -29,6 +29,16 @@ struct Contact {
     core::Vec3 shiftJ = core::Vec3::Zero();
 };
 
+/// Two overlapping spheres (i, j, shiftJ as in Contact) without the rest of their geometry:
+/// what the fused contact loop hands to a consumer that computes normal, penetration and point
+/// itself, with the bits of overlapGeometry (PairRule.hpp), in its own vector lanes
+/// (SpringDashpotBatch), rather than having them written to a Contact and read back.
+struct PairOverlap {
+    std::size_t i = 0;
+    std::size_t j = 0;
+    core::Vec3 shiftJ = core::Vec3::Zero();
+};
+
 /// A sphere overlapping a wall; the wall plays the role of `i` (infinite mass, at rest).
 struct WallContact {
     std::size_t particle = 0; ///< storage index of the sphere

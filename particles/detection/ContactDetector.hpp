@@ -12,6 +12,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -22,6 +23,22 @@ namespace regolith::particles {
 /// A region "this block evaluates contacts whose ownership point lies in [min, max)" that
 /// contains every point: for a single block.
 core::AABB everywhere();
+
+/// A pair callback of the fused detect that takes PairOverlap (and computes the geometry
+/// itself) rather than Contact.
+template <class OnPair>
+concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
+
+namespace detection_detail {
+/// Hands contact `c` to onPair in the form it takes.
+template <class OnPair>
+void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint) {
+    if constexpr (TakesPairOverlaps<OnPair>)
+        onPair(PairOverlap{c.i, c.j, c.shiftJ}, hint);
+    else
+        onPair(c, hint);
+}
+} // namespace detection_detail
 
 /// Finds the overlapping sphere pairs and sphere–wall contacts of a ParticleStorage.
 ///
@@ -118,7 +135,9 @@ public:
     /// unless `keepPairs` is false (then out.pairs may stay empty: writing 96 bytes per
     /// contact and step is a tenth of the static lattice's CPU time); the wall contacts always
     /// are. Without a list (no skin) or with sortByUid, the contacts are handed over after the
-    /// sort, in `out`'s order, with a fresh hint. Not collective.
+    /// sort, in `out`'s order, with a fresh hint. A callback that takes `(PairOverlap const&,
+    /// hint)` (TakesPairOverlaps) receives each contact as a PairOverlap instead, and computes
+    /// the rest of the geometry itself. Not collective.
     template <class OnPair>
     void detect(ParticleStorage& particles, WallList const& walls,
                 core::AABB const& evaluationRegion, PeriodicFrame const& frame, ContactList& out,
@@ -205,7 +224,7 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
         detect(ps, walls, region, frame, out);
         for (Contact const& c : out.pairs) {
             std::uint8_t hint = 0;
-            onPair(c, hint);
+            detection_detail::handOver(onPair, c, hint);
         }
         return;
     }
@@ -225,8 +244,19 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     auto const& x = ps.positions();
     std::size_t overlaps = 0;
     Contact c;
-    m_list.forEachPair([&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
+    auto eachPair = [&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
         if (mode == PairMode::Owned) {
+            if constexpr (TakesPairOverlaps<OnPair>) {
+                if (!keepPairs) { // the consumer computes the geometry: only the test here
+                    core::Vec3 shiftJ, d;
+                    double dist = 0.0;
+                    if (!detection_detail::overlapTest(ps, a, b, period, shiftJ, d, dist))
+                        return;
+                    ++overlaps;
+                    onPair(PairOverlap{a, b, shiftJ}, hint);
+                    return;
+                }
+            }
             if (!detection_detail::overlapGeometry(ps, a, b, period, c))
                 return;
             ++overlaps;
@@ -243,8 +273,11 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         }
         if (keepPairs)
             out.pairs.push_back(c);
-        onPair(c, hint);
-    });
+        detection_detail::handOver(onPair, c, hint);
+    };
+    // The history of a listed pair sits on its first copy (canonical order) when the pair is
+    // Owned, the common case: fetch it while the pairs before it are evaluated.
+    m_list.forEachPair(eachPair, [&ps](std::size_t a) { ps.history(a).prefetch(); });
     m_stats.overlapsFound += overlaps;
 }
 

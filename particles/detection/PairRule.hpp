@@ -23,36 +23,48 @@ namespace regolith::particles::detection_detail {
     return out;
 }
 
+/// The canonical overlap test of copies i, j (uid(i) < uid(j)): true if |x_j + shiftJ - x_i| <
+/// r_i + r_j, with shiftJ, d = x_j + shiftJ - x_i and |d| set (the part of overlapGeometry
+/// every listed pair pays; the rest only overlapping ones). Always inlined: it runs once per
+/// listed pair and step.
+[[nodiscard, gnu::always_inline]] inline bool overlapTest(ParticleStorage const& ps, std::size_t i,
+                                                          std::size_t j, core::Vec3 const& period,
+                                                          core::Vec3& shiftJ, core::Vec3& d,
+                                                          double& dist) {
+    shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
+    // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
+    d = (ps.position(j) + shiftJ) - ps.position(i);
+    double const d2 = d.squaredNorm();
+    double const reach = ps.radius(i) + ps.radius(j);
+    // sqrt is correctly rounded and monotonic: beyond reach^2 (with room for the rounding of
+    // reach * reach) the distance cannot be below reach. Most listed pairs end here.
+    if (d2 > reach * reach * (1.0 + 1e-12))
+        return false;
+    dist = std::sqrt(d2);
+    return dist < reach;
+}
+
 /// The canonical geometry of copies i, j (uid(i) < uid(j)): if |x_j + shiftJ - x_i| < r_i +
 /// r_j, fills c (i, j, point, normal, penetration, shiftJ) and returns true. The one place these
-/// bits are computed, so that every path (full rule, fused Verlet loop) agrees.
+/// bits are computed, so that every path (full rule, fused Verlet loop) agrees; a consumer of
+/// PairOverlap that computes them itself (SpringDashpotBatch) follows these operations.
 /// Always inlined: it runs once per listed pair and step.
 [[nodiscard, gnu::always_inline]] inline bool overlapGeometry(ParticleStorage const& ps,
                                                               std::size_t i, std::size_t j,
                                                               core::Vec3 const& period,
                                                               Contact& c) {
-    core::Vec3 const shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
-    core::Vec3 const& xi = ps.position(i);
-    // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
-    core::Vec3 const xj = ps.position(j) + shiftJ;
-    double const ri = ps.radius(i), rj = ps.radius(j);
-    core::Vec3 const d = xj - xi;
-    double const d2 = d.squaredNorm();
-    double const reach = ri + rj;
-    // sqrt is correctly rounded and monotonic: beyond reach^2 (with room for the rounding of
-    // reach * reach) the distance cannot be below reach. Most listed pairs end here.
-    if (d2 > reach * reach * (1.0 + 1e-12))
+    core::Vec3 shiftJ, d;
+    double dist = 0.0;
+    if (!overlapTest(ps, i, j, period, shiftJ, d, dist))
         return false;
-    double const dist = std::sqrt(d2);
-    if (!(dist < reach))
-        return false;
+    double const ri = ps.radius(i);
     c.i = i;
     c.j = j;
     c.shiftJ = shiftJ;
     // Coincident centres have no direction; any unit normal is as good, this one is fixed.
     c.normal = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
-    c.penetration = reach - dist;
-    c.point = xi + (ri - 0.5 * c.penetration) * c.normal;
+    c.penetration = ri + ps.radius(j) - dist;
+    c.point = ps.position(i) + (ri - 0.5 * c.penetration) * c.normal;
     return true;
 }
 

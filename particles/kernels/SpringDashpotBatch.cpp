@@ -4,38 +4,28 @@
 
 namespace regolith::particles {
 
-void SpringDashpotBatch::add(ParticleStorage const& ps, Contact const& c, core::Vec3 const& spring,
+void SpringDashpotBatch::add(ParticleStorage const& ps, PairOverlap const& p, HistoryEntry& entry,
                              std::uint8_t hint) {
     std::size_t const k = m_size++;
-    std::size_t const i = c.i, j = c.j;
+    std::size_t const i = p.i, j = p.j;
     m_i[k] = i;
     m_j[k] = j;
     m_hint[k] = hint;
+    m_entry[k] = &entry;
     m_typeI[k] = ps.type(i);
     m_typeJ[k] = ps.type(j);
-    // The lever arms as pairState and evaluatePair compute them.
-    core::Vec3 const& xi = ps.position(i);
-    core::Vec3 const& xj = ps.position(j);
-    double const cjx = xj.x() + c.shiftJ.x(), cjy = xj.y() + c.shiftJ.y(),
-                 cjz = xj.z() + c.shiftJ.z();
-    m_ri[0][k] = c.point.x() - xi.x();
-    m_ri[1][k] = c.point.y() - xi.y();
-    m_ri[2][k] = c.point.z() - xi.z();
-    m_rj[0][k] = c.point.x() - cjx;
-    m_rj[1][k] = c.point.y() - cjy;
-    m_rj[2][k] = c.point.z() - cjz;
     auto put = [k](Lane3& lane, core::Vec3 const& v) {
         lane[0][k] = v.x();
         lane[1][k] = v.y();
         lane[2][k] = v.z();
     };
-    put(m_n, c.normal);
+    put(m_xi, ps.position(i));
+    put(m_xj, core::Vec3(ps.position(j) + p.shiftJ)); // as overlapGeometry: also a zero shift
     put(m_vi, ps.velocity(i));
     put(m_vj, ps.velocity(j));
     put(m_wi, ps.angularVelocity(i));
     put(m_wj, ps.angularVelocity(j));
-    put(m_s, spring);
-    m_pen[k] = c.penetration;
+    put(m_s, entry.spring);
     m_invMi[k] = ps.invMass(i);
     m_invMj[k] = ps.invMass(j);
     m_invIi[k] = ps.invInertia(i);
@@ -54,14 +44,27 @@ inline double cross(int c, double ax, double ay, double az, double bx, double by
 void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
     std::size_t const n = m_size;
     auto const& materials = model.materials();
-    for (std::size_t k = 0; k < n; ++k) {
-        LinearContactParams const& p = materials(m_typeI[k], m_typeJ[k]);
-        m_k[k] = p.stiffness;
-        m_kt[k] = p.tangentialStiffness;
-        m_ratio[k] = model.dampingRatio(m_typeI[k], m_typeJ[k]);
-        m_mu[k] = p.friction;
-        m_ctRatio[k] = p.tangentialDampingRatio;
-        m_muRoll[k] = p.rollingFriction;
+    if (materials.numTypes() == 1) { // one material: the same numbers in every lane
+        LinearContactParams const& p = materials(0, 0);
+        double const ratio = model.dampingRatio(0, 0);
+        for (std::size_t k = 0; k < n; ++k) {
+            m_k[k] = p.stiffness;
+            m_kt[k] = p.tangentialStiffness;
+            m_ratio[k] = ratio;
+            m_mu[k] = p.friction;
+            m_ctRatio[k] = p.tangentialDampingRatio;
+            m_muRoll[k] = p.rollingFriction;
+        }
+    } else {
+        for (std::size_t k = 0; k < n; ++k) {
+            LinearContactParams const& p = materials(m_typeI[k], m_typeJ[k]);
+            m_k[k] = p.stiffness;
+            m_kt[k] = p.tangentialStiffness;
+            m_ratio[k] = model.dampingRatio(m_typeI[k], m_typeJ[k]);
+            m_mu[k] = p.friction;
+            m_ctRatio[k] = p.tangentialDampingRatio;
+            m_muRoll[k] = p.rollingFriction;
+        }
     }
     // One contact per iteration, no calls, every operation done in every lane and the scalar
     // code's branches as selects between the results: the loop GCC vectorises (this file is
@@ -69,9 +72,21 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
     // a lane then discards; the bits of the results kept are the same). The comments name the
     // scalar code each part mirrors (same operations, same order).
     for (std::size_t k = 0; k < n; ++k) {
-        double const nx = m_n[0][k], ny = m_n[1][k], nz = m_n[2][k];
-        double const rix = m_ri[0][k], riy = m_ri[1][k], riz = m_ri[2][k];
-        double const rjx = m_rj[0][k], rjy = m_rj[1][k], rjz = m_rj[2][k];
+        double const xix = m_xi[0][k], xiy = m_xi[1][k], xiz = m_xi[2][k];
+        double const xjx = m_xj[0][k], xjy = m_xj[1][k], xjz = m_xj[2][k];
+        double const a = m_radI[k], b = m_radJ[k];
+        // overlapGeometry: normal, penetration, point; the lever arms as pairState takes them.
+        double const dx = xjx - xix, dy = xjy - xiy, dz = xjz - xiz;
+        double const dist = std::sqrt(dx * dx + dy * dy + dz * dz);
+        bool const apart = dist > 0.0;
+        double const nx = apart ? dx / dist : 0.0, ny = apart ? dy / dist : 0.0,
+                     nz = apart ? dz / dist : 1.0;
+        double const pen = (a + b) - dist;
+        double const toPoint = a - 0.5 * pen;
+        double const pointX = xix + toPoint * nx, pointY = xiy + toPoint * ny,
+                     pointZ = xiz + toPoint * nz;
+        double const rix = pointX - xix, riy = pointY - xiy, riz = pointZ - xiz;
+        double const rjx = pointX - xjx, rjy = pointY - xjy, rjz = pointZ - xjz;
         double const wix = m_wi[0][k], wiy = m_wi[1][k], wiz = m_wi[2][k];
         double const wjx = m_wj[0][k], wjy = m_wj[1][k], wjz = m_wj[2][k];
         // pairState: v + w x r at the contact point, relative velocity and spin, m_eff, R_eff.
@@ -84,14 +99,13 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
         double const ux = vjx - vix, uy = vjy - viy, uz = vjz - viz;
         double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
         double const meff = 1.0 / (m_invMi[k] + m_invMj[k]);
-        double const a = m_radI[k], b = m_radJ[k];
         double const reff = a * b / (a + b);
         double const invIsum = m_invIi[k] + m_invIj[k];
         // SpringDashpot::operator(): normal force.
         double const cn = 2.0 * m_ratio[k] * std::sqrt(m_k[k] * meff);
         double const vn = ux * nx + uy * ny + uz * nz;
         double const vtx = ux - vn * nx, vty = uy - vn * ny, vtz = uz - vn * nz;
-        double const fn = m_k[k] * m_pen[k] - cn * vn;
+        double const fn = m_k[k] * pen - cn * vn;
         double const kt = m_kt[k];
         double const ct = m_ctRatio[k] * cn;
         double const limit = m_mu[k] * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)

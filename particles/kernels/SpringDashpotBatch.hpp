@@ -1,8 +1,9 @@
 #pragma once
 /// The spring-dashpot model over a batch of pair contacts at once, for the fused contact loop
-/// (DemStep): the contacts the Verlet list finds are gathered into structure-of-arrays lanes,
-/// evaluated in one branch-free loop the compiler vectorises across contacts, and handed to
-/// the sink in the order they were found.
+/// (DemStep): the overlapping pairs the Verlet list finds (PairOverlap: the two copies and the
+/// periodic shift, no geometry) are gathered into structure-of-arrays lanes, their geometry and
+/// forces computed in one branch-free loop the compiler vectorises across contacts, and the
+/// shares handed to the sink in the order the pairs were found.
 ///
 /// Why: evaluated one by one (evaluatePair), a contact cost ~540 instructions of scalar Eigen
 /// code on 3-vectors (callgrind, static lattice), much of it moving the same numbers between
@@ -10,10 +11,11 @@
 /// instruction. The lattice's step runs 22 % fewer instructions, but not measurably faster:
 /// what is left is memory access (docs/results.md, issue 5, "Contact loop in batches").
 ///
-/// Same bits as evaluatePair with SpringDashpot: every lane computes the same IEEE operations in
-/// the same order as pairState, SpringDashpot::operator(), tangentialForce, projectSpring and
-/// rollingTorque (branches become selects of values computed either way), so results do not
-/// depend on the path or the vector width (tests/particles/SpringDashpotBatchTest.cpp).
+/// Same bits as overlapGeometry followed by evaluatePair with SpringDashpot: every lane computes
+/// the same IEEE operations in the same order as overlapGeometry (normal, penetration, point),
+/// pairState, SpringDashpot::operator(), tangentialForce, projectSpring and rollingTorque (branches
+/// become selects of values computed either way), so results do not depend on the path or the
+/// vector width (tests/particles/SpringDashpotBatchTest.cpp).
 #include "core/math/Vec3.hpp"
 #include "particles/detection/Contact.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
@@ -34,20 +36,21 @@ public:
     [[nodiscard]] bool full() const { return m_size == kCapacity; }
     void clear() { m_size = 0; }
 
-    /// Gathers contact `c` of `ps` (overlapping, canonical order) with its current tangential
-    /// spring, and remembers `hint` (where the spring sits in i's ContactHistory, to write it
-    /// back). Pre: !full().
-    void add(ParticleStorage const& ps, Contact const& c, core::Vec3 const& spring,
+    /// Gathers the overlapping pair `p` of `ps` (canonical order) with `entry`, its history
+    /// entry (the tangential spring, written back after evaluate), and `hint` (the entry's slot
+    /// in i's ContactHistory, to find it again if the history moved). Pre: !full().
+    void add(ParticleStorage const& ps, PairOverlap const& p, HistoryEntry& entry,
              std::uint8_t hint);
 
     /// Evaluates every gathered contact with `model` and time step `dt`: afterwards force(k),
-    /// torqueI(k), torqueJ(k) and spring(k) hold what evaluatePair would give (force on j,
-    /// torques on i and j, the updated spring).
+    /// torqueI(k), torqueJ(k) and spring(k) hold what overlapGeometry and evaluatePair would
+    /// give (force on j, torques on i and j, the updated spring).
     void evaluate(SpringDashpot const& model, double dt);
 
     [[nodiscard]] std::size_t i(std::size_t k) const { return m_i[k]; }
     [[nodiscard]] std::size_t j(std::size_t k) const { return m_j[k]; }
     [[nodiscard]] std::uint8_t hint(std::size_t k) const { return m_hint[k]; }
+    [[nodiscard]] HistoryEntry& entry(std::size_t k) const { return *m_entry[k]; }
     [[nodiscard]] core::Vec3 force(std::size_t k) const {
         return {m_f[0][k], m_f[1][k], m_f[2][k]};
     }
@@ -69,13 +72,12 @@ private:
     std::array<std::size_t, kCapacity> m_i{};
     std::array<std::size_t, kCapacity> m_j{};
     std::array<std::uint8_t, kCapacity> m_hint{};
+    std::array<HistoryEntry*, kCapacity> m_entry{};
     std::array<std::uint32_t, kCapacity> m_typeI{};
     std::array<std::uint32_t, kCapacity> m_typeJ{};
-    // Inputs: normal, penetration, lever arms point - x_i and point - (x_j + shiftJ), velocities
-    // and spins, inverse masses and inertias, radii, spring (updated in place).
-    alignas(64) Lane3 m_n;
-    alignas(64) Lane m_pen;
-    alignas(64) Lane3 m_ri, m_rj, m_vi, m_vj, m_wi, m_wj;
+    // Inputs: centres x_i and x_j + shiftJ, velocities and spins, inverse masses and inertias,
+    // radii, spring (updated in place).
+    alignas(64) Lane3 m_xi, m_xj, m_vi, m_vj, m_wi, m_wj;
     alignas(64) Lane m_invMi, m_invMj, m_invIi, m_invIj, m_radI, m_radJ;
     alignas(64) Lane3 m_s;
     // The pair's material parameters, gathered from the tables.
@@ -84,11 +86,11 @@ private:
     alignas(64) Lane3 m_f, m_ti, m_tj;
 };
 
-/// evaluatePair with SpringDashpot for a stream of pair contacts, in batches: call it on each
-/// contact as found (with the pair's history slot hint), then finish(). Each contact's spring
-/// is touched (stamped) when it arrives, as evaluatePair does; the batch is evaluated when full,
-/// before a contact whose spring an earlier contact of this pass touched (a pair meeting
-/// through two periodic images must see the spring the first evaluation left), and at
+/// overlapGeometry and evaluatePair with SpringDashpot for a stream of overlapping pairs, in
+/// batches: call it on each pair as found (with the pair's history slot hint), then finish().
+/// Each pair's spring is touched (stamped) when it arrives, as evaluatePair does; the batch is
+/// evaluated when full, before a pair whose spring an earlier pair of this pass touched (a pair
+/// meeting through two periodic images must see the spring the first evaluation left), and at
 /// finish(). `sink` receives the shares in arrival order, j's first: the same calls with the
 /// same bits as evaluatePair on each contact in turn. Not collective.
 template <ContactSink Sink>
@@ -105,14 +107,21 @@ public:
         m_batch.clear();
     }
 
-    void operator()(Contact const& c, std::uint8_t& hint) {
+    void operator()(PairOverlap const& p, std::uint8_t& hint) {
+        ContactHistory& history = m_ps.history(p.i);
+        std::size_t const before = history.size();
         bool again = false;
-        HistoryEntry* e = &m_ps.history(c.i).touch(m_ps.uid(c.j), m_stamp, hint, again);
+        HistoryEntry* e = &history.touch(m_ps.uid(p.j), m_stamp, hint, again);
+        // An insertion may move the entries of p.i that earlier pairs of the batch hold.
+        m_moved = m_moved || history.size() != before;
         if (again || m_batch.full()) {
             finish();
-            e = &m_ps.history(c.i).touch(m_ps.uid(c.j), m_stamp, hint);
+            e = &history.touch(m_ps.uid(p.j), m_stamp, hint);
         }
-        m_batch.add(m_ps, c, e->spring, hint);
+        m_batch.add(m_ps, p, *e, hint);
+    }
+    void operator()(Contact const& c, std::uint8_t& hint) {
+        (*this)(PairOverlap{c.i, c.j, c.shiftJ}, hint);
     }
 
     /// Evaluates what is gathered and hands it to the sink.
@@ -121,15 +130,18 @@ public:
         batch.evaluate(m_model, m_dt);
         for (std::size_t k = 0; k < batch.size(); ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
-            // Later arrivals may have moved the entry (an insertion): the hint then misses and
-            // touch searches.
-            std::uint8_t hint = batch.hint(k);
-            m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint).spring = batch.spring(k);
+            HistoryEntry* e = &batch.entry(k);
+            if (m_moved) { // found again through the hint, or by search
+                std::uint8_t hint = batch.hint(k);
+                e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
+            }
+            e->spring = batch.spring(k);
             core::Vec3 const f = batch.force(k);
             m_sink(j, m_ps.uid(i), f, batch.torqueJ(k));
             m_sink(i, m_ps.uid(j), core::Vec3(-f), core::Vec3(-batch.torqueI(k)));
         }
         batch.clear();
+        m_moved = false;
     }
 
 private:
@@ -139,6 +151,7 @@ private:
     std::uint32_t m_stamp;
     SpringDashpotBatch& m_batch;
     Sink& m_sink;
+    bool m_moved = false; ///< some history of the batch's pairs got an entry since it started
 };
 
 } // namespace regolith::particles

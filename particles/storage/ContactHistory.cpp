@@ -1,6 +1,7 @@
 #include "particles/storage/ContactHistory.hpp"
 
 #include <algorithm>
+#include <memory>
 
 namespace regolith::particles {
 
@@ -10,35 +11,59 @@ bool byPartner(HistoryEntry const& e, Uid uid) {
 }
 } // namespace
 
-ContactHistory::ContactHistory(ContactHistory const& other)
-    : m_entries(other.m_entries ? std::make_unique<std::vector<HistoryEntry>>(*other.m_entries)
-                                : nullptr) {}
+ContactHistory::ContactHistory(ContactHistory const& other) {
+    assign(other.entries());
+}
 
 ContactHistory& ContactHistory::operator=(ContactHistory const& other) {
     if (this != &other)
-        m_entries = other.m_entries ? std::make_unique<std::vector<HistoryEntry>>(*other.m_entries)
-                                    : nullptr;
+        assign(other.entries());
     return *this;
 }
 
-std::vector<HistoryEntry>& ContactHistory::ensure() {
-    if (!m_entries)
-        m_entries = std::make_unique<std::vector<HistoryEntry>>();
-    return *m_entries;
+void ContactHistory::release() {
+    if (m_block) {
+        m_block->~Block();
+        ::operator delete(m_block);
+        m_block = nullptr;
+    }
+}
+
+void ContactHistory::reallocate(std::size_t capacity, std::size_t keep) {
+    void* raw = ::operator new(Block::bytes(capacity));
+    auto* block =
+        new (raw) Block{static_cast<std::uint32_t>(keep), static_cast<std::uint32_t>(capacity)};
+    std::uninitialized_value_construct_n(reinterpret_cast<HistoryEntry*>(block + 1), capacity);
+    if (m_block)
+        std::copy_n(m_block->data(), keep, block->data());
+    release();
+    m_block = block;
+}
+
+std::size_t ContactHistory::lowerBound(Uid partner) const {
+    auto const e = entries();
+    return static_cast<std::size_t>(std::lower_bound(e.begin(), e.end(), partner, byPartner) -
+                                    e.begin());
+}
+
+HistoryEntry& ContactHistory::insertAt(std::size_t at, HistoryEntry const& entry) {
+    std::size_t const n = size();
+    if (!m_block || n == m_block->capacity)
+        reallocate(std::max<std::size_t>(2, 2 * n), n);
+    HistoryEntry* d = m_block->data();
+    std::move_backward(d + at, d + n, d + n + 1);
+    d[at] = entry;
+    ++m_block->size;
+    return d[at];
 }
 
 HistoryEntry const* ContactHistory::find(Uid partner) const {
-    auto const& v = entries();
-    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
-    return it != v.end() && it->partner == partner ? &*it : nullptr;
+    std::size_t const at = lowerBound(partner);
+    return at < size() && m_block->data()[at].partner == partner ? &m_block->data()[at] : nullptr;
 }
 
 HistoryEntry* ContactHistory::find(Uid partner) {
-    if (!m_entries)
-        return nullptr;
-    auto& v = *m_entries;
-    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
-    return it != v.end() && it->partner == partner ? &*it : nullptr;
+    return const_cast<HistoryEntry*>(std::as_const(*this).find(partner));
 }
 
 HistoryEntry& ContactHistory::touch(Uid partner, std::uint32_t stamp) {
@@ -47,63 +72,66 @@ HistoryEntry& ContactHistory::touch(Uid partner, std::uint32_t stamp) {
 }
 
 HistoryEntry& ContactHistory::touchAt(Uid partner, std::uint32_t stamp, bool& again) {
-    auto& v = ensure();
-    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
-    if (it == v.end() || it->partner != partner)
-        it = v.insert(it, HistoryEntry{partner, core::Vec3::Zero(), stamp});
-    else
-        again = it->stamp == stamp;
-    it->stamp = stamp;
-    return *it;
+    std::size_t const at = lowerBound(partner);
+    if (at == size() || m_block->data()[at].partner != partner)
+        return insertAt(at, HistoryEntry{partner, core::Vec3::Zero(), stamp});
+    HistoryEntry& e = m_block->data()[at];
+    again = e.stamp == stamp;
+    e.stamp = stamp;
+    return e;
 }
 
 HistoryEntry& ContactHistory::touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint,
                                         bool& again) {
     again = false;
     HistoryEntry& e = touchAt(partner, stamp, again);
-    auto const slot = static_cast<std::size_t>(&e - m_entries->data());
+    auto const slot = static_cast<std::size_t>(&e - m_block->data());
     // Beyond 255 entries the hint saturates and always misses (then touch() searches).
     hint = static_cast<std::uint8_t>(std::min<std::size_t>(slot, 255));
     return e;
 }
 
 void ContactHistory::set(HistoryEntry const& entry) {
-    auto& v = ensure();
-    auto it = std::lower_bound(v.begin(), v.end(), entry.partner, byPartner);
-    if (it != v.end() && it->partner == entry.partner)
-        *it = entry;
+    std::size_t const at = lowerBound(entry.partner);
+    if (at < size() && m_block->data()[at].partner == entry.partner)
+        m_block->data()[at] = entry;
     else
-        v.insert(it, entry);
+        insertAt(at, entry);
 }
 
-void ContactHistory::assign(std::vector<HistoryEntry> const& entries) {
-    if (entries.empty())
-        m_entries.reset();
-    else
-        ensure().assign(entries.begin(), entries.end());
+void ContactHistory::assign(std::span<HistoryEntry const> entries) {
+    if (entries.empty()) {
+        release();
+        return;
+    }
+    if (!m_block || m_block->capacity < entries.size())
+        reallocate(entries.size(), 0);
+    std::copy(entries.begin(), entries.end(), m_block->data());
+    m_block->size = static_cast<std::uint32_t>(entries.size());
 }
 
 bool ContactHistory::erase(Uid partner) {
-    if (!m_entries)
+    std::size_t const at = lowerBound(partner);
+    std::size_t const n = size();
+    if (at == n || m_block->data()[at].partner != partner)
         return false;
-    auto& v = *m_entries;
-    auto it = std::lower_bound(v.begin(), v.end(), partner, byPartner);
-    if (it == v.end() || it->partner != partner)
-        return false;
-    v.erase(it);
-    if (v.empty())
-        m_entries.reset();
+    HistoryEntry* d = m_block->data();
+    std::move(d + at + 1, d + n, d + at);
+    if (--m_block->size == 0)
+        release();
     return true;
 }
 
 std::size_t ContactHistory::keepOnlySlow(std::uint32_t stamp) {
-    auto& v = *m_entries;
-    auto const before = v.size();
-    std::erase_if(v, [stamp](HistoryEntry const& e) { return e.stamp != stamp; });
-    std::size_t const dropped = before - v.size();
-    if (v.empty())
-        m_entries.reset(); // a particle that lost all contacts gives its memory back
-    return dropped;
+    HistoryEntry* d = m_block->data();
+    std::size_t const before = m_block->size;
+    std::size_t const kept = static_cast<std::size_t>(
+        std::remove_if(d, d + before, [stamp](HistoryEntry const& e) { return e.stamp != stamp; }) -
+        d);
+    m_block->size = static_cast<std::uint32_t>(kept);
+    if (kept == 0)
+        release(); // a particle that lost all contacts gives its memory back
+    return before - kept;
 }
 
 } // namespace regolith::particles

@@ -85,6 +85,73 @@ TEST(ContactHistory, TouchWithAHintFindsTheEntryWhereverTheHintPoints) {
     EXPECT_EQ(h.keepOnly(2), 0U);
 }
 
+TEST(ContactHistory, AgreesWithAnOrderedMapUnderRandomEdits) {
+    // Inserts in the middle, growth of the block, removals down to empty (block freed),
+    // assign into a smaller and a larger block, copies and moves: the entries must always be
+    // those of a std::map keyed by partner, in its order.
+    std::mt19937_64 rng(11);
+    ContactHistory h;
+    std::map<Uid, HistoryEntry> model;
+    auto same = [&](ContactHistory const& x) {
+        ASSERT_EQ(x.size(), model.size());
+        ASSERT_EQ(x.empty(), model.empty());
+        EXPECT_EQ(x.heapBytes() == 0, model.empty());
+        auto it = model.begin();
+        for (HistoryEntry const& e : x) {
+            EXPECT_EQ(e.partner, it->first);
+            EXPECT_EQ(e.stamp, it->second.stamp);
+            EXPECT_EQ(e.spring, it->second.spring);
+            ++it;
+        }
+    };
+    for (std::uint32_t step = 1; step <= 3000; ++step) {
+        Uid const partner = rng() % 40;
+        switch (rng() % 6) {
+        case 0:
+        case 1: { // touch, and write a spring
+            std::uint8_t hint = static_cast<std::uint8_t>(rng() % 8);
+            HistoryEntry& e = h.touch(partner, step, hint);
+            e.spring = Vec3(double(step), double(partner), 1.0);
+            ASSERT_EQ(h.entries()[hint].partner, partner);
+            model[partner] = HistoryEntry{partner, e.spring, step};
+            break;
+        }
+        case 2:
+            h.set(HistoryEntry{partner, Vec3(-1.0, double(step), 0.0), step});
+            model[partner] = HistoryEntry{partner, Vec3(-1.0, double(step), 0.0), step};
+            break;
+        case 3:
+            EXPECT_EQ(h.erase(partner), model.erase(partner) == 1);
+            break;
+        case 4: { // keep the entries stamped in the last few steps
+            std::uint32_t const keep = step - 1;
+            std::size_t dropped = 0;
+            for (auto it = model.begin(); it != model.end();)
+                if (it->second.stamp != keep) {
+                    it = model.erase(it);
+                    ++dropped;
+                } else {
+                    ++it;
+                }
+            EXPECT_EQ(h.keepOnly(keep), dropped);
+            break;
+        }
+        default: { // through a copy, a move and an assign from another history's entries
+            ContactHistory copy(h);
+            ContactHistory moved(std::move(copy));
+            ContactHistory other;
+            other.touch(1000, 1);
+            other.touch(1001, 1);
+            other.touch(1002, 1);
+            other.assign(moved.entries());
+            h = other;
+            break;
+        }
+        }
+        same(h);
+    }
+}
+
 TEST(ParticleStorage, InversesFollowMassRadiusAndFixedFlag) {
     ParticleStorage ps;
     auto const i = ps.add(sphere(7, Vec3::Zero(), 0.5, 2.0));
@@ -196,7 +263,8 @@ TEST(ParticleStorage, PermuteMovesEveryPropertyAndTheMap) {
         EXPECT_EQ(ps.position(k).x(), static_cast<double>(u));
         EXPECT_DOUBLE_EQ(ps.radius(k), 0.1 * (u + 1));
         EXPECT_DOUBLE_EQ(ps.invMass(k), 1.0 / (1.0 + u));
-        EXPECT_EQ(ps.history(k).entries().at(0).partner, 200 + u);
+        ASSERT_EQ(ps.history(k).size(), 1U);
+        EXPECT_EQ(ps.history(k).entries()[0].partner, 200 + u);
         EXPECT_EQ(ps.shadowHolders(k).at(0).block, u);
     }
     EXPECT_THROW(ps.permute(std::vector<std::size_t>{0, 1, 2}), Error);
