@@ -248,12 +248,11 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         if (mode == PairMode::Owned) {
             if constexpr (TakesPairOverlaps<OnPair>) {
                 if (!keepPairs) { // the consumer computes the geometry: only the test here
-                    core::Vec3 shiftJ, d;
-                    double dist = 0.0;
-                    if (!detection_detail::overlapTest(ps, a, b, period, shiftJ, d, dist))
+                    auto const s = detection_detail::separation(ps, a, b, period);
+                    if (!detection_detail::overlapping(s))
                         return;
                     ++overlaps;
-                    onPair(PairOverlap{a, b, shiftJ}, hint);
+                    onPair(PairOverlap{a, b, s.shiftJ}, hint);
                     return;
                 }
             }

@@ -23,25 +23,39 @@ namespace regolith::particles::detection_detail {
     return out;
 }
 
-/// The canonical overlap test of copies i, j (uid(i) < uid(j)): true if |x_j + shiftJ - x_i| <
-/// r_i + r_j, with shiftJ, d = x_j + shiftJ - x_i and |d| set (the part of overlapGeometry
-/// every listed pair pays; the rest only overlapping ones). Always inlined: it runs once per
-/// listed pair and step.
-[[nodiscard, gnu::always_inline]] inline bool overlapTest(ParticleStorage const& ps, std::size_t i,
-                                                          std::size_t j, core::Vec3 const& period,
-                                                          core::Vec3& shiftJ, core::Vec3& d,
-                                                          double& dist) {
-    shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
+/// Where copies i, j (uid(i) < uid(j)) stand in i's canonical frame: j's shift, d = x_j +
+/// shiftJ - x_i, |d|^2 and the contact reach r_i + r_j.
+struct PairSeparation {
+    core::Vec3 shiftJ;
+    core::Vec3 d;
+    double d2;
+    double reach;
+};
+
+[[nodiscard, gnu::always_inline]] inline PairSeparation
+separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 const& period) {
+    PairSeparation s;
+    s.shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
     // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
-    d = (ps.position(j) + shiftJ) - ps.position(i);
-    double const d2 = d.squaredNorm();
-    double const reach = ps.radius(i) + ps.radius(j);
-    // sqrt is correctly rounded and monotonic: beyond reach^2 (with room for the rounding of
-    // reach * reach) the distance cannot be below reach. Most listed pairs end here.
-    if (d2 > reach * reach * (1.0 + 1e-12))
-        return false;
-    dist = std::sqrt(d2);
-    return dist < reach;
+    s.d = (ps.position(j) + s.shiftJ) - ps.position(i);
+    s.d2 = s.d.squaredNorm();
+    s.reach = ps.radius(i) + ps.radius(j);
+    return s;
+}
+
+/// The overlap decision of the canonical geometry: sqrt(d2) < reach, with sqrt correctly
+/// rounded. The root is needed only in a thin band around contact: below reach^2 (1 - 1e-12)
+/// the rounded root is certainly below reach, above reach^2 (1 + 1e-12) certainly not (the
+/// margin dwarfs the few ulps by which reach * reach and the product can be off). Same answer
+/// as the root everywhere, NaN included (false); the fused loop runs it on every listed pair
+/// and step, and a root there is a long latency on the loop's path.
+[[nodiscard, gnu::always_inline]] inline bool overlapping(PairSeparation const& s) {
+    double const r2 = s.reach * s.reach;
+    if (s.d2 < r2 * (1.0 - 1e-12))
+        return true;
+    if (!(s.d2 <= r2 * (1.0 + 1e-12)))
+        return false; // most listed pairs end here (and NaN)
+    return std::sqrt(s.d2) < s.reach;
 }
 
 /// The canonical geometry of copies i, j (uid(i) < uid(j)): if |x_j + shiftJ - x_i| < r_i +
@@ -53,17 +67,18 @@ namespace regolith::particles::detection_detail {
                                                               std::size_t i, std::size_t j,
                                                               core::Vec3 const& period,
                                                               Contact& c) {
-    core::Vec3 shiftJ, d;
-    double dist = 0.0;
-    if (!overlapTest(ps, i, j, period, shiftJ, d, dist))
+    PairSeparation const s = separation(ps, i, j, period);
+    if (!overlapping(s))
         return false;
+    double const dist = std::sqrt(s.d2);
+    core::Vec3 const& d = s.d;
     double const ri = ps.radius(i);
     c.i = i;
     c.j = j;
-    c.shiftJ = shiftJ;
+    c.shiftJ = s.shiftJ;
     // Coincident centres have no direction; any unit normal is as good, this one is fixed.
     c.normal = dist > 0.0 ? core::Vec3(d / dist) : core::Vec3::UnitZ();
-    c.penetration = ri + ps.radius(j) - dist;
+    c.penetration = s.reach - dist;
     c.point = ps.position(i) + (ri - 0.5 * c.penetration) * c.normal;
     return true;
 }
