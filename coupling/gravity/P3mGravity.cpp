@@ -84,7 +84,7 @@ double P3mGravity::addShortRange(gravity::PointMasses const& grains) {
     std::size_t const total = m_position.size();
     m_zeroRadius.assign(total, 0.0);
     m_members.resize(total);
-    std::iota(m_members.begin(), m_members.end(), std::size_t{0});
+    std::iota(m_members.begin(), m_members.end(), std::uint32_t{0});
     double const cutoff = m_shortRange.cutoff();
     // Points of radius 0 with slack = cut-off: the overlap test is |x_a - x_b| < cut-off.
     m_cells.build(m_position, m_zeroRadius, m_members, cutoff, 4 * total + 64, cutoff);

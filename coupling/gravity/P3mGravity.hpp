@@ -71,7 +71,7 @@ private:
     // Scratch, reused between calls: local grains first, then the halo.
     std::vector<core::Vec3> m_position, m_acc;
     std::vector<double> m_mass, m_zeroRadius;
-    std::vector<std::size_t> m_members;
+    std::vector<std::uint32_t> m_members;
 };
 
 } // namespace regolith::coupling

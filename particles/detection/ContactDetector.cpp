@@ -74,7 +74,7 @@ std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
         if (r > cut) {
             m_large.push_back(k);
         } else {
-            m_small.push_back(k);
+            m_small.push_back(static_cast<std::uint32_t>(k));
             rSmallMax = std::max(rSmallMax, r);
         }
     }
@@ -361,8 +361,9 @@ void ContactDetector::release() {
 }
 
 std::size_t ContactDetector::bytes() const {
-    return m_cells.bytes() + (m_small.capacity() + m_large.capacity()) * sizeof(std::size_t) +
-           m_scratch.capacity() * sizeof(double) + m_local.capacity() * sizeof(core::Vec3);
+    return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
+           m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
+           m_local.capacity() * sizeof(core::Vec3);
 }
 
 } // namespace regolith::particles

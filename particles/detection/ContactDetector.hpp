@@ -201,7 +201,7 @@ private:
     DetectorConfig m_config;
     DetectorStats m_stats;
     LinkedCells m_cells;
-    std::vector<std::size_t> m_small;
+    std::vector<std::uint32_t> m_small; ///< 4 bytes per copy: one entry for nearly every copy
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
     std::vector<core::Vec3> m_local; ///< local positions, when some image is non-zero

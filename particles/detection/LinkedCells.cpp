@@ -10,8 +10,8 @@
 namespace regolith::particles {
 
 void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double const> radii,
-                        std::span<std::size_t const> members, double minEdge, std::size_t maxCells,
-                        double slack) {
+                        std::span<std::uint32_t const> members, double minEdge,
+                        std::size_t maxCells, double slack) {
     m_member.clear();
     m_sphere.clear();
     m_start.clear();

@@ -26,7 +26,7 @@ public:
     /// Precondition: 2 * (max member radius) + slack <= minEdge, so that candidate members are
     /// in the same or adjacent cells; `minEdge` > 0 and finite centres.
     void build(std::span<core::Vec3 const> positions, std::span<double const> radii,
-               std::span<std::size_t const> members, double minEdge, std::size_t maxCells,
+               std::span<std::uint32_t const> members, double minEdge, std::size_t maxCells,
                double slack = 0.0);
 
     /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
@@ -48,11 +48,11 @@ public:
     [[nodiscard]] std::size_t numCells() const { return m_start.empty() ? 0 : m_start.size() - 1; }
     [[nodiscard]] std::size_t numMembers() const { return m_member.size(); }
     /// The members in cell order (cell by cell, z slowest, x fastest).
-    [[nodiscard]] std::span<std::size_t const> membersInCellOrder() const { return m_member; }
+    [[nodiscard]] std::span<std::uint32_t const> membersInCellOrder() const { return m_member; }
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const {
         return m_start.capacity() * sizeof(std::uint32_t) +
-               m_member.capacity() * sizeof(std::size_t) + m_sphere.capacity() * sizeof(Sphere) +
+               m_member.capacity() * sizeof(std::uint32_t) + m_sphere.capacity() * sizeof(Sphere) +
                m_cellOf.capacity() * sizeof(std::uint32_t);
     }
 
@@ -79,8 +79,9 @@ private:
     double m_maxRadius = 0.0;
     double m_slack = 0.0;
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
-    std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
-    std::vector<std::size_t> m_member;   ///< original index of each slot
+    std::vector<std::uint32_t> m_start; ///< cell c holds slots [m_start[c], m_start[c+1])
+    std::vector<std::uint32_t>
+        m_member; ///< original index of each slot (4 bytes: a storage holds < 2^32 copies)
     std::vector<Sphere> m_sphere;        ///< sphere of each slot
     std::vector<std::uint32_t> m_cellOf; ///< scratch: cell of each member, in input order
 };

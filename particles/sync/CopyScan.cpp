@@ -3,7 +3,7 @@
 namespace regolith::particles::sync_detail {
 
 MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& bp, bool spreads,
-                       std::vector<std::size_t>& scratch) {
+                       std::vector<std::uint32_t>& scratch) {
     ParticleStorage const& ps = bp.particles;
     std::uint64_t const id = bp.block->id.raw();
     double const edge = engine.edgeAround(id);
@@ -19,7 +19,7 @@ MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& b
     double const* r = ps.radii().data();
     Flags const* flags = ps.allFlags().data();
     HolderList const* holders = &ps.shadowHolders(0);
-    std::size_t* out = scratch.data();
+    std::uint32_t* out = scratch.data();
     std::size_t count = 0;
     bool spreadingShadow = false;
     for (std::size_t i = 0; i < n; ++i) {
@@ -29,10 +29,10 @@ MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& b
         spreadingShadow = spreadingShadow | (shadow & flagged);
         bool const settled = (r[i] < edge) & holders[i].empty() & (flagged == spreads) &
                              engine.deepInside(deep, x[i], r[i]);
-        out[count] = i; // kept only if counted: no branch on the outcome
+        out[count] = static_cast<std::uint32_t>(i); // kept only if counted: no branch on it
         count += static_cast<std::size_t>(!(shadow | settled));
     }
-    return {std::span<std::size_t const>(out, count), spreadingShadow};
+    return {std::span<std::uint32_t const>(out, count), spreadingShadow};
 }
 
 } // namespace regolith::particles::sync_detail

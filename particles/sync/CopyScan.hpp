@@ -52,7 +52,7 @@ struct MasterScan {
     /// shadow holders, deep inside the block (ParticleSync::Impl::deepInside), and with
     /// Flag::Spreads already as the method wants it. For those Alg. 1 and 2 find no target and
     /// change nothing.
-    std::span<std::size_t const> visit;
+    std::span<std::uint32_t const> visit; ///< 4-byte indices: the scratch spans every copy
     /// Whether some shadow of the block is SOS-class (Flag::Spreads): round 2 has work.
     bool spreadingShadows = false;
 };
@@ -61,6 +61,6 @@ struct MasterScan {
 /// for SOS, false for NNS and hybrid). `visit` points into `scratch`, valid until its next
 /// use. Local.
 MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& bp, bool spreads,
-                       std::vector<std::size_t>& scratch);
+                       std::vector<std::uint32_t>& scratch);
 
 } // namespace regolith::particles::sync_detail

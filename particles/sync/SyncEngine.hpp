@@ -131,7 +131,7 @@ public:
     /// A work list of copy indices for spread, kept between calls.
     [[nodiscard]] std::vector<std::size_t>& scratchIndices() { return m_scratchIndices; }
     /// The masters round 1 visits in one block (scanMasters), kept between calls.
-    [[nodiscard]] std::vector<std::size_t>& scratchMasters() { return m_scratchMasters; }
+    [[nodiscard]] std::vector<std::uint32_t>& scratchMasters() { return m_scratchMasters; }
     [[nodiscard]] core::Comm const& comm() const { return m_comm; }
     [[nodiscard]] int rank() const { return m_comm.rank(); }
 
@@ -148,7 +148,7 @@ private:
     std::unordered_map<std::uint64_t, std::vector<BlockRef>> m_neighbourBlocks;
     std::array<std::vector<CopyRef>, 2> m_scratch;
     std::vector<std::size_t> m_scratchIndices;
-    std::vector<std::size_t> m_scratchMasters;
+    std::vector<std::uint32_t> m_scratchMasters;
 };
 
 } // namespace regolith::particles
