@@ -195,3 +195,45 @@ TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation
     EXPECT_TRUE(sameBits(one.history(c.i).find(one.uid(c.j))->spring,
                          batched.history(c.i).find(batched.uid(c.j))->spring));
 }
+
+TEST(SpringDashpotBatch, FreshSpringsOfOneGrainSurviveTheGrowthOfItsHistory) {
+    // One grain (the lowest uid, so every contact's history lives on it) touching twelve new
+    // partners in one batch: each first touch inserts an entry and may move the block the
+    // earlier contacts' entries sit in. Every spring must still land in the history, with the
+    // bits evaluatePair leaves (a spring written through a stale pointer would be lost).
+    SpringDashpot const model = twoMaterials();
+    ParticleStorage one;
+    one.add(sphere(makeUid(0, 1), Vec3::Zero(), 0.5, 1.0, Vec3(0.3, -0.2, 0.1)));
+    for (std::size_t k = 0; k < 12; ++k) {
+        double const phi = 0.5 * static_cast<double>(k), z = -0.8 + 0.15 * static_cast<double>(k);
+        double const rho = std::sqrt(1.0 - z * z);
+        Vec3 const dir(rho * std::cos(phi), rho * std::sin(phi), z);
+        one.add(sphere(makeUid(0, 10 + k), 0.95 * dir, 0.5, 1.0,
+                       Vec3(0.1 * static_cast<double>(k), 0.2, -0.3)));
+    }
+    WallList walls;
+    ContactDetector detector;
+    ContactList contacts;
+    detector.detect(one, walls, everywhere(), contacts);
+    ParticleStorage batched = one;
+    auto ignore = [](std::size_t, Uid, Vec3 const&, Vec3 const&) {};
+    SpringDashpotBatch batch;
+    BatchedSpringDashpot pairs(batched, model, 1e-2, 1, batch, ignore);
+    for (Contact const& c : contacts.pairs) {
+        if (c.i != 0)
+            continue; // partners touching each other: not this test's subject
+        std::uint8_t h1 = 0, h2 = 0;
+        evaluatePair(one, c, model, 1e-2, 1, h1, ignore);
+        pairs(c, h2);
+    }
+    pairs.finish();
+    auto const& expected = one.history(0).entries();
+    auto const& got = batched.history(0).entries();
+    ASSERT_EQ(got.size(), 12U);
+    ASSERT_EQ(expected.size(), 12U);
+    for (std::size_t e = 0; e < 12; ++e) {
+        EXPECT_EQ(got[e].partner, expected[e].partner);
+        EXPECT_NE(expected[e].spring.squaredNorm(), 0.0); // the test needs moving springs
+        EXPECT_TRUE(sameBits(got[e].spring, expected[e].spring)) << "entry " << e;
+    }
+}
