@@ -79,9 +79,8 @@ private:
     double m_maxRadius = 0.0;
     double m_slack = 0.0;
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
-    std::vector<std::uint32_t> m_start; ///< cell c holds slots [m_start[c], m_start[c+1])
-    std::vector<std::uint32_t>
-        m_member; ///< original index of each slot (4 bytes: a storage holds < 2^32 copies)
+    std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
+    std::vector<std::uint32_t> m_member; ///< original index of each slot (< 2^32 copies)
     std::vector<Sphere> m_sphere;        ///< sphere of each slot
     std::vector<std::uint32_t> m_cellOf; ///< scratch: cell of each member, in input order
 };

@@ -44,27 +44,20 @@ inline double cross(int c, double ax, double ay, double az, double bx, double by
 void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
     std::size_t const n = m_size;
     auto const& materials = model.materials();
+    auto fill = [this](std::size_t k, LinearContactParams const& p, double ratio) {
+        m_k[k] = p.stiffness;
+        m_kt[k] = p.tangentialStiffness;
+        m_ratio[k] = ratio;
+        m_mu[k] = p.friction;
+        m_ctRatio[k] = p.tangentialDampingRatio;
+        m_muRoll[k] = p.rollingFriction;
+    };
     if (materials.numTypes() == 1) { // one material: the same numbers in every lane
-        LinearContactParams const& p = materials(0, 0);
-        double const ratio = model.dampingRatio(0, 0);
-        for (std::size_t k = 0; k < n; ++k) {
-            m_k[k] = p.stiffness;
-            m_kt[k] = p.tangentialStiffness;
-            m_ratio[k] = ratio;
-            m_mu[k] = p.friction;
-            m_ctRatio[k] = p.tangentialDampingRatio;
-            m_muRoll[k] = p.rollingFriction;
-        }
+        for (std::size_t k = 0; k < n; ++k)
+            fill(k, materials(0, 0), model.dampingRatio(0, 0));
     } else {
-        for (std::size_t k = 0; k < n; ++k) {
-            LinearContactParams const& p = materials(m_typeI[k], m_typeJ[k]);
-            m_k[k] = p.stiffness;
-            m_kt[k] = p.tangentialStiffness;
-            m_ratio[k] = model.dampingRatio(m_typeI[k], m_typeJ[k]);
-            m_mu[k] = p.friction;
-            m_ctRatio[k] = p.tangentialDampingRatio;
-            m_muRoll[k] = p.rollingFriction;
-        }
+        for (std::size_t k = 0; k < n; ++k)
+            fill(k, materials(m_typeI[k], m_typeJ[k]), model.dampingRatio(m_typeI[k], m_typeJ[k]));
     }
     // One contact per iteration, no calls, every operation done in every lane and the scalar
     // code's branches as selects between the results: the loop GCC vectorises (this file is
