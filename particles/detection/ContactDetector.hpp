@@ -274,9 +274,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             out.pairs.push_back(c);
         detection_detail::handOver(onPair, c, hint);
     };
-    // The history of a listed pair sits on its first copy (canonical order) when the pair is
-    // Owned, the common case: fetch it while the pairs before it are evaluated.
-    m_list.forEachPair(eachPair, [&ps](std::size_t a) { ps.history(a).prefetch(); });
+    m_list.forEachPair(eachPair);
     m_stats.overlapsFound += overlaps;
 }
 

@@ -116,28 +116,13 @@ public:
     /// order the pairs were added.
     template <class F>
     void forEachPair(F&& f) {
-        forEachPair(f, [](std::size_t) {});
-    }
-    /// The same, and calls ahead(a) with the storage index of the first copy of the pair
-    /// kAhead places further on (if alive), so that the caller can prefetch what it will need
-    /// for it (ContactDetector: the history of a pair's first copy, at a scattered address).
-    template <class F, class A>
-    void forEachPair(F&& f, A&& ahead) {
         std::size_t const n = m_pairs.size();
         for (std::size_t p = 0; p < n; ++p) {
-            if (p + kAhead < n) {
-                std::uint32_t const next = m_indexOf[m_pairs[p + kAhead][0]];
-                if (next != kDead)
-                    ahead(std::size_t{next});
-            }
             std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
             if (a != kDead && b != kDead)
                 f(std::size_t{a}, std::size_t{b}, m_mode[p], m_hint[p]);
         }
     }
-    /// How far forEachPair looks ahead [pairs]: a pair costs ~100 cycles, a miss to memory a
-    /// few hundred.
-    static constexpr std::size_t kAhead = 8;
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }

@@ -35,8 +35,7 @@ struct HistoryEntry {
 /// holds the entry count, the capacity and the entries. The contact loop touches a history per
 /// contact, at scattered addresses, and waits for the memory each time (perf samples on the
 /// dense ramp: a quarter of the run's time sat on those loads): one block is one dependent
-/// load fewer than a pointer to a std::vector (the vector object, then its buffer), and
-/// prefetch() can fetch it ahead of use.
+/// load fewer than a pointer to a std::vector (the vector object, then its buffer).
 class ContactHistory {
 public:
     ContactHistory() = default;
@@ -78,7 +77,8 @@ public:
         }
         return touchSlow(partner, stamp, hint, again);
     }
-    /// Starts loading the entries into the cache (the contact loop calls it a few pairs ahead).
+    /// Starts loading the block into the cache (the per-step prune calls it a few grains
+    /// ahead).
     void prefetch() const { __builtin_prefetch(m_block); }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
