@@ -50,7 +50,8 @@ public:
     [[nodiscard]] std::size_t i(std::size_t k) const { return m_i[k]; }
     [[nodiscard]] std::size_t j(std::size_t k) const { return m_j[k]; }
     [[nodiscard]] std::uint8_t hint(std::size_t k) const { return m_hint[k]; }
-    [[nodiscard]] HistoryEntry& entry(std::size_t k) const { return *m_entry[k]; }
+    /// The history entry gathered with pair k (dangling if its history got an entry since).
+    [[nodiscard]] HistoryEntry* entry(std::size_t k) const { return m_entry[k]; }
     [[nodiscard]] core::Vec3 force(std::size_t k) const {
         return {m_f[0][k], m_f[1][k], m_f[2][k]};
     }
@@ -112,8 +113,9 @@ public:
         std::size_t const before = history.size();
         bool again = false;
         HistoryEntry* e = &history.touch(m_ps.uid(p.j), m_stamp, hint, again);
-        // An insertion may move the entries of p.i that earlier pairs of the batch hold.
-        m_moved = m_moved || history.size() != before;
+        // An insertion moves the entries of p.i that earlier pairs of the batch may hold (none
+        // if the history was empty: entries are not removed during a pass).
+        m_moved = m_moved || (before != 0 && history.size() != before);
         if (again || m_batch.full()) {
             finish();
             e = &history.touch(m_ps.uid(p.j), m_stamp, hint);
@@ -130,7 +132,7 @@ public:
         batch.evaluate(m_model, m_dt);
         for (std::size_t k = 0; k < batch.size(); ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
-            HistoryEntry* e = &batch.entry(k);
+            HistoryEntry* e = batch.entry(k);
             if (m_moved) { // found again through the hint, or by search
                 std::uint8_t hint = batch.hint(k);
                 e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
