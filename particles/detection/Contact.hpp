@@ -37,6 +37,9 @@ struct PairOverlap {
     std::size_t i = 0;
     std::size_t j = 0;
     core::Vec3 shiftJ = core::Vec3::Zero();
+
+    /// The pair of a contact found with its geometry.
+    [[nodiscard]] static PairOverlap of(Contact const& c) { return {c.i, c.j, c.shiftJ}; }
 };
 
 /// A sphere overlapping a wall; the wall plays the role of `i` (infinite mass, at rest).

@@ -34,7 +34,7 @@ namespace detection_detail {
 template <class OnPair>
 void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint) {
     if constexpr (TakesPairOverlaps<OnPair>)
-        onPair(PairOverlap{c.i, c.j, c.shiftJ}, hint);
+        onPair(PairOverlap::of(c), hint);
     else
         onPair(c, hint);
 }

@@ -122,9 +122,7 @@ public:
         }
         m_batch.add(m_ps, p, *e, hint);
     }
-    void operator()(Contact const& c, std::uint8_t& hint) {
-        (*this)(PairOverlap{c.i, c.j, c.shiftJ}, hint);
-    }
+    void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
 
     /// Evaluates what is gathered and hands it to the sink.
     void finish() {
