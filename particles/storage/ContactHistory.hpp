@@ -79,7 +79,7 @@ public:
     }
     /// Starts loading the block into the cache (the per-step prune calls it a few grains
     /// ahead).
-    void prefetch() const { __builtin_prefetch(m_block); }
+    [[gnu::always_inline]] void prefetch() const { __builtin_prefetch(m_block); }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
     /// Replaces every entry by `entries` (sorted by partner uid, unique: another history's

@@ -87,6 +87,11 @@ public:
     [[nodiscard]] bool contains(Uid uid, CopyImage const& image = kNoImage) const {
         return find(uid, image) != kNotFound;
     }
+    /// Starts loading what find(uid, image) reads first (a hint; no effect on results; always
+    /// inlined, see CopyIndex::prefetch).
+    [[gnu::always_inline]] void prefetchFind(Uid uid, CopyImage const& image = kNoImage) const {
+        m_index.prefetch(CopyKey{uid, image});
+    }
 
     /// Reorders the particles: new index k holds the particle that had index `newToOld[k]`
     /// (mesa_pd's ParticleStorage::sort). Used to restore spatial locality, e.g. with

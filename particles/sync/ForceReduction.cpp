@@ -48,6 +48,23 @@ std::size_t masterIndex(LocalParticles& local, std::uint64_t block, Uid uid, std
     return i;
 }
 
+/// How many copies ahead the loops below start loading what they will need.
+constexpr std::size_t kAhead = 8;
+
+/// Starts the look-up of copy s's master if s is a shadow whose master is on this rank: the
+/// in-place reduction below finds it some shadows later, and the look-up is otherwise a cache
+/// miss in a table the size of the storage.
+void prefetchLocalMaster(ParticleSync::Impl const& engine, LocalParticles const& local,
+                         ParticleStorage const& ps, std::size_t s) {
+    if (s >= ps.size() || !ps.flags(s).isShadow())
+        return;
+    BlockRef const owner = ps.owner(s);
+    if (owner.rank != engine.rank())
+        return;
+    if (BlockParticles const* master = local.find(owner.block))
+        master->particles.prefetchFind(ps.uid(s));
+}
+
 /// Sends each shadow's history entries of this pass (and, unless `records`, its force and
 /// torque) to its master; applies what arrives. Returns the reproducible contributions.
 std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, LocalParticles& local,
@@ -60,6 +77,8 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
         ParticleStorage& ps = blocks[b].particles;
         constexpr std::uint8_t kShadow = Flags(Flag::Shadow).bits();
         forEachWithFlags<kShadow>(ps.allFlags(), [&](std::size_t i) {
+            if (records == nullptr)
+                prefetchLocalMaster(engine, local, ps, i + kAhead);
             touched(ps, i, stamp, hist);
             bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
             if (hist.empty() && (records != nullptr || !hasForce))
@@ -126,7 +145,6 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
         }
     });
     // Prune the masters' histories; each sits at its own heap address, so fetch a few ahead.
-    constexpr std::size_t kAhead = 8;
     for (BlockParticles& bp : blocks) {
         ParticleStorage& ps = bp.particles;
         for (std::size_t i = 0, n = ps.size(); i < n; ++i) {

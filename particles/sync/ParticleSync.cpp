@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -103,6 +104,19 @@ bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t
     if (!ps.flags(i).has(Flag::Spreads) && !target->sent.empty())
         forgetSent(*target, ps.uid(i));
     return true;
+}
+
+/// Masters visited ahead of the one processed: the look-ups of their local shadows start then.
+constexpr std::size_t kLookAhead = 8;
+
+/// Starts the index look-ups that updateInPlace will make for master `m` if its holders stay
+/// (the steady state): each one is otherwise a cache miss in a table the size of the storage.
+void prefetchShadowLookups(ParticleSync::Impl& engine, LocalParticles& local,
+                           ParticleStorage const& ps, std::size_t m) {
+    for (CopyRef const& h : ps.shadowHolders(m))
+        if (h.rank == engine.rank())
+            if (BlockParticles const* target = local.find(h.block))
+                target->particles.prefetchFind(ps.uid(m), h.image);
 }
 
 /// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`.
@@ -276,7 +290,11 @@ void ParticleSync::sync(LocalParticles& local) {
         // remove, needs nothing sent (Alg. 1/2 would find no target): the scan leaves it out.
         MasterScan const scan = scanMasters(engine, bp, spreads, engine.scratchMasters());
         spreadWork = spreadWork || scan.spreadingShadows;
-        for (std::size_t const i : scan.visit) {
+        std::span<std::uint32_t const> const visit = scan.visit;
+        for (std::size_t n = 0; n < visit.size(); ++n) {
+            if (n + kLookAhead < visit.size())
+                prefetchShadowLookups(engine, local, ps, visit[n + kLookAhead]);
+            std::size_t const i = visit[n];
             double const r = ps.radius(i);
             bool const small = r < edge;
             if (small && ps.shadowHolders(i).empty() &&
