@@ -4,10 +4,21 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
 #include <string>
 
 namespace regolith::particles {
+
+namespace {
+/// The smallest float not below r (r >= 0 and finite).
+float roundedUp(double r) {
+    float f = static_cast<float>(r);
+    if (static_cast<double>(f) < r)
+        f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+}
+} // namespace
 
 void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double const> radii,
                         std::span<std::uint32_t const> members, double minEdge,
@@ -17,6 +28,8 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     m_start.clear();
     m_maxRadius = 0.0;
     m_slack = slack;
+    m_roundingSlack = 0.0;
+    m_testSlack = slack;
     m_dims = {0, 0, 0};
     if (members.empty())
         return;
@@ -63,6 +76,14 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     }
     m_origin = lo;
     m_edge = edge;
+    // Rounding: x - lo in double errs by at most eps |x| per coordinate, its float by
+    // 2^-24 |x - lo| <= 2^-24 |extent|; a distance of two such centres by at most
+    // 2 sqrt(3) times the sum. Bounded generously: 2^-21 of the extent, 8 eps of the
+    // coordinates' magnitude. The query centre of forEachOverlapWith errs less.
+    double const magnitude = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    m_roundingSlack = std::ldexp(extent.maxCoeff(), -21) +
+                      8.0 * std::numeric_limits<double>::epsilon() * magnitude;
+    m_testSlack = m_slack + m_roundingSlack;
 
     // Counting sort by cell (stable: members of one cell stay in input order).
     std::size_t const numCells = static_cast<std::size_t>(m_dims[0] * m_dims[1] * m_dims[2]);
@@ -83,7 +104,9 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     for (std::size_t k = 0; k < members.size(); ++k) {
         std::uint32_t const slot = m_start[m_cellOf[k]]++;
         m_member[slot] = members[k];
-        m_sphere[slot] = Sphere{positions[members[k]], radii[members[k]]};
+        core::Vec3 const x = positions[members[k]] - lo;
+        m_sphere[slot] = Sphere{static_cast<float>(x.x()), static_cast<float>(x.y()),
+                                static_cast<float>(x.z()), roundedUp(radii[members[k]])};
     }
     for (std::size_t c = numCells; c > 0; --c)
         m_start[c] = m_start[c - 1];

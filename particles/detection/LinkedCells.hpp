@@ -3,6 +3,13 @@
 /// over the centres of a set of spheres, stored as a compressed row (counting sort by cell,
 /// members of a cell contiguous) with the spheres copied in cell order so that the pair loop
 /// streams through memory.
+///
+/// The copies are single precision (16 bytes a sphere, not 32: the copy lives as long as the
+/// grid, i.e. a whole Verlet list's life, for every copy of a block): centres relative to the
+/// grid's origin, radii rounded up, and every overlap test widened by a bound on that rounding
+/// (`roundingSlack`). So the tests can report a few extra pairs, within that bound of touching,
+/// but never miss one; the callers test pairs exactly (the contact rule) or list candidates
+/// (the Verlet list, whose extra pairs then cannot touch before its next rebuild).
 #include "core/math/Vec3.hpp"
 
 #include <array>
@@ -30,20 +37,23 @@ public:
                double slack = 0.0);
 
     /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
-    /// spheres overlap (|x_a - x_b| < r_a + r_b + slack): same cell, then the 13 forward
-    /// neighbours of the half shell, so each pair is visited exactly once. Order: by cell,
-    /// then slot.
+    /// spheres overlap (|x_a - x_b| < r_a + r_b + slack), and possibly for pairs within
+    /// roundingSlack() of that: same cell, then the 13 forward neighbours of the half shell,
+    /// so each pair is visited at most once. Order: by cell, then slot.
     template <class F>
     void forEachOverlap(F&& f) const;
 
     /// Calls `f(b)` for every member whose sphere overlaps the sphere (`centre`, `radius`)
-    /// (within slack). Visits only cells intersecting the ball of radius
+    /// (within slack; possibly also within roundingSlack() more). Visits only cells
+    /// intersecting the ball of radius
     /// `radius + maxMemberRadius + slack` about `centre`, row by row; returns the number of
     /// cells visited.
     template <class F>
     std::size_t forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const;
 
     [[nodiscard]] double edge() const { return m_edge; }
+    /// How much farther apart than touching (+ slack) a reported pair may be [length].
+    [[nodiscard]] double roundingSlack() const { return m_roundingSlack; }
     [[nodiscard]] std::array<std::int64_t, 3> dims() const { return m_dims; }
     [[nodiscard]] std::size_t numCells() const { return m_start.empty() ? 0 : m_start.size() - 1; }
     [[nodiscard]] std::size_t numMembers() const { return m_member.size(); }
@@ -57,10 +67,18 @@ public:
     }
 
 private:
+    /// Centre relative to m_origin, rounded to nearest; radius rounded up.
     struct Sphere {
-        core::Vec3 centre;
-        double radius;
+        float x, y, z, radius;
     };
+    /// Whether the spheres may overlap: |x_a - x_b| < r_a + r_b + slack + roundingSlack, in
+    /// double from the floats (the differences of two floats are exact in double).
+    [[nodiscard]] bool mayOverlap(Sphere const& a, Sphere const& b) const {
+        double const dx = double{b.x} - double{a.x}, dy = double{b.y} - double{a.y},
+                     dz = double{b.z} - double{a.z};
+        double const reach = double{a.radius} + double{b.radius} + m_testSlack;
+        return dx * dx + dy * dy + dz * dz < reach * reach;
+    }
     /// Cell coordinate of `x` along `axis`, clamped to the grid (clamped in floating point,
     /// so far-away query points cannot overflow the integer conversion).
     [[nodiscard]] std::int64_t coord(double x, int axis) const {
@@ -78,6 +96,8 @@ private:
     double m_edge = 1.0;
     double m_maxRadius = 0.0;
     double m_slack = 0.0;
+    double m_roundingSlack = 0.0; ///< bound on the float rounding of two centres' distance
+    double m_testSlack = 0.0;     ///< m_slack + m_roundingSlack
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
     std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
     std::vector<std::uint32_t> m_member; ///< original index of each slot (< 2^32 copies)
@@ -91,10 +111,7 @@ template <class F>
 void LinkedCells::forEachOverlap(F&& f) const {
     auto const nx = m_dims[0], ny = m_dims[1], nz = m_dims[2];
     auto test = [&](std::uint32_t s, std::uint32_t t) {
-        Sphere const& a = m_sphere[s];
-        Sphere const& b = m_sphere[t];
-        double const reach = a.radius + b.radius + m_slack;
-        if ((b.centre - a.centre).squaredNorm() < reach * reach)
+        if (mayOverlap(m_sphere[s], m_sphere[t]))
             f(m_member[s], m_member[t]);
     };
     // The half shell of 13 forward neighbours, grouped into 5 slot ranges: cell x+1 of the
@@ -134,7 +151,7 @@ std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double rad
     if (m_member.empty())
         return 0;
     // A member centre beyond this cannot touch.
-    double const reach = radius + m_maxRadius + m_slack;
+    double const reach = radius + m_maxRadius + m_testSlack;
     for (int d = 0; d < 3; ++d) {
         double const end =
             m_origin[d] + static_cast<double>(m_dims[static_cast<std::size_t>(d)]) * m_edge;
@@ -150,6 +167,7 @@ std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double rad
         return v < a ? a - v : (v > a + m_edge ? v - a - m_edge : 0.0);
     };
     std::size_t visited = 0;
+    core::Vec3 const rel = centre - m_origin; // the frame of the stored centres
     std::int64_t const z0 = lo(2), z1 = hi(2), y0 = lo(1), y1 = hi(1);
     for (std::int64_t z = z0; z <= z1; ++z) {
         double const gz = gap(z, 2);
@@ -166,8 +184,10 @@ std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double rad
             // Cells of one row are consecutive, so the row is one contiguous slot range.
             for (std::uint32_t t = begin; t < end; ++t) {
                 Sphere const& b = m_sphere[t];
-                double const touch = radius + b.radius + m_slack;
-                if ((b.centre - centre).squaredNorm() < touch * touch)
+                double const dx = double{b.x} - rel.x(), dy = double{b.y} - rel.y(),
+                             dz = double{b.z} - rel.z();
+                double const touch = radius + double{b.radius} + m_testSlack;
+                if (dx * dx + dy * dy + dz * dz < touch * touch)
                     f(m_member[t]);
             }
         }
