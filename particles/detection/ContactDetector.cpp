@@ -40,9 +40,8 @@ double ContactDetector::largeThreshold(ParticleStorage const& ps) {
     return m_config.largeFactor * median;
 }
 
-std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
-                                                      PeriodicFrame const& frame, double& rSmallMax,
-                                                      double& scale) {
+LocalPositions ContactDetector::classify(ParticleStorage const& ps, PeriodicFrame const& frame,
+                                         double& rSmallMax, double& scale) {
     core::Vec3 const period = frame.period();
     bool shifted = false;
     for (Index k = 0, n = ps.size(); k < n; ++k) {
@@ -56,13 +55,8 @@ std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
                                   " has a periodic image on axis " + std::to_string(a) +
                                   ", which is not periodic in the detection frame");
     }
-    std::span<core::Vec3 const> positions = ps.positions();
-    if (shifted) {
-        m_local.resize(ps.size());
-        for (Index k = 0, n = ps.size(); k < n; ++k)
-            m_local[k] = localPosition(ps.position(k), ps.image(k), period);
-        positions = m_local;
-    }
+    LocalPositions const positions = shifted ? LocalPositions(ps.positions(), ps.images(), period)
+                                             : LocalPositions(ps.positions());
 
     double const cut = largeThreshold(ps);
     rSmallMax = 0.0;
@@ -85,13 +79,13 @@ std::span<core::Vec3 const> ContactDetector::classify(ParticleStorage const& ps,
     return positions;
 }
 
-std::span<core::Vec3 const> ContactDetector::bin(ParticleStorage const& ps,
-                                                 PeriodicFrame const& frame, double skin) {
+LocalPositions ContactDetector::bin(ParticleStorage const& ps, PeriodicFrame const& frame,
+                                    double skin) {
     m_stats = DetectorStats{};
     m_small.clear();
     m_large.clear();
     double rSmallMax = 0.0, scale = 0.0;
-    std::span<core::Vec3 const> const positions = classify(ps, frame, rSmallMax, scale);
+    LocalPositions const positions = classify(ps, frame, rSmallMax, scale);
     // Local positions (x + k * period) differ from the canonical geometry of PairRule by a few
     // roundings of numbers up to `scale`, and so does the cell assignment: 64 ulps of the
     // largest coordinate cover both, so the candidates include every canonical overlap.
@@ -127,7 +121,7 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
         m_cells.build({}, {}, {}, 1.0, 1); // forget the last grid (spatialOrder)
         return;
     }
-    std::span<core::Vec3 const> const positions = bin(ps, frame, 0.0);
+    LocalPositions const positions = bin(ps, frame, 0.0);
     PairRule const rule(ps, region, frame, m_stats);
     auto emit = [&](std::size_t a, std::size_t b) { rule(a, b, out.pairs); };
     m_cells.forEachOverlap(emit);
@@ -220,7 +214,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
         return;
     }
     double const skin = m_config.skin > 0.0 ? m_config.skin : -m_config.relativeSkin;
-    std::span<core::Vec3 const> const positions = bin(ps, frame, skin);
+    LocalPositions const positions = bin(ps, frame, skin);
     m_listSkin = m_stats.skin;
     m_list.restart(ps, m_listSkin); // ids = indices, as the cells' members
     m_cells.forEachOverlap([&](std::size_t a, std::size_t b) {
@@ -275,7 +269,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
 }
 
 template <class F>
-void ContactDetector::largePass(std::span<core::Vec3 const> pos, ParticleStorage const& ps,
+void ContactDetector::largePass(LocalPositions const& pos, ParticleStorage const& ps,
                                 double reachSlack, F&& f) {
     if (m_large.empty())
         return;
@@ -362,8 +356,7 @@ void ContactDetector::release() {
 
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
-           m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_local.capacity() * sizeof(core::Vec3);
+           m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double);
 }
 
 } // namespace regolith::particles

@@ -5,6 +5,7 @@
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/DetectorConfig.hpp"
 #include "particles/detection/LinkedCells.hpp"
+#include "particles/detection/LocalPositions.hpp"
 #include "particles/detection/PairOwnership.hpp"
 #include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
@@ -179,16 +180,15 @@ private:
                     PeriodicFrame const& frame, ContactList& out, OnPair&& onPair, bool keepPairs);
 
     double largeThreshold(ParticleStorage const& particles);
-    /// The positions binning uses: ps.positions() or m_local. Fills m_small, m_large, stats.
-    std::span<core::Vec3 const> classify(ParticleStorage const& particles,
-                                         PeriodicFrame const& frame, double& rSmallMax,
-                                         double& scale);
+    /// The positions binning uses (local: shifted by their images, if some image is not
+    /// zero). Fills m_small, m_large, stats.
+    LocalPositions classify(ParticleStorage const& particles, PeriodicFrame const& frame,
+                            double& rSmallMax, double& scale);
     /// Bins the small spheres into m_cells with candidate reach r_a + r_b + slack + skin.
-    std::span<core::Vec3 const> bin(ParticleStorage const& particles, PeriodicFrame const& frame,
-                                    double skin);
+    LocalPositions bin(ParticleStorage const& particles, PeriodicFrame const& frame, double skin);
     /// Calls f(a, b) for the candidate pairs with a large sphere (reach as bin's).
     template <class F>
-    void largePass(std::span<core::Vec3 const> positions, ParticleStorage const& particles,
+    void largePass(LocalPositions const& positions, ParticleStorage const& particles,
                    double reachSlack, F&& f);
     void rebuildList(ParticleStorage& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
@@ -204,7 +204,6 @@ private:
     std::vector<std::uint32_t> m_small; ///< 4 bytes per copy: one entry for nearly every copy
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
-    std::vector<core::Vec3> m_local; ///< local positions, when some image is non-zero
     VerletList m_list;
     std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild

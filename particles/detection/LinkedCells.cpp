@@ -20,7 +20,7 @@ float roundedUp(double r) {
 }
 } // namespace
 
-void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double const> radii,
+void LinkedCells::build(LocalPositions const& positions, std::span<double const> radii,
                         std::span<std::uint32_t const> members, double minEdge,
                         std::size_t maxCells, double slack) {
     m_member.clear();
@@ -90,7 +90,7 @@ void LinkedCells::build(std::span<core::Vec3 const> positions, std::span<double 
     m_start.assign(numCells + 1, 0);
     m_cellOf.resize(members.size());
     for (std::size_t k = 0; k < members.size(); ++k) {
-        core::Vec3 const& x = positions[members[k]];
+        core::Vec3 const x = positions[members[k]];
         auto const c =
             static_cast<std::uint32_t>(cellIndex(coord(x[0], 0), coord(x[1], 1), coord(x[2], 2)));
         m_cellOf[k] = c;

@@ -11,6 +11,7 @@
 /// but never miss one; the callers test pairs exactly (the contact rule) or list candidates
 /// (the Verlet list, whose extra pairs then cannot touch before its next rebuild).
 #include "core/math/Vec3.hpp"
+#include "particles/detection/LocalPositions.hpp"
 
 #include <array>
 #include <cmath>
@@ -32,9 +33,15 @@ public:
     /// one can only add candidates, never lose one.
     /// Precondition: 2 * (max member radius) + slack <= minEdge, so that candidate members are
     /// in the same or adjacent cells; `minEdge` > 0 and finite centres.
-    void build(std::span<core::Vec3 const> positions, std::span<double const> radii,
+    void build(LocalPositions const& positions, std::span<double const> radii,
                std::span<std::uint32_t const> members, double minEdge, std::size_t maxCells,
                double slack = 0.0);
+    /// build() on positions used as they are.
+    void build(std::span<core::Vec3 const> positions, std::span<double const> radii,
+               std::span<std::uint32_t const> members, double minEdge, std::size_t maxCells,
+               double slack = 0.0) {
+        build(LocalPositions(positions), radii, members, minEdge, maxCells, slack);
+    }
 
     /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
     /// spheres overlap (|x_a - x_b| < r_a + r_b + slack), and possibly for pairs within

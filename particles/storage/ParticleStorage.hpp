@@ -151,6 +151,7 @@ public:
     [[nodiscard]] std::vector<Uid> const& uids() const { return m_uid; }
     [[nodiscard]] std::vector<core::Vec3> const& positions() const { return m_position; }
     [[nodiscard]] std::vector<double> const& radii() const { return m_radius; }
+    [[nodiscard]] std::vector<CopyImage> const& images() const { return m_image; }
     [[nodiscard]] std::vector<Flags> const& allFlags() const { return m_flags; }
 
     /// Zeroes force and torque of every particle (masters and shadows).
