@@ -6,6 +6,7 @@
 #include "particles/detection/DetectorConfig.hpp"
 #include "particles/detection/LinkedCells.hpp"
 #include "particles/detection/LocalPositions.hpp"
+#include "particles/detection/OverlapScreen.hpp"
 #include "particles/detection/PairOwnership.hpp"
 #include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
@@ -243,18 +244,22 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     auto const& x = ps.positions();
     std::size_t overlaps = 0;
     Contact c;
+    // A consumer that computes the geometry itself gets the owned pairs screened a block at
+    // a time (OverlapScreen); a Check pair first flushes the block, so that every pair still
+    // reaches onPair in list order.
+    OverlapScreen screen;
+    bool const screened = TakesPairOverlaps<OnPair> && !keepPairs;
     auto eachPair = [&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
-        if (mode == PairMode::Owned) {
-            if constexpr (TakesPairOverlaps<OnPair>) {
-                if (!keepPairs) { // the consumer computes the geometry: only the test here
-                    auto const s = detection_detail::separation(ps, a, b, period);
-                    if (!detection_detail::overlapping(s))
-                        return;
-                    ++overlaps;
-                    onPair(PairOverlap{a, b, s.shiftJ}, hint);
+        if constexpr (TakesPairOverlaps<OnPair>) {
+            if (screened) {
+                if (mode == PairMode::Owned) {
+                    overlaps += screen.offer(ps, period, a, b, hint, onPair);
                     return;
                 }
+                overlaps += screen.flush(ps, period, onPair);
             }
+        }
+        if (mode == PairMode::Owned) {
             if (!detection_detail::overlapGeometry(ps, a, b, period, c))
                 return;
             ++overlaps;
@@ -274,6 +279,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         detection_detail::handOver(onPair, c, hint);
     };
     m_list.forEachPair(eachPair);
+    if constexpr (TakesPairOverlaps<OnPair>)
+        overlaps += screen.flush(ps, period, onPair);
     m_stats.overlapsFound += overlaps;
 }
 
