@@ -52,9 +52,8 @@ public:
 
     /// Calls `f(b)` for every member whose sphere overlaps the sphere (`centre`, `radius`)
     /// (within slack; possibly also within roundingSlack() more). Visits only cells
-    /// intersecting the ball of radius
-    /// `radius + maxMemberRadius + slack` about `centre`, row by row; returns the number of
-    /// cells visited.
+    /// intersecting the ball of radius `radius + maxMemberRadius + slack` (+ roundingSlack())
+    /// about `centre`, row by row; returns the number of cells visited.
     template <class F>
     std::size_t forEachOverlapWith(core::Vec3 const& centre, double radius, F&& f) const;
 

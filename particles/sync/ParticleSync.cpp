@@ -111,7 +111,7 @@ constexpr std::size_t kLookAhead = 8;
 
 /// Starts the index look-ups that updateInPlace will make for master `m` if its holders stay
 /// (the steady state): each one is otherwise a cache miss in a table the size of the storage.
-void prefetchShadowLookups(ParticleSync::Impl& engine, LocalParticles& local,
+void prefetchShadowLookups(ParticleSync::Impl const& engine, LocalParticles const& local,
                            ParticleStorage const& ps, std::size_t m) {
     for (CopyRef const& h : ps.shadowHolders(m))
         if (h.rank == engine.rank())
