@@ -248,10 +248,9 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     // a time (OverlapScreen); a Check pair first flushes the block, so that every pair still
     // reaches onPair in list order.
     OverlapScreen screen;
-    bool const screened = TakesPairOverlaps<OnPair> && !keepPairs;
     auto eachPair = [&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
         if constexpr (TakesPairOverlaps<OnPair>) {
-            if (screened) {
+            if (!keepPairs) {
                 if (mode == PairMode::Owned) {
                     overlaps += screen.offer(ps, period, a, b, hint, onPair);
                     return;

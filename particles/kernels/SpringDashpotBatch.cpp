@@ -53,8 +53,10 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
         m_muRoll[k] = p.rollingFriction;
     };
     if (materials.numTypes() == 1) { // one material: the same numbers in every lane
+        LinearContactParams const& p = materials(0, 0);
+        double const ratio = model.dampingRatio(0, 0);
         for (std::size_t k = 0; k < n; ++k)
-            fill(k, materials(0, 0), model.dampingRatio(0, 0));
+            fill(k, p, ratio);
     } else {
         for (std::size_t k = 0; k < n; ++k)
             fill(k, materials(m_typeI[k], m_typeJ[k]), model.dampingRatio(m_typeI[k], m_typeJ[k]));
