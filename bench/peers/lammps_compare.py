@@ -23,8 +23,9 @@ nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
 DemStep default, 0.1 for the gas). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
 
 --set KEY=VALUE (repeatable) passes a scene override to every Regolith run, e.g.
---set time.orientation=false: LAMMPS's fix nve/sphere keeps no orientation, and Regolith then
-skips the quaternion update too (positions, velocities and spins stay bit for bit the same).
+--set time.orientation=true: the three scenes leave orientations out by default (as LAMMPS's
+fix nve/sphere does; positions, velocities and spins are bit for bit the same either way),
+this adds the quaternion update per grain and step.
 
 usage: lammps_compare.py [--build build/default] [--out bench/out] [--cases sparse mesapd ramp]
                          [--box 30] [--steps 500] [--repeats 3] [--skin 0.1] [--set KEY=VALUE]

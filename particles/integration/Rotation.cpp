@@ -82,11 +82,12 @@ void evaluate(Lanes& b, std::size_t n, double dt) {
 void flush(ParticleStorage& ps, Lanes& b, std::size_t n, double dt) {
     evaluate(b, n, dt);
     for (std::size_t l = 0; l < n; ++l) {
-        core::Quat& q = ps.orientation(b.index[l]);
+        core::Quat q = ps.orientation(b.index[l]);
         if (b.done[l])
             store(q, {b.ow[l], b.ox[l], b.oy[l], b.oz[l]});
         else // zero or large angle, or a normalisation: the scalar path decides
             rotate(q, ps.angularVelocity(b.index[l]), dt);
+        ps.setOrientation(b.index[l], q);
     }
 }
 

@@ -16,7 +16,8 @@ void ParticleStorage::forEachArray(F&& f) {
     f(m_position);
     f(m_velocity);
     f(m_angularVelocity);
-    f(m_orientation);
+    if (!m_orientation.empty())
+        f(m_orientation);
     f(m_force);
     f(m_torque);
     f(m_radius);
@@ -44,11 +45,16 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     // first shadow after a set-up reserved to the masters would double the whole storage).
     if (i == m_uid.capacity())
         forEachArray([i](auto& v) { v.reserve(core::gentleCapacity(i)); });
+    // Empty m_orientation: not stored (size() is still i here, maybe 0).
+    bool const storeOrientation = !m_orientation.empty() || !isIdentityBits(p.orientation);
+    if (storeOrientation && m_orientation.empty())
+        storeOrientations();
     m_uid.push_back(p.uid);
     m_position.push_back(p.position);
     m_velocity.push_back(p.velocity);
     m_angularVelocity.push_back(p.angularVelocity);
-    m_orientation.push_back(p.orientation);
+    if (storeOrientation)
+        m_orientation.push_back(p.orientation);
     m_force.push_back(core::Vec3::Zero());
     m_torque.push_back(core::Vec3::Zero());
     m_radius.push_back(p.radius);
@@ -151,6 +157,11 @@ void ParticleStorage::permute(std::span<Index const> newToOld) {
 void ParticleStorage::reserve(std::size_t n) {
     forEachArray([n](auto& v) { v.reserve(n); });
     m_index.reserve(n);
+}
+
+void ParticleStorage::storeOrientations() {
+    m_orientation.reserve(m_uid.capacity());
+    m_orientation.assign(size(), kIdentityOrientation);
 }
 
 void ParticleStorage::clear() {

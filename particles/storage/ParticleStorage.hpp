@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <vector>
@@ -112,8 +113,25 @@ public:
     [[nodiscard]] core::Vec3 const& velocity(Index i) const { return m_velocity[i]; }
     [[nodiscard]] core::Vec3& angularVelocity(Index i) { return m_angularVelocity[i]; }
     [[nodiscard]] core::Vec3 const& angularVelocity(Index i) const { return m_angularVelocity[i]; }
-    [[nodiscard]] core::Quat& orientation(Index i) { return m_orientation[i]; }
-    [[nodiscard]] core::Quat const& orientation(Index i) const { return m_orientation[i]; }
+    /// The identity until some copy of this storage was given another orientation (see
+    /// storesOrientations).
+    [[nodiscard]] core::Quat const& orientation(Index i) const {
+        return m_orientation.empty() ? kIdentityOrientation : m_orientation[i];
+    }
+    /// Sets the orientation of copy i; the first orientation other than the identity makes
+    /// the storage keep one per copy from then on.
+    void setOrientation(Index i, core::Quat const& q) {
+        if (m_orientation.empty()) {
+            if (isIdentityBits(q))
+                return;
+            storeOrientations();
+        }
+        m_orientation[i] = q;
+    }
+    /// Does the storage keep an orientation per copy? Not while every copy it ever held had
+    /// the identity: spheres whose orientation is not integrated (time.orientation = false)
+    /// cost no 32 bytes per copy (docs/results.md, "Memory").
+    [[nodiscard]] bool storesOrientations() const { return !m_orientation.empty(); }
     [[nodiscard]] core::Vec3& force(Index i) { return m_force[i]; }
     [[nodiscard]] core::Vec3 const& force(Index i) const { return m_force[i]; }
     [[nodiscard]] core::Vec3& torque(Index i) { return m_torque[i]; }
@@ -196,7 +214,17 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
+    static inline core::Quat const kIdentityOrientation = core::Quat::Identity();
+    /// Bit for bit the identity (-0.0 is not 0.0 here: a shadow must get its master's bits).
+    [[nodiscard]] static bool isIdentityBits(core::Quat const& q) {
+        return std::memcmp(q.coeffs().data(), kIdentityOrientation.coeffs().data(),
+                           4 * sizeof(double)) == 0;
+    }
+
     void updateInverses(Index i);
+    /// Gives every copy the identity orientation in m_orientation (capacity as the others).
+    void storeOrientations();
+    /// Calls `f` for every per-copy array (m_orientation only while it is stored).
     template <class F>
     void forEachArray(F&& f);
     /// Reads the key of a stored copy for m_index, which keeps no keys (see CopyIndex).
@@ -210,7 +238,7 @@ private:
     std::vector<core::Vec3> m_position;
     std::vector<core::Vec3> m_velocity;
     std::vector<core::Vec3> m_angularVelocity;
-    std::vector<core::Quat> m_orientation;
+    std::vector<core::Quat> m_orientation; ///< empty: every copy has the identity
     std::vector<core::Vec3> m_force;
     std::vector<core::Vec3> m_torque;
     std::vector<double> m_radius;

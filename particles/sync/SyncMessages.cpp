@@ -55,7 +55,7 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
     ps.position(i) = u.position;
     ps.velocity(i) = u.velocity;
     ps.angularVelocity(i) = u.angularVelocity;
-    ps.orientation(i) = u.orientation;
+    ps.setOrientation(i, u.orientation);
     ps.setFlags(i, Flags(u.flags).set(Flag::Shadow, ps.flags(i).isShadow()));
     ps.setOwner(i, u.owner);
     ps.history(i).assign(u.history);
@@ -66,7 +66,7 @@ void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
     to.position(k) = position;
     to.velocity(k) = from.velocity(i);
     to.angularVelocity(k) = from.angularVelocity(i);
-    to.orientation(k) = from.orientation(i);
+    to.setOrientation(k, from.orientation(i));
     to.setFlags(k, Flags(from.flags(i)).set(Flag::Shadow, to.flags(k).isShadow()));
     to.setOwner(k, owner);
     if (!from.history(i).empty() || !to.history(k).empty())

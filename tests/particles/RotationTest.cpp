@@ -50,8 +50,11 @@ TEST(Rotation, BatchedUpdateIsBitwiseThePerGrainOne) {
     ParticleStorage const initial = ps;
     ParticleStorage expected = ps;
     for (std::size_t i = 0; i < ps.size(); ++i)
-        if (!ps.flags(i).isShadow() && !ps.flags(i).isFixed())
-            rotate(expected.orientation(i), expected.angularVelocity(i), dt);
+        if (!ps.flags(i).isShadow() && !ps.flags(i).isFixed()) {
+            regolith::core::Quat q = expected.orientation(i);
+            rotate(q, expected.angularVelocity(i), dt);
+            expected.setOrientation(i, q);
+        }
     rotateMoving(ps, dt);
     for (std::size_t i = 0; i < ps.size(); ++i) {
         EXPECT_EQ(ps.orientation(i).coeffs(), expected.orientation(i).coeffs()) << "grain " << i;

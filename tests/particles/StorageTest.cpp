@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <random>
 #include <vector>
@@ -270,6 +271,50 @@ TEST(ParticleStorage, PermuteMovesEveryPropertyAndTheMap) {
     EXPECT_THROW(ps.permute(std::vector<std::size_t>{0, 1, 2}), Error);
     EXPECT_THROW(ps.permute(std::vector<std::size_t>{0, 1, 2, 3, 4, 4}), Error);
     EXPECT_EQ(ps.uid(0), 103U); // unchanged by the refused calls
+}
+
+TEST(ParticleStorage, KeepsOrientationsOnlyOnceOneDiffersFromTheIdentity) {
+    using regolith::core::Quat;
+    Quat const turned(Eigen::AngleAxisd(0.3, Vec3(0, 0, 1)));
+    Quat const tilted(Eigen::AngleAxisd(0.7, Vec3(1, 0, 0)));
+    ParticleStorage ps;
+    for (Uid u = 1; u <= 4; ++u)
+        ps.add(sphere(u, Vec3(static_cast<double>(u), 0, 0), 0.1, 1.0));
+    ps.setOrientation(1, Quat::Identity()); // no change: still none stored
+    EXPECT_FALSE(ps.storesOrientations());
+    std::size_t const without = ps.bytes();
+    EXPECT_EQ(ps.orientation(2).coeffs(), Quat::Identity().coeffs());
+
+    ParticleInit p = sphere(5, Vec3(5, 0, 0), 0.1, 1.0);
+    p.orientation = turned;
+    ps.add(p); // the first one that differs: every copy gets one
+    EXPECT_TRUE(ps.storesOrientations());
+    EXPECT_GE(ps.bytes(), without + 5 * sizeof(Quat));
+    ps.setOrientation(0, tilted);
+    ps.add(sphere(6, Vec3(6, 0, 0), 0.1, 1.0)); // identity, now stored too
+    ASSERT_EQ(ps.size(), 6U);
+    std::vector<Quat> const expected{tilted,           Quat::Identity(), Quat::Identity(),
+                                     Quat::Identity(), turned,           Quat::Identity()};
+    for (std::size_t i = 0; i < ps.size(); ++i)
+        EXPECT_EQ(ps.orientation(i).coeffs(), expected[i].coeffs()) << "copy " << i;
+
+    ps.remove(0);                                        // the last copy (uid 6) moves into slot 0
+    ps.permute(std::vector<std::size_t>{4, 0, 1, 2, 3}); // uid 5 first
+    EXPECT_EQ(ps.uid(0), 5U);
+    EXPECT_EQ(ps.orientation(0).coeffs(), turned.coeffs());
+    EXPECT_EQ(ps.orientation(ps.find(6)).coeffs(), Quat::Identity().coeffs());
+
+    ps.clear(); // empty again: back to none stored
+    ps.add(sphere(7, Vec3::Zero(), 0.1, 1.0));
+    EXPECT_FALSE(ps.storesOrientations());
+    ParticleStorage empty; // the first copy of a storage may bring an orientation too
+    p.uid = 8;
+    empty.add(p);
+    EXPECT_EQ(empty.orientation(0).coeffs(), turned.coeffs());
+    Quat const signedZero(1.0, -0.0, 0.0, 0.0); // == the identity, but other bits
+    ps.setOrientation(0, signedZero);           // (a shadow must get its master's bits)
+    EXPECT_TRUE(ps.storesOrientations());
+    EXPECT_TRUE(std::signbit(ps.orientation(0).x()));
 }
 
 TEST(WallList, NormalisesAndRejectsBadNormals) {
