@@ -8,8 +8,10 @@
 /// Memory: a slot holds the index and 32 bits of the key's hash, not the key: the key is
 /// already stored by the owner (ParticleStorage's uid and image arrays), which every call
 /// passes as `keyAt` (index -> CopyKey). A hash match is confirmed there, so equal hash bits
-/// of two keys cost one more comparison, never a wrong answer. At most 3/4 full, a slot
-/// array of 2^k: 11-21 bytes per key instead of 21-43 with the key in the slot.
+/// of two keys cost one more comparison, never a wrong answer. At most 3/4 full, the slot
+/// array sized to the keys (the home slot is the hash scaled to the table, Lemire's
+/// multiply-shift, not masked bits of it, so any size works): ~11 bytes per key, where a
+/// power-of-two table held 11-21 (16.7 for the sparse gas's 2 M copies per rank).
 ///
 /// Contract for `keyAt`: for every index stored in the table, keyAt(index) returns the key
 /// it was stored under (the owner keeps its arrays and the table in step).
@@ -37,7 +39,7 @@ public:
     /// keys a few iterations ahead hides the cache miss that a look-up in a large table is.
     /// Always inlined: GCC 12 deems a function whose only effect is a prefetch pure, and drops
     /// calls to it (prefetch and all) unless the prefetch is inlined first. An empty table has
-    /// m_shift 64: the address is then data() + 0.
+    /// no slots: the address is then data() + 0.
     [[gnu::always_inline]] void prefetch(CopyKey const& key) const {
         __builtin_prefetch(m_slots.data() + homeOfTag(tagOf(key)));
     }
@@ -84,9 +86,9 @@ private:
         std::uint32_t index = kNone; ///< kNone: empty
         std::uint32_t tag = 0;       ///< the top 32 bits of the key's mixed hash
     };
-    /// The key's hash, mixed so that its top bits are good: the home slot is its top
-    /// log2(slots) bits, the tag its top 32 bits (so home = tag >> (32 - log2(slots)), and the
-    /// table can be rehashed and shifted without the keys).
+    /// The key's hash, mixed so that its top bits are good: the tag is its top 32 bits, the
+    /// home slot tag * slots / 2^32 (so the table can be rehashed and shifted without the
+    /// keys, and homes are in tag order).
     [[nodiscard]] static std::uint64_t mixed(CopyKey const& key) {
         return CopyKeyHash{}(key)*0x9E3779B97F4A7C15ULL;
     }
@@ -94,14 +96,16 @@ private:
         return static_cast<std::uint32_t>(mixed(key) >> 32U);
     }
     [[nodiscard]] std::size_t homeOfTag(std::uint32_t tag) const {
-        return m_shift >= 64 ? 0 : static_cast<std::size_t>(tag) >> (m_shift - 32U);
+        return static_cast<std::size_t>((std::uint64_t{tag} * m_slots.size()) >> 32U);
+    }
+    [[nodiscard]] std::size_t next(std::size_t s) const {
+        return s + 1 == m_slots.size() ? 0 : s + 1;
     }
     /// The slot holding `key`, or the empty slot where it would go.
     template <class KeyAt>
     [[nodiscard]] std::size_t probe(CopyKey const& key, KeyAt const& keyAt) const {
         std::uint32_t const tag = tagOf(key);
-        std::size_t const mask = m_slots.size() - 1;
-        for (std::size_t s = homeOfTag(tag);; s = (s + 1) & mask) {
+        for (std::size_t s = homeOfTag(tag);; s = next(s)) {
             Slot const& slot = m_slots[s];
             if (slot.index == kNone || (slot.tag == tag && keyAt(slot.index) == key))
                 return s;
@@ -110,9 +114,8 @@ private:
     void eraseSlot(std::size_t hole);
     void grow(std::size_t minKeys);
 
-    std::vector<Slot> m_slots; ///< power-of-two size (at most 2^32), at most 3/4 full
+    std::vector<Slot> m_slots; ///< at most 2^32 slots, at most 3/4 full
     std::size_t m_size = 0;
-    unsigned m_shift = 64; ///< 64 - log2(slots), >= 32
 };
 
 } // namespace regolith::particles

@@ -401,4 +401,11 @@ TEST(CopyIndex, EightBytesPerSlotAndAssignRepoints) {
     EXPECT_EQ(index.find(CopyKey{7, CopyImage{1, 0, 0}}, keyAt), 1U);
     EXPECT_EQ(index.find(CopyKey{7, kNoImage}, keyAt), regolith::particles::CopyIndex::kNone);
     EXPECT_EQ(index.size(), 2U);
+
+    // Sized to the keys, not to a power of two: 100,000 keys at most 3/4 full with a
+    // sixteenth of headroom take ~11.3 bytes each (2^18 slots would be 21).
+    regolith::particles::CopyIndex big;
+    big.reserve(100000);
+    EXPECT_GE(big.bytes(), 8U * 100000U * 4U / 3U);
+    EXPECT_LT(big.bytes(), 12U * 100000U);
 }
