@@ -128,9 +128,9 @@ public:
         }
         m_orientation[i] = q;
     }
-    /// Does the storage keep an orientation per copy? Not while every copy it ever held had
-    /// the identity: spheres whose orientation is not integrated (time.orientation = false)
-    /// cost no 32 bytes per copy (docs/results.md, "Memory").
+    /// Does the storage keep an orientation per copy? Not until a copy gets another than the
+    /// identity (and again not once the storage is empty): spheres whose orientation is not
+    /// integrated (time.orientation = false) cost no 32 bytes per copy (docs/results.md).
     [[nodiscard]] bool storesOrientations() const { return !m_orientation.empty(); }
     [[nodiscard]] core::Vec3& force(Index i) { return m_force[i]; }
     [[nodiscard]] core::Vec3 const& force(Index i) const { return m_force[i]; }
