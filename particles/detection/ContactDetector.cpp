@@ -171,7 +171,8 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     core::Vec3 const period = frame.period();
     // 4 x the candidate slack (64 ulps of the coordinate scale) covers the rounding of the
     // midpoint, the ownership point and the wrap, which are a few ulps of the same numbers.
-    double const rounding = 4.0 * m_stats.slack;
+    // The list's reference positions are floats: the midpoint is off by at most their slack.
+    double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = m_list.indexOf(a), kb = m_list.indexOf(b);
         if (ps.uid(ka) == ps.uid(kb))
@@ -232,7 +233,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
                                   PeriodicFrame const& frame) {
     core::Vec3 const period = frame.period();
     std::size_t const firstPair = m_list.numPairs();
-    double const reachSlack = m_stats.slack + m_listSkin;
+    double const reachSlack = m_stats.slack + m_listSkin + m_list.referenceSlack();
     auto const arrivals = m_list.arrivals();
     std::size_t const firstNew = arrivals.size() - m_fresh.size();
     // Local reference position and radius of a live id (its image is that of its copy now).

@@ -4,6 +4,7 @@
 #include "core/memory/GentleGrowth.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace regolith::particles {
 
@@ -27,7 +28,36 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_indexOf.resize(m_built);
     for (std::size_t k = 0; k < m_built; ++k)
         m_indexOf[k] = static_cast<std::uint32_t>(k);
-    m_reference.assign(ps.positions().begin(), ps.positions().end());
+    // The origin in the middle of the copies: the smallest coordinates to round.
+    core::Vec3 lo = core::Vec3::Constant(std::numeric_limits<double>::infinity());
+    core::Vec3 hi = -lo;
+    for (core::Vec3 const& x : ps.positions())
+        if (x.allFinite()) {
+            lo = lo.cwiseMin(x);
+            hi = hi.cwiseMax(x);
+        }
+    m_origin = m_built != 0 && lo.x() <= hi.x() ? core::Vec3(0.5 * (lo + hi)) : core::Vec3::Zero();
+    m_extent = 0.0;
+    m_referenceSlack = 0.0;
+    m_reference.clear();
+    for (core::Vec3 const& x : ps.positions())
+        pushReference(x);
+}
+
+void VerletList::pushReference(core::Vec3 const& x) {
+    core::Vec3 const d = x - m_origin;
+    m_reference.push_back(
+        {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())});
+    double const far = d.cwiseAbs().maxCoeff();
+    if (far > m_extent) { // false for NaN: movedTooFar reports those
+        m_extent = far;
+        // Per coordinate: x - origin rounds by <= u |d|, the float by <= 2^-24 |d|, origin + f
+        // by <= u (|origin| + |d|) (u = 2^-53); doubled for the three coordinates (sqrt 3 < 2)
+        // and the rest for good measure.
+        double const u = 0x1p-53;
+        double const o = m_origin.cwiseAbs().maxCoeff();
+        m_referenceSlack = 2.0 * (0x1p-23 * m_extent + 4.0 * u * (o + m_extent));
+    }
 }
 
 bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
@@ -52,7 +82,7 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
             core::reserveForAppend(m_indexOf); // per-copy arrays sized at restart: no doubling
             core::reserveForAppend(m_reference);
             m_indexOf.push_back(kDead);
-            m_reference.push_back(ps.position(c.index));
+            pushReference(ps.position(c.index));
             m_arrivals.push_back(id);
             fresh.push_back(c.index);
         }
@@ -63,12 +93,17 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
 }
 
 bool VerletList::movedTooFar(ParticleStorage const& ps) const {
-    double const half = 0.5 * m_skin;
+    // Within skin / 2 of the true reference if within skin / 2 - slack of the stored one.
+    double const half = 0.5 * m_skin - m_referenceSlack;
+    if (!(half > 0.0))
+        return true;
     double const limit = half * half;
     auto const& x = ps.positions();
     bool far = false; // no early exit: the loop stays branch-free
     for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
-        core::Vec3 const d = x[k] - m_reference[ps.traceTag(k)];
+        Reference const& r = m_reference[ps.traceTag(k)];
+        core::Vec3 const d =
+            (x[k] - m_origin) - core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
         far |= !(d.squaredNorm() < limit); // NaN too
     }
     return far;
@@ -77,7 +112,7 @@ bool VerletList::movedTooFar(ParticleStorage const& ps) const {
 std::size_t VerletList::bytes() const {
     return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
-           m_reference.capacity() * sizeof(core::Vec3) + m_arrivals.capacity() * sizeof(Id);
+           m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id);
 }
 
 } // namespace regolith::particles

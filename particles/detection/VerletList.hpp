@@ -20,6 +20,11 @@
 /// A copy's image never changes under one id (setImage makes it fresh), so canonical
 /// displacements equal local ones.
 ///
+/// Reference positions are kept in single precision relative to an origin (12 bytes per id,
+/// not 24): reference() is within referenceSlack() of the true reference position, so
+/// movedTooFar tests skin / 2 - referenceSlack(), and users widen their own tests of
+/// reference positions by it (a superset of pairs, the same contacts).
+///
 /// Beside each pair the list keeps what its user decided once for the pair's life (a
 /// PairMode, see ContactDetector: whether the contact-point rule must run every step) and a
 /// one-byte hint where the pair's tangential spring sat in its owner's ContactHistory last
@@ -103,8 +108,15 @@ public:
     }
     /// Storage index of a live id, or kDead.
     [[nodiscard]] std::uint32_t indexOf(Id id) const { return m_indexOf[id]; }
-    /// Canonical position of `id` at its reference time [length].
-    [[nodiscard]] core::Vec3 const& reference(Id id) const { return m_reference[id]; }
+    /// Canonical position of `id` at its reference time [length], within referenceSlack().
+    [[nodiscard]] core::Vec3 reference(Id id) const {
+        Reference const& r = m_reference[id];
+        return m_origin + core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
+    }
+    /// Bound on |reference(id) - the position it stands for| over all ids [length]: the
+    /// rounding to float of coordinates up to m_extent from the origin, and of the two
+    /// double operations around it.
+    [[nodiscard]] double referenceSlack() const { return m_referenceSlack; }
     /// Ids given since the last restart (to copies that arrived), oldest first.
     [[nodiscard]] std::span<Id const> arrivals() const { return m_arrivals; }
     /// Copies at the last restart.
@@ -136,10 +148,17 @@ private:
     std::size_t m_built = 0;
     std::size_t m_owned = 0;
     std::vector<std::array<Id, 2>> m_pairs;
-    std::vector<PairMode> m_mode;         ///< per pair
-    std::vector<std::uint8_t> m_hint;     ///< per pair: history slot of its spring, last time
-    std::vector<std::uint32_t> m_indexOf; ///< per id
-    std::vector<core::Vec3> m_reference;  ///< per id
+    std::vector<PairMode> m_mode;           ///< per pair
+    std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
+    std::vector<std::uint32_t> m_indexOf;   ///< per id
+    using Reference = std::array<float, 3>; ///< position - m_origin, rounded to nearest
+    /// Stores x's reference and widens the slack if x lies farther from the origin.
+    void pushReference(core::Vec3 const& x);
+
+    std::vector<Reference> m_reference; ///< per id
+    core::Vec3 m_origin = core::Vec3::Zero();
+    double m_extent = 0.0; ///< largest |coordinate - origin| of a stored reference
+    double m_referenceSlack = 0.0;
     std::vector<Id> m_arrivals;
 };
 

@@ -2,6 +2,8 @@
 // the contacts of the linked cells rebuilt every call, bit for bit, while the storage changes
 // under it as the synchronisation changes it: grains move, copies arrive, leave (moving others
 // to new indices) and change their periodic image; and it is reused, not rebuilt every call.
+#include "particles/detection/VerletList.hpp"
+
 #include "particles/detection/ContactDetector.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
@@ -153,6 +155,39 @@ TEST(VerletList, RebuildsWhenTheTraceBreaks) {
     other.permute(reverse);
     listed.detect(other, {}, s.region, s.frame, out);
     EXPECT_TRUE(listed.stats().rebuilt);
+}
+
+TEST(VerletList, FloatReferencesNeverHideAMoveOfHalfTheSkin) {
+    // Copies far from the origin, where a float reference is off by ~1e-5: each copy moved by
+    // exactly skin / 2 from its true reference, in the direction that the rounding shortens
+    // (towards the stored reference), must still count as moved; 1 % less must not.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> coordinate(-900.0, 1100.0);
+    ParticleStorage ps;
+    for (Uid u = 1; u <= 200; ++u)
+        ps.add(sphere(u, Vec3(coordinate(rng), coordinate(rng), coordinate(rng)), 0.5, 1.0));
+    double const skin = 0.1;
+    VerletList list;
+    list.restart(ps, skin);
+    EXPECT_GT(list.referenceSlack(), 0.0);
+    EXPECT_LT(list.referenceSlack(), 0.01 * skin);
+    EXPECT_FALSE(list.movedTooFar(ps));
+    int hidden = 0; // copies whose stored reference lies off their true one
+    for (std::size_t k = 0; k < ps.size(); ++k) {
+        Vec3 const truth = ps.position(k);
+        Vec3 const stored = list.reference(VerletList::idOf(ps, k));
+        EXPECT_LE((stored - truth).norm(), list.referenceSlack()) << "copy " << k;
+        if (stored == truth)
+            continue;
+        ++hidden;
+        Vec3 const towards = (stored - truth).normalized();
+        ps.position(k) = truth + 0.99 * 0.5 * skin * towards;
+        EXPECT_FALSE(list.movedTooFar(ps)) << "copy " << k;
+        ps.position(k) = truth + 0.5 * skin * towards;
+        EXPECT_TRUE(list.movedTooFar(ps)) << "copy " << k;
+        ps.position(k) = truth;
+    }
+    EXPECT_GT(hidden, 150);
 }
 
 } // namespace
