@@ -1,38 +1,32 @@
 #include "gravity/petsc/PetscSession.hpp"
 
 #include "core/Error.hpp"
-
-#include <petscsys.h>
+#include "gravity/petsc/PetscModule.hpp"
 
 #include <string>
 
 namespace regolith::gravity {
 
 PetscSession::PetscSession(int& argc, char**& argv) {
-    if (isInitialised())
-        return;
-    PetscErrorCode const ierr = PetscInitialize(&argc, &argv, nullptr, nullptr);
-    if (ierr != 0)
-        throw core::Error("PetscInitialize failed with error code " + std::to_string(ierr));
-    m_owner = true;
+    try {
+        m_owner = petsc::module().initialize(argc, argv);
+    } catch (petsc::Failure const& e) {
+        throw core::Error(e.what());
+    }
 }
 
 PetscSession::~PetscSession() {
     if (m_owner)
-        PetscFinalize();
+        petsc::module().finalize();
 }
 
 bool PetscSession::isInitialised() {
-    PetscBool initialised = PETSC_FALSE;
-    PetscInitialized(&initialised);
-    return initialised == PETSC_TRUE;
+    return petsc::module().initialized();
 }
 
 char const* PetscSession::version() {
-    static char text[256] = {};
-    if (text[0] == '\0')
-        PetscGetVersion(text, sizeof text);
-    return text;
+    static std::string const text = petsc::module().version();
+    return text.c_str();
 }
 
 } // namespace regolith::gravity

@@ -1,8 +1,10 @@
 #pragma once
 /// RAII PETSc initialisation on MPI_COMM_WORLD (MPI must already be initialised; PETSc then
 /// leaves MPI_Finalize to the caller). Only the outermost session initialises and finalises
-/// PETSc, so a library may open one where an app already has. No PETSc header leaks out of
-/// gravity/.
+/// PETSc, so a library may open one where an app already has. The first session (or
+/// isInitialised / version) loads PETSc: it lives in the shared module libregolith_petsc.so
+/// (PetscModule.hpp), which no executable links. Throws core::Error if the module cannot be
+/// loaded, naming the files tried.
 namespace regolith::gravity {
 
 class PetscSession {

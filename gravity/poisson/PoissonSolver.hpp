@@ -1,10 +1,11 @@
 #pragma once
-/// The Poisson solve  ∇²φ = 4πGρ  on the cells of a CellLayout with PETSc (no PETSc header
-/// here: the PETSc objects live in the .cpp). Second-order 7-point Laplacian on cell
-/// centres, assembled ONCE as -∇² (symmetric positive (semi-)definite, so CG applies) with
-/// rows numbered block by block along the forest's curve: PETSc's row distribution is the
-/// forest's. The KSP is built once from a run-time options string, its set-up (e.g. the
-/// GAMG hierarchy) reused by every solve, and each solve starts from the previous potential.
+/// The Poisson solve  ∇²φ = 4πGρ  on the cells of a CellLayout with PETSc (through the
+/// PETSc module, gravity/petsc/PetscModule.hpp: no PETSc header in gravity/ outside it).
+/// Second-order 7-point Laplacian on cell centres, assembled ONCE as -∇² (symmetric positive
+/// (semi-)definite, so CG applies) with rows numbered block by block along the forest's
+/// curve: PETSc's row distribution is the forest's. The KSP is built once from a run-time options
+/// string, its set-up (e.g. the GAMG hierarchy) reused by every solve, and each solve starts from
+/// the previous potential.
 ///
 /// Boundaries: all axes periodic -> periodic Laplacian with the constant null space, mean
 /// density subtracted; no axis periodic -> free space: the potential at the centres of the
@@ -69,12 +70,11 @@ public:
     [[nodiscard]] std::string const& solverName() const { return m_solverName; }
 
 private:
-    struct Petsc; // the PETSc objects
+    struct Petsc; // the module's system, the boundary terms, b and x
     core::Comm m_comm;
     CellLayout const* m_layout;
     PoissonOptions m_options;
     bool m_periodic = false;
-    bool m_setUp = false;
     FreeSpaceBoundary m_boundary;
     std::string m_solverName;
     std::unique_ptr<Petsc> m_petsc;

@@ -1,0 +1,72 @@
+// Loads libregolith_petsc.so (PetscModule.hpp) on the first call of module().
+#include "core/Error.hpp"
+#include "gravity/petsc/PetscModule.hpp"
+
+#include <array>
+#include <cstdlib>
+#include <dlfcn.h>
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace regolith::gravity::petsc {
+
+namespace {
+
+/// Where the module may be: $REGOLITH_PETSC_MODULE, the build tree's copy (compiled in), and
+/// ../lib/ beside the executable (an installed layout).
+std::vector<std::string> candidates() {
+    std::vector<std::string> out;
+    if (char const* env = std::getenv("REGOLITH_PETSC_MODULE"); env && env[0] != '\0')
+        out.emplace_back(env);
+    out.emplace_back(REGOLITH_PETSC_MODULE_PATH);
+    std::array<char, 4096> exe{};
+    ssize_t const n = readlink("/proc/self/exe", exe.data(), exe.size() - 1);
+    if (n > 0) {
+        std::filesystem::path const dir =
+            std::filesystem::path(std::string(exe.data(), static_cast<std::size_t>(n)))
+                .parent_path();
+        std::string const installed = (dir.parent_path() / "lib" / "libregolith_petsc.so").string();
+        if (installed != out.back()) // the build tree has that layout too
+            out.push_back(installed);
+    }
+    return out;
+}
+
+Module* load() {
+    std::string tried;
+    for (std::string const& path : candidates()) {
+        if (!std::filesystem::exists(path)) {
+            tried += "\n  " + path + ": no such file";
+            continue;
+        }
+        // RTLD_GLOBAL: PETSc's own plug-ins resolve against the libraries it brought.
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_GLOBAL);
+        if (handle == nullptr) {
+            char const* e = dlerror();
+            tried += "\n  " + path + ": " + (e ? e : "dlopen failed");
+            continue;
+        }
+        auto* entry = reinterpret_cast<Module* (*)()>(dlsym(handle, "regolith_petsc_module"));
+        if (entry == nullptr)
+            throw core::Error(path + " has no symbol regolith_petsc_module");
+        return entry(); // never unloaded: PETSc stays until the process ends
+    }
+    throw core::Error("grid gravity needs PETSc, from the module libregolith_petsc.so; tried:" +
+                      tried + "\n(set REGOLITH_PETSC_MODULE to its path)");
+}
+
+} // namespace
+
+Module& module() {
+    static Module* loaded = nullptr;
+    static std::mutex mutex;
+    std::scoped_lock const lock(mutex);
+    if (loaded == nullptr)
+        loaded = load();
+    return *loaded;
+}
+
+} // namespace regolith::gravity::petsc
