@@ -104,6 +104,9 @@ LocalPositions ContactDetector::bin(ParticleStorage const& ps, PeriodicFrame con
     m_cells.build(positions, ps.radii(), m_small, edge + 2.0 * slack,
                   m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1),
                   slack + skin);
+    // The cells hold the small spheres now (their members): the list's 4 bytes per copy
+    // would only add to the peak while the Verlet list is built next.
+    std::vector<std::uint32_t>().swap(m_small);
     m_stats.cellEdge = m_cells.edge();
     m_stats.cells = m_cells.numCells();
     return positions;

@@ -202,7 +202,7 @@ private:
     DetectorConfig m_config;
     DetectorStats m_stats;
     LinkedCells m_cells;
-    std::vector<std::uint32_t> m_small; ///< 4 bytes per copy: one entry for nearly every copy
+    std::vector<std::uint32_t> m_small; ///< while binning: 4 bytes per copy (nearly every one)
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
     VerletList m_list;
