@@ -2,13 +2,12 @@
 #include "core/Error.hpp"
 #include "gravity/petsc/PetscModule.hpp"
 
-#include <array>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
 #include <mutex>
 #include <string>
-#include <unistd.h>
+#include <system_error>
 #include <vector>
 
 namespace regolith::gravity::petsc {
@@ -22,13 +21,11 @@ std::vector<std::string> candidates() {
     if (char const* env = std::getenv("REGOLITH_PETSC_MODULE"); env && env[0] != '\0')
         out.emplace_back(env);
     out.emplace_back(REGOLITH_PETSC_MODULE_PATH);
-    std::array<char, 4096> exe{};
-    ssize_t const n = readlink("/proc/self/exe", exe.data(), exe.size() - 1);
-    if (n > 0) {
-        std::filesystem::path const dir =
-            std::filesystem::path(std::string(exe.data(), static_cast<std::size_t>(n)))
-                .parent_path();
-        std::string const installed = (dir.parent_path() / "lib" / "libregolith_petsc.so").string();
+    std::error_code error;
+    std::filesystem::path const exe = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error) {
+        std::string const installed =
+            (exe.parent_path().parent_path() / "lib" / "libregolith_petsc.so").string();
         if (installed != out.back()) // the build tree has that layout too
             out.push_back(installed);
     }
