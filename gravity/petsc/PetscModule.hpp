@@ -19,7 +19,7 @@ struct Failure : std::runtime_error {
     Failure(std::string const& what, bool rejected)
         : std::runtime_error(what)
         , rejectedOptions(rejected) {}
-    bool rejectedOptions = false;
+    bool rejectedOptions;
 };
 
 /// What one KSPSolve did.

@@ -5,7 +5,6 @@
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
-#include <mutex>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -58,11 +57,8 @@ Module* load() {
 } // namespace
 
 Module& module() {
-    static Module* loaded = nullptr;
-    static std::mutex mutex;
-    std::scoped_lock const lock(mutex);
-    if (loaded == nullptr)
-        loaded = load();
+    // Loaded once (thread-safe); a failed load throws and is tried again on the next call.
+    static Module* const loaded = load();
     return *loaded;
 }
 
