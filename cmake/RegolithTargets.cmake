@@ -39,6 +39,22 @@ function(regolith_add_module name)
   regolith_target_defaults(regolith_${name})
 endfunction()
 
+# A shared module (core/module/SharedModule.hpp): library `lib<output>.so` in <build>/lib, built
+# with `loader` (a module target that opens it) and its path compiled into `loader_source` as
+# REGOLITH_SHARED_MODULE_PATH. It links no static Regolith library.
+function(regolith_add_shared_module target)
+  cmake_parse_arguments(ARG "" "OUTPUT_NAME;LOADER;LOADER_SOURCE" "SOURCES;LIBS" ${ARGN})
+  add_library(${target} MODULE ${ARG_SOURCES})
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${target} PRIVATE ${ARG_LIBS})
+  regolith_target_defaults(${target})
+  set_target_properties(${target} PROPERTIES OUTPUT_NAME ${ARG_OUTPUT_NAME}
+    LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/lib)
+  add_dependencies(${ARG_LOADER} ${target})
+  set_source_files_properties(${ARG_LOADER_SOURCE} TARGET_DIRECTORY ${ARG_LOADER}
+    PROPERTIES COMPILE_DEFINITIONS "REGOLITH_SHARED_MODULE_PATH=\"$<TARGET_FILE:${target}>\"")
+endfunction()
+
 function(regolith_add_app name)
   add_executable(${name} ${ARGN})
   regolith_target_defaults(${name})

@@ -8,7 +8,6 @@
 #include "io/vtk/VtkSeries.hpp"
 
 #include <fmt/format.h>
-#include <vtkObject.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -70,9 +69,6 @@ std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, 
 VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
     : m_comm(&comm)
     , m_options(std::move(options)) {
-    // VTK would print its own error text on every failing rank; the failure is reported
-    // once, as an InputError naming the file (writeParticlePiece, writeBlockPiece).
-    vtkObject::GlobalWarningDisplayOff();
     detail::agreeOnError(comm, [&] {
         if (comm.rank() != 0)
             return;

@@ -3,21 +3,8 @@
 #include "core/Error.hpp"
 
 #include <fmt/format.h>
-#include <vtkCellData.h>
-#include <vtkCellType.h>
-#include <vtkDoubleArray.h>
-#include <vtkIdList.h>
-#include <vtkIntArray.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkTypeInt64Array.h>
-#include <vtkTypeUInt64Array.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
-#include <array>
+#include <cstdint>
 
 namespace regolith::io::detail {
 
@@ -40,22 +27,12 @@ std::vector<ArraySpec> blockArrays() {
 
 namespace {
 
-template <class Array>
-vtkNew<Array> makeArray(char const* name, int components) {
-    vtkNew<Array> a;
-    a->SetName(name);
-    a->SetNumberOfComponents(components);
-    return a;
+void append(std::vector<double>& to, core::Vec3 const& v) {
+    to.insert(to.end(), {v.x(), v.y(), v.z()});
 }
 
-void write(std::string const& path, vtkUnstructuredGrid* grid) {
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(path.c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAppended();
-    writer->EncodeAppendedDataOff(); // raw binary: smaller and faster than base64
-    writer->SetHeaderTypeToUInt64(); // pieces over 4 GiB; matches the .pvtu header_type
-    if (writer->Write() != 1)
+void check(bool written, std::string const& path) {
+    if (!written)
         throw core::Error(fmt::format("cannot write VTK file '{}'", path));
 }
 
@@ -63,86 +40,67 @@ void write(std::string const& path, vtkUnstructuredGrid* grid) {
 
 void writeParticlePiece(std::string const& path, particles::LocalParticles const& local,
                         bool shadows) {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    auto uid = makeArray<vtkTypeUInt64Array>("uid", 1);
-    auto radius = makeArray<vtkDoubleArray>("radius", 1);
-    auto mass = makeArray<vtkDoubleArray>("mass", 1);
-    auto velocity = makeArray<vtkDoubleArray>("velocity", 3);
-    auto omega = makeArray<vtkDoubleArray>("angular_velocity", 3);
-    auto force = makeArray<vtkDoubleArray>("force", 3);
-    auto owner = makeArray<vtkIntArray>("owner_rank", 1);
-    auto shadow = makeArray<vtkUnsignedCharArray>("shadow", 1);
+    std::size_t n = 0;
+    for (particles::BlockParticles const& bp : local.blocks())
+        n += shadows ? bp.particles.size() : bp.particles.countMasters();
+    // Columns in particleArrays() order.
+    std::vector<double> xyz, radius, mass, velocity, omega, force;
+    std::vector<std::uint64_t> uid;
+    std::vector<std::int32_t> owner;
+    std::vector<std::uint8_t> shadow;
+    for (auto* v : {&xyz, &velocity, &omega, &force})
+        v->reserve(3 * n);
+    radius.reserve(n);
+    mass.reserve(n);
+    uid.reserve(n);
+    owner.reserve(n);
+    shadow.reserve(n);
     for (particles::BlockParticles const& bp : local.blocks()) {
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEach([&](std::size_t i) {
             bool const isShadow = ps.flags(i).isShadow();
             if (isShadow && !shadows)
                 return;
-            points->InsertNextPoint(ps.position(i).data());
-            uid->InsertNextValue(ps.uid(i));
-            radius->InsertNextValue(ps.radius(i));
-            mass->InsertNextValue(ps.mass(i));
-            velocity->InsertNextTuple(ps.velocity(i).data());
-            omega->InsertNextTuple(ps.angularVelocity(i).data());
-            force->InsertNextTuple(ps.force(i).data());
-            owner->InsertNextValue(ps.owner(i).rank);
-            shadow->InsertNextValue(isShadow ? 1 : 0);
+            append(xyz, ps.position(i));
+            uid.push_back(ps.uid(i));
+            radius.push_back(ps.radius(i));
+            mass.push_back(ps.mass(i));
+            append(velocity, ps.velocity(i));
+            append(omega, ps.angularVelocity(i));
+            append(force, ps.force(i));
+            owner.push_back(ps.owner(i).rank);
+            shadow.push_back(isShadow ? 1 : 0);
         });
     }
-    vtkNew<vtkUnstructuredGrid> grid;
-    grid->SetPoints(points);
-    vtkIdType const n = points->GetNumberOfPoints();
-    grid->Allocate(n);
-    for (vtkIdType k = 0; k < n; ++k)
-        grid->InsertNextCell(VTK_VERTEX, 1, &k);
-    vtkPointData* pd = grid->GetPointData();
-    for (vtkDataArray* a :
-         std::array<vtkDataArray*, 7>{uid, radius, mass, velocity, omega, force, owner})
-        pd->AddArray(a);
-    if (shadows)
-        pd->AddArray(shadow);
-    write(path, grid);
+    std::vector<ArraySpec> const specs = particleArrays(shadows);
+    std::vector<void const*> const values{uid.data(),      radius.data(), mass.data(),
+                                          velocity.data(), omega.data(),  force.data(),
+                                          owner.data(),    shadow.data()};
+    std::vector<vtkxml::Column> columns;
+    for (std::size_t k = 0; k < specs.size(); ++k)
+        columns.push_back({specs[k], values[k]});
+    check(vtkxml::module().writeVertices(path, uid.size(), xyz.data(), columns), path);
 }
 
 void writeBlockPiece(std::string const& path, particles::LocalParticles const& local) {
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToDouble();
-    auto id = makeArray<vtkTypeUInt64Array>("block_id", 1);
-    auto owner = makeArray<vtkIntArray>("owner_rank", 1);
-    auto level = makeArray<vtkIntArray>("level", 1);
-    auto grains = makeArray<vtkTypeInt64Array>("grains", 1);
-    vtkNew<vtkUnstructuredGrid> grid;
-    grid->Allocate(static_cast<vtkIdType>(local.blocks().size()));
+    std::vector<double> bounds;
+    std::vector<std::uint64_t> id;
+    std::vector<std::int32_t> owner, level;
+    std::vector<std::int64_t> grains;
     for (particles::BlockParticles const& bp : local.blocks()) {
-        core::AABB const& box = bp.block->aabb;
-        std::array<vtkIdType, 8> corners{};
-        // VTK_HEXAHEDRON order: the lower face counter-clockwise, then the upper face.
-        constexpr std::array<std::array<int, 3>, 8> kCorner{{{0, 0, 0},
-                                                             {1, 0, 0},
-                                                             {1, 1, 0},
-                                                             {0, 1, 0},
-                                                             {0, 0, 1},
-                                                             {1, 0, 1},
-                                                             {1, 1, 1},
-                                                             {0, 1, 1}}};
-        for (std::size_t c = 0; c < 8; ++c) {
-            auto const& k = kCorner[c];
-            corners[c] = points->InsertNextPoint(k[0] ? box.max.x() : box.min.x(),
-                                                 k[1] ? box.max.y() : box.min.y(),
-                                                 k[2] ? box.max.z() : box.min.z());
-        }
-        grid->InsertNextCell(VTK_HEXAHEDRON, 8, corners.data());
-        id->InsertNextValue(bp.block->id.raw());
-        owner->InsertNextValue(bp.block->owner);
-        level->InsertNextValue(bp.block->level);
-        grains->InsertNextValue(static_cast<vtkTypeInt64>(bp.particles.countMasters()));
+        append(bounds, bp.block->aabb.min);
+        append(bounds, bp.block->aabb.max);
+        id.push_back(bp.block->id.raw());
+        owner.push_back(bp.block->owner);
+        level.push_back(bp.block->level);
+        grains.push_back(static_cast<std::int64_t>(bp.particles.countMasters()));
     }
-    grid->SetPoints(points);
-    vtkCellData* cd = grid->GetCellData();
-    for (vtkDataArray* a : std::array<vtkDataArray*, 4>{id, owner, level, grains})
-        cd->AddArray(a);
-    write(path, grid);
+    std::vector<ArraySpec> const specs = blockArrays();
+    std::vector<vtkxml::Column> const columns{{specs[0], id.data()},
+                                              {specs[1], owner.data()},
+                                              {specs[2], level.data()},
+                                              {specs[3], grains.data()}};
+    check(vtkxml::module().writeBoxes(path, id.size(), bounds.data(), columns), path);
 }
 
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 /// Internal to io/: one rank's piece of a parallel VTK XML data set (.vtu), written with
-/// VTK's XML writer, and the names and types of its arrays, which the .pvtu index written
-/// by rank 0 must repeat exactly.
+/// VTK's XML writer (through the VTK module), and the names and types of its arrays, which
+/// the .pvtu index written by rank 0 must repeat exactly.
+#include "io/vtk/VtkModule.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
 #include <string>
@@ -9,12 +10,7 @@
 
 namespace regolith::io::detail {
 
-/// One data array as the .pvtu declares it: name, VTK XML type, components.
-struct ArraySpec {
-    std::string name;
-    std::string type; ///< "Float64", "Int32", "Int64", "UInt64", "UInt8"
-    int components = 1;
-};
+using vtkxml::ArraySpec;
 
 /// Point data of a particle piece: uid, radius, mass, velocity, angular_velocity, force,
 /// owner_rank, and with `shadows` also shadow (1 for a shadow copy, 0 for a master).

@@ -114,6 +114,9 @@ TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
         vtkPointData* pd = grid->GetPointData();
         EXPECT_EQ(grid->GetNumberOfPoints(), shadows ? copies : kGrains);
         EXPECT_EQ(grid->GetNumberOfCells(), grid->GetNumberOfPoints());
+        std::array<double, 6> pointBounds{};
+        grid->GetBounds(pointBounds.data()); // the grains' centres: 1, 3, ..., 9 on each axis
+        EXPECT_EQ(pointBounds, (std::array<double, 6>{1.0, 9.0, 1.0, 9.0, 1.0, 9.0}));
         for (char const* name :
              {"uid", "radius", "mass", "velocity", "angular_velocity", "force", "owner_rank"})
             ASSERT_NE(pd->GetArray(name), nullptr) << name;

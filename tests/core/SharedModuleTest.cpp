@@ -1,0 +1,72 @@
+// core::openSharedModule: the paths it tries, in order, and the errors it gives when a
+// module is missing or is not one of Regolith's.
+#include "core/module/SharedModule.hpp"
+
+#include "core/Error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace {
+
+using regolith::core::openSharedModule;
+using regolith::core::SharedModuleSpec;
+
+SharedModuleSpec missing() {
+    return {"libregolith_nothing.so", "REGOLITH_NOTHING_MODULE", "/nonexistent/build/lib.so",
+            "regolith_nothing_module", "this test needs nothing"};
+}
+
+std::string errorOf(SharedModuleSpec const& spec) {
+    try {
+        (void)openSharedModule(spec);
+    } catch (regolith::core::Error const& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SharedModule, AMissingModuleNamesEveryPathTriedAndTheVariable) {
+    ::setenv("REGOLITH_NOTHING_MODULE", "/nonexistent/from/env.so", 1);
+    std::string const what = errorOf(missing());
+    ::unsetenv("REGOLITH_NOTHING_MODULE");
+    EXPECT_NE(what.find("this test needs nothing, from the module libregolith_nothing.so"),
+              std::string::npos)
+        << what;
+    auto const env = what.find("/nonexistent/from/env.so: no such file");
+    auto const build = what.find("/nonexistent/build/lib.so: no such file");
+    EXPECT_NE(env, std::string::npos) << what;
+    EXPECT_NE(build, std::string::npos) << what;
+    EXPECT_LT(env, build) << "the variable's path is tried first";
+    EXPECT_NE(what.find("lib/libregolith_nothing.so: no such file"), std::string::npos) << what;
+    EXPECT_NE(what.find("set REGOLITH_NOTHING_MODULE"), std::string::npos) << what;
+}
+
+TEST(SharedModule, ALibraryWithoutTheEntryIsRefusedByName) {
+    SharedModuleSpec spec = missing();
+    spec.buildPath = "/lib/x86_64-linux-gnu/libm.so.6"; // a library, not a Regolith module
+    std::string const what = errorOf(spec);
+    EXPECT_NE(what.find("libm.so.6 has no symbol regolith_nothing_module"), std::string::npos)
+        << what;
+}
+
+TEST(SharedModule, AFileThatIsNoLibraryGivesTheLoadersMessage) {
+    SharedModuleSpec spec = missing();
+    spec.buildPath = "/etc/hostname";
+    std::string const what = errorOf(spec);
+    EXPECT_NE(what.find("/etc/hostname: "), std::string::npos) << what;
+    EXPECT_EQ(what.find("/etc/hostname: no such file"), std::string::npos) << what;
+}
+
+TEST(SharedModule, FindsTheEntryOfARealLibrary) {
+    SharedModuleSpec spec = missing();
+    spec.buildPath = "/lib/x86_64-linux-gnu/libm.so.6";
+    spec.entry = "sqrt";
+    auto* root = reinterpret_cast<double (*)(double)>(openSharedModule(spec));
+    ASSERT_NE(root, nullptr);
+    EXPECT_EQ(root(2.25), 1.5);
+}
+
+} // namespace
