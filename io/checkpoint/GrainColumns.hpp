@@ -2,6 +2,7 @@
 /// Internal to io/: grains as columns (one array per stored field), the form in which they go
 /// to and come from the checkpoint's datasets (CheckpointInfo.hpp lists the layout).
 #include "io/checkpoint/GrainState.hpp"
+#include "io/checkpoint/Hdf5Module.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -9,9 +10,6 @@
 #include <vector>
 
 namespace regolith::io::detail {
-
-/// The element type of a column, mapped to an HDF5 type by the reader and writer.
-enum class ColumnType { U64, U32, U8, F64 };
 
 struct GrainColumns {
     std::vector<std::uint64_t> uid;
@@ -28,16 +26,6 @@ struct GrainColumns {
 
     /// Resizes every grain column to `grains` rows and every history column to `entries`.
     void resize(std::size_t grains, std::size_t entries);
-};
-
-/// One column seen untyped: dataset name, element type, values per row, data, whether it is
-/// a history column (H rows) or a grain column (N rows).
-struct ColumnView {
-    char const* name;
-    ColumnType type;
-    std::size_t width;
-    void* data;
-    bool history;
 };
 
 /// Every column of `c`, in the file's order. The views point into `c`.

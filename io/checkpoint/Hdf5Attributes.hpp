@@ -1,8 +1,8 @@
 #pragma once
-/// Internal to io/: the checkpoint's attributes (CheckpointInfo and the checksum) and the
-/// HDF5 types of its columns.
+/// Internal to the HDF5 module (Hdf5Module.hpp): the checkpoint's attributes (CheckpointInfo and
+/// the checksum) and the HDF5 types of its columns.
 #include "io/checkpoint/CheckpointInfo.hpp"
-#include "io/checkpoint/GrainColumns.hpp"
+#include "io/checkpoint/Hdf5Module.hpp"
 
 #include <hdf5.h>
 

@@ -1,7 +1,6 @@
 #pragma once
-/// Internal to io/: RAII ownership of HDF5 identifiers and the checks of HDF5 return codes.
-/// The only header that includes hdf5.h; HDF5 is linked PRIVATE to regolith::io, so nothing
-/// outside this module sees it.
+/// Internal to the HDF5 module (Hdf5Module.hpp): RAII ownership of HDF5 identifiers and the
+/// checks of HDF5 return codes. Only the module's sources include hdf5.h.
 #include <hdf5.h>
 
 #include <string>

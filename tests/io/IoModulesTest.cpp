@@ -1,6 +1,9 @@
-// VTK is loaded only when a run first writes VTK output (io/vtk/VtkModule.hpp): a process
-// that writes none maps none of VTK's libraries. This executable links no VTK itself.
+// VTK and HDF5 are loaded only when a run first writes VTK output or a checkpoint
+// (io/vtk/VtkModule.hpp, io/checkpoint/Hdf5Module.hpp): a process that writes neither maps
+// none of their libraries. This executable links neither itself.
 #include "domain/BlockForest.hpp"
+#include "io/checkpoint/CheckpointReader.hpp"
+#include "io/checkpoint/CheckpointWriter.hpp"
 #include "io/vtk/VtkOutput.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "tests/harness/MappedLibraries.hpp"
@@ -8,11 +11,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <vector>
 
 using namespace regolith;
 using regolith::test::isMapped;
 
-TEST(VtkModule, LoadedOnFirstOutputOnly) {
+TEST(IoModules, VtkLoadedOnFirstOutputOnly) {
     core::Comm const world;
     domain::ForestSpec spec;
     spec.domain = core::AABB{core::Vec3::Zero(), core::Vec3::Constant(4.0)};
@@ -36,4 +40,25 @@ TEST(VtkModule, LoadedOnFirstOutputOnly) {
     EXPECT_TRUE(
         std::filesystem::is_regular_file("vtk_module_test/vtk/particles_00000000_r0000.vtu"));
     EXPECT_TRUE(std::filesystem::is_regular_file("vtk_module_test/particles.pvd"));
+}
+
+TEST(IoModules, Hdf5LoadedOnFirstCheckpointOnly) {
+    core::Comm const world;
+    io::GrainState grain;
+    grain.uid = 3;
+    grain.position = core::Vec3(1.0, 2.0, 3.0);
+    grain.radius = 0.5;
+    grain.mass = 2.0;
+    std::vector<io::GrainState> const grains{grain};
+    io::CheckpointInfo info;
+    info.step = 12;
+    EXPECT_FALSE(isMapped("libhdf5")) << "HDF5 was mapped before the first checkpoint";
+    EXPECT_FALSE(isMapped("libregolith_hdf5"));
+    (void)io::writeCheckpoint(world, "hdf5_module_test.h5", info, grains);
+    EXPECT_TRUE(isMapped("libregolith_hdf5"));
+    EXPECT_TRUE(isMapped("libhdf5"));
+    io::CheckpointSlice const back = io::readCheckpoint(world, "hdf5_module_test.h5");
+    EXPECT_EQ(back.info.step, 12);
+    ASSERT_EQ(back.grains.size(), 1U);
+    EXPECT_EQ(back.grains[0].position, grain.position);
 }
