@@ -4,109 +4,169 @@
 /// synchronisation uses it (iteration, sorted insert, erase, assign).
 ///
 /// Memory: every copy has one and nearly all are empty (only masters near a block face have
-/// shadows), so it is one pointer (8 bytes) to a vector that exists only while the list is
-/// non-empty, instead of an inline std::vector (24 bytes). Iterators are pointers; they are
-/// invalidated by every change (as std::vector's by a reallocation), and an empty list has
-/// begin() == end() == nullptr.
+/// shadows), so it is one pointer (8 bytes), null while empty, to ONE heap block holding the
+/// count, the capacity and the elements — not a pointer to a std::vector, whose buffer is a
+/// second dependent load: the synchronisation reads the holders of every master near a face
+/// every step, at scattered addresses (as ContactHistory, docs/results.md). Iterators are
+/// pointers; they are invalidated by every change, and an empty list has begin() == end() ==
+/// nullptr. T must be trivially copyable (elements are moved with memcpy).
+#include <algorithm>
 #include <cstddef>
-#include <memory>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <new>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace regolith::particles {
 
 template <class T>
 class ThinList {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
 public:
     using value_type = T;
     using iterator = T*;
     using const_iterator = T const*;
 
     ThinList() = default;
-    ThinList(ThinList const& o) { *this = o; }
+    ThinList(ThinList const& o) { assign(o.begin(), o.end()); }
     ThinList& operator=(ThinList const& o) {
         if (this != &o)
-            m_v = o.empty() ? nullptr : std::make_unique<std::vector<T>>(*o.m_v);
+            assign(o.begin(), o.end());
         return *this;
     }
-    ThinList(ThinList&&) noexcept = default;
-    ThinList& operator=(ThinList&&) noexcept = default;
-    ~ThinList() = default;
+    ThinList(ThinList&& o) noexcept
+        : m_block(std::exchange(o.m_block, nullptr)) {}
+    ThinList& operator=(ThinList&& o) noexcept {
+        if (this != &o) {
+            clear();
+            m_block = std::exchange(o.m_block, nullptr);
+        }
+        return *this;
+    }
+    ~ThinList() { clear(); }
     ThinList& operator=(std::vector<T> const& v) {
         assign(v.begin(), v.end());
         return *this;
     }
 
-    [[nodiscard]] std::size_t size() const { return m_v ? m_v->size() : 0; }
-    [[nodiscard]] bool empty() const { return !m_v; }
-    [[nodiscard]] T* begin() { return m_v ? m_v->data() : nullptr; }
-    [[nodiscard]] T* end() { return m_v ? m_v->data() + m_v->size() : nullptr; }
-    [[nodiscard]] T const* begin() const { return m_v ? m_v->data() : nullptr; }
-    [[nodiscard]] T const* end() const { return m_v ? m_v->data() + m_v->size() : nullptr; }
-    [[nodiscard]] T& operator[](std::size_t k) { return (*m_v)[k]; }
-    [[nodiscard]] T const& operator[](std::size_t k) const { return (*m_v)[k]; }
+    [[nodiscard]] std::size_t size() const { return m_block ? m_block->size : 0; }
+    [[nodiscard]] bool empty() const { return !m_block; }
+    [[nodiscard]] T* begin() { return m_block ? m_block->data() : nullptr; }
+    [[nodiscard]] T* end() { return m_block ? m_block->data() + m_block->size : nullptr; }
+    [[nodiscard]] T const* begin() const { return m_block ? m_block->data() : nullptr; }
+    [[nodiscard]] T const* end() const {
+        return m_block ? m_block->data() + m_block->size : nullptr;
+    }
+    [[nodiscard]] T& operator[](std::size_t k) { return m_block->data()[k]; }
+    [[nodiscard]] T const& operator[](std::size_t k) const { return m_block->data()[k]; }
     [[nodiscard]] T const& at(std::size_t k) const {
         if (k >= size())
             throw std::out_of_range("ThinList::at");
-        return (*m_v)[k];
+        return (*this)[k];
     }
-    [[nodiscard]] T const& front() const { return (*m_v).front(); }
-    [[nodiscard]] T const& back() const { return (*m_v).back(); }
-    /// The elements as a std::vector (a shared empty one when there are none), e.g. for
-    /// message buffers.
-    [[nodiscard]] std::vector<T> const& vector() const { return m_v ? *m_v : kEmpty; }
+    [[nodiscard]] T const& front() const { return (*this)[0]; }
+    [[nodiscard]] T const& back() const { return (*this)[size() - 1]; }
+    /// The elements as a std::vector (a copy), e.g. for message buffers.
+    [[nodiscard]] std::vector<T> vector() const { return std::vector<T>(begin(), end()); }
+    /// Starts loading the block into the cache (the synchronisation calls it a few masters
+    /// ahead of reading the holders).
+    [[gnu::always_inline]] void prefetch() const { __builtin_prefetch(m_block); }
 
-    void push_back(T const& x) { ensure().push_back(x); }
+    void push_back(T const& x) { (void)insert(end(), x); }
     void pop_back() {
-        m_v->pop_back();
-        dropIfEmpty();
+        if (--m_block->size == 0)
+            clear();
     }
     T* insert(T const* pos, T const& x) {
-        std::ptrdiff_t const at = pos - begin();
-        auto& v = ensure();
-        v.insert(v.begin() + at, x);
-        return v.data() + at;
+        std::size_t const at = static_cast<std::size_t>(pos - begin());
+        std::size_t const n = size();
+        if (n == capacity())
+            reallocate(std::max<std::size_t>(2, 2 * n), n);
+        T* d = m_block->data();
+        std::memmove(d + at + 1, d + at, (n - at) * sizeof(T));
+        d[at] = x;
+        m_block->size = static_cast<std::uint32_t>(n + 1);
+        return d + at;
     }
     T* erase(T const* first, T const* last) {
         if (first == last)
             return const_cast<T*>(first); // NOLINT(cppcoreguidelines-pro-type-const-cast)
-        std::ptrdiff_t const a = first - begin(), b = last - begin();
-        m_v->erase(m_v->begin() + a, m_v->begin() + b);
-        dropIfEmpty();
-        return begin() + (m_v ? a : 0);
+        std::size_t const a = static_cast<std::size_t>(first - begin());
+        std::size_t const b = static_cast<std::size_t>(last - begin());
+        std::size_t const n = size();
+        T* d = m_block->data();
+        std::memmove(d + a, d + b, (n - b) * sizeof(T));
+        m_block->size = static_cast<std::uint32_t>(n - (b - a));
+        if (m_block->size == 0) {
+            clear();
+            return nullptr;
+        }
+        return d + a;
     }
     template <class It>
     void assign(It first, It last) {
-        if (first == last) {
-            m_v.reset();
+        auto const n = static_cast<std::size_t>(std::distance(first, last));
+        if (n == 0) {
+            clear();
             return;
         }
-        ensure().assign(first, last);
+        if (n > capacity())
+            reallocate(n, 0);
+        std::copy(first, last, m_block->data());
+        m_block->size = static_cast<std::uint32_t>(n);
     }
-    void clear() { m_v.reset(); }
+    void clear() {
+        std::free(m_block); // NOLINT(cppcoreguidelines-no-malloc)
+        m_block = nullptr;
+    }
 
-    /// Heap bytes held.
+    /// Heap bytes held (capacity, not size).
     [[nodiscard]] std::size_t heapBytes() const {
-        return m_v ? sizeof(*m_v) + m_v->capacity() * sizeof(T) : 0;
+        return m_block ? Block::bytes(m_block->capacity) : 0;
     }
     friend bool operator==(ThinList const& a, ThinList const& b) {
-        return a.vector() == b.vector();
+        return std::equal(a.begin(), a.end(), b.begin(), b.end());
     }
 
 private:
-    std::vector<T>& ensure() {
-        if (!m_v)
-            m_v = std::make_unique<std::vector<T>>();
-        return *m_v;
-    }
-    void dropIfEmpty() {
-        if (m_v && m_v->empty())
-            m_v.reset();
+    /// The heap block: this header, then `capacity` elements (the first `size` in use).
+    struct Block {
+        std::uint32_t size;
+        std::uint32_t capacity;
+        static constexpr std::size_t kHead =
+            (sizeof(std::uint32_t) * 2 + alignof(T) - 1) / alignof(T) * alignof(T);
+        static std::size_t bytes(std::size_t capacity) { return kHead + capacity * sizeof(T); }
+        T* data() {
+            return std::launder(reinterpret_cast<T*>(reinterpret_cast<char*>(this) + kHead));
+        }
+        T const* data() const {
+            return std::launder(
+                reinterpret_cast<T const*>(reinterpret_cast<char const*>(this) + kHead));
+        }
+    };
+    static_assert(alignof(T) <= alignof(std::max_align_t));
+
+    [[nodiscard]] std::size_t capacity() const { return m_block ? m_block->capacity : 0; }
+    /// A block of `capacity` elements holding the first `keep` of the current one.
+    void reallocate(std::size_t capacity, std::size_t keep) {
+        void* raw = std::malloc(Block::bytes(capacity)); // NOLINT(cppcoreguidelines-no-malloc)
+        if (raw == nullptr)
+            throw std::bad_alloc();
+        auto* block = ::new (raw)
+            Block{static_cast<std::uint32_t>(keep), static_cast<std::uint32_t>(capacity)};
+        if (keep > 0)
+            std::memcpy(static_cast<void*>(block->data()), m_block->data(), keep * sizeof(T));
+        std::free(m_block); // NOLINT(cppcoreguidelines-no-malloc)
+        m_block = block;
     }
 
-    static inline std::vector<T> const kEmpty{}; // constant-initialised
-    /// Null when empty (invariant: never points to an empty vector).
-    std::unique_ptr<std::vector<T>> m_v;
+    /// Null when empty (invariant: never points to a block with no elements).
+    Block* m_block = nullptr;
 };
 
 } // namespace regolith::particles

@@ -292,6 +292,9 @@ void ParticleSync::sync(LocalParticles& local) {
         spreadWork = spreadWork || scan.spreadingShadows;
         std::span<std::uint32_t const> const visit = scan.visit;
         for (std::size_t n = 0; n < visit.size(); ++n) {
+            // Two stages: the holder list's block first, read by the index look-ups after.
+            if (n + 2 * kLookAhead < visit.size())
+                ps.shadowHolders(visit[n + 2 * kLookAhead]).prefetch();
             if (n + kLookAhead < visit.size())
                 prefetchShadowLookups(engine, local, ps, visit[n + kLookAhead]);
             std::size_t const i = visit[n];

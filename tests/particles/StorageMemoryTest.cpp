@@ -114,6 +114,61 @@ TEST(StorageMemory, HolderListsAreOnePointerAndBehaveLikeSortedVectors) {
     EXPECT_TRUE(h.vector().empty());
 }
 
+TEST(StorageMemory, HolderListsAgreeWithAVectorUnderRandomEdits) {
+    std::mt19937 rng(7);
+    HolderList h;
+    std::vector<CopyRef> model;
+    for (int op = 0; op < 4000; ++op) {
+        CopyRef const t{static_cast<int>(rng() % 9), rng() % 3, kNoImage};
+        switch (rng() % 6) {
+        case 0: // sorted insert
+        case 1: {
+            auto const at = static_cast<std::size_t>(
+                std::lower_bound(model.begin(), model.end(), t) - model.begin());
+            model.insert(model.begin() + static_cast<std::ptrdiff_t>(at), t);
+            h.insert(h.begin() + at, t);
+            break;
+        }
+        case 2: // erase a range
+            if (!model.empty()) {
+                std::size_t const a = rng() % model.size();
+                std::size_t const b = a + rng() % (model.size() - a + 1);
+                model.erase(model.begin() + static_cast<std::ptrdiff_t>(a),
+                            model.begin() + static_cast<std::ptrdiff_t>(b));
+                h.erase(h.begin() + a, h.begin() + b);
+            }
+            break;
+        case 3: // push and pop
+            model.push_back(t);
+            h.push_back(t);
+            if (rng() % 2 == 0) {
+                model.pop_back();
+                h.pop_back();
+            }
+            break;
+        case 4: { // assign (shorter or longer), copy and move
+            std::vector<CopyRef> const v(
+                model.begin(),
+                model.begin() + static_cast<std::ptrdiff_t>(rng() % (model.size() + 1)));
+            model = v;
+            HolderList other;
+            other = v;
+            HolderList copied = other;
+            h = std::move(copied);
+            break;
+        }
+        default:
+            if (rng() % 20 == 0) {
+                model.clear();
+                h.clear();
+            }
+        }
+        ASSERT_EQ(h.vector(), model) << "after operation " << op;
+        ASSERT_EQ(h.empty(), model.empty());
+        ASSERT_EQ(h.heapBytes() == 0, model.empty()) << "an empty list holds no block";
+    }
+}
+
 TEST(StorageMemory, ReservedStorageGrowsGentlyNotByDoubling) {
     // A storage reserved for its masters (the set-up) that then gets its first shadow must
     // not double: it grows by gentleCapacity, about 1/16.
