@@ -61,6 +61,20 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
         for (std::size_t k = 0; k < n; ++k)
             fill(k, materials(m_typeI[k], m_typeJ[k]), model.dampingRatio(m_typeI[k], m_typeJ[k]));
     }
+    // Rolling resistance costs a root and two divisions per lane; a batch without it (most
+    // scenes: rolling friction 0) skips them, with the same bits (its torque is then + 0.0).
+    bool rolling = false;
+    for (std::size_t k = 0; k < n; ++k)
+        rolling = rolling || m_muRoll[k] > 0.0;
+    if (rolling)
+        evaluateLanes<true>(dt);
+    else
+        evaluateLanes<false>(dt);
+}
+
+template <bool kRolling>
+void SpringDashpotBatch::evaluateLanes(double dt) {
+    std::size_t const n = m_size;
     // One contact per iteration, no calls, every operation done in every lane and the scalar
     // code's branches as selects between the results: the loop GCC vectorises (this file is
     // compiled with -fno-trapping-math, which lets it evaluate a division or root whose result
@@ -92,10 +106,10 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
         double const vjy = m_vj[1][k] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
         double const vjz = m_vj[2][k] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
         double const ux = vjx - vix, uy = vjy - viy, uz = vjz - viz;
-        double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
+        [[maybe_unused]] double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
         double const meff = 1.0 / (m_invMi[k] + m_invMj[k]);
-        double const reff = a * b / (a + b);
-        double const invIsum = m_invIi[k] + m_invIj[k];
+        [[maybe_unused]] double const reff = a * b / (a + b);
+        [[maybe_unused]] double const invIsum = m_invIi[k] + m_invIj[k];
         // SpringDashpot::operator(): normal force.
         double const cn = 2.0 * m_ratio[k] * std::sqrt(m_k[k] * meff);
         double const vn = ux * nx + uy * ny + uz * nz;
@@ -140,19 +154,22 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
         m_s[1][k] = tangential ? sy : 0.0;
         m_s[2][k] = tangential ? sz : 0.0;
         double const fx = fn * nx + tx, fy = fn * ny + ty, fz = fn * nz + tz;
-        // rollingTorque.
-        double const muRoll = m_muRoll[k];
-        double const spin = ox * nx + oy * ny + oz * nz;
-        double const qx = ox - spin * nx, qy = oy - spin * ny, qz = oz - spin * nz;
-        double const qNorm = std::sqrt(qx * qx + qy * qy + qz * qz);
-        double magnitude = muRoll * reff * fn;
-        double const stop = qNorm / (dt * invIsum);
-        magnitude = invIsum > 0.0 && stop < magnitude ? stop : magnitude; // std::min
-        double const rolling = -magnitude / qNorm;                        // used where rolls only
-        bool const rolls = muRoll > 0.0 && fn > 0.0 && qNorm != 0.0;
-        double const mx = rolls ? rolling * qx : 0.0;
-        double const my = rolls ? rolling * qy : 0.0;
-        double const mz = rolls ? rolling * qz : 0.0;
+        // rollingTorque (+0.0 where it does not roll, as the scalar code adds).
+        double mx = 0.0, my = 0.0, mz = 0.0;
+        if constexpr (kRolling) {
+            double const muRoll = m_muRoll[k];
+            double const spin = ox * nx + oy * ny + oz * nz;
+            double const qx = ox - spin * nx, qy = oy - spin * ny, qz = oz - spin * nz;
+            double const qNorm = std::sqrt(qx * qx + qy * qy + qz * qz);
+            double magnitude = muRoll * reff * fn;
+            double const stop = qNorm / (dt * invIsum);
+            magnitude = invIsum > 0.0 && stop < magnitude ? stop : magnitude; // std::min
+            double const rolling = -magnitude / qNorm; // used where rolls only
+            bool const rolls = muRoll > 0.0 && fn > 0.0 && qNorm != 0.0;
+            mx = rolls ? rolling * qx : 0.0;
+            my = rolls ? rolling * qy : 0.0;
+            mz = rolls ? rolling * qz : 0.0;
+        }
         // evaluatePair: the torques about each centre.
         m_f[0][k] = fx;
         m_f[1][k] = fy;

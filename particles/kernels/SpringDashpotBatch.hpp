@@ -66,6 +66,10 @@ public:
     }
 
 private:
+    /// evaluate's loop over the lanes, with or without rolling resistance.
+    template <bool kRolling>
+    void evaluateLanes(double dt);
+
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
 

@@ -94,8 +94,22 @@ void seedSprings(ParticleStorage& ps, std::vector<Contact> const& pairs) {
 
 } // namespace
 
-TEST(SpringDashpotBatch, SameSharesAndSpringsAsEvaluatePairOverSeveralPasses) {
-    SpringDashpot const model = twoMaterials();
+/// Both materials of twoMaterials() without rolling resistance: every batch then takes the
+/// lanes' path without it.
+SpringDashpot twoMaterialsWithoutRolling() {
+    MaterialTable<LinearContactParams> table(2);
+    SpringDashpot const with = twoMaterials();
+    for (std::uint32_t a = 0; a < 2; ++a)
+        for (std::uint32_t b = a; b < 2; ++b) {
+            LinearContactParams p = with.materials()(a, b);
+            p.rollingFriction = 0.0;
+            table.set(a, b, p);
+        }
+    return SpringDashpot{table};
+}
+
+/// Four passes over a dense random pack, evaluated with evaluatePair and in batches.
+void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
     double const dt = 2e-3;
     ParticleStorage one = randomPack(3, 600, 7.0);
     WallList walls;
@@ -151,6 +165,14 @@ TEST(SpringDashpotBatch, SameSharesAndSpringsAsEvaluatePairOverSeveralPasses) {
                 ps->history(k).keepOnly(stamp);
             }
     }
+}
+
+TEST(SpringDashpotBatch, SameSharesAndSpringsAsEvaluatePairOverSeveralPasses) {
+    expectSameSharesAndSpringsAsEvaluatePair(twoMaterials());
+}
+
+TEST(SpringDashpotBatch, SameSharesAndSpringsWithoutRollingResistance) {
+    expectSameSharesAndSpringsAsEvaluatePair(twoMaterialsWithoutRolling());
 }
 
 TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation) {
