@@ -6,8 +6,8 @@
 
 #include <fmt/format.h>
 
-#include <array>
 #include <filesystem>
+#include <memory>
 
 namespace regolith::io {
 

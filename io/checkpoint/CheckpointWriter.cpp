@@ -6,7 +6,6 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
-#include <array>
 #include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>

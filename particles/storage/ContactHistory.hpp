@@ -5,14 +5,12 @@
 /// the canonical contact order); a sphere–wall entry lives on the sphere, keyed by the wall's
 /// uid.
 #include "core/math/Vec3.hpp"
+#include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
 
 #include <cstddef>
 #include <cstdint>
-#include <new>
 #include <span>
-#include <type_traits>
-#include <utility>
 
 namespace regolith::particles {
 
@@ -38,20 +36,6 @@ struct HistoryEntry {
 /// faster with it (docs/results.md).
 class ContactHistory {
 public:
-    ContactHistory() = default;
-    ContactHistory(ContactHistory const& other);
-    ContactHistory& operator=(ContactHistory const& other);
-    ContactHistory(ContactHistory&& other) noexcept
-        : m_block(std::exchange(other.m_block, nullptr)) {}
-    ContactHistory& operator=(ContactHistory&& other) noexcept {
-        if (this != &other) {
-            release();
-            m_block = std::exchange(other.m_block, nullptr);
-        }
-        return *this;
-    }
-    ~ContactHistory() { release(); }
-
     /// The entry for `partner`, or nullptr.
     [[nodiscard]] HistoryEntry const* find(Uid partner) const;
     [[nodiscard]] HistoryEntry* find(Uid partner);
@@ -68,82 +52,54 @@ public:
     /// (`again`): touched earlier in the same pass, e.g. a pair that meets through two periodic
     /// images, whose second evaluation must see the spring the first one left.
     HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint, bool& again) {
-        if (m_block && hint < m_block->size && m_block->data()[hint].partner == partner)
-            [[likely]] {
-            HistoryEntry& e = m_block->data()[hint];
+        if (hint < m_entries.size() && m_entries[hint].partner == partner) [[likely]] {
+            HistoryEntry& e = m_entries[hint];
             again = e.stamp == stamp;
             e.stamp = stamp;
             return e;
         }
         return touchSlow(partner, stamp, hint, again);
     }
-    /// Starts loading the block into the cache (the per-step prune calls it a few grains
+    /// Starts loading the entries into the cache (the per-step prune calls it a few grains
     /// ahead).
-    [[gnu::always_inline]] void prefetch() const { __builtin_prefetch(m_block); }
+    [[gnu::always_inline]] void prefetch() const { m_entries.prefetch(); }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
     /// Replaces every entry by `entries` (sorted by partner uid, unique: another history's
     /// entries), reusing the heap block if it is large enough: a shadow takes its master's
     /// history every step.
-    void assign(std::span<HistoryEntry const> entries);
+    void assign(std::span<HistoryEntry const> entries) {
+        m_entries.assign(entries.begin(), entries.end());
+    }
     /// Removes the entry for `partner`; returns whether there was one.
     bool erase(Uid partner);
     /// Drops every entry whose stamp differs from `stamp`: the contacts not evaluated in the
     /// current pass are broken. Returns how many were dropped.
     std::size_t keepOnly(std::uint32_t stamp) {
-        return m_block ? keepOnlySlow(stamp) : 0; // most grains: no contact
+        return m_entries.empty() ? 0 : keepOnlySlow(stamp); // most grains: no contact
     }
 
-    [[nodiscard]] std::size_t size() const { return m_block ? m_block->size : 0; }
-    [[nodiscard]] bool empty() const { return !m_block; }
-    void clear() { release(); }
-    [[nodiscard]] HistoryEntry const* begin() const { return entries().data(); }
-    [[nodiscard]] HistoryEntry const* end() const { return begin() + size(); }
+    [[nodiscard]] std::size_t size() const { return m_entries.size(); }
+    [[nodiscard]] bool empty() const { return m_entries.empty(); }
+    void clear() { m_entries.clear(); }
+    [[nodiscard]] HistoryEntry const* begin() const { return m_entries.begin(); }
+    [[nodiscard]] HistoryEntry const* end() const { return m_entries.end(); }
     /// Heap bytes held (capacity, not size).
-    [[nodiscard]] std::size_t heapBytes() const {
-        return m_block ? Block::bytes(m_block->capacity) : 0;
-    }
+    [[nodiscard]] std::size_t heapBytes() const { return m_entries.heapBytes(); }
     /// The entries in uid order (for packing into messages).
     [[nodiscard]] std::span<HistoryEntry const> entries() const {
-        return m_block ? std::span<HistoryEntry const>(m_block->data(), m_block->size)
-                       : std::span<HistoryEntry const>{};
+        return {m_entries.begin(), m_entries.size()};
     }
 
 private:
-    /// The heap block: this header, then `capacity` entries (all constructed; the first `size`
-    /// in use). HistoryEntry is trivially destructible, so freeing is just deallocation.
-    struct Block {
-        std::uint32_t size = 0;
-        std::uint32_t capacity = 0;
-
-        [[nodiscard]] HistoryEntry* data() {
-            return std::launder(reinterpret_cast<HistoryEntry*>(this + 1));
-        }
-        [[nodiscard]] HistoryEntry const* data() const {
-            return std::launder(reinterpret_cast<HistoryEntry const*>(this + 1));
-        }
-        static constexpr std::size_t bytes(std::size_t capacity) {
-            return sizeof(Block) + capacity * sizeof(HistoryEntry);
-        }
-    };
-    static_assert(sizeof(Block) % alignof(HistoryEntry) == 0);
-    static_assert(std::is_trivially_destructible_v<HistoryEntry>);
-
     std::size_t keepOnlySlow(std::uint32_t stamp);
     /// touch() by search; `again` as in the hinted touch (left alone for a new entry).
     HistoryEntry& touchAt(Uid partner, std::uint32_t stamp, bool& again);
     HistoryEntry& touchSlow(Uid partner, std::uint32_t stamp, std::uint8_t& hint, bool& again);
     /// Where `partner` is or would go: the first entry not below it.
     [[nodiscard]] std::size_t lowerBound(Uid partner) const;
-    /// Inserts `entry` at slot `at`, growing the block (or creating it) if full.
-    HistoryEntry& insertAt(std::size_t at, HistoryEntry const& entry);
-    /// A block of `capacity` default entries holding the first `keep` entries of the current
-    /// one (if any), replacing it.
-    void reallocate(std::size_t capacity, std::size_t keep);
-    void release();
 
-    /// Null when empty (invariant: never points to a block with no entries).
-    Block* m_block = nullptr;
+    ThinList<HistoryEntry> m_entries; ///< sorted by partner uid
 };
 
 } // namespace regolith::particles

@@ -9,12 +9,12 @@
 /// second dependent load: the synchronisation reads the holders of every master near a face
 /// every step, at scattered addresses (as ContactHistory, docs/results.md). Iterators are
 /// pointers; they are invalidated by every change, and an empty list has begin() == end() ==
-/// nullptr. T must be trivially copyable (elements are moved with memcpy).
+/// nullptr. T must be trivially destructible (freeing a block is just deallocation).
+/// ContactHistory keeps its entries in one.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <type_traits>
@@ -25,7 +25,7 @@ namespace regolith::particles {
 
 template <class T>
 class ThinList {
-    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+    static_assert(std::is_trivially_destructible_v<T>);
 
 public:
     using value_type = T;
@@ -88,7 +88,7 @@ public:
         if (n == capacity())
             reallocate(std::max<std::size_t>(2, 2 * n), n);
         T* d = m_block->data();
-        std::memmove(d + at + 1, d + at, (n - at) * sizeof(T));
+        std::move_backward(d + at, d + n, d + n + 1);
         d[at] = x;
         m_block->size = static_cast<std::uint32_t>(n + 1);
         return d + at;
@@ -100,7 +100,7 @@ public:
         std::size_t const b = static_cast<std::size_t>(last - begin());
         std::size_t const n = size();
         T* d = m_block->data();
-        std::memmove(d + a, d + b, (n - b) * sizeof(T));
+        std::move(d + b, d + n, d + a);
         m_block->size = static_cast<std::uint32_t>(n - (b - a));
         if (m_block->size == 0) {
             clear();
@@ -121,7 +121,7 @@ public:
         m_block->size = static_cast<std::uint32_t>(n);
     }
     void clear() {
-        std::free(m_block); // NOLINT(cppcoreguidelines-no-malloc)
+        ::operator delete(m_block);
         m_block = nullptr;
     }
 
@@ -134,34 +134,28 @@ public:
     }
 
 private:
-    /// The heap block: this header, then `capacity` elements (the first `size` in use).
+    /// The heap block: this header, then `capacity` elements (all constructed; the first
+    /// `size` in use).
     struct Block {
         std::uint32_t size;
         std::uint32_t capacity;
-        static constexpr std::size_t kHead =
-            (sizeof(std::uint32_t) * 2 + alignof(T) - 1) / alignof(T) * alignof(T);
-        static std::size_t bytes(std::size_t capacity) { return kHead + capacity * sizeof(T); }
-        T* data() {
-            return std::launder(reinterpret_cast<T*>(reinterpret_cast<char*>(this) + kHead));
+        static std::size_t bytes(std::size_t capacity) {
+            return sizeof(Block) + capacity * sizeof(T);
         }
-        T const* data() const {
-            return std::launder(
-                reinterpret_cast<T const*>(reinterpret_cast<char const*>(this) + kHead));
-        }
+        T* data() { return std::launder(reinterpret_cast<T*>(this + 1)); }
+        T const* data() const { return std::launder(reinterpret_cast<T const*>(this + 1)); }
     };
-    static_assert(alignof(T) <= alignof(std::max_align_t));
+    static_assert(sizeof(Block) % alignof(T) == 0 && alignof(T) <= alignof(std::max_align_t));
 
     [[nodiscard]] std::size_t capacity() const { return m_block ? m_block->capacity : 0; }
     /// A block of `capacity` elements holding the first `keep` of the current one.
     void reallocate(std::size_t capacity, std::size_t keep) {
-        void* raw = std::malloc(Block::bytes(capacity)); // NOLINT(cppcoreguidelines-no-malloc)
-        if (raw == nullptr)
-            throw std::bad_alloc();
-        auto* block = ::new (raw)
+        auto* block = ::new (::operator new(Block::bytes(capacity)))
             Block{static_cast<std::uint32_t>(keep), static_cast<std::uint32_t>(capacity)};
+        std::uninitialized_value_construct_n(block->data(), capacity);
         if (keep > 0)
-            std::memcpy(static_cast<void*>(block->data()), m_block->data(), keep * sizeof(T));
-        std::free(m_block); // NOLINT(cppcoreguidelines-no-malloc)
+            std::copy_n(m_block->data(), keep, block->data());
+        ::operator delete(m_block);
         m_block = block;
     }
 
