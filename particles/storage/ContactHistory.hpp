@@ -30,10 +30,10 @@ struct HistoryEntry {
 ///
 /// Memory and access: every copy of every grain has one, and most (a sparse gas: nearly all)
 /// are empty, so it is a single pointer (8 bytes), null while empty, to ONE heap block that
-/// holds the entry count, the capacity and the entries. The contact loop touches a history per
-/// contact, at scattered addresses: one block is one dependent load fewer than a pointer to a
-/// std::vector (the vector object, then its buffer); the dense ramp's contact phase ran 1.08x
-/// faster with it (docs/results.md).
+/// holds the entry count, the capacity and the entries (a ThinList). The contact loop touches a
+/// history per contact, at scattered addresses: one block is one dependent load fewer than a
+/// pointer to a std::vector (the vector object, then its buffer); the dense ramp's contact phase
+/// ran 1.08x faster with it (docs/results.md).
 class ContactHistory {
 public:
     /// The entry for `partner`, or nullptr.
