@@ -34,8 +34,7 @@ HistoryEntry& ContactHistory::touchAt(Uid partner, std::uint32_t stamp, bool& ag
     if (at == size() || m_entries[at].partner != partner)
         return *m_entries.insert(begin() + at, HistoryEntry{partner, core::Vec3::Zero(), stamp});
     HistoryEntry& e = m_entries[at];
-    again = e.stamp == stamp;
-    e.stamp = stamp;
+    renew(e, stamp, again);
     return e;
 }
 

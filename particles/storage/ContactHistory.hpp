@@ -40,6 +40,10 @@ public:
     [[nodiscard]] HistoryEntry const* find(Uid partner) const;
     [[nodiscard]] HistoryEntry* find(Uid partner);
     /// The entry for `partner` (created with a zero spring if absent), stamped with `stamp`.
+    /// Passes are numbered consecutively: an entry found with a stamp below `stamp - 1` was not
+    /// touched in the previous pass, so its contact broke since, and it starts again from a
+    /// zero spring (as a new entry would: the synchronisation drops untouched entries only
+    /// every few passes, ParticleSync::kHistoryPruneInterval).
     HistoryEntry& touch(Uid partner, std::uint32_t stamp);
     /// touch() that first tries slot `hint` (where the entry sat last time, e.g. kept by a
     /// neighbour list beside the pair) and updates it: no search while the partners of this
@@ -54,8 +58,7 @@ public:
     HistoryEntry& touch(Uid partner, std::uint32_t stamp, std::uint8_t& hint, bool& again) {
         if (hint < m_entries.size() && m_entries[hint].partner == partner) [[likely]] {
             HistoryEntry& e = m_entries[hint];
-            again = e.stamp == stamp;
-            e.stamp = stamp;
+            renew(e, stamp, again);
             return e;
         }
         return touchSlow(partner, stamp, hint, again);
@@ -92,6 +95,13 @@ public:
     }
 
 private:
+    /// Stamps a found entry; a contact broken since the last pass but one starts afresh.
+    static void renew(HistoryEntry& e, std::uint32_t stamp, bool& again) {
+        again = e.stamp == stamp;
+        if (!again && e.stamp + 1 != stamp)
+            e.spring = core::Vec3::Zero();
+        e.stamp = stamp;
+    }
     std::size_t keepOnlySlow(std::uint32_t stamp);
     /// touch() by search; `again` as in the hinted touch (left alone for a new entry).
     HistoryEntry& touchAt(Uid partner, std::uint32_t stamp, bool& again);

@@ -145,6 +145,8 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
         }
     });
     // Prune the masters' histories; each sits at its own heap address, so fetch a few ahead.
+    if (stamp % ParticleSync::kHistoryPruneInterval != 0)
+        return contributions;
     for (BlockParticles& bp : blocks) {
         ParticleStorage& ps = bp.particles;
         for (std::size_t i = 0, n = ps.size(); i < n; ++i) {

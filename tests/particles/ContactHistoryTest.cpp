@@ -54,6 +54,24 @@ TEST(ContactHistory, TouchWithAHintFindsTheEntryWhereverTheHintPoints) {
     EXPECT_EQ(h.keepOnly(2), 0U);
 }
 
+TEST(ContactHistory, AnEntryNotTouchedInThePreviousPassStartsFromAZeroSpring) {
+    // The masters' histories are pruned only every few passes, so an entry of a contact that
+    // broke may still be there when the pair touches again: it must start afresh, as the new
+    // entry of a pruned history would, by search and through a hint alike.
+    ContactHistory h;
+    std::uint8_t hint = 0;
+    h.touch(7, 1, hint).spring = Vec3(1, 2, 3);
+    h.touch(9, 1).spring = Vec3(4, 5, 6);
+    EXPECT_EQ(h.touch(7, 2, hint).spring, Vec3(1, 2, 3)); // touched in pass 1: kept
+    EXPECT_EQ(h.touch(9, 3).spring, Vec3::Zero());        // not in pass 2: broke
+    EXPECT_EQ(h.touch(7, 4, hint).spring, Vec3::Zero());  // not in pass 3: broke
+    h.touch(7, 4, hint).spring = Vec3(0, 1, 0);
+    bool again = false;
+    EXPECT_EQ(h.touch(7, 4, hint, again).spring, Vec3(0, 1, 0)); // the same pass again: kept
+    EXPECT_TRUE(again);
+    EXPECT_EQ(h.size(), 2U); // nothing dropped: that is keepOnly's job
+}
+
 TEST(ContactHistory, AgreesWithAnOrderedMapUnderRandomEdits) {
     // Inserts in the middle, growth of the block, removals down to empty (block freed),
     // assign into a smaller and a larger block, copies and moves: the entries must always be
