@@ -63,8 +63,7 @@ public:
         }
         return touchSlow(partner, stamp, hint, again);
     }
-    /// Starts loading the entries into the cache (the per-step prune calls it a few grains
-    /// ahead).
+    /// Starts loading the entries into the cache (the prune calls it a few grains ahead).
     [[gnu::always_inline]] void prefetch() const { m_entries.prefetch(); }
     /// Inserts or overwrites an entry (used when history arrives with a particle).
     void set(HistoryEntry const& entry);
@@ -95,7 +94,8 @@ public:
     }
 
 private:
-    /// Stamps a found entry; a contact broken since the last pass but one starts afresh.
+    /// Stamps a found entry; one the previous pass did not touch (a broken contact, not
+    /// pruned yet) restarts from a zero spring.
     static void renew(HistoryEntry& e, std::uint32_t stamp, bool& again) {
         again = e.stamp == stamp;
         if (!again && e.stamp + 1 != stamp)
