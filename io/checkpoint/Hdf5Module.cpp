@@ -46,6 +46,7 @@ void writeColumn(hid_t file, hid_t dxpl, ColumnView const& col, Slab const& slab
             context, col.name);
 }
 
+/// core::Comm::allTrue on a raw communicator: the module links no static Regolith library.
 bool allTrue(MPI_Comm comm, bool mine) {
     int local = mine ? 1 : 0;
     int all = 0;

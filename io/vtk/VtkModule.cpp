@@ -5,12 +5,11 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
-#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkPointData.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkObject.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkType.h>

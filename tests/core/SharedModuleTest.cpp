@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
+#include <dlfcn.h>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -17,6 +21,15 @@ using regolith::core::SharedModuleSpec;
 SharedModuleSpec missing() {
     return {"libregolith_nothing.so", "REGOLITH_NOTHING_MODULE", "/nonexistent/build/lib.so",
             "regolith_nothing_module", "this test needs nothing"};
+}
+
+/// The file of the C maths library this process uses (whatever the platform calls it).
+std::string libmPath() {
+    Dl_info info{};
+    double (*const cbrtOf)(double) = &::cbrt;
+    if (dladdr(reinterpret_cast<void*>(cbrtOf), &info) == 0 || info.dli_fname == nullptr)
+        return "";
+    return info.dli_fname;
 }
 
 std::string errorOf(SharedModuleSpec const& spec) {
@@ -46,23 +59,27 @@ TEST(SharedModule, AMissingModuleNamesEveryPathTriedAndTheVariable) {
 
 TEST(SharedModule, ALibraryWithoutTheEntryIsRefusedByName) {
     SharedModuleSpec spec = missing();
-    spec.buildPath = "/lib/x86_64-linux-gnu/libm.so.6"; // a library, not a Regolith module
+    spec.buildPath = libmPath(); // a library, not a Regolith module
     std::string const what = errorOf(spec);
-    EXPECT_NE(what.find("libm.so.6 has no symbol regolith_nothing_module"), std::string::npos)
+    EXPECT_NE(what.find(spec.buildPath + " has no symbol regolith_nothing_module"),
+              std::string::npos)
         << what;
 }
 
 TEST(SharedModule, AFileThatIsNoLibraryGivesTheLoadersMessage) {
+    std::string const text = "shared_module_test_not_a_library.txt";
+    std::ofstream(text) << "not a library\n";
     SharedModuleSpec spec = missing();
-    spec.buildPath = "/etc/hostname";
+    spec.buildPath = text;
     std::string const what = errorOf(spec);
-    EXPECT_NE(what.find("/etc/hostname: "), std::string::npos) << what;
-    EXPECT_EQ(what.find("/etc/hostname: no such file"), std::string::npos) << what;
+    std::filesystem::remove(text);
+    EXPECT_NE(what.find(text + ": "), std::string::npos) << what;
+    EXPECT_EQ(what.find(text + ": no such file"), std::string::npos) << what;
 }
 
 TEST(SharedModule, FindsTheEntryOfARealLibrary) {
     SharedModuleSpec spec = missing();
-    spec.buildPath = "/lib/x86_64-linux-gnu/libm.so.6";
+    spec.buildPath = libmPath();
     spec.entry = "sqrt";
     auto* root = reinterpret_cast<double (*)(double)>(openSharedModule(spec));
     ASSERT_NE(root, nullptr);
