@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <unistd.h>
 
 namespace {
 
@@ -67,7 +68,9 @@ TEST(SharedModule, ALibraryWithoutTheEntryIsRefusedByName) {
 }
 
 TEST(SharedModule, AFileThatIsNoLibraryGivesTheLoadersMessage) {
-    std::string const text = "shared_module_test_not_a_library.txt";
+    // One file per process: the test runs on several ranks in the same directory.
+    std::string const text =
+        "shared_module_test_not_a_library_" + std::to_string(::getpid()) + ".txt";
     std::ofstream(text) << "not a library\n";
     SharedModuleSpec spec = missing();
     spec.buildPath = text;
