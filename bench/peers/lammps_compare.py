@@ -2,7 +2,10 @@
 """Regolith side by side with LAMMPS (issue 5): the same grains, contact model, time step and
 steps on one core, runs alternating (regolith, lmp, regolith, lmp, ...) so that a change of
 machine load hits both alike. Reports PUpCS (particle updates per core-second of the time-step
-loop: Regolith's wall_s, LAMMPS's "Loop time") and the ratio Regolith / LAMMPS.
+loop: Regolith's wall_s, LAMMPS's "Loop time") and the ratio Regolith / LAMMPS: the median of
+the per-pair ratios, their range, and the ratio of each code's best run (on a virtual machine
+whose speed jumps between runs by up to 1.5x, the least disturbed run of each side). The CSV
+also holds each run's phases (Regolith's timers, LAMMPS's Pair / Neigh / Comm / Modify).
 
 Cases:
   sparse   the sparse granular gas of scenes/granular-gas.toml (sc spacing 1, r = 0.4,
@@ -167,6 +170,22 @@ def lammps(case, data, params, steps, skin, workdir):
     return float(m.group(1)), int(m.group(2)), int(m.group(3)), text
 
 
+# Where each code's time goes: Regolith's run-summary timers and LAMMPS's "MPI task timing
+# breakdown" sections, per run in the CSV.
+OUR_PHASES = ("contact", "sync", "integrate")
+LAMMPS_SECTIONS = ("Pair", "Neigh", "Comm", "Modify")
+
+
+def lammps_sections(log):
+    """The average seconds of each section of LAMMPS's timing breakdown in `log` (text)."""
+    out = {}
+    for name in LAMMPS_SECTIONS:
+        m = re.search(rf"^{name}\s*\|\s*[0-9.eE+-]+\s*\|\s*([0-9.eE+-]+)", log, re.MULTILINE)
+        if m:
+            out[name] = float(m.group(1))
+    return out
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
@@ -183,8 +202,8 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     rows = []
     print("| case | grains | steps | Regolith PUpCS (median) | LAMMPS PUpCS (median) | "
-          "ratio (median) | ratio range |")
-    print("|---|---|---|---|---|---|---|")
+          "ratio (median) | ratio range | ratio of best runs |")
+    print("|---|---|---|---|---|---|---|---|")
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
             c = make_case(case, a.box)
@@ -199,7 +218,7 @@ def main():
             for repeat in range(a.repeats):
                 s = regolith(app, c, args, os.path.join(tmp, "run.json"),
                              ["--steps", str(a.steps)])
-                loop, steps, atoms, _ = lammps(c, data, params, a.steps, a.skin, tmp)
+                loop, steps, atoms, log = lammps(c, data, params, a.steps, a.skin, tmp)
                 if atoms != s["particles"] or steps != s["steps"]:
                     sys.exit(f"lammps_compare: LAMMPS ran {atoms} atoms x {steps} steps, Regolith "
                              f"{s['particles']} x {s['steps']}")
@@ -207,15 +226,21 @@ def main():
                 ours.append(s["pupcs"])
                 theirs.append(lmp_pupcs)
                 ratios.append(s["pupcs"] / lmp_pupcs)
+                sections = lammps_sections(log)
                 rows.append([case, repeat, atoms, steps, s["wall_s"], s["pupcs"], loop, lmp_pupcs,
-                             s["pupcs"] / lmp_pupcs, s["conserved"]["kinetic_energy"]])
+                             s["pupcs"] / lmp_pupcs, s["conserved"]["kinetic_energy"]] +
+                            [s["timing_s"].get(k, "") for k in OUR_PHASES] +
+                            [sections.get(k, "") for k in LAMMPS_SECTIONS])
             print(f"| {case} | {len(grains)} | {a.steps} | {statistics.median(ours):.3e} | "
                   f"{statistics.median(theirs):.3e} | {statistics.median(ratios):.2f} | "
-                  f"{min(ratios):.2f}–{max(ratios):.2f} |", flush=True)
+                  f"{min(ratios):.2f}–{max(ratios):.2f} | {max(ours) / max(theirs):.2f} |",
+                  flush=True)
     with open(os.path.join(a.out, "lammps_compare.csv"), "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(["case", "repeat", "grains", "steps", "regolith_wall_s", "regolith_pupcs",
-                    "lammps_loop_s", "lammps_pupcs", "ratio", "regolith_kinetic_energy"])
+                    "lammps_loop_s", "lammps_pupcs", "ratio", "regolith_kinetic_energy"] +
+                   [f"regolith_{k}_s" for k in OUR_PHASES] +
+                   [f"lammps_{k.lower()}_s" for k in LAMMPS_SECTIONS])
         w.writerows(rows)
 
 

@@ -1,0 +1,74 @@
+// The spring-dashpot batch kernel alone (SpringDashpotBatch::evaluate), per contact: the
+// arithmetic of the fused contact loop without its history look-ups and scatters, with or
+// without its gather (add), on 64 contacts that stay in L1. Half of the contacts slide
+// (Coulomb limit), half stick, all carry a spring from earlier steps: every branch of the
+// scalar model is exercised.
+//
+//   particles_bench --benchmark_filter=springDashpotBatch
+#include "particles/kernels/SpringDashpotBatch.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <numbers>
+#include <random>
+#include <vector>
+
+namespace {
+
+using namespace regolith::particles;
+using regolith::core::Vec3;
+
+void springDashpotBatch(benchmark::State& state) {
+    constexpr std::size_t kContacts = SpringDashpotBatch::kCapacity;
+    constexpr double kRadius = 0.5;
+    double const mass = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius;
+    ParticleStorage ps;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    UidGenerator uids(0);
+    // Pairs (2k, 2k + 1) overlapping by ~2 % of the radius in a random direction.
+    for (std::size_t k = 0; k < kContacts; ++k) {
+        Vec3 const x(3.0 * static_cast<double>(k), 0.0, 0.0);
+        Vec3 const n = Vec3(u(rng), u(rng), u(rng)).normalized();
+        for (int side = 0; side < 2; ++side) {
+            ParticleInit p;
+            p.uid = uids.next();
+            p.position = side == 0 ? x : Vec3(x + (2.0 * kRadius - 0.02 * kRadius) * n);
+            p.velocity = 0.1 * Vec3(u(rng), u(rng), u(rng));
+            p.angularVelocity = 0.1 * Vec3(u(rng), u(rng), u(rng));
+            p.radius = kRadius;
+            p.mass = mass;
+            ps.add(p);
+        }
+    }
+    LinearContactParams params;
+    params.stiffness = 2000.0;
+    params.tangentialStiffness = 2.0 / 7.0 * params.stiffness;
+    params.restitution = 0.5;
+    params.friction = 0.5;
+    SpringDashpot const model(MaterialTable<LinearContactParams>(1, params));
+    // Springs: the sticking half small, the sliding half far beyond mu F_n / k_t.
+    std::vector<HistoryEntry> entries(kContacts);
+    for (std::size_t k = 0; k < kContacts; ++k)
+        entries[k].spring = (k % 2 == 0 ? 1e-5 : 1e-1) * Vec3(u(rng), u(rng), u(rng));
+    SpringDashpotBatch batch;
+    double const dt = 0.002;
+    bool const gather = state.range(0) != 0;
+    auto fill = [&] {
+        batch.clear();
+        for (std::size_t k = 0; k < kContacts; ++k)
+            batch.add(ps, PairOverlap{2 * k, 2 * k + 1, Vec3::Zero()}, entries[k], 0);
+    };
+    fill();
+    for (auto _ : state) {
+        if (gather) // else the springs evolve in the lanes from one evaluation to the next
+            fill();
+        batch.evaluate(model, dt);
+        benchmark::DoNotOptimize(batch.force(kContacts - 1));
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kContacts));
+}
+// Argument: 1 = gather the contacts (SpringDashpotBatch::add) before each evaluation, 0 = not.
+BENCHMARK(springDashpotBatch)->Arg(0)->Arg(1);
+
+} // namespace
