@@ -64,6 +64,9 @@ SyncSection parseSync(core::ConfigTable const& t) {
     s.method = static_cast<particles::SyncMethod>(t.getChoiceOr(
         "method", kSyncNames, static_cast<std::size_t>(particles::SyncMethod::Hybrid)));
     s.reproducible = t.getOr<bool>("reproducible", false);
+    s.skin = t.getOrIf<double>("skin", 0.0, isNonNegativeFinite, "a non-negative finite length");
+    if (s.skin > 0.0 && s.method == particles::SyncMethod::ShadowOwner)
+        t.failExpected("skin", "0 with method = \"sos\" (the skin applies to NNS-class grains)");
     return s;
 }
 

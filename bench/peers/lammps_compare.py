@@ -23,7 +23,10 @@ k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k
 c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
 (gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
 nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
-DemStep default, 0.1 for the gas). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
+DemStep default, 0.1 for the gas). Both decide their ghost copies with a skin and only copy
+them between decisions: LAMMPS always (its ghost cut-off is the pair cut-off plus the neighbour
+skin), Regolith with sync.skin (scenes/README.md), set here to --skin on every Regolith run
+(a later --set sync.skin=... overrides it, e.g. 0 for the paper's per-step Alg. 1). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
 
 --set KEY=VALUE (repeatable) passes a scene override to every Regolith run, e.g.
 --set time.orientation=true: the three scenes leave orientations out by default (as LAMMPS's
@@ -207,7 +210,7 @@ def main():
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
             c = make_case(case, a.box)
-            args = c.regolith_args(a.overrides)
+            args = c.regolith_args([f"sync.skin={a.skin!r}"] + a.overrides)
             dump = os.path.join(tmp, "init.csv")
             regolith(app, c, args, os.path.join(tmp, "init.json"),
                      ["--steps", "0", "--dump", dump])

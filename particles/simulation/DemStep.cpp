@@ -42,7 +42,7 @@ int DemStep::setUp() {
         calls = m_sync->syncUntilConverged(*m_local);
     }
     if (m_config.checkInvariants)
-        requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up");
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
     computeForces(0);
     return calls;
 }
@@ -55,7 +55,7 @@ int DemStep::resume(std::uint64_t stepsDone) {
         calls = m_sync->syncUntilConverged(*m_local);
     }
     if (m_config.checkInvariants)
-        requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume");
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", m_sync->config().skin);
     m_steps = stepsDone;
     return calls;
 }
@@ -104,7 +104,7 @@ void DemStep::syncParticles() {
     // One call per step keeps SOS-class grains converged after set-up.
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true,
-                              "DemStep step " + std::to_string(m_steps + 1));
+                              "DemStep step " + std::to_string(m_steps + 1), m_sync->config().skin);
 }
 
 template <class Model, class Sink>

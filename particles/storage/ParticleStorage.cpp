@@ -33,6 +33,7 @@ void ParticleStorage::forEachArray(F&& f) {
 }
 
 ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
+    touchLayout();
     if (p.uid == kInvalidUid)
         throw core::Error("ParticleStorage::add: invalid uid");
     Index const i = size();
@@ -77,6 +78,7 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
 }
 
 void ParticleStorage::remove(Index i) {
+    touchLayout();
     Index const last = size() - 1;
     m_index.erase(key(i), keyAt());
     if (tracing()) {
@@ -111,6 +113,7 @@ ParticleStorage::Index ParticleStorage::find(Uid uid, CopyImage const& image) co
 void ParticleStorage::setImage(Index i, CopyImage const& image) {
     if (image == m_image[i])
         return;
+    touchLayout();
     // The index confirms keys in m_image: drop the old key first, so that slot i is never
     // listed under two keys at once, then add the new one (or restore the old on failure).
     CopyImage const old = m_image[i];
@@ -129,6 +132,7 @@ void ParticleStorage::setImage(Index i, CopyImage const& image) {
 }
 
 void ParticleStorage::permute(std::span<Index const> newToOld) {
+    touchLayout();
     Index const n = size();
     if (newToOld.size() != n)
         throw core::Error("ParticleStorage::permute: " + std::to_string(newToOld.size()) +
@@ -165,6 +169,7 @@ void ParticleStorage::storeOrientations() {
 }
 
 void ParticleStorage::clear() {
+    touchLayout();
     forEachArray([](auto& v) { v.clear(); });
     m_owners.clear();
     m_lastOwnerSlot = 0;
@@ -189,8 +194,11 @@ std::uint64_t ParticleStorage::startTracing() {
 }
 
 void ParticleStorage::setRadius(Index i, double radius) {
-    if (tracing() && radius != m_radius[i])
-        m_traceBroken = true; // a neighbour list's reach depends on the radii
+    if (radius != m_radius[i]) {
+        touchLayout(); // which blocks need copies depends on the radii
+        if (tracing())
+            m_traceBroken = true; // a neighbour list's reach depends on the radii
+    }
     m_radius[i] = radius;
     updateInverses(i);
 }

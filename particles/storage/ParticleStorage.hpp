@@ -9,6 +9,7 @@
 #include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -209,6 +210,12 @@ public:
     [[nodiscard]] std::span<TraceChange const> traceJournal() const { return m_traceJournal; }
     void clearTraceJournal() { m_traceJournal.clear(); }
 
+    /// A number that changes whenever a copy may have changed index or key (add, remove,
+    /// setImage, permute, clear) or radius, unique among all storages of the process: a
+    /// structure holding indices into this storage (or decisions on its radii) is valid while
+    /// it stays the same.
+    [[nodiscard]] std::uint64_t layoutRevision() const { return m_layoutRevision; }
+
     /// Bytes held by the storage: array capacities, heap of histories and shadow-holder lists,
     /// and an estimate of the uid map (buckets plus one node per entry).
     [[nodiscard]] std::size_t bytes() const;
@@ -262,6 +269,10 @@ private:
     std::vector<TraceChange> m_traceJournal;
     std::uint64_t m_traceSession = 0;
     bool m_traceBroken = false;
+    /// Gives the storage a layout revision no storage had before.
+    void touchLayout() { m_layoutRevision = s_layoutRevisions.fetch_add(1) + 1; }
+    static inline std::atomic<std::uint64_t> s_layoutRevisions{0};
+    std::uint64_t m_layoutRevision = s_layoutRevisions.fetch_add(1) + 1;
 };
 
 } // namespace regolith::particles

@@ -5,7 +5,7 @@
 namespace regolith::particles::sync_detail {
 
 MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& bp, bool spreads,
-                       std::vector<std::uint32_t>& scratch) {
+                       double grow, std::vector<std::uint32_t>& scratch) {
     ParticleStorage const& ps = bp.particles;
     std::uint64_t const id = bp.block->id.raw();
     double const edge = engine.edgeAround(id);
@@ -32,8 +32,9 @@ MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& b
         bool const shadow = f.isShadow();
         bool const flagged = f.has(Flag::Spreads);
         spreadingShadow = spreadingShadow | (shadow & flagged);
-        bool const settled = (r[i] < edge) & holders[i].empty() & (flagged == spreads) &
-                             engine.deepInside(deep, x[i], r[i]);
+        double const reach = r[i] + grow;
+        bool const settled = (reach < edge) & holders[i].empty() & (flagged == spreads) &
+                             engine.deepInside(deep, x[i], reach);
         out[count] = static_cast<std::uint32_t>(i); // kept only if counted: no branch on it
         count += static_cast<std::size_t>(!(shadow | settled));
     }

@@ -58,9 +58,9 @@ struct MasterScan {
 };
 
 /// The first pass over block `bp`; `spreads` is the Flag::Spreads of a settled master (true
-/// for SOS, false for NNS and hybrid). `visit` points into `scratch`, valid until its next
-/// use. Local.
+/// for SOS, false for NNS and hybrid); radii are grown by `grow` (SyncConfig::skin). `visit`
+/// points into `scratch`, valid until its next use. Local.
 MasterScan scanMasters(ParticleSync::Impl const& engine, BlockParticles const& bp, bool spreads,
-                       std::vector<std::uint32_t>& scratch);
+                       double grow, std::vector<std::uint32_t>& scratch);
 
 } // namespace regolith::particles::sync_detail

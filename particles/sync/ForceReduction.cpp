@@ -6,6 +6,7 @@
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncMessages.hpp"
+#include "particles/sync/UpdateList.hpp"
 
 #include <algorithm>
 #include <string>
@@ -63,6 +64,22 @@ void prefetchLocalMaster(ParticleSync::Impl const& engine, LocalParticles const&
         return;
     if (BlockParticles const* master = local.find(owner.block))
         master->particles.prefetchFind(ps.uid(s));
+}
+
+/// Every ParticleSync::kHistoryPruneInterval passes, drops the masters' history entries not
+/// stamped `stamp`. Each history sits at its own heap address, so a few are fetched ahead.
+void pruneMasterHistories(LocalParticles& local, std::uint32_t stamp) {
+    if (stamp % ParticleSync::kHistoryPruneInterval != 0)
+        return;
+    for (BlockParticles& bp : local.blocks()) {
+        ParticleStorage& ps = bp.particles;
+        for (std::size_t i = 0, n = ps.size(); i < n; ++i) {
+            if (i + kAhead < n)
+                ps.history(i + kAhead).prefetch();
+            if (ps.flags(i).isMaster())
+                ps.history(i).keepOnly(stamp);
+        }
+    }
 }
 
 /// Sends each shadow's history entries of this pass (and, unless `records`, its force and
@@ -144,18 +161,7 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
             }
         }
     });
-    // Prune the masters' histories; each sits at its own heap address, so fetch a few ahead.
-    if (stamp % ParticleSync::kHistoryPruneInterval != 0)
-        return contributions;
-    for (BlockParticles& bp : blocks) {
-        ParticleStorage& ps = bp.particles;
-        for (std::size_t i = 0, n = ps.size(); i < n; ++i) {
-            if (i + kAhead < n)
-                ps.history(i + kAhead).prefetch();
-            if (ps.flags(i).isMaster())
-                ps.history(i).keepOnly(stamp);
-        }
-    }
+    pruneMasterHistories(local, stamp);
     return contributions;
 }
 
@@ -163,7 +169,12 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
 
 void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp) {
     core::CommStats stats;
-    exchangeShadowShares(*m_impl, local, nullptr, stamp, stats);
+    // Along the update list if the storages did not change since the last sync (one rank):
+    // the same sums, without looking the masters up.
+    if (m_updateList && m_updateList->reduce(local, stamp))
+        pruneMasterHistories(local, stamp);
+    else
+        exchangeShadowShares(*m_impl, local, nullptr, stamp, stats);
     m_counters.record(stats);
 }
 

@@ -6,6 +6,7 @@
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/SyncInbox.hpp"
 #include "particles/sync/SyncMessages.hpp"
+#include "particles/sync/UpdateList.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -84,6 +85,7 @@ core::SendBuffer& ParticleSync::Impl::out(int rank) {
 ParticleSync::ParticleSync(core::Comm const& comm, domain::BlockForest const& forest,
                            SyncConfig config)
     : m_impl(std::make_unique<Impl>(comm, forest, config))
+    , m_updateList(UpdateList::forConfig(config, comm.size()))
     , m_config(config) {}
 
 ParticleSync::~ParticleSync() = default;
@@ -119,18 +121,20 @@ void prefetchShadowLookups(ParticleSync::Impl const& engine, LocalParticles cons
                 target->particles.prefetchFind(ps.uid(m), h.image);
 }
 
-/// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`.
-/// Returns true if the master leaves this block (transferred or out of the domain).
+/// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`,
+/// an NNS-class ball grown by `grow` (SyncConfig::skin). Returns true if the master leaves this
+/// block (transferred or out of the domain).
 bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParticles& bp,
                    ParticleSync::Impl::LinkGroups const& links, std::size_t i, bool nnsClass,
-                   bool reachable, SyncStats& stats) {
+                   bool reachable, double grow, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
     core::Vec3 const& period = engine.period();
     Uid const uid = ps.uid(i);
     core::Vec3 const x = ps.position(i);
-    double const r = ps.radius(i);
+    // An NNS-class grain's copies are decided for its ball grown by the skin (UpdateList.hpp).
+    double const r = ps.radius(i) + (nnsClass ? grow : 0.0);
 
     // Ownership (Alg. 1 l. 16-24, Alg. 2 l. 4-12): the block whose box holds the centre.
     bool transfer = false;
@@ -268,9 +272,11 @@ bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& 
 
 } // namespace
 
-void ParticleSync::sync(LocalParticles& local) {
+void ParticleSync::syncInFull(LocalParticles& local,
+                              std::span<std::vector<std::uint32_t> const> only) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
+    double const grow = m_config.skin; // NNS-class balls grown by the skin (UpdateList.hpp)
     bool const twoRounds = m_config.method != SyncMethod::NextNeighbour;
     // Whether this rank has copies round 2 (spread) may act on: SOS-class shadows, and
     // SOS-class masters processed below. Shadows and promotions that round 1 brings come from
@@ -288,9 +294,14 @@ void ParticleSync::sync(LocalParticles& local) {
         bp.spreadingMasters.clear();
         // The common case, a small grain deep inside its block with no shadows to update or
         // remove, needs nothing sent (Alg. 1/2 would find no target): the scan leaves it out.
-        MasterScan const scan = scanMasters(engine, bp, spreads, engine.scratchMasters());
-        spreadWork = spreadWork || scan.spreadingShadows;
-        std::span<std::uint32_t const> const visit = scan.visit;
+        std::span<std::uint32_t const> visit;
+        if (only.empty()) {
+            MasterScan const scan = scanMasters(engine, bp, spreads, grow, engine.scratchMasters());
+            spreadWork = spreadWork || scan.spreadingShadows;
+            visit = scan.visit;
+        } else { // the update list's leavers (no SOS-class copy exists then)
+            visit = only[static_cast<std::size_t>(&bp - local.blocks().data())];
+        }
         for (std::size_t n = 0; n < visit.size(); ++n) {
             // Two stages: the holder list's block first, read by the index look-ups after.
             if (n + 2 * kLookAhead < visit.size())
@@ -298,7 +309,7 @@ void ParticleSync::sync(LocalParticles& local) {
             if (n + kLookAhead < visit.size())
                 prefetchShadowLookups(engine, local, ps, visit[n + kLookAhead]);
             std::size_t const i = visit[n];
-            double const r = ps.radius(i);
+            double const r = ps.radius(i) + grow;
             bool const small = r < edge;
             if (small && ps.shadowHolders(i).empty() &&
                 engine.deepInside(deep, ps.position(i), r)) {
@@ -309,7 +320,8 @@ void ParticleSync::sync(LocalParticles& local) {
                 small && withinNeighbourhood(engine, *bp.block, edge, ps.position(i), r);
             if (m_config.method == SyncMethod::NextNeighbour && !reachable) {
                 std::ostringstream msg;
-                msg << "NNS cannot synchronise particle uid " << ps.uid(i) << ": its radius " << r
+                msg << "NNS cannot synchronise particle uid " << ps.uid(i) << ": its radius "
+                    << ps.radius(i) << (grow > 0.0 ? " plus sync.skin" : "")
                     << (small ? " plus its displacement in one step reach" : " is not below")
                     << " the smallest block edge " << edge
                     << " it may touch; set sync.method = \"sos\" or \"hybrid\""
@@ -319,7 +331,7 @@ void ParticleSync::sync(LocalParticles& local) {
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             spreadWork = spreadWork || !nnsClass;
-            if (processMaster(engine, local, bp, links, i, nnsClass, reachable, m_last))
+            if (processMaster(engine, local, bp, links, i, nnsClass, reachable, grow, m_last))
                 leaving.push_back(ps.uid(i));
             else if (twoRounds && !nnsClass && !ps.flags(i).has(Flag::MasterReachesAll) &&
                      !engine.deepInside(deep, ps.position(i), r))
@@ -353,7 +365,7 @@ std::optional<NnsViolation> ParticleSync::findNnsViolation(LocalParticles const&
         double const edge = m_impl->edgeAround(bp.block->id.raw());
         ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
-            if (ps.radius(i) >= edge && (!worst || ps.uid(i) < worst->uid))
+            if (ps.radius(i) + m_config.skin >= edge && (!worst || ps.uid(i) < worst->uid))
                 worst = NnsViolation{ps.uid(i), ps.radius(i), edge};
         });
     }
@@ -374,7 +386,8 @@ void ParticleSync::requireNnsApplicable(LocalParticles const& local) const {
     auto const at = static_cast<std::size_t>(first - uids.begin());
     std::ostringstream msg;
     msg << "sync.method = \"nns\" cannot simulate this scene: particle uid " << *first
-        << " has radius " << radii[at] << ", not below the smallest edge " << edges[at]
+        << " has radius " << radii[at] << (m_config.skin > 0.0 ? " plus sync.skin" : "")
+        << ", not below the smallest edge " << edges[at]
         << " of the blocks it may touch (NNS only reaches next neighbours); use "
         << "sync.method = \"sos\" or \"hybrid\", or larger blocks";
     throw core::InputError(msg.str());

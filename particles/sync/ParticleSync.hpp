@@ -13,10 +13,13 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 namespace regolith::particles {
+
+class UpdateList;
 
 /// What one call did on this rank (for tests, counters and the run summary).
 struct SyncStats {
@@ -27,6 +30,12 @@ struct SyncStats {
     std::uint64_t leftDomain = 0;  ///< masters removed from this rank: they left an open domain
     std::uint64_t duplicates = 0;  ///< creation orders discarded as duplicates (SOS)
     core::CommStats comm;          ///< messages, bytes and peers of this call's exchanges
+    /// The call only copied masters to their shadows along the list of the last refresh
+    /// (SyncConfig::skin, UpdateList.hpp): no decision, no message.
+    bool alongList = false;
+    /// The call ran Alg. 1 only for the masters that left their blocks, and copied along the
+    /// list for the others (SyncConfig::skin).
+    bool leaversOnly = false;
 };
 
 /// A grain too large for NNS, found by `findNnsViolation`.
@@ -48,10 +57,12 @@ public:
 
     /// One synchronisation call with the configured method. Post (NNS-class grains): every
     /// block the grain overlaps holds exactly one copy per overlapping image, no other block
-    /// holds one, masters sit in the block containing their centre. SOS-class grains spread one
-    /// block layer further per call; once converged one call per step keeps all consistent.
-    /// Throws core::Error (one rank; the app aborts) if NNS meets a grain too large for it or
-    /// a message is malformed. COLLECTIVE.
+    /// holds one, masters sit in the block containing their centre. With a skin
+    /// (SyncConfig::skin): every block the grain overlaps holds one, others may hold one within
+    /// r + 2 skin, and most calls only copy along the list of the last refresh (UpdateList).
+    /// SOS-class grains spread one block layer further per call; once converged one call per step
+    /// keeps all consistent. Throws core::Error (one rank; the app aborts) if NNS meets a grain too
+    /// large for it or a message is malformed. COLLECTIVE.
     void sync(LocalParticles& local);
 
     /// Calls sync() until no shadow was created anywhere (at most `maxCalls` calls; one
@@ -101,7 +112,12 @@ public:
     class Impl;
 
 private:
+    /// The synchronisation without the update list (Alg. 1 / 2): for the masters the scan
+    /// picks, or, if `only` is not empty, for the masters only[b] of each local block b.
+    void syncInFull(LocalParticles& local, std::span<std::vector<std::uint32_t> const> only);
+
     std::unique_ptr<Impl> m_impl;
+    std::unique_ptr<UpdateList> m_updateList; ///< with a skin only
     SyncConfig m_config;
     SyncStats m_last;
     core::CommCounters m_counters;

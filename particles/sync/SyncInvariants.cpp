@@ -125,10 +125,12 @@ bool sameBits(core::Quat const& a, core::Quat const& b) {
 /// Rank 0's check of the gathered state.
 class Checker {
 public:
-    Checker(domain::ForestGeometry const& geometry, core::Vec3 const& period, bool converged)
+    Checker(domain::ForestGeometry const& geometry, core::Vec3 const& period, bool converged,
+            double skin)
         : m_geometry(geometry)
         , m_period(period)
-        , m_converged(converged) {}
+        , m_converged(converged)
+        , m_skin(skin) {}
 
     void addBlocks(std::vector<std::pair<std::uint64_t, BlockRecord>> const& blocks) {
         for (auto const& [id, b] : blocks) {
@@ -268,7 +270,8 @@ private:
     void checkPresence(std::string const& u, CopyRecord const& m,
                        std::span<CopyRecord const> group) {
         double const rIn = m.radius * (1.0 - kThresholdTolerance);
-        double const rOut = m.radius * (1.0 + kThresholdTolerance);
+        // With a sync skin a copy may stay while the ball is within r + 2 skin of the block.
+        double const rOut = (m.radius + 2.0 * m_skin) * (1.0 + kThresholdTolerance);
         std::string const grain =
             "the grain at " + vec(m.position) + " with radius " + fmt::format("{:.17g}", m.radius);
         std::vector<std::pair<std::uint64_t, CopyImage>> held;
@@ -345,6 +348,7 @@ private:
     domain::ForestGeometry const& m_geometry;
     core::Vec3 m_period;
     bool m_converged;
+    double m_skin = 0.0;
     std::unordered_map<std::uint64_t, BlockRecord> m_blocks;
     std::unordered_map<std::uint64_t, std::vector<std::uint64_t>> m_byRoot;
     std::vector<std::string> m_listed;
@@ -354,7 +358,7 @@ private:
 } // namespace
 
 std::vector<std::string> checkSyncInvariants(LocalParticles const& local, core::Comm const& comm,
-                                             bool spreadingConverged) {
+                                             bool spreadingConverged, double skin) {
     if (comm.size() != local.forest().rankCount())
         throw core::Error("checkSyncInvariants: the communicator has " +
                           std::to_string(comm.size()) + " ranks, the forest " +
@@ -371,7 +375,7 @@ std::vector<std::string> checkSyncInvariants(LocalParticles const& local, core::
         std::vector<std::pair<std::uint64_t, BlockRecord>> blocks;
         for (std::size_t r = 0; r < gathered.size(); ++r)
             unpackRank(static_cast<int>(r), gathered[r], copies, blocks);
-        Checker checker(forest.geometry(), period, spreadingConverged);
+        Checker checker(forest.geometry(), period, spreadingConverged, skin);
         checker.addBlocks(blocks);
         checker.run(copies);
         core::SendBuffer b;
@@ -387,8 +391,8 @@ std::vector<std::string> checkSyncInvariants(LocalParticles const& local, core::
 }
 
 void requireSyncInvariants(LocalParticles const& local, core::Comm const& comm,
-                           bool spreadingConverged, std::string_view where) {
-    auto const violations = checkSyncInvariants(local, comm, spreadingConverged);
+                           bool spreadingConverged, std::string_view where, double skin) {
+    auto const violations = checkSyncInvariants(local, comm, spreadingConverged, skin);
     if (violations.empty())
         return;
     std::string msg = fmt::format("synchronisation invariants violated ({}):", where);

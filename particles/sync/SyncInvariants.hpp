@@ -39,8 +39,10 @@ inline constexpr std::size_t kMaxListedViolations = 100;
 ///     image) where shadows of it exist (both directions);
 ///  5. every (block, image) of the forest where copyNeeded() holds for a master's canonical
 ///     position and radius holds exactly one copy (the master or a shadow), and no block holds
-///     a copy where copyNeeded() is false. Images are enumerated from the ball's extent on
-///     periodic axes (so a block that is its own periodic neighbour is covered).
+///     a copy where copyNeeded() is false -- for the radius plus twice `skin`, the sync skin
+///     (SyncConfig::skin, UpdateList.hpp), under which a copy may outlive its need. Images are
+///     enumerated from the ball's extent on periodic axes (so a block that is its own periodic
+///     neighbour is covered).
 ///
 /// Check 5 is exact for grains without Flag::Spreads (NNS class: Alg. 1 of Eibl & Ruede 2018
 /// leaves no missing or stale copy after each call). For Flag::Spreads grains (SOS class,
@@ -53,13 +55,15 @@ inline constexpr std::size_t kMaxListedViolations = 100;
 /// COLLECTIVE over `comm`, which must be the communicator of `local.forest()`'s ranks (any
 /// duplicate of it): throws core::Error on every rank if its size differs from the forest's
 /// rank count, core::BufferError on a corrupt gather (a bug).
-[[nodiscard]] std::vector<std::string>
-checkSyncInvariants(LocalParticles const& local, core::Comm const& comm, bool spreadingConverged);
+[[nodiscard]] std::vector<std::string> checkSyncInvariants(LocalParticles const& local,
+                                                           core::Comm const& comm,
+                                                           bool spreadingConverged,
+                                                           double skin = 0.0);
 
 /// checkSyncInvariants(); throws core::Error on every rank (same text: `where`, then the
 /// violations one per line) if any is found. COLLECTIVE over `comm`.
 void requireSyncInvariants(LocalParticles const& local, core::Comm const& comm,
-                           bool spreadingConverged, std::string_view where);
+                           bool spreadingConverged, std::string_view where, double skin = 0.0);
 
 /// The hook for the time step in checking builds: after each `sync.sync(local)` (and after
 /// syncUntilConverged at set-up) the step loop calls

@@ -28,6 +28,14 @@ struct SyncConfig {
     /// Sum contact forces on masters in a canonical order (by partner uid), so that results
     /// are bitwise identical for any rank count and block layout (DESIGN.md).
     bool reproducible = false;
+    /// Shadow skin [length], 0: off. When > 0, NNS-class shadows are decided for the ball
+    /// grown by the skin, and between two such decisions the masters only copy their state to
+    /// the shadows they have, along a list fixed at the decision, instead of running Alg. 1
+    /// every step; masters that leave their blocks are decided alone. All are decided again
+    /// when some master moved a skin, or a storage changed. The shadows are then a superset of
+    /// Alg. 1's (copies within r + 2 skin), never fewer (UpdateList.hpp). One rank, method
+    /// "nns" or "hybrid".
+    double skin = 0.0;
 };
 
 } // namespace regolith::particles

@@ -77,8 +77,11 @@ set(refined "--set domain.refine=[{min=[0,0,0],max=[4,4,4],level=1}]")
 
 # a) Sparse gas: grains collide and cross block, rank and periodic boundaries; walls in z.
 #    Every method (small grains only: NNS applies) must give the same trajectory.
+#    With a sync skin (one rank; the list of shadows fixed between refreshes, UpdateList.hpp)
+#    the trajectory is the same too: 64 blocks and one block, hybrid and NNS.
+set(skin "--set sync.skin=0.2")
 regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
-  NP1 base ${one_block}                                                # 64, 1
+  NP1 base ${one_block} ${skin} "${one_block} ${skin} --set sync.method=nns" # 64, 1
   NP2 base "--set domain.blocks=[2,2,1]"                               # 32, 2
   NP3 base "--set domain.blocks=[4,3,2]"                               # 21-22, 8
   NP4 "--set sync.method=nns" ${refined}                               # 16 NNS, refined
@@ -87,7 +90,7 @@ regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
 # b) Dense packing under gravity between z walls: long-lived contacts, whose tangential
 #    springs travel with the grains.
 regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
-  NP1 base ${one_block}
+  NP1 base ${one_block} "--set sync.skin=0.1"
   NP2 base "--set domain.blocks=[2,2,1]"
   NP3 base "--set domain.blocks=[4,3,2]"
   NP4 "--set sync.method=sos" ${refined}
@@ -99,7 +102,7 @@ regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
 set(bidisperse_refined
     "--set domain.blocks=[4,4,4] --set domain.refine=[{min=[45,15,15],max=[60,45,45],level=1}]")
 regolith_sync_equality(bidisperse_hybrid SCENE sync-bidisperse.toml FINAL "0 x < 5"
-  NP1 base ${one_block}                                                # 512, 1
+  NP1 base ${one_block} ${skin} # 512, 1; skin: grown NNS-class balls, no list (SOS present)
   NP2 base "--set domain.blocks=[2,2,1]"                               # 256, 2
   NP3 base "--set domain.blocks=[4,3,2]"                               # 170-171, 8
   NP4 base ${bidisperse_refined}                                       # 128, refined

@@ -1,0 +1,157 @@
+// The sync skin (SyncConfig::skin, particles/sync/UpdateList.hpp): shadows decided for balls
+// grown by the skin, then copied along a fixed list until a master moved a skin or left its
+// block. A random gas drifts through a forest of 2x2x2 blocks on one rank, periodic and open:
+// every copy Alg. 1 needs exists after every call (the invariants with the skin's tolerance),
+// the list carries most calls, masters that cross a block face are handled alone, forces go
+// back to the masters along the list, and a storage change ends the list. On more ranks, and
+// with SOS, a skin is refused on every rank.
+#include "tests/particles/sync/SyncTestUtil.hpp"
+
+#include <map>
+#include <sstream>
+
+using namespace regolith::particles;
+using namespace regolith::particles::synctest;
+using regolith::core::InputError;
+
+namespace {
+
+constexpr double kSkin = 0.3;
+
+struct Forest {
+    Comm world;
+    AABB domain{Vec3::Zero(), Vec3(8, 8, 8)};
+    domain::BlockForest forest;
+    explicit Forest(bool periodic)
+        : forest(world, forestSpec(domain.min, domain.max, {2, 2, 2}, allAxes(periodic))) {}
+};
+
+struct Calls {
+    int alongList = 0;
+    int leaversOnly = 0;
+    int full = 0;
+    void count(SyncStats const& s) {
+        alongList += s.alongList ? 1 : 0;
+        leaversOnly += s.leaversOnly ? 1 : 0;
+        full += !s.alongList && !s.leaversOnly ? 1 : 0;
+    }
+};
+
+/// Sets the gas up with a skin; the invariants must hold with the skin's tolerance but not
+/// without it (some shadow exists only for the grown ball).
+void setUp(Forest& f, LocalParticles& local, ParticleSync& sync, std::string const& where) {
+    addAll(local, f.world, randomGas(f.domain, 120, 0.2, 0.6, 1.0, 11));
+    sync.requireNnsApplicable(local);
+    sync.syncUntilConverged(local);
+    auto v = checkSyncInvariants(local, f.world, true, kSkin);
+    EXPECT_TRUE(v.empty()) << where << " after set-up" << joined(v);
+    EXPECT_FALSE(checkSyncInvariants(local, f.world, true, 0.0).empty())
+        << where << ": no shadow for the grown balls only";
+}
+
+TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
+    if (Comm().size() != 1)
+        GTEST_SKIP() << "a sync skin needs one rank";
+    for (bool periodic : {true, false})
+        for (SyncMethod method : {SyncMethod::NextNeighbour, SyncMethod::Hybrid}) {
+            std::string const where =
+                methodName(method) + (periodic ? " periodic" : " open") + " 2x2x2";
+            Forest f(periodic);
+            LocalParticles local(f.forest);
+            ParticleSync sync(f.world, f.forest, SyncConfig{method, false, kSkin});
+            setUp(f, local, sync, where);
+            Calls calls;
+            for (int step = 1; step <= 60; ++step) {
+                drift(local, 0.02); // at most 0.035 per step: a list lasts several steps
+                sync.sync(local);
+                calls.count(sync.lastStats());
+                auto const v = checkSyncInvariants(local, f.world, true, kSkin);
+                ASSERT_TRUE(v.empty()) << where << " step " << step << joined(v);
+            }
+            EXPECT_GT(calls.alongList, 10) << where;
+            EXPECT_GT(calls.full, 0) << where << ": never refreshed";
+            if (periodic) { // an open domain loses the grains that cross its faces: full calls
+                EXPECT_GT(calls.leaversOnly, 0) << where;
+            }
+        }
+}
+
+TEST(UpdateList, ForcesReachTheMastersAlongTheList) {
+    if (Comm().size() != 1)
+        GTEST_SKIP() << "a sync skin needs one rank";
+    Forest f(true);
+    LocalParticles local(f.forest);
+    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::NextNeighbour, false, kSkin});
+    setUp(f, local, sync, "nns periodic");
+    drift(local, 0.001);
+    sync.sync(local);
+    ASSERT_TRUE(sync.lastStats().alongList);
+    // Every copy gets a force of its own, a multiple of (1, 2, 3) by 1 + (uid mod 7) for
+    // shadows and zero for masters: afterwards a master holds the sum over its shadows.
+    std::map<Uid, Vec3> expected, expectedTorque;
+    std::size_t shadows = 0;
+    for (BlockParticles& bp : local.blocks()) {
+        bp.particles.resetForces();
+        for (std::size_t i = 0; i < bp.particles.size(); ++i) {
+            Uid const uid = bp.particles.uid(i);
+            expected.try_emplace(uid, Vec3::Zero());
+            expectedTorque.try_emplace(uid, Vec3::Zero());
+            if (!bp.particles.flags(i).isShadow())
+                continue;
+            Vec3 const share = static_cast<double>(1 + uid % 7) * Vec3(1, 2, 3);
+            bp.particles.force(i) = share;
+            bp.particles.torque(i) = -share;
+            expected[uid] += share;
+            expectedTorque[uid] += -share;
+            ++shadows;
+        }
+    }
+    ASSERT_GT(shadows, 10u);
+    sync.reduceForces(local, 1);
+    for (BlockParticles& bp : local.blocks())
+        for (std::size_t i = 0; i < bp.particles.size(); ++i) {
+            Uid const uid = bp.particles.uid(i);
+            if (bp.particles.flags(i).isShadow()) {
+                EXPECT_TRUE(bp.particles.force(i).isZero(0.0)) << "shadow of uid " << uid;
+                continue;
+            }
+            EXPECT_TRUE(sameBits(bp.particles.force(i), expected[uid])) << "uid " << uid;
+            EXPECT_TRUE(sameBits(bp.particles.torque(i), expectedTorque[uid])) << "uid " << uid;
+        }
+}
+
+TEST(UpdateList, AStorageChangeEndsTheList) {
+    if (Comm().size() != 1)
+        GTEST_SKIP() << "a sync skin needs one rank";
+    Forest f(true);
+    LocalParticles local(f.forest);
+    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
+    setUp(f, local, sync, "hybrid periodic");
+    sync.sync(local);
+    ASSERT_TRUE(sync.lastStats().alongList);
+    // A grain added next to a block face (x = 4): its copies come from the full algorithm.
+    ASSERT_TRUE(local.addMaster(grain(makeUid(5, 0), Vec3(3.9, 2.0, 2.0), 0.3)));
+    sync.sync(local);
+    EXPECT_FALSE(sync.lastStats().alongList);
+    EXPECT_GT(sync.lastStats().created, 0u);
+    auto const v = checkSyncInvariants(local, f.world, true, kSkin);
+    EXPECT_TRUE(v.empty()) << joined(v);
+}
+
+TEST(UpdateList, ASkinIsRefusedOnSeveralRanksAndWithSos) {
+    Forest f(true);
+    auto refused = [&](SyncConfig const& c, std::string const& expect) {
+        try {
+            ParticleSync sync(f.world, f.forest, c);
+            ADD_FAILURE() << "accepted: " << expect;
+        } catch (InputError const& e) {
+            EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+        }
+    };
+    refused(SyncConfig{SyncMethod::ShadowOwner, false, kSkin}, "sync.skin applies to NNS-class");
+    refused(SyncConfig{SyncMethod::Hybrid, false, -1.0}, "sync.skin must be");
+    if (f.world.size() > 1)
+        refused(SyncConfig{SyncMethod::Hybrid, false, kSkin}, "sync.skin needs one rank");
+}
+
+} // namespace
