@@ -13,6 +13,8 @@
 #include <random>
 #include <vector>
 
+#include "bench/particles/OneMaterial.hpp"
+
 namespace {
 
 using namespace regolith::particles;
@@ -41,12 +43,7 @@ void springDashpotBatch(benchmark::State& state) {
             ps.add(p);
         }
     }
-    LinearContactParams params;
-    params.stiffness = 2000.0;
-    params.tangentialStiffness = 2.0 / 7.0 * params.stiffness;
-    params.restitution = 0.5;
-    params.friction = 0.5;
-    SpringDashpot const model(MaterialTable<LinearContactParams>(1, params));
+    SpringDashpot const model = regolith::bench::oneMaterialSpringDashpot(2000.0, 0.5, 0.5);
     // Springs: the sticking half small, the sliding half far beyond mu F_n / k_t.
     std::vector<HistoryEntry> entries(kContacts);
     for (std::size_t k = 0; k < kContacts; ++k)

@@ -21,6 +21,8 @@
 #include <string>
 #include <sys/resource.h>
 
+#include "bench/particles/OneMaterial.hpp"
+
 namespace {
 
 using namespace regolith::particles;
@@ -69,12 +71,7 @@ ParticleStorage latticeScene(int n, double bigRadius) {
 }
 
 SpringDashpot model() {
-    LinearContactParams p;
-    p.stiffness = 1e3;
-    p.tangentialStiffness = 2.0 / 7.0 * p.stiffness;
-    p.restitution = 0.9;
-    p.friction = 0.5;
-    return SpringDashpot(MaterialTable<LinearContactParams>(1, p));
+    return regolith::bench::oneMaterialSpringDashpot(1e3, 0.9, 0.5);
 }
 
 std::map<std::string, double> g_nsPerParticleStep; // filled by the scene benchmarks

@@ -22,6 +22,8 @@
 #include <random>
 #include <vector>
 
+#include "bench/particles/OneMaterial.hpp"
+
 namespace {
 
 using namespace regolith::particles;
@@ -73,12 +75,7 @@ Lattice lattice(int n, double r, bool moving) {
 
 void scalarPairLoop(benchmark::State& state) {
     Lattice l = lattice(30, 0.6, state.range(0) != 0);
-    LinearContactParams p;
-    p.stiffness = 50.0;
-    p.tangentialStiffness = 2.0 / 7.0 * p.stiffness;
-    p.restitution = 0.9;
-    p.friction = 0.5;
-    SpringDashpot const model(MaterialTable<LinearContactParams>(1, p));
+    SpringDashpot const model = regolith::bench::oneMaterialSpringDashpot(50.0, 0.9, 0.5);
     double const dt = 0.01;
     std::vector<Vec3> spring(l.neighbour.size(), Vec3::Zero());
     std::size_t const grains = l.x.size();
