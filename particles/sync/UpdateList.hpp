@@ -43,8 +43,6 @@ public:
     /// `budget` from its reference before the list stops holding. Leaves the list invalid if
     /// some copy is SOS class (Flag::Spreads) or some shadow's master is not on rank `rank`.
     void rebuild(LocalParticles const& local, int rank, double budget);
-    void invalidate() { m_valid = false; }
-    [[nodiscard]] bool valid() const { return m_valid; }
 
     enum class Verdict {
         Holds,   ///< every master within the budget of its reference and inside its block
@@ -63,7 +61,7 @@ public:
     [[nodiscard]] double budgetLeft() const { return m_budget - m_largestMove; }
 
     /// Copies every master's state to its shadows, as Alg. 1's update does; returns the number
-    /// of shadows updated. Pre: holds().
+    /// of shadows updated. Pre: check() said Holds or Leavers, and no storage changed since.
     std::size_t update(LocalParticles& local) const;
 
     /// ParticleSync::reduceForces' in-place path along the list: adds every shadow's force and
