@@ -27,15 +27,6 @@ struct Contribution {
     core::Vec3 torque = core::Vec3::Zero();
 };
 
-/// The history entries of copy i evaluated in this pass, into `out` (reused between copies).
-void touched(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
-             std::vector<HistoryEntry>& out) {
-    out.clear();
-    for (HistoryEntry const& e : ps.history(i))
-        if (e.stamp == stamp)
-            out.push_back(e);
-}
-
 std::size_t masterIndex(LocalParticles& local, std::uint64_t block, Uid uid, std::size_t& b) {
     auto const blocks = local.blocks();
     for (b = 0; b < blocks.size(); ++b)
@@ -96,7 +87,7 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
         forEachWithFlags<kShadow>(ps.allFlags(), [&](std::size_t i) {
             if (records == nullptr)
                 prefetchLocalMaster(engine, local, ps, i + kAhead);
-            touched(ps, i, stamp, hist);
+            touchedEntries(ps, i, stamp, hist);
             bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
             if (hist.empty() && (records != nullptr || !hasForce))
                 return;
@@ -106,13 +97,7 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
                 // mode sends no forces here, only history, and keeps one path for it.)
                 std::size_t ob = 0;
                 std::size_t const m = masterIndex(local, owner.block, ps.uid(i), ob);
-                ParticleStorage& master = blocks[ob].particles;
-                master.force(m) += ps.force(i);
-                master.torque(m) += ps.torque(i);
-                for (HistoryEntry const& e : hist)
-                    master.history(m).set(e);
-                ps.force(i).setZero();
-                ps.torque(i).setZero();
+                addShadowShare(ps, i, hist, blocks[ob].particles, m);
                 return;
             }
             core::SendBuffer& out = engine.out(owner.rank);

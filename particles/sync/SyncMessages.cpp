@@ -73,4 +73,24 @@ void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
         to.history(k).assign(from.history(i).entries());
 }
 
+void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
+                    std::vector<HistoryEntry>& out) {
+    out.clear();
+    for (HistoryEntry const& e : ps.history(i))
+        if (e.stamp == stamp)
+            out.push_back(e);
+}
+
+void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry const> entries,
+                    ParticleStorage& master, std::size_t m) {
+    if (entries.empty() && ps.force(i).isZero(0.0) && ps.torque(i).isZero(0.0))
+        return;
+    master.force(m) += ps.force(i);
+    master.torque(m) += ps.torque(i);
+    for (HistoryEntry const& e : entries)
+        master.history(m).set(e);
+    ps.force(i).setZero();
+    ps.torque(i).setZero();
+}
+
 } // namespace regolith::particles::sync_detail

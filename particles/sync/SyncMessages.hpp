@@ -5,6 +5,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace regolith::particles {
@@ -77,5 +78,14 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u);
 /// image, without the buffer: copy k of `to` gets master i's state with `position` and `owner`.
 void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
                 BlockRef owner, ParticleStorage& to, std::size_t k);
+
+/// The history entries of copy i of `ps` stamped `stamp` (evaluated in this pass), into `out`.
+void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
+                    std::vector<HistoryEntry>& out);
+/// What a Force record does on arrival, for a shadow on this rank: adds shadow i's force and
+/// torque and `entries` (touchedEntries) to master m of `master` and zeroes the shadow's force
+/// and torque -- unless there is nothing to add (no entry, zero force and torque).
+void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry const> entries,
+                    ParticleStorage& master, std::size_t m);
 
 } // namespace regolith::particles::sync_detail

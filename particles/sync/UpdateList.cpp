@@ -143,24 +143,13 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp) const {
     if (!unchanged(local))
         return false;
     auto blocks = local.blocks();
+    std::vector<HistoryEntry> entries;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         ParticleStorage& ps = blocks[b].particles;
         for (Shadow const& s : m_blocks[b].shadows) {
-            std::size_t const i = s.index;
-            ParticleStorage& master = blocks[s.masterBlock].particles;
-            bool touched = false;
-            for (HistoryEntry const& e : ps.history(i))
-                if (e.stamp == stamp) {
-                    master.history(s.master).set(e);
-                    touched = true;
-                }
-            // As the reduction without the list: nothing added from a shadow without a share.
-            if (!touched && ps.force(i).isZero(0.0) && ps.torque(i).isZero(0.0))
-                continue;
-            master.force(s.master) += ps.force(i);
-            master.torque(s.master) += ps.torque(i);
-            ps.force(i).setZero();
-            ps.torque(i).setZero();
+            sync_detail::touchedEntries(ps, s.index, stamp, entries);
+            sync_detail::addShadowShare(ps, s.index, entries, blocks[s.masterBlock].particles,
+                                        s.master);
         }
     }
     return true;

@@ -37,17 +37,24 @@ struct Calls {
     }
 };
 
-/// Sets the gas up with a skin; the invariants must hold with the skin's tolerance but not
-/// without it (some shadow exists only for the grown ball).
-void setUp(Forest& f, LocalParticles& local, ParticleSync& sync, std::string const& where) {
-    addAll(local, f.world, randomGas(f.domain, 120, 0.2, 0.6, 1.0, 11));
-    sync.requireNnsApplicable(local);
-    sync.syncUntilConverged(local);
-    auto v = checkSyncInvariants(local, f.world, true, kSkin);
-    EXPECT_TRUE(v.empty()) << where << " after set-up" << joined(v);
-    EXPECT_FALSE(checkSyncInvariants(local, f.world, true, 0.0).empty())
-        << where << ": no shadow for the grown balls only";
-}
+/// A random gas on Forest, set up with a skin: the invariants must hold with the skin's
+/// tolerance but not without it (some shadow exists only for the grown ball).
+struct SkinnedGas : Forest {
+    LocalParticles local;
+    ParticleSync sync;
+    SkinnedGas(bool periodic, SyncMethod method, std::string const& where)
+        : Forest(periodic)
+        , local(forest)
+        , sync(world, forest, SyncConfig{method, false, kSkin}) {
+        addAll(local, world, randomGas(domain, 120, 0.2, 0.6, 1.0, 11));
+        sync.requireNnsApplicable(local);
+        sync.syncUntilConverged(local);
+        auto v = checkSyncInvariants(local, world, true, kSkin);
+        EXPECT_TRUE(v.empty()) << where << " after set-up" << joined(v);
+        EXPECT_FALSE(checkSyncInvariants(local, world, true, 0.0).empty())
+            << where << ": no shadow for the grown balls only";
+    }
+};
 
 TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
     if (Comm().size() != 1)
@@ -56,16 +63,15 @@ TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
         for (SyncMethod method : {SyncMethod::NextNeighbour, SyncMethod::Hybrid}) {
             std::string const where =
                 methodName(method) + (periodic ? " periodic" : " open") + " 2x2x2";
-            Forest f(periodic);
-            LocalParticles local(f.forest);
-            ParticleSync sync(f.world, f.forest, SyncConfig{method, false, kSkin});
-            setUp(f, local, sync, where);
+            SkinnedGas g(periodic, method, where);
+            LocalParticles& local = g.local;
+            ParticleSync& sync = g.sync;
             Calls calls;
             for (int step = 1; step <= 60; ++step) {
                 drift(local, 0.02); // at most 0.035 per step: a list lasts several steps
                 sync.sync(local);
                 calls.count(sync.lastStats());
-                auto const v = checkSyncInvariants(local, f.world, true, kSkin);
+                auto const v = checkSyncInvariants(local, g.world, true, kSkin);
                 ASSERT_TRUE(v.empty()) << where << " step " << step << joined(v);
             }
             EXPECT_GT(calls.alongList, 10) << where;
@@ -79,10 +85,9 @@ TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
 TEST(UpdateList, ForcesReachTheMastersAlongTheList) {
     if (Comm().size() != 1)
         GTEST_SKIP() << "a sync skin needs one rank";
-    Forest f(true);
-    LocalParticles local(f.forest);
-    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::NextNeighbour, false, kSkin});
-    setUp(f, local, sync, "nns periodic");
+    SkinnedGas g(true, SyncMethod::NextNeighbour, "nns periodic");
+    LocalParticles& local = g.local;
+    ParticleSync& sync = g.sync;
     drift(local, 0.001);
     sync.sync(local);
     ASSERT_TRUE(sync.lastStats().alongList);
@@ -123,10 +128,9 @@ TEST(UpdateList, ForcesReachTheMastersAlongTheList) {
 TEST(UpdateList, AStorageChangeEndsTheList) {
     if (Comm().size() != 1)
         GTEST_SKIP() << "a sync skin needs one rank";
-    Forest f(true);
-    LocalParticles local(f.forest);
-    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
-    setUp(f, local, sync, "hybrid periodic");
+    SkinnedGas g(true, SyncMethod::Hybrid, "hybrid periodic");
+    LocalParticles& local = g.local;
+    ParticleSync& sync = g.sync;
     sync.sync(local);
     ASSERT_TRUE(sync.lastStats().alongList);
     // A grain added next to a block face (x = 4): its copies come from the full algorithm.
@@ -134,7 +138,7 @@ TEST(UpdateList, AStorageChangeEndsTheList) {
     sync.sync(local);
     EXPECT_FALSE(sync.lastStats().alongList);
     EXPECT_GT(sync.lastStats().created, 0u);
-    auto const v = checkSyncInvariants(local, f.world, true, kSkin);
+    auto const v = checkSyncInvariants(local, g.world, true, kSkin);
     EXPECT_TRUE(v.empty()) << joined(v);
 }
 
