@@ -157,9 +157,10 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
                            frame.domain.min == m_listFrame.domain.min &&
                            frame.domain.max == m_listFrame.domain.max &&
                            frame.periodic == m_listFrame.periodic;
+    double const moved = std::exchange(m_movedAtMost, std::numeric_limits<double>::infinity());
     bool rebuild = !sameFrame || !m_list.follow(ps, m_fresh) ||
                    m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
-                   m_list.movedTooFar(ps) || !addArrivals(ps, region, frame);
+                   m_list.movedTooFar(ps, moved) || !addArrivals(ps, region, frame);
     if (rebuild)
         rebuildList(ps, region, frame);
     m_stats.rebuilt = rebuild;

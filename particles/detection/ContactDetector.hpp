@@ -17,6 +17,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -154,6 +155,12 @@ public:
         detect(particles, walls, evaluationRegion, PeriodicFrame{}, out);
     }
 
+    /// Tells the next mutable detect that no copy moved more than `distance` since the
+    /// previous one (the integrator's largest move, DemStep::step), so that the Verlet list
+    /// need not compare every position with its reference (VerletList::movedTooFar). Without
+    /// a note the positions are compared. The bound must hold, or contacts go missing.
+    void noteMotion(double distance) { m_movedAtMost = distance; }
+
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
     /// then the large ones: a permutation for ParticleStorage::permute that puts neighbours
     /// next to each other in memory. Valid until the storage changes.
@@ -210,6 +217,7 @@ private:
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
     double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
+    double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect
     core::AABB m_listRegion;   ///< the region the list's pairs were settled for
     PeriodicFrame m_listFrame; ///< and the frame
 };

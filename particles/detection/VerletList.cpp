@@ -14,6 +14,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_session = ps.startTracing();
     m_storage = &ps;
     m_skin = skin;
+    m_moved = 0.0;
     m_built = ps.size();
     m_pairs.clear();
     m_owned = 0;
@@ -92,21 +93,31 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
     return true;
 }
 
-bool VerletList::movedTooFar(ParticleStorage const& ps) const {
+bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
     // Within skin / 2 of the true reference if within skin / 2 - slack of the stored one.
     double const half = 0.5 * m_skin - m_referenceSlack;
     if (!(half > 0.0))
         return true;
-    double const limit = half * half;
+    // The bound is on the true positions; the slack also covers a shadow's rounding when its
+    // master's position is shifted by a period (a few ulps, not growing with the steps), and
+    // the relative 1e-9 the rounding of the sum.
+    m_moved += movedAtMost >= 0.0 ? movedAtMost : std::numeric_limits<double>::infinity();
+    if (m_moved * (1.0 + 1e-9) < half)
+        return false;
     auto const& x = ps.positions();
-    bool far = false; // no early exit: the loop stays branch-free
+    double largest = 0.0;
+    bool finite = true;
     for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
         Reference const& r = m_reference[ps.traceTag(k)];
         core::Vec3 const d =
             (x[k] - m_origin) - core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
-        far |= !(d.squaredNorm() < limit); // NaN too
+        double const d2 = d.squaredNorm();
+        finite = finite & !std::isnan(d2); // no early exit: the loop stays branch-free
+        largest = std::max(largest, d2);
     }
-    return far;
+    double const moved = std::sqrt(largest);
+    m_moved = moved + m_referenceSlack;
+    return !finite || !(moved < half);
 }
 
 std::size_t VerletList::bytes() const {

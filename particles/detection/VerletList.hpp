@@ -99,9 +99,13 @@ public:
     /// one now (their pairs are the caller's to add, addPair with idOf()). Not collective.
     bool follow(ParticleStorage& ps, std::vector<std::size_t>& fresh);
 
-    /// Whether some copy moved skin / 2 or more from its reference position (or is not
-    /// finite): the list may then miss a pair and must be rebuilt. O(N). Pre: follow() true.
-    [[nodiscard]] bool movedTooFar(ParticleStorage const& ps) const;
+    /// Whether some copy may have moved skin / 2 or more from its reference position (or is
+    /// not finite): the list may then miss a pair and must be rebuilt. `movedAtMost` bounds
+    /// every copy's displacement since the last call (+inf if unknown): the bounds add up
+    /// (triangle inequality), and only once their sum reaches skin / 2 are the positions
+    /// compared, O(N), which resets the sum to the largest displacement found. Pre: follow()
+    /// true.
+    [[nodiscard]] bool movedTooFar(ParticleStorage const& ps, double movedAtMost);
 
     [[nodiscard]] static Id idOf(ParticleStorage const& ps, std::size_t index) {
         return ps.traceTag(index);
@@ -145,6 +149,7 @@ private:
     ParticleStorage const* m_storage = nullptr;
     std::uint64_t m_session = 0;
     double m_skin = 0.0;
+    double m_moved = 0.0; ///< bound on every copy's distance from its reference (movedTooFar)
     std::size_t m_built = 0;
     std::size_t m_owned = 0;
     std::vector<std::array<Id, 2>> m_pairs;

@@ -17,9 +17,11 @@ struct VelocityVerlet {
 
     /// Half kick with the old forces, then drift: v += dt/2 (F/m + g); x += dt v;
     /// omega += dt/2 tau / I; q rotated by omega dt (if `orientation`).
-    void preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+    /// Returns the largest distance a copy moved (Integrator).
+    double preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
     /// Second half kick with the new forces: v += dt/2 (F/m + g); omega += dt/2 tau / I.
-    void postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+    /// Returns 0: nothing moves here.
+    double postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
 };
 
 static_assert(Integrator<VelocityVerlet>);

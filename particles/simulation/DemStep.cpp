@@ -4,6 +4,7 @@
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -44,6 +45,7 @@ int DemStep::setUp() {
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
     computeForces(0);
+    m_moved = 0.0;
     return calls;
 }
 
@@ -57,6 +59,7 @@ int DemStep::resume(std::uint64_t stepsDone) {
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", m_sync->config().skin);
     m_steps = stepsDone;
+    m_moved = std::numeric_limits<double>::infinity(); // the first detect compares positions
     return calls;
 }
 
@@ -67,8 +70,10 @@ void DemStep::step() {
         auto const t = m_timers->scope(kIntegrateTimer);
         std::visit(
             [&](auto const& integrator) {
+                double moved = 0.0; // the largest over the blocks (+inf wins)
                 for (BlockParticles& bp : m_local->blocks())
-                    integrator.preForce(bp.particles, dt, g);
+                    moved = std::max(moved, integrator.preForce(bp.particles, dt, g));
+                m_moved += moved;
             },
             m_integrator);
     }
@@ -79,8 +84,10 @@ void DemStep::step() {
         auto const t = m_timers->scope(kIntegrateTimer);
         std::visit(
             [&](auto const& integrator) {
+                double moved = 0.0; // the largest over the blocks (+inf wins)
                 for (BlockParticles& bp : m_local->blocks())
-                    integrator.postForce(bp.particles, dt, g);
+                    moved = std::max(moved, integrator.postForce(bp.particles, dt, g));
+                m_moved += moved;
             },
             m_integrator);
     }
@@ -98,8 +105,14 @@ void DemStep::releaseWorkspace() {
 void DemStep::syncParticles() {
     {
         auto const t = m_timers->scope(kSyncTimer);
-        m_sync->sync(*m_local);
+        m_sync->sync(*m_local, m_moved);
         m_leftDomain += m_sync->lastStats().leftDomain;
+        // The detectors' bound covers the copies of other ranks' masters too.
+        if (m_comm->size() > 1)
+            m_moved = m_comm->allReduce(m_moved, core::ReduceOp::Max);
+        for (ContactDetector& d : m_detectors)
+            d.noteMotion(m_moved);
+        m_moved = 0.0;
     }
     // One call per step keeps SOS-class grains converged after set-up.
     if (m_config.checkInvariants)

@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string_view>
@@ -73,6 +74,14 @@ struct DemStepConfig {
 /// ascending partner uid, so that the trajectory does not depend on the number of ranks or
 /// blocks (DESIGN.md, "Reproducible mode"); otherwise forces are accumulated in place and the
 /// shadows' shares added to the masters.
+///
+/// Between two sync calls only the integrator moves masters (the caller must not move
+/// grains between steps; resume() and setUp() start afresh): the largest distance it moved a
+/// copy (Integrator) bounds every master's displacement, and every shadow's (a copy of its
+/// master, shifted by a period), so the sync skin and the Verlet lists are told that bound
+/// instead of comparing every position with their references each step. On more than one rank
+/// the bound is the largest over all ranks (one all-reduce of a double per step: a block's
+/// shadows may have their masters elsewhere), as LAMMPS's Neighbor::decide does.
 ///
 /// With DemStepConfig::checkInvariants (the default in builds with REGOLITH_CHECK_INVARIANTS)
 /// the synchronisation invariants are checked over all ranks after every sync call, where
@@ -174,6 +183,9 @@ private:
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
     std::unique_ptr<SpringDashpotBatch> m_batch;     ///< the spring-dashpot lanes, reused
     BodyForces m_bodyForces;
+    /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
+    /// unknown, before the first step).
+    double m_moved = std::numeric_limits<double>::infinity();
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
 };

@@ -11,6 +11,7 @@
 #include "particles/sync/SyncMethod.hpp"
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -63,7 +64,11 @@ public:
     /// SOS-class grains spread one block layer further per call; once converged one call per step
     /// keeps all consistent. Throws core::Error (one rank; the app aborts) if NNS meets a grain too
     /// large for it or a message is malformed. COLLECTIVE.
-    void sync(LocalParticles& local);
+    ///
+    /// `movedAtMost`: a bound on every master's displacement since the previous call (the
+    /// integrator's, DemStep::step), +inf if unknown. With a skin it spares the check of every
+    /// master against its reference (UpdateList::check); it must hold, or copies go missing.
+    void sync(LocalParticles& local, double movedAtMost = std::numeric_limits<double>::infinity());
 
     /// Calls sync() until no shadow was created anywhere (at most `maxCalls` calls; one
     /// all-reduce per call). For set-up: a large grain spanning k block layers needs k calls.

@@ -6,9 +6,9 @@
 
 namespace regolith::particles {
 
-void ParticleSync::sync(LocalParticles& local) {
+void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
     UpdateList::Verdict const verdict =
-        m_updateList ? m_updateList->check(local) : UpdateList::Verdict::Refresh;
+        m_updateList ? m_updateList->check(local, movedAtMost) : UpdateList::Verdict::Refresh;
     if (verdict == UpdateList::Verdict::Holds) {
         m_last = SyncStats{};
         m_last.updated = m_updateList->update(local);

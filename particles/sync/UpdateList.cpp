@@ -12,6 +12,19 @@
 
 namespace regolith::particles {
 
+namespace {
+
+/// Whether a master at `x` may leave `box` by moving less than `budget`: within twice the
+/// budget of a face (the factor and the relative 1e-9 of the coordinates cover the rounding of
+/// the distances; a master outside already, or not finite, counts too).
+bool mayLeave(core::AABB const& box, core::Vec3 const& x, double budget) {
+    double const toFace = std::min((x - box.min).minCoeff(), (box.max - x).minCoeff());
+    double const scale = x.cwiseAbs().maxCoeff() + box.max.cwiseAbs().maxCoeff();
+    return !(toFace >= 2.0 * budget + 1e-9 * scale);
+}
+
+} // namespace
+
 std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, int ranks) {
     if (config.skin == 0.0)
         return nullptr;
@@ -44,11 +57,16 @@ void UpdateList::rebuild(LocalParticles const& local, int rank, double budget) {
         s.revision = ps.layoutRevision();
         s.reference.assign(ps.positions().begin(), ps.positions().end());
         s.shadows.clear();
+        s.nearFaces.clear();
+        core::AABB const& box = blocks[b].block->aabb;
         for (std::size_t i = 0; i < ps.size(); ++i) {
             if (ps.flags(i).has(Flag::Spreads))
                 return; // SOS class: Alg. 2 every call
-            if (!ps.flags(i).isShadow())
+            if (!ps.flags(i).isShadow()) {
+                if (mayLeave(box, ps.position(i), budget))
+                    s.nearFaces.push_back(static_cast<std::uint32_t>(i));
                 continue;
+            }
             // Its master, on this rank (else Alg. 1 every call): in storage order, as the
             // reduction without the list visits the shadows, so that the sums are the same.
             BlockRef const owner = ps.owner(i);
@@ -77,11 +95,28 @@ bool UpdateList::unchanged(LocalParticles const& local) const {
     return true;
 }
 
-UpdateList::Verdict UpdateList::check(LocalParticles const& local) {
+UpdateList::Verdict UpdateList::check(LocalParticles const& local, double movedAtMost) {
     if (!unchanged(local) || !(m_budget > 0.0))
         return Verdict::Refresh;
     auto const blocks = local.blocks();
     m_leavers.resize(blocks.size());
+    if (movedAtMost >= 0.0 && std::isfinite(movedAtMost)) {
+        // Triangle inequality: the bounds since the refresh add up.
+        m_largestMove += movedAtMost;
+        if (!(m_largestMove < m_budget * (1.0 - 1e-9)))
+            return Verdict::Refresh;
+        bool left = false;
+        for (std::size_t b = 0; b < blocks.size(); ++b) {
+            ParticleStorage const& ps = blocks[b].particles;
+            core::AABB const& box = blocks[b].block->aabb;
+            m_leavers[b].clear();
+            for (std::uint32_t i : m_blocks[b].nearFaces)
+                if (!box.contains(ps.position(i)))
+                    m_leavers[b].push_back(i);
+            left = left || !m_leavers[b].empty();
+        }
+        return left ? Verdict::Leavers : Verdict::Holds;
+    }
     double largest = 0.0;
     bool left = false;
     for (std::size_t b = 0; b < blocks.size(); ++b) {

@@ -17,10 +17,15 @@
 /// reproducible mode the trajectories are identical bit for bit (tests/apps/SyncEquality.cmake,
 /// tests/particles/sync/UpdateListTest.cpp).
 ///
-/// Cost per call: one branch-free pass over the copies (displacement and containment) and one
-/// copy per shadow, where Alg. 1 scans every copy, decides for each master near a face and
-/// looks each shadow up in the (uid, image) index, and the force reduction looks each master
-/// up again. One rank: every shadow's master is in this process.
+/// Cost per call: one copy per shadow, where Alg. 1 scans every copy, decides for each master
+/// near a face and looks each shadow up in the (uid, image) index, and the force reduction
+/// looks each master up again; plus, if the caller knows no bound on the masters' motion since
+/// the last call, one branch-free pass over the copies (displacement and containment). With a
+/// bound (the integrator's largest move, DemStep) the displacements are not compared: their
+/// sum since the refresh bounds every master's, and only the masters that were within twice
+/// the budget of a block face at the refresh can have left their block (LAMMPS's neighbour
+/// check, Neighbor::decide, compares every atom every step instead). One rank: every
+/// shadow's master is in this process.
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/SyncMethod.hpp"
 
@@ -49,8 +54,10 @@ public:
         Leavers, ///< within the budget, but some masters left their blocks (leavers())
         Refresh, ///< invalid, a storage changed (add, remove, re-key), or a master moved too far
     };
-    /// Where `local` stands against the list. Local; O(copies).
-    [[nodiscard]] Verdict check(LocalParticles const& local);
+    /// Where `local` stands against the list, given that no master moved more than
+    /// `movedAtMost` since the last check() or rebuild() (+inf if unknown). Local; O(copies)
+    /// without a bound, O(masters near a face) with one.
+    [[nodiscard]] Verdict check(LocalParticles const& local, double movedAtMost);
     /// After check() said Leavers: per block, the masters that left it, ascending.
     [[nodiscard]] std::vector<std::vector<std::uint32_t>> const& leavers() const {
         return m_leavers;
@@ -59,6 +66,9 @@ public:
     /// shadows, decided within `budget` of positions that are now up to the largest
     /// displacement check() saw away (triangle inequality).
     [[nodiscard]] double budgetLeft() const { return m_budget - m_largestMove; }
+    /// A bound on every master's displacement from its reference (its position at rebuild()),
+    /// as of the last check(): the largest displacement, or the sum of the bounds given.
+    [[nodiscard]] double largestMove() const { return m_largestMove; }
 
     /// Copies every master's state to its shadows, as Alg. 1's update does; returns the number
     /// of shadows updated. Pre: check() said Holds or Leavers, and no storage changed since.
@@ -82,11 +92,14 @@ private:
         std::uint64_t revision = 0;        ///< ParticleStorage::layoutRevision at rebuild()
         std::vector<core::Vec3> reference; ///< every copy's position at rebuild()
         std::vector<Shadow> shadows;
+        /// The masters within twice the budget of a block face at rebuild(), ascending: with
+        /// a bound on the motion, the only ones that may have left the block.
+        std::vector<std::uint32_t> nearFaces;
     };
     std::vector<BlockState> m_blocks; ///< per local block
     std::vector<std::vector<std::uint32_t>> m_leavers;
     double m_budget = 0.0;
-    double m_largestMove = 0.0; ///< of a master from its reference, at the last check()
+    double m_largestMove = 0.0; ///< bound on a master's distance from its reference (check())
     int m_rank = 0;
     bool m_valid = false;
 };

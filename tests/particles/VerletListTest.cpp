@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <random>
 #include <tuple>
@@ -157,6 +159,8 @@ TEST(VerletList, RebuildsWhenTheTraceBreaks) {
     EXPECT_TRUE(listed.stats().rebuilt);
 }
 
+constexpr double kUnknownMotion = std::numeric_limits<double>::infinity();
+
 TEST(VerletList, FloatReferencesNeverHideAMoveOfHalfTheSkin) {
     // Copies far from the origin, where a float reference is off by ~1e-5: each copy moved by
     // exactly skin / 2 from its true reference, in the direction that the rounding shortens
@@ -171,7 +175,7 @@ TEST(VerletList, FloatReferencesNeverHideAMoveOfHalfTheSkin) {
     list.restart(ps, skin);
     EXPECT_GT(list.referenceSlack(), 0.0);
     EXPECT_LT(list.referenceSlack(), 0.01 * skin);
-    EXPECT_FALSE(list.movedTooFar(ps));
+    EXPECT_FALSE(list.movedTooFar(ps, kUnknownMotion));
     int hidden = 0; // copies whose stored reference lies off their true one
     for (std::size_t k = 0; k < ps.size(); ++k) {
         Vec3 const truth = ps.position(k);
@@ -182,12 +186,41 @@ TEST(VerletList, FloatReferencesNeverHideAMoveOfHalfTheSkin) {
         ++hidden;
         Vec3 const towards = (stored - truth).normalized();
         ps.position(k) = truth + 0.99 * 0.5 * skin * towards;
-        EXPECT_FALSE(list.movedTooFar(ps)) << "copy " << k;
+        EXPECT_FALSE(list.movedTooFar(ps, kUnknownMotion)) << "copy " << k;
         ps.position(k) = truth + 0.5 * skin * towards;
-        EXPECT_TRUE(list.movedTooFar(ps)) << "copy " << k;
+        EXPECT_TRUE(list.movedTooFar(ps, kUnknownMotion)) << "copy " << k;
         ps.position(k) = truth;
     }
     EXPECT_GT(hidden, 150);
+}
+
+TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHalfTheSkin) {
+    ParticleStorage ps;
+    for (Uid u = 1; u <= 8; ++u)
+        ps.add(sphere(u, Vec3(double(u), 0.0, 0.0), 0.4, 1.0));
+    double const skin = 0.1;
+    VerletList list;
+    list.restart(ps, skin);
+    // Within the bound the positions are trusted, not compared: a copy moved by a whole skin
+    // behind the list's back goes unseen while the bounds given add up to less than skin / 2.
+    ps.position(3) += Vec3(skin, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, 0.2 * skin));
+    EXPECT_FALSE(list.movedTooFar(ps, 0.2 * skin));
+    // 0.6 skin in all: now compared, and the copy's move found.
+    EXPECT_TRUE(list.movedTooFar(ps, 0.2 * skin));
+    // Back home: the comparison resets the sum to the largest displacement (0), so the next
+    // bounds again start from there.
+    ps.position(3) -= Vec3(skin, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, kUnknownMotion));
+    ps.position(5) += Vec3(0.3 * skin, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, 0.3 * skin));
+    ps.position(5) += Vec3(0.3 * skin, 0.0, 0.0);
+    EXPECT_TRUE(list.movedTooFar(ps, 0.3 * skin)); // compared: 0.6 skin
+    // A negative or NaN bound counts as unknown: compared at once.
+    ps.position(5) -= Vec3(0.6 * skin, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, std::nan("")));
+    ps.position(2) += Vec3(0.0, 0.7 * skin, 0.0);
+    EXPECT_TRUE(list.movedTooFar(ps, -1.0));
 }
 
 } // namespace

@@ -108,11 +108,17 @@ inline std::pair<BlockParticles*, std::size_t> findMaster(LocalParticles& local,
     return {nullptr, 0};
 }
 
-/// Moves every local master by velocity * dt (the integrator's drift, without forces).
-inline void drift(LocalParticles& local, double dt) {
+/// Moves every local master by velocity * dt (the integrator's drift, without forces);
+/// returns the largest distance a master moved, as an integrator does.
+inline double drift(LocalParticles& local, double dt) {
+    double largest = 0.0;
     for (BlockParticles& bp : local.blocks())
-        bp.particles.forEachMaster(
-            [&](std::size_t i) { bp.particles.position(i) += bp.particles.velocity(i) * dt; });
+        bp.particles.forEachMaster([&](std::size_t i) {
+            Vec3 const before = bp.particles.position(i);
+            bp.particles.position(i) += bp.particles.velocity(i) * dt;
+            largest = std::max(largest, (bp.particles.position(i) - before).norm());
+        });
+    return largest;
 }
 
 /// One line per violation, for test messages.

@@ -7,6 +7,7 @@
 // with SOS, a skin is refused on every rank.
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -59,27 +60,68 @@ struct SkinnedGas : Forest {
 TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
     if (Comm().size() != 1)
         GTEST_SKIP() << "a sync skin needs one rank";
-    for (bool periodic : {true, false})
-        for (SyncMethod method : {SyncMethod::NextNeighbour, SyncMethod::Hybrid}) {
-            std::string const where =
-                methodName(method) + (periodic ? " periodic" : " open") + " 2x2x2";
-            SkinnedGas g(periodic, method, where);
-            LocalParticles& local = g.local;
-            ParticleSync& sync = g.sync;
-            Calls calls;
-            for (int step = 1; step <= 60; ++step) {
-                drift(local, 0.02); // at most 0.035 per step: a list lasts several steps
-                sync.sync(local);
-                calls.count(sync.lastStats());
-                auto const v = checkSyncInvariants(local, g.world, true, kSkin);
-                ASSERT_TRUE(v.empty()) << where << " step " << step << joined(v);
+    // Told the drift's largest move (as DemStep tells the integrator's) or not: with the
+    // bound the displacements are not compared, only the masters near a face are.
+    for (bool bounded : {false, true})
+        for (bool periodic : {true, false})
+            for (SyncMethod method : {SyncMethod::NextNeighbour, SyncMethod::Hybrid}) {
+                std::string const where = methodName(method) + (periodic ? " periodic" : " open") +
+                                          " 2x2x2" + (bounded ? ", bound given" : "");
+                SkinnedGas g(periodic, method, where);
+                LocalParticles& local = g.local;
+                ParticleSync& sync = g.sync;
+                Calls calls;
+                for (int step = 1; step <= 60; ++step) {
+                    // At most 0.035 per step: a list lasts several steps.
+                    double const moved = drift(local, 0.02);
+                    sync.sync(local, bounded ? moved : std::numeric_limits<double>::infinity());
+                    calls.count(sync.lastStats());
+                    auto const v = checkSyncInvariants(local, g.world, true, kSkin);
+                    ASSERT_TRUE(v.empty()) << where << " step " << step << joined(v);
+                }
+                EXPECT_GT(calls.alongList, 10) << where;
+                EXPECT_GT(calls.full, 0) << where << ": never refreshed";
+                if (periodic) { // an open domain loses the grains that cross its faces: full calls
+                    EXPECT_GT(calls.leaversOnly, 0) << where;
+                }
             }
-            EXPECT_GT(calls.alongList, 10) << where;
-            EXPECT_GT(calls.full, 0) << where << ": never refreshed";
-            if (periodic) { // an open domain loses the grains that cross its faces: full calls
-                EXPECT_GT(calls.leaversOnly, 0) << where;
+}
+
+TEST(UpdateList, ABoundOnTheMotionIsTrustedAndUnknownMotionIsMeasured) {
+    if (Comm().size() != 1)
+        GTEST_SKIP() << "a sync skin needs one rank";
+    SkinnedGas g(true, SyncMethod::NextNeighbour, "nns periodic");
+    LocalParticles& local = g.local;
+    ParticleSync& sync = g.sync;
+    // One master, deep inside its block, moved by twice the skin: a caller that claims a
+    // smaller bound is believed (the contract: the bound must hold) ...
+    ParticleStorage* ps = nullptr;
+    std::size_t moved = ParticleStorage::kNotFound;
+    for (BlockParticles& bp : local.blocks()) {
+        AABB const& box = bp.block->aabb;
+        for (std::size_t i = 0; i < bp.particles.size() && ps == nullptr; ++i)
+            if (bp.particles.flags(i).isMaster() &&
+                (bp.particles.position(i) - box.center()).cwiseAbs().maxCoeff() <
+                    0.5 * box.minEdge() - 1.0) {
+                ps = &bp.particles;
+                moved = i;
             }
-        }
+    }
+    ASSERT_NE(ps, nullptr) << "no master 1 from its block's faces";
+    ps->position(moved) += Vec3(2.0 * kSkin, 0.0, 0.0);
+    sync.sync(local, 0.1 * kSkin);
+    EXPECT_TRUE(sync.lastStats().alongList);
+    // ... and without a bound the positions are compared: a refresh.
+    sync.sync(local);
+    EXPECT_FALSE(sync.lastStats().alongList);
+    EXPECT_FALSE(sync.lastStats().leaversOnly);
+    auto const v = checkSyncInvariants(local, g.world, true, kSkin);
+    EXPECT_TRUE(v.empty()) << joined(v);
+    // Bounds add up: four of a quarter skin each reach the skin, a refresh.
+    for (int call = 1; call <= 4; ++call) {
+        sync.sync(local, 0.25 * kSkin);
+        EXPECT_EQ(sync.lastStats().alongList, call < 4) << "call " << call;
+    }
 }
 
 TEST(UpdateList, ForcesReachTheMastersAlongTheList) {
