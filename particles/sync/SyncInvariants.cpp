@@ -233,6 +233,8 @@ private:
         field(sameBits(s.orientation, m.orientation), "orientation");
         field(sameBits(s.radius, m.radius), "radius");
         field(sameBits(s.mass, m.mass), "mass");
+        field(Flags(s.flags).set(Flag::Shadow, false) == Flags(m.flags).set(Flag::Shadow, false),
+              "flags");
         if (!differs.empty())
             report(u + "shadow in " + where(s.where()) + " differs from its master in " + differs +
                    " (shadow at " + vec(s.position) + ", master at " + vec(m.position) + ")");

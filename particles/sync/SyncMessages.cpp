@@ -61,16 +61,21 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
     ps.history(i).assign(u.history);
 }
 
-void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
-                BlockRef owner, ParticleStorage& to, std::size_t k) {
+void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
+                ParticleStorage& to, std::size_t k) {
     to.position(k) = position;
     to.velocity(k) = from.velocity(i);
     to.angularVelocity(k) = from.angularVelocity(i);
     to.setOrientation(k, from.orientation(i));
-    to.setFlags(k, Flags(from.flags(i)).set(Flag::Shadow, to.flags(k).isShadow()));
-    to.setOwner(k, owner);
     if (!from.history(i).empty() || !to.history(k).empty())
         to.history(k).assign(from.history(i).entries());
+}
+
+void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
+                BlockRef owner, ParticleStorage& to, std::size_t k) {
+    copyMotion(from, i, position, to, k);
+    to.setFlags(k, Flags(from.flags(i)).set(Flag::Shadow, to.flags(k).isShadow()));
+    to.setOwner(k, owner);
 }
 
 void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,

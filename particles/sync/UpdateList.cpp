@@ -163,9 +163,7 @@ std::size_t UpdateList::update(LocalParticles& local) const {
         for (Shadow const& s : m_blocks[b].shadows) {
             BlockParticles const& from = blocks[s.masterBlock];
             ParticleStorage const& ps = from.particles;
-            sync_detail::copyUpdate(ps, s.master, ps.position(s.master),
-                                    BlockRef{m_rank, from.block->id.raw()}, target.particles,
-                                    s.index);
+            sync_detail::copyMotion(ps, s.master, ps.position(s.master), target.particles, s.index);
             if (!target.sent.empty())
                 forgetSent(target, ps.uid(s.master));
         }

@@ -70,8 +70,10 @@ public:
     /// as of the last check(): the largest displacement, or the sum of the bounds given.
     [[nodiscard]] double largestMove() const { return m_largestMove; }
 
-    /// Copies every master's state to its shadows, as Alg. 1's update does; returns the number
-    /// of shadows updated. Pre: check() said Holds or Leavers, and no storage changed since.
+    /// Copies every master's motion and contact history to its shadows, as Alg. 1's update
+    /// does (flags and owner stay as the refresh left them: nothing changes them between
+    /// refreshes); returns the number of shadows updated. Pre: check() said Holds or Leavers,
+    /// and no storage changed since.
     std::size_t update(LocalParticles& local) const;
 
     /// ParticleSync::reduceForces' in-place path along the list: adds every shadow's force and
