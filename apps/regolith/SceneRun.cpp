@@ -202,8 +202,13 @@ int runScene(core::AppContext& ctx) {
             vtk->write(stepsDone, timeAt(stepsDone), local, gridFieldsOf(selfGravity.get()));
         progress.afterStep(stepsDone);
     };
+    // Only output and checkpoints look at the grains between steps (the progress line does
+    // not): the other steps end Open, their last half kick merged into the next step's first.
+    auto const observes = [&](std::int64_t stepsDone) {
+        return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0);
+    };
     LoopOutcome const loop =
-        runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep);
+        runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);
     progress.finish();
 
     dem.releaseWorkspace(); // the detectors' memory, before the summary below

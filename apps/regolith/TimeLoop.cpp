@@ -10,14 +10,16 @@ namespace regolith::apps {
 
 LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
                         particles::ParticleSync& sync, core::TimerTree& timers, std::int64_t steps,
-                        AfterStep const& afterStep) {
+                        AfterStep const& afterStep, ObservesStep const& observes) {
     timers.reset();
     sync.resetCounters();
     std::uint64_t const leftBefore = dem.leftDomain();
     comm.barrier(); // every rank starts the clock together
     double const start = MPI_Wtime();
     for (std::int64_t n = 0; n < steps; ++n) {
-        dem.step();
+        auto const next = static_cast<std::int64_t>(dem.stepsDone()) + 1;
+        bool const open = n + 1 < steps && observes && !observes(next);
+        dem.step(open ? particles::DemStep::StepEnd::Open : particles::DemStep::StepEnd::Complete);
         if (afterStep)
             afterStep(static_cast<std::int64_t>(dem.stepsDone()));
     }

@@ -31,14 +31,22 @@ struct LoopOutcome {
 /// checkpoints, progress. Must be collective-safe (called on every rank alike).
 using AfterStep = std::function<void(std::int64_t stepsDone)>;
 
+/// Whether afterStep(stepsDone) reads or writes the grains (output, a checkpoint). Must give
+/// the same answer on every rank.
+using ObservesStep = std::function<bool(std::int64_t stepsDone)>;
+
 /// Runs `steps` steps of `dem` after forgetting the set-up's timers and traffic (so both
 /// cover the loop only), calling `afterStep` (if set) after each; its time (output written
-/// during the run) is part of wallSeconds, as in LAMMPS's loop time. Pre: dem.setUp() or
-/// dem.resume() was called; `dem` uses `sync` and `timers`.
+/// during the run) is part of wallSeconds, as in LAMMPS's loop time. A step after which
+/// `observes` says nothing looks at the grains, and that is not the last, ends Open
+/// (DemStep::StepEnd: its second half kick merged into the next step's first); without
+/// `observes` every step ends Complete. The loop ends with the state complete. Pre:
+/// dem.setUp() or dem.resume() was called; `dem` uses `sync` and `timers`.
 /// COLLECTIVE over `comm` (the communicator `sync` was built from).
 [[nodiscard]] LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
                                       particles::ParticleSync& sync, core::TimerTree& timers,
-                                      std::int64_t steps, AfterStep const& afterStep = {});
+                                      std::int64_t steps, AfterStep const& afterStep = {},
+                                      ObservesStep const& observes = {});
 
 /// The masters of every local block as reported records (block order, then storage order).
 /// Not collective.

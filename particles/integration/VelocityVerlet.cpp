@@ -29,6 +29,29 @@ double VelocityVerlet::preForce(ParticleStorage& ps, double dt, core::Vec3 const
     return largest.distance();
 }
 
+double VelocityVerlet::postThenPreForce(ParticleStorage& ps, double dt,
+                                        core::Vec3 const& gravity) const {
+    double const h = 0.5 * dt;
+    LargestMove largest;
+    for (std::size_t i = 0, n = ps.size(); i < n; ++i) {
+        if (!moves(ps.flags(i)))
+            continue;
+        // The two half kicks as postForce and preForce do them, in their order (same bits).
+        core::Vec3 const kick = h * (ps.invMass(i) * ps.force(i) + gravity);
+        core::Vec3 const v = (ps.velocity(i) + kick) + kick;
+        core::Vec3 const before = ps.position(i);
+        core::Vec3 const after = before + dt * v;
+        ps.velocity(i) = v;
+        ps.position(i) = after;
+        largest.add(before, after);
+        core::Vec3 const spin = h * ps.invInertia(i) * ps.torque(i);
+        ps.angularVelocity(i) = (ps.angularVelocity(i) + spin) + spin;
+    }
+    if (orientation)
+        rotateMoving(ps, dt);
+    return largest.distance();
+}
+
 double VelocityVerlet::postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const {
     double const h = 0.5 * dt;
     for (std::size_t i = 0, n = ps.size(); i < n; ++i) {

@@ -22,6 +22,11 @@ struct VelocityVerlet {
     /// Second half kick with the new forces: v += dt/2 (F/m + g); omega += dt/2 tau / I.
     /// Returns 0: nothing moves here.
     double postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
+    /// postForce, then the next step's preForce, in one pass over the grains: the forces
+    /// are the same for both (nothing changes them in between), so each grain's state is read
+    /// and written once instead of twice; the same bits as the two calls. The velocities
+    /// of the step in between (v(t)) are never stored. Returns what preForce returns.
+    double postThenPreForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const;
 };
 
 static_assert(Integrator<VelocityVerlet>);

@@ -46,6 +46,7 @@ int DemStep::setUp() {
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
     computeForces(0);
     m_moved = 0.0;
+    m_kickPending = false;
     return calls;
 }
 
@@ -60,10 +61,27 @@ int DemStep::resume(std::uint64_t stepsDone) {
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", m_sync->config().skin);
     m_steps = stepsDone;
     m_moved = std::numeric_limits<double>::infinity(); // the first detect compares positions
+    m_kickPending = false;
     return calls;
 }
 
-void DemStep::step() {
+namespace {
+
+/// postForce, then the next preForce, in one pass where the integrator has one; returns the
+/// largest distance a copy moved in both.
+template <class I>
+double postThenPreForce(I const& integrator, ParticleStorage& ps, double dt, core::Vec3 const& g) {
+    if constexpr (requires { integrator.postThenPreForce(ps, dt, g); }) {
+        return integrator.postThenPreForce(ps, dt, g);
+    } else {
+        double const moved = integrator.postForce(ps, dt, g);
+        return moved + integrator.preForce(ps, dt, g);
+    }
+}
+
+} // namespace
+
+void DemStep::step(StepEnd end) {
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;
     {
@@ -72,25 +90,37 @@ void DemStep::step() {
             [&](auto const& integrator) {
                 double moved = 0.0; // the largest over the blocks (+inf wins)
                 for (BlockParticles& bp : m_local->blocks())
-                    moved = std::max(moved, integrator.preForce(bp.particles, dt, g));
+                    moved = std::max(moved, m_kickPending
+                                                ? postThenPreForce(integrator, bp.particles, dt, g)
+                                                : integrator.preForce(bp.particles, dt, g));
                 m_moved += moved;
             },
             m_integrator);
+        m_kickPending = false;
     }
     syncParticles();
     ++m_steps;
     computeForces(static_cast<std::uint32_t>(m_steps));
-    {
-        auto const t = m_timers->scope(kIntegrateTimer);
-        std::visit(
-            [&](auto const& integrator) {
-                double moved = 0.0; // the largest over the blocks (+inf wins)
-                for (BlockParticles& bp : m_local->blocks())
-                    moved = std::max(moved, integrator.postForce(bp.particles, dt, g));
-                m_moved += moved;
-            },
-            m_integrator);
-    }
+    m_kickPending = true;
+    if (end == StepEnd::Complete)
+        completeStep();
+}
+
+void DemStep::completeStep() {
+    if (!m_kickPending)
+        return;
+    auto const t = m_timers->scope(kIntegrateTimer);
+    double const dt = m_config.dt;
+    core::Vec3 const& g = m_config.gravity;
+    std::visit(
+        [&](auto const& integrator) {
+            double moved = 0.0;
+            for (BlockParticles& bp : m_local->blocks())
+                moved = std::max(moved, integrator.postForce(bp.particles, dt, g));
+            m_moved += moved;
+        },
+        m_integrator);
+    m_kickPending = false;
 }
 
 void DemStep::releaseWorkspace() {

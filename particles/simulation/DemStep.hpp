@@ -67,7 +67,8 @@ struct DemStepConfig {
 ///                evaluate with stamp = step number   (timer "contact")
 ///     sync.reduceForces(local[, records], stamp)     (timer "sync")
 ///     body forces (setBodyForces), e.g. self-gravity  (timer "gravity")
-///     integrator.postForce   on every block          (timer "integrate")
+///     integrator.postForce   on every block          (timer "integrate"; with StepEnd::Open
+///                            merged into the next step's preForce)
 ///
 /// In reproducible mode (sync.config().reproducible) every block evaluates with
 /// evaluateContactsRecorded and the reduction sums every master's force from its records in
@@ -130,10 +131,24 @@ public:
     /// of sync calls. COLLECTIVE.
     int resume(std::uint64_t stepsDone);
 
+    /// How a step ends. Complete: with the second half kick (postForce), the velocities those
+    /// of the step's end. Open: the half kick is left to the next step, which applies it in
+    /// the same pass over the grains as its own first one (the integrator's postThenPreForce,
+    /// where it has one: each grain's state read and written once instead of twice; the
+    /// trajectory the same bit for bit). After an Open step the velocities and angular
+    /// velocities lag half a kick, so nothing may read the grains' state or change it before
+    /// the next step() or completeStep(): a time loop ends a step Open only when no output,
+    /// checkpoint or other observer follows it (apps/regolith/TimeLoop.hpp).
+    enum class StepEnd { Complete, Open };
+
     /// One time step (see the class comment); the step number (stamp) is stepsDone() + 1.
     /// Throws what the synchronisation throws (core::Error: a grain too fast or too large
     /// for NNS, a malformed message). COLLECTIVE.
-    void step();
+    void step(StepEnd end = StepEnd::Complete);
+    /// Applies the half kick an Open step left (nothing otherwise). Not collective.
+    void completeStep();
+    /// Whether the last step ended Complete (or completeStep() was called since).
+    [[nodiscard]] bool stepComplete() const { return !m_kickPending; }
 
     /// Frees the contact detectors' work arrays and neighbour lists and the contact lists
     /// (e.g. after the last step, before gathering output); the next step rebuilds them.
@@ -186,6 +201,7 @@ private:
     /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
     /// unknown, before the first step).
     double m_moved = std::numeric_limits<double>::infinity();
+    bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
 };
