@@ -8,19 +8,32 @@ bool moves(Flags f) {
 }
 } // namespace
 
-double VelocityVerlet::preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const {
+namespace {
+
+/// `Kicks` half kicks with the current forces (1: preForce's; 2: postForce's and then the
+/// next preForce's, in that order, so the same bits as the two calls), then the drift; returns
+/// the largest distance a copy moved.
+template <int Kicks>
+double kickAndDrift(ParticleStorage& ps, double dt, core::Vec3 const& gravity, bool orientation) {
     double const h = 0.5 * dt;
     LargestMove largest;
     for (std::size_t i = 0, n = ps.size(); i < n; ++i) {
         if (!moves(ps.flags(i)))
             continue;
-        core::Vec3 const v = ps.velocity(i) + h * (ps.invMass(i) * ps.force(i) + gravity);
+        core::Vec3 const kick = h * (ps.invMass(i) * ps.force(i) + gravity);
+        core::Vec3 const spin = h * ps.invInertia(i) * ps.torque(i);
+        core::Vec3 v = ps.velocity(i);
+        core::Vec3 w = ps.angularVelocity(i);
+        for (int k = 0; k < Kicks; ++k) {
+            v += kick;
+            w += spin;
+        }
         core::Vec3 const before = ps.position(i);
         core::Vec3 const after = before + dt * v;
         ps.velocity(i) = v;
         ps.position(i) = after;
+        ps.angularVelocity(i) = w;
         largest.add(before, after);
-        ps.angularVelocity(i) += h * ps.invInertia(i) * ps.torque(i);
     }
     // With the half-step angular velocity, in batches (the rotation was a quarter of a gas
     // step when done grain by grain in the loop above).
@@ -29,27 +42,15 @@ double VelocityVerlet::preForce(ParticleStorage& ps, double dt, core::Vec3 const
     return largest.distance();
 }
 
+} // namespace
+
+double VelocityVerlet::preForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const {
+    return kickAndDrift<1>(ps, dt, gravity, orientation);
+}
+
 double VelocityVerlet::postThenPreForce(ParticleStorage& ps, double dt,
                                         core::Vec3 const& gravity) const {
-    double const h = 0.5 * dt;
-    LargestMove largest;
-    for (std::size_t i = 0, n = ps.size(); i < n; ++i) {
-        if (!moves(ps.flags(i)))
-            continue;
-        // The two half kicks as postForce and preForce do them, in their order (same bits).
-        core::Vec3 const kick = h * (ps.invMass(i) * ps.force(i) + gravity);
-        core::Vec3 const v = (ps.velocity(i) + kick) + kick;
-        core::Vec3 const before = ps.position(i);
-        core::Vec3 const after = before + dt * v;
-        ps.velocity(i) = v;
-        ps.position(i) = after;
-        largest.add(before, after);
-        core::Vec3 const spin = h * ps.invInertia(i) * ps.torque(i);
-        ps.angularVelocity(i) = (ps.angularVelocity(i) + spin) + spin;
-    }
-    if (orientation)
-        rotateMoving(ps, dt);
-    return largest.distance();
+    return kickAndDrift<2>(ps, dt, gravity, orientation);
 }
 
 double VelocityVerlet::postForce(ParticleStorage& ps, double dt, core::Vec3 const& gravity) const {
