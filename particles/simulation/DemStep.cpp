@@ -79,6 +79,20 @@ double postThenPreForce(I const& integrator, ParticleStorage& ps, double dt, cor
     }
 }
 
+/// The largest over the local blocks of what `phase(integrator, storage)` returns (the
+/// distance it moved a copy; +inf wins).
+template <class Phase>
+double largestOverBlocks(AnyIntegrator const& any, LocalParticles& local, Phase&& phase) {
+    return std::visit(
+        [&](auto const& integrator) {
+            double moved = 0.0;
+            for (BlockParticles& bp : local.blocks())
+                moved = std::max(moved, phase(integrator, bp.particles));
+            return moved;
+        },
+        any);
+}
+
 } // namespace
 
 void DemStep::step(StepEnd end) {
@@ -86,16 +100,11 @@ void DemStep::step(StepEnd end) {
     core::Vec3 const& g = m_config.gravity;
     {
         auto const t = m_timers->scope(kIntegrateTimer);
-        std::visit(
-            [&](auto const& integrator) {
-                double moved = 0.0; // the largest over the blocks (+inf wins)
-                for (BlockParticles& bp : m_local->blocks())
-                    moved = std::max(moved, m_kickPending
-                                                ? postThenPreForce(integrator, bp.particles, dt, g)
-                                                : integrator.preForce(bp.particles, dt, g));
-                m_moved += moved;
-            },
-            m_integrator);
+        m_moved += largestOverBlocks(
+            m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
+                return m_kickPending ? postThenPreForce(integrator, ps, dt, g)
+                                     : integrator.preForce(ps, dt, g);
+            });
         m_kickPending = false;
     }
     syncParticles();
@@ -112,14 +121,10 @@ void DemStep::completeStep() {
     auto const t = m_timers->scope(kIntegrateTimer);
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;
-    std::visit(
-        [&](auto const& integrator) {
-            double moved = 0.0;
-            for (BlockParticles& bp : m_local->blocks())
-                moved = std::max(moved, integrator.postForce(bp.particles, dt, g));
-            m_moved += moved;
-        },
-        m_integrator);
+    m_moved +=
+        largestOverBlocks(m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
+            return integrator.postForce(ps, dt, g);
+        });
     m_kickPending = false;
 }
 
