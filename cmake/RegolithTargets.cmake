@@ -25,6 +25,30 @@ if(REGOLITH_NATIVE)
   list(APPEND REGOLITH_CODEGEN -march=native -mno-avx512f)
 endif()
 
+# REGOLITH_LANE_CODEGEN, for the files whose loops run over structure-of-arrays lanes
+# (SpringDashpotBatch, OverlapScreen): 512-bit AVX-512 where the building machine has it.
+# Those loops are latency-bound, not throughput-bound: one contact's chain of roots and
+# divisions is longer than the reorder window can hide, so eight lanes per instruction instead
+# of four nearly halve the batch model's time even on Zen 4's 256-bit units (particles_bench
+# springDashpotBatch/0: 11.8 -> 7.8 ns per contact; docs/results.md, issue 5). The same IEEE
+# operations in every lane, no contraction: the same bits. They include no Eigen code that
+# GCC bug 105593 trips over.
+set(REGOLITH_LANE_CODEGEN "")
+if(REGOLITH_NATIVE)
+  include(CheckCXXSourceRuns)
+  set(CMAKE_REQUIRED_FLAGS "-mavx512f -mavx512vl -mavx512dq")
+  check_cxx_source_runs([=[
+    int main() {
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                       __builtin_cpu_supports("avx512dq") ? 0 : 1;
+    }]=] REGOLITH_HOST_HAS_AVX512)
+  unset(CMAKE_REQUIRED_FLAGS)
+  if(REGOLITH_HOST_HAS_AVX512)
+    set(REGOLITH_LANE_CODEGEN -mavx512f -mavx512vl -mavx512dq -mprefer-vector-width=512)
+  endif()
+endif()
+
 function(regolith_target_defaults target)
   target_compile_options(${target} PRIVATE ${REGOLITH_WARNINGS} ${REGOLITH_CODEGEN})
   target_compile_features(${target} PUBLIC cxx_std_20)
