@@ -14,11 +14,11 @@ set(REGOLITH_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wshadow -Wnon-virtual-dt
 #                   the code, as waLBerla's WALBERLA_OPTIMIZE_FOR_LOCALHOST. Our own loops give
 #                   the same bits with or without it (no contraction, no reassociation: the DEM
 #                   checksums are unchanged); Eigen's vectorised sums over long vectors (gravity)
-#                   may add in another order at another vector width. Without
-#                   AVX-512 (-mno-avx512f: at most AVX2): GCC 12 warns falsely in its AVX-512
-#                   headers through Eigen (GCC bug 105593, maybe-uninitialized), and Zen 4, the
-#                   machine these figures come from, runs 512-bit operations as two 256-bit
-#                   halves anyway.
+#                   may add in another order at another vector width. Without AVX-512
+#                   (-mno-avx512f: at most AVX2), the lane kernels below excepted: GCC 12 warns
+#                   falsely in its AVX-512 headers through Eigen (GCC bug 105593,
+#                   maybe-uninitialized), and elsewhere wider vectors bought nothing measurable
+#                   (the particles module built with AVX-512: same time).
 option(REGOLITH_NATIVE "Optimise for the building machine (-march=native)" ON)
 set(REGOLITH_CODEGEN -fno-math-errno -ffp-contract=off)
 if(REGOLITH_NATIVE)
@@ -29,8 +29,9 @@ endif()
 # (SpringDashpotBatch, OverlapScreen): 512-bit AVX-512 where the building machine has it.
 # Those loops are latency-bound, not throughput-bound: one contact's chain of roots and
 # divisions is longer than the reorder window can hide, so eight lanes per instruction instead
-# of four nearly halve the batch model's time even on Zen 4's 256-bit units (particles_bench
-# springDashpotBatch/0: 11.8 -> 7.8 ns per contact; docs/results.md, issue 5). The same IEEE
+# of four cut the batch model's time by a third even on Zen 4, which splits a 512-bit operation
+# into two 256-bit halves (particles_bench springDashpotBatch/0: 11.8 -> 7.8 ns per contact;
+# 256-bit AVX-512 with its 32 registers: 11.4 ns; docs/results.md, issue 5). The same IEEE
 # operations in every lane, no contraction: the same bits. They include no Eigen code that
 # GCC bug 105593 trips over.
 set(REGOLITH_LANE_CODEGEN "")

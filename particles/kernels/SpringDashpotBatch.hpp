@@ -8,8 +8,9 @@
 /// Why: evaluated one by one (evaluatePair), a contact cost ~540 instructions of scalar Eigen
 /// code on 3-vectors (callgrind, static lattice), much of it moving the same numbers between
 /// structs; here each lane is a plain double array and the model runs 4 contacts per AVX2
-/// instruction. The lattice's step runs 22 % fewer instructions, but not measurably faster:
-/// what is left is memory access (docs/results.md, issue 5, "Contact loop in batches").
+/// instruction, 8 per AVX-512 one where the machine has it (REGOLITH_LANE_CODEGEN: the loop is
+/// latency-bound, so wider lanes pay even where the units are 256 bits wide; docs/results.md,
+/// issue 5, "Contact loop in batches" and "Lane kernels in 512 bits").
 ///
 /// Same bits as overlapGeometry followed by evaluatePair with SpringDashpot: every lane computes
 /// the same IEEE operations in the same order as overlapGeometry (normal, penetration, point),
