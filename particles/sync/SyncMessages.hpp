@@ -76,14 +76,14 @@ std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master);
 void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u);
 /// What writeUpdate + readUpdate + applyUpdate do for a shadow on this rank that keeps its
 /// image, without the buffer: copy k of `to` gets master i's state with `position` and `owner`.
+void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
+                BlockRef owner, ParticleStorage& to, std::size_t k);
 /// copyUpdate's motion part: position, velocities, orientation and contact history, for a
 /// shadow whose flags and owner are already its master's (along the update list between two
 /// refreshes: nothing changes a master's flags or block there; checkSyncInvariants compares
 /// both).
 void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
                 ParticleStorage& to, std::size_t k);
-void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
-                BlockRef owner, ParticleStorage& to, std::size_t k);
 
 /// The history entries of copy i of `ps` stamped `stamp` (evaluated in this pass), into `out`.
 void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,

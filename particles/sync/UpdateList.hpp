@@ -66,9 +66,6 @@ public:
     /// shadows, decided within `budget` of positions that are now up to the largest
     /// displacement check() saw away (triangle inequality).
     [[nodiscard]] double budgetLeft() const { return m_budget - m_largestMove; }
-    /// A bound on every master's displacement from its reference (its position at rebuild()),
-    /// as of the last check(): the largest displacement, or the sum of the bounds given.
-    [[nodiscard]] double largestMove() const { return m_largestMove; }
 
     /// Copies every master's motion and contact history to its shadows, as Alg. 1's update
     /// does (flags and owner stay as the refresh left them: nothing changes them between
