@@ -1,6 +1,7 @@
 // The spring-dashpot batch kernel alone (SpringDashpotBatch::evaluate), per contact: the
-// arithmetic of the fused contact loop without its history look-ups and scatters, with or
-// without its gather (add), on 64 contacts that stay in L1. Half of the contacts slide
+// arithmetic of the fused contact loop, with its loads of the grains' state, without its history
+// look-ups and scatters, with or without collecting the pairs (add), on 64 contacts that stay
+// in L1. Half of the contacts slide
 // (Coulomb limit), half stick, all carry a spring from earlier steps: every branch of the
 // scalar model is exercised.
 //
@@ -60,12 +61,12 @@ void springDashpotBatch(benchmark::State& state) {
     for (auto _ : state) {
         if (gather) // else the springs evolve in the lanes from one evaluation to the next
             fill();
-        batch.evaluate(model, dt);
+        batch.evaluate(ps, model, dt);
         benchmark::DoNotOptimize(batch.force(kContacts - 1));
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * kContacts));
 }
-// Argument: 1 = gather the contacts (SpringDashpotBatch::add) before each evaluation, 0 = not.
+// Argument: 1 = collect the contacts (SpringDashpotBatch::add) before each evaluation, 0 = not.
 BENCHMARK(springDashpotBatch)->Arg(0)->Arg(1);
 
 } // namespace

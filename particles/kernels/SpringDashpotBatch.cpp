@@ -8,30 +8,18 @@ void SpringDashpotBatch::add(ParticleStorage const& ps, PairOverlap const& p, Hi
                              std::uint8_t hint) {
     std::size_t const k = m_size++;
     std::size_t const i = p.i, j = p.j;
-    m_i[k] = i;
-    m_j[k] = j;
+    m_i[k] = static_cast<std::uint32_t>(i);
+    m_j[k] = static_cast<std::uint32_t>(j);
     m_hint[k] = hint;
     m_entry[k] = &entry;
     m_typeI[k] = ps.type(i);
     m_typeJ[k] = ps.type(j);
-    auto put = [k](Lane3& lane, core::Vec3 const& v) {
-        lane[0][k] = v.x();
-        lane[1][k] = v.y();
-        lane[2][k] = v.z();
-    };
-    put(m_xi, ps.position(i));
-    put(m_xj, core::Vec3(ps.position(j) + p.shiftJ)); // as overlapGeometry: also a zero shift
-    put(m_vi, ps.velocity(i));
-    put(m_vj, ps.velocity(j));
-    put(m_wi, ps.angularVelocity(i));
-    put(m_wj, ps.angularVelocity(j));
-    put(m_s, entry.spring);
-    m_invMi[k] = ps.invMass(i);
-    m_invMj[k] = ps.invMass(j);
-    m_invIi[k] = ps.invInertia(i);
-    m_invIj[k] = ps.invInertia(j);
-    m_radI[k] = ps.radius(i);
-    m_radJ[k] = ps.radius(j);
+    m_shift[0][k] = p.shiftJ.x();
+    m_shift[1][k] = p.shiftJ.y();
+    m_shift[2][k] = p.shiftJ.z();
+    m_s[0][k] = entry.spring.x();
+    m_s[1][k] = entry.spring.y();
+    m_s[2][k] = entry.spring.z();
 }
 
 namespace {
@@ -41,7 +29,8 @@ inline double cross(int c, double ax, double ay, double az, double bx, double by
 }
 } // namespace
 
-void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
+void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const& model,
+                                  double dt) {
     std::size_t const n = m_size;
     auto const& materials = model.materials();
     auto fill = [this](std::size_t k, LinearContactParams const& p, double ratio) {
@@ -67,23 +56,31 @@ void SpringDashpotBatch::evaluate(SpringDashpot const& model, double dt) {
     for (std::size_t k = 0; k < n; ++k)
         rolling = rolling || m_muRoll[k] > 0.0;
     if (rolling)
-        evaluateLanes<true>(dt);
+        evaluateLanes<true>(Grains::of(ps), dt);
     else
-        evaluateLanes<false>(dt);
+        evaluateLanes<false>(Grains::of(ps), dt);
 }
 
 template <bool kRolling>
-void SpringDashpotBatch::evaluateLanes(double dt) {
+void SpringDashpotBatch::evaluateLanes(Grains g, double dt) {
     std::size_t const n = m_size;
+    double const* __restrict const x = g.x;
+    double const* __restrict const v = g.v;
+    double const* __restrict const w = g.w;
+    double const* __restrict const invM = g.invM;
+    double const* __restrict const invI = g.invI;
+    double const* __restrict const rad = g.rad;
     // One contact per iteration, no calls, every operation done in every lane and the scalar
     // code's branches as selects between the results: the loop GCC vectorises (this file is
     // compiled with -fno-trapping-math, which lets it evaluate a division or root whose result
     // a lane then discards; the bits of the results kept are the same). The comments name the
     // scalar code each part mirrors (same operations, same order).
     for (std::size_t k = 0; k < n; ++k) {
-        double const xix = m_xi[0][k], xiy = m_xi[1][k], xiz = m_xi[2][k];
-        double const xjx = m_xj[0][k], xjy = m_xj[1][k], xjz = m_xj[2][k];
-        double const a = m_radI[k], b = m_radJ[k];
+        std::size_t const i3 = 3 * std::size_t{m_i[k]}, j3 = 3 * std::size_t{m_j[k]};
+        double const xix = x[i3], xiy = x[i3 + 1], xiz = x[i3 + 2];
+        double const xjx = x[j3] + m_shift[0][k], xjy = x[j3 + 1] + m_shift[1][k],
+                     xjz = x[j3 + 2] + m_shift[2][k];
+        double const a = rad[m_i[k]], b = rad[m_j[k]];
         // overlapGeometry: normal, penetration, point; the lever arms as pairState takes them.
         double const dx = xjx - xix, dy = xjy - xiy, dz = xjz - xiz;
         double const dist = std::sqrt(dx * dx + dy * dy + dz * dz);
@@ -96,20 +93,20 @@ void SpringDashpotBatch::evaluateLanes(double dt) {
                      pointZ = xiz + toPoint * nz;
         double const rix = pointX - xix, riy = pointY - xiy, riz = pointZ - xiz;
         double const rjx = pointX - xjx, rjy = pointY - xjy, rjz = pointZ - xjz;
-        double const wix = m_wi[0][k], wiy = m_wi[1][k], wiz = m_wi[2][k];
-        double const wjx = m_wj[0][k], wjy = m_wj[1][k], wjz = m_wj[2][k];
+        double const wix = w[i3], wiy = w[i3 + 1], wiz = w[i3 + 2];
+        double const wjx = w[j3], wjy = w[j3 + 1], wjz = w[j3 + 2];
         // pairState: v + w x r at the contact point, relative velocity and spin, m_eff, R_eff.
-        double const vix = m_vi[0][k] + cross(0, wix, wiy, wiz, rix, riy, riz);
-        double const viy = m_vi[1][k] + cross(1, wix, wiy, wiz, rix, riy, riz);
-        double const viz = m_vi[2][k] + cross(2, wix, wiy, wiz, rix, riy, riz);
-        double const vjx = m_vj[0][k] + cross(0, wjx, wjy, wjz, rjx, rjy, rjz);
-        double const vjy = m_vj[1][k] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
-        double const vjz = m_vj[2][k] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vix = v[i3] + cross(0, wix, wiy, wiz, rix, riy, riz);
+        double const viy = v[i3 + 1] + cross(1, wix, wiy, wiz, rix, riy, riz);
+        double const viz = v[i3 + 2] + cross(2, wix, wiy, wiz, rix, riy, riz);
+        double const vjx = v[j3] + cross(0, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjy = v[j3 + 1] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjz = v[j3 + 2] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
         double const ux = vjx - vix, uy = vjy - viy, uz = vjz - viz;
         [[maybe_unused]] double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
-        double const meff = 1.0 / (m_invMi[k] + m_invMj[k]);
+        double const meff = 1.0 / (invM[m_i[k]] + invM[m_j[k]]);
         [[maybe_unused]] double const reff = a * b / (a + b);
-        [[maybe_unused]] double const invIsum = m_invIi[k] + m_invIj[k];
+        [[maybe_unused]] double const invIsum = invI[m_i[k]] + invI[m_j[k]];
         // SpringDashpot::operator(): normal force.
         double const cn = 2.0 * m_ratio[k] * std::sqrt(m_k[k] * meff);
         double const vn = ux * nx + uy * ny + uz * nz;

@@ -1,16 +1,19 @@
 #pragma once
 /// The spring-dashpot model over a batch of pair contacts at once, for the fused contact loop
 /// (DemStep): the overlapping pairs the Verlet list finds (PairOverlap: the two copies and the
-/// periodic shift, no geometry) are gathered into structure-of-arrays lanes, their geometry and
-/// forces computed in one branch-free loop the compiler vectorises across contacts, and the
-/// shares handed to the sink in the order the pairs were found.
+/// periodic shift, no geometry) are collected a batch at a time, their geometry and forces
+/// computed in one branch-free loop the compiler vectorises across contacts, and the shares
+/// handed to the sink in the order the pairs were found.
 ///
 /// Why: evaluated one by one (evaluatePair), a contact cost ~540 instructions of scalar Eigen
 /// code on 3-vectors (callgrind, static lattice), much of it moving the same numbers between
 /// structs; here each lane is a plain double array and the model runs 4 contacts per AVX2
 /// instruction, 8 per AVX-512 one where the machine has it (REGOLITH_LANE_CODEGEN: the loop is
 /// latency-bound, so wider lanes pay even where the units are 256 bits wide; docs/results.md,
-/// issue 5, "Contact loop in batches" and "Lane kernels in 512 bits").
+/// issue 5, "Contact loop in batches" and "Lane kernels in 512 bits"). The grains' state is
+/// loaded inside that loop, by index (vector gathers), not copied into lanes first: the loads
+/// then hide in the latency of the arithmetic, where a separate copy cost as much as the model
+/// ("Gathers inside the lane loop").
 ///
 /// Same bits as overlapGeometry followed by evaluatePair with SpringDashpot: every lane computes
 /// the same IEEE operations in the same order as overlapGeometry (normal, penetration, point),
@@ -37,16 +40,17 @@ public:
     [[nodiscard]] bool full() const { return m_size == kCapacity; }
     void clear() { m_size = 0; }
 
-    /// Gathers the overlapping pair `p` of `ps` (canonical order) with `entry`, its history
-    /// entry (the tangential spring, written back after evaluate), and `hint` (the entry's slot
-    /// in i's ContactHistory, to find it again if the history moved). Pre: !full().
+    /// Adds the overlapping pair `p` of `ps` (canonical order) with `entry`, its history entry
+    /// (the tangential spring, written back after evaluate), and `hint` (the entry's slot in
+    /// i's ContactHistory, to find it again if the history moved). Pre: !full().
     void add(ParticleStorage const& ps, PairOverlap const& p, HistoryEntry& entry,
              std::uint8_t hint);
 
-    /// Evaluates every gathered contact with `model` and time step `dt`: afterwards force(k),
+    /// Evaluates every added contact of `ps` (the storage add saw, unchanged since) with
+    /// `model` and time step `dt`: afterwards force(k),
     /// torqueI(k), torqueJ(k) and spring(k) hold what overlapGeometry and evaluatePair would
     /// give (force on j, torques on i and j, the updated spring).
-    void evaluate(SpringDashpot const& model, double dt);
+    void evaluate(ParticleStorage const& ps, SpringDashpot const& model, double dt);
 
     [[nodiscard]] std::size_t i(std::size_t k) const { return m_i[k]; }
     [[nodiscard]] std::size_t j(std::size_t k) const { return m_j[k]; }
@@ -68,23 +72,39 @@ public:
 
 private:
     /// evaluate's loop over the lanes, with or without rolling resistance.
+    /// The storage's arrays the lane loop reads by index; restrict, so that GCC may gather
+    /// from them (it cannot check a gather's overlap with the batch's stores at run time).
+    struct Grains {
+        double const* __restrict x;
+        double const* __restrict v;
+        double const* __restrict w;
+        double const* __restrict invM;
+        double const* __restrict invI;
+        double const* __restrict rad;
+        static Grains of(ParticleStorage const& ps) {
+            return {ps.positions().data()->data(),
+                    ps.velocities().data()->data(),
+                    ps.angularVelocities().data()->data(),
+                    ps.invMasses().data(),
+                    ps.invInertias().data(),
+                    ps.radii().data()};
+        }
+    };
     template <bool kRolling>
-    void evaluateLanes(double dt);
+    void evaluateLanes(Grains g, double dt);
 
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
 
     std::size_t m_size = 0;
-    std::array<std::size_t, kCapacity> m_i{};
-    std::array<std::size_t, kCapacity> m_j{};
+    std::array<std::uint32_t, kCapacity> m_i{}; ///< storage indices (a Verlet list's range)
+    std::array<std::uint32_t, kCapacity> m_j{};
     std::array<std::uint8_t, kCapacity> m_hint{};
     std::array<HistoryEntry*, kCapacity> m_entry{};
     std::array<std::uint32_t, kCapacity> m_typeI{};
     std::array<std::uint32_t, kCapacity> m_typeJ{};
-    // Inputs: centres x_i and x_j + shiftJ, velocities and spins, inverse masses and inertias,
-    // radii, spring (updated in place).
-    alignas(64) Lane3 m_xi, m_xj, m_vi, m_vj, m_wi, m_wj;
-    alignas(64) Lane m_invMi, m_invMj, m_invIi, m_invIj, m_radI, m_radJ;
+    // Inputs besides the grains: j's periodic shift and the spring (updated in place).
+    alignas(64) Lane3 m_shift;
     alignas(64) Lane3 m_s;
     // The pair's material parameters, gathered from the tables.
     alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll;
@@ -132,7 +152,7 @@ public:
     /// Evaluates what is gathered and hands it to the sink.
     void finish() {
         SpringDashpotBatch& batch = m_batch;
-        batch.evaluate(m_model, m_dt);
+        batch.evaluate(m_ps, m_model, m_dt);
         for (std::size_t k = 0; k < batch.size(); ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
             HistoryEntry* e = batch.entry(k);

@@ -169,7 +169,13 @@ public:
     // ---- bulk access ---------------------------------------------------------------------
     [[nodiscard]] std::vector<Uid> const& uids() const { return m_uid; }
     [[nodiscard]] std::vector<core::Vec3> const& positions() const { return m_position; }
+    [[nodiscard]] std::vector<core::Vec3> const& velocities() const { return m_velocity; }
+    [[nodiscard]] std::vector<core::Vec3> const& angularVelocities() const {
+        return m_angularVelocity;
+    }
     [[nodiscard]] std::vector<double> const& radii() const { return m_radius; }
+    [[nodiscard]] std::vector<double> const& invMasses() const { return m_invMass; }
+    [[nodiscard]] std::vector<double> const& invInertias() const { return m_invInertia; }
     [[nodiscard]] std::vector<CopyImage> const& images() const { return m_image; }
     [[nodiscard]] std::vector<Flags> const& allFlags() const { return m_flags; }
 
