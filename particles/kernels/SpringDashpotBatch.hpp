@@ -133,7 +133,7 @@ public:
         m_batch.clear();
     }
 
-    void operator()(PairOverlap const& p, std::uint8_t& hint) {
+    [[gnu::always_inline]] void operator()(PairOverlap const& p, std::uint8_t& hint) {
         ContactHistory& history = m_ps.history(p.i);
         std::size_t const before = history.size();
         bool again = false;
@@ -150,7 +150,7 @@ public:
     void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
 
     /// Evaluates what is gathered and hands it to the sink.
-    void finish() {
+    [[gnu::noinline]] void finish() {
         SpringDashpotBatch& batch = m_batch;
         batch.evaluate(m_ps, m_model, m_dt);
         for (std::size_t k = 0; k < batch.size(); ++k) {
