@@ -1,6 +1,11 @@
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstring>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace regolith::particles {
 
@@ -23,6 +28,42 @@ void SpringDashpotBatch::add(ParticleStorage const& ps, PairOverlap const& p, Hi
 }
 
 namespace {
+
+using Vector4 = double __attribute__((vector_size(32)));
+using Vector8 = double __attribute__((vector_size(64)));
+
+/// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes: eight loads and
+/// eleven shuffles, where a gather per component cost ~2.5x more (docs/results.md, issue 5,
+/// "Loads by index and transposed").
+inline void loadTransposed(double const* base, std::uint32_t const* idx, double* x, double* y,
+                           double* z) {
+    Vector4 r[8]; // r[k] = (x_k y_k z_k 0), without reading past z_k (the last copy's Vec3
+                  // ends its array); no function returns a vector (an ABI without AVX)
+    for (int k = 0; k < 8; ++k) {
+        double const* p = base + 3 * std::size_t{idx[k]};
+#if defined(__AVX512VL__)
+        r[k] = std::bit_cast<Vector4>(_mm256_maskz_loadu_pd(0x7, p));
+#elif defined(__AVX__)
+        r[k] = std::bit_cast<Vector4>(_mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0)));
+#else
+        r[k] = Vector4{p[0], p[1], p[2], 0.0};
+#endif
+    }
+    Vector8 a[4]; // a[k] = (x_k y_k z_k 0 x_k+4 y_k+4 z_k+4 0)
+    for (int k = 0; k < 4; ++k)
+        a[k] = __builtin_shufflevector(r[k], r[k + 4], 0, 1, 2, 3, 4, 5, 6, 7);
+    Vector8 const xz01 = __builtin_shufflevector(a[0], a[1], 0, 8, 2, 10, 4, 12, 6, 14);
+    Vector8 const y01 = __builtin_shufflevector(a[0], a[1], 1, 9, 3, 11, 5, 13, 7, 15);
+    Vector8 const xz23 = __builtin_shufflevector(a[2], a[3], 0, 8, 2, 10, 4, 12, 6, 14);
+    Vector8 const y23 = __builtin_shufflevector(a[2], a[3], 1, 9, 3, 11, 5, 13, 7, 15);
+    Vector8 const vx = __builtin_shufflevector(xz01, xz23, 0, 1, 8, 9, 4, 5, 12, 13);
+    Vector8 const vy = __builtin_shufflevector(y01, y23, 0, 1, 8, 9, 4, 5, 12, 13);
+    Vector8 const vz = __builtin_shufflevector(xz01, xz23, 2, 3, 10, 11, 6, 7, 14, 15);
+    std::memcpy(x, &vx, sizeof vx);
+    std::memcpy(y, &vy, sizeof vy);
+    std::memcpy(z, &vz, sizeof vz);
+}
+
 /// a x b, component `c`, in Eigen's order of operations.
 inline double cross(int c, double ax, double ay, double az, double bx, double by, double bz) {
     return c == 0 ? ay * bz - az * by : (c == 1 ? az * bx - ax * bz : ax * by - ay * bx);
@@ -55,6 +96,23 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
     bool rolling = false;
     for (std::size_t k = 0; k < n; ++k)
         rolling = rolling || m_muRoll[k] > 0.0;
+    // The centres, velocities and spins, eight contacts at a time (the lanes beyond n repeat
+    // contact 0's copies: computed, never read).
+    for (std::size_t k = n; k % 8 != 0; ++k) {
+        m_i[k] = m_i[0];
+        m_j[k] = m_j[0];
+    }
+    double const* const x = ps.positions().data()->data();
+    double const* const v = ps.velocities().data()->data();
+    double const* const w = ps.angularVelocities().data()->data();
+    for (std::size_t b = 0; b < n; b += 8) {
+        loadTransposed(x, &m_i[b], &m_xi[0][b], &m_xi[1][b], &m_xi[2][b]);
+        loadTransposed(x, &m_j[b], &m_xj[0][b], &m_xj[1][b], &m_xj[2][b]);
+        loadTransposed(v, &m_i[b], &m_vi[0][b], &m_vi[1][b], &m_vi[2][b]);
+        loadTransposed(v, &m_j[b], &m_vj[0][b], &m_vj[1][b], &m_vj[2][b]);
+        loadTransposed(w, &m_i[b], &m_wi[0][b], &m_wi[1][b], &m_wi[2][b]);
+        loadTransposed(w, &m_j[b], &m_wj[0][b], &m_wj[1][b], &m_wj[2][b]);
+    }
     if (rolling)
         evaluateLanes<true>(Grains::of(ps), dt);
     else
@@ -64,9 +122,6 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
 template <bool kRolling>
 void SpringDashpotBatch::evaluateLanes(Grains g, double dt) {
     std::size_t const n = m_size;
-    double const* __restrict const x = g.x;
-    double const* __restrict const v = g.v;
-    double const* __restrict const w = g.w;
     double const* __restrict const invM = g.invM;
     double const* __restrict const invI = g.invI;
     double const* __restrict const rad = g.rad;
@@ -76,10 +131,9 @@ void SpringDashpotBatch::evaluateLanes(Grains g, double dt) {
     // a lane then discards; the bits of the results kept are the same). The comments name the
     // scalar code each part mirrors (same operations, same order).
     for (std::size_t k = 0; k < n; ++k) {
-        std::size_t const i3 = 3 * std::size_t{m_i[k]}, j3 = 3 * std::size_t{m_j[k]};
-        double const xix = x[i3], xiy = x[i3 + 1], xiz = x[i3 + 2];
-        double const xjx = x[j3] + m_shift[0][k], xjy = x[j3 + 1] + m_shift[1][k],
-                     xjz = x[j3 + 2] + m_shift[2][k];
+        double const xix = m_xi[0][k], xiy = m_xi[1][k], xiz = m_xi[2][k];
+        double const xjx = m_xj[0][k] + m_shift[0][k], xjy = m_xj[1][k] + m_shift[1][k],
+                     xjz = m_xj[2][k] + m_shift[2][k];
         double const a = rad[m_i[k]], b = rad[m_j[k]];
         // overlapGeometry: normal, penetration, point; the lever arms as pairState takes them.
         double const dx = xjx - xix, dy = xjy - xiy, dz = xjz - xiz;
@@ -93,15 +147,15 @@ void SpringDashpotBatch::evaluateLanes(Grains g, double dt) {
                      pointZ = xiz + toPoint * nz;
         double const rix = pointX - xix, riy = pointY - xiy, riz = pointZ - xiz;
         double const rjx = pointX - xjx, rjy = pointY - xjy, rjz = pointZ - xjz;
-        double const wix = w[i3], wiy = w[i3 + 1], wiz = w[i3 + 2];
-        double const wjx = w[j3], wjy = w[j3 + 1], wjz = w[j3 + 2];
+        double const wix = m_wi[0][k], wiy = m_wi[1][k], wiz = m_wi[2][k];
+        double const wjx = m_wj[0][k], wjy = m_wj[1][k], wjz = m_wj[2][k];
         // pairState: v + w x r at the contact point, relative velocity and spin, m_eff, R_eff.
-        double const vix = v[i3] + cross(0, wix, wiy, wiz, rix, riy, riz);
-        double const viy = v[i3 + 1] + cross(1, wix, wiy, wiz, rix, riy, riz);
-        double const viz = v[i3 + 2] + cross(2, wix, wiy, wiz, rix, riy, riz);
-        double const vjx = v[j3] + cross(0, wjx, wjy, wjz, rjx, rjy, rjz);
-        double const vjy = v[j3 + 1] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
-        double const vjz = v[j3 + 2] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vix = m_vi[0][k] + cross(0, wix, wiy, wiz, rix, riy, riz);
+        double const viy = m_vi[1][k] + cross(1, wix, wiy, wiz, rix, riy, riz);
+        double const viz = m_vi[2][k] + cross(2, wix, wiy, wiz, rix, riy, riz);
+        double const vjx = m_vj[0][k] + cross(0, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjy = m_vj[1][k] + cross(1, wjx, wjy, wjz, rjx, rjy, rjz);
+        double const vjz = m_vj[2][k] + cross(2, wjx, wjy, wjz, rjx, rjy, rjz);
         double const ux = vjx - vix, uy = vjy - viy, uz = vjz - viz;
         [[maybe_unused]] double const ox = wjx - wix, oy = wjy - wiy, oz = wjz - wiz;
         double const meff = 1.0 / (invM[m_i[k]] + invM[m_j[k]]);

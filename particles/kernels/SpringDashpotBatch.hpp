@@ -11,9 +11,9 @@
 /// instruction, 8 per AVX-512 one where the machine has it (REGOLITH_LANE_CODEGEN: the loop is
 /// latency-bound, so wider lanes pay even where the units are 256 bits wide; docs/results.md,
 /// issue 5, "Contact loop in batches" and "Lane kernels in 512 bits"). The grains' state is
-/// loaded inside that loop, by index (vector gathers), not copied into lanes first: the loads
-/// then hide in the latency of the arithmetic, where a separate copy cost as much as the model
-/// ("Gathers inside the lane loop").
+/// loaded by index, not copied pair by pair: centres, velocities and spins eight contacts at a
+/// time, transposed in registers, and the scalars (inverse masses and inertias, radii) by
+/// gathers inside the loop ("Loads by index and transposed").
 ///
 /// Same bits as overlapGeometry followed by evaluatePair with SpringDashpot: every lane computes
 /// the same IEEE operations in the same order as overlapGeometry (normal, penetration, point),
@@ -72,22 +72,14 @@ public:
 
 private:
     /// evaluate's loop over the lanes, with or without rolling resistance.
-    /// The storage's arrays the lane loop reads by index; restrict, so that GCC may gather
+    /// The storage's scalars the lane loop reads by index; restrict, so that GCC may gather
     /// from them (it cannot check a gather's overlap with the batch's stores at run time).
     struct Grains {
-        double const* __restrict x;
-        double const* __restrict v;
-        double const* __restrict w;
         double const* __restrict invM;
         double const* __restrict invI;
         double const* __restrict rad;
         static Grains of(ParticleStorage const& ps) {
-            return {ps.positions().data()->data(),
-                    ps.velocities().data()->data(),
-                    ps.angularVelocities().data()->data(),
-                    ps.invMasses().data(),
-                    ps.invInertias().data(),
-                    ps.radii().data()};
+            return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
     template <bool kRolling>
@@ -103,8 +95,9 @@ private:
     std::array<HistoryEntry*, kCapacity> m_entry{};
     std::array<std::uint32_t, kCapacity> m_typeI{};
     std::array<std::uint32_t, kCapacity> m_typeJ{};
-    // Inputs besides the grains: j's periodic shift and the spring (updated in place).
-    alignas(64) Lane3 m_shift;
+    // Inputs: centres x_i and x_j (j's periodic shift apart), velocities and spins (filled by
+    // evaluate), the spring (updated in place).
+    alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
     alignas(64) Lane3 m_s;
     // The pair's material parameters, gathered from the tables.
     alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll;
