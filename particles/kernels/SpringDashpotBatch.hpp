@@ -71,7 +71,6 @@ public:
     }
 
 private:
-    /// evaluate's loop over the lanes, with or without rolling resistance.
     /// The storage's scalars the lane loop reads by index; restrict, so that GCC may gather
     /// from them (it cannot check a gather's overlap with the batch's stores at run time).
     struct Grains {
@@ -82,6 +81,7 @@ private:
             return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
+    /// evaluate's loop over the lanes, with or without rolling resistance.
     template <bool kRolling>
     void evaluateLanes(Grains g, double dt);
 
