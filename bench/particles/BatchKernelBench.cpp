@@ -1,9 +1,8 @@
 // The spring-dashpot batch kernel alone (SpringDashpotBatch::evaluate), per contact: the
 // arithmetic of the fused contact loop, with its loads of the grains' state, without its history
 // look-ups and scatters, with or without collecting the pairs (add), on 64 contacts that stay
-// in L1. Half of the contacts slide
-// (Coulomb limit), half stick, all carry a spring from earlier steps: every branch of the
-// scalar model is exercised.
+// in L1. Half of the contacts slide (Coulomb limit), half stick, all carry a spring from earlier
+// steps: every branch of the scalar model is exercised.
 //
 //   particles_bench --benchmark_filter=springDashpotBatch
 #include "particles/kernels/SpringDashpotBatch.hpp"

@@ -35,6 +35,7 @@ namespace regolith::particles {
 class SpringDashpotBatch {
 public:
     static constexpr std::size_t kCapacity = 64;
+    static_assert(kCapacity % 8 == 0, "evaluate loads the grains eight contacts at a time");
 
     [[nodiscard]] std::size_t size() const { return m_size; }
     [[nodiscard]] bool full() const { return m_size == kCapacity; }
@@ -47,9 +48,9 @@ public:
              std::uint8_t hint);
 
     /// Evaluates every added contact of `ps` (the storage add saw, unchanged since) with
-    /// `model` and time step `dt`: afterwards force(k),
-    /// torqueI(k), torqueJ(k) and spring(k) hold what overlapGeometry and evaluatePair would
-    /// give (force on j, torques on i and j, the updated spring).
+    /// `model` and time step `dt`: afterwards force(k), torqueI(k), torqueJ(k) and spring(k)
+    /// hold what overlapGeometry and evaluatePair would give (force on j, torques on i and j,
+    /// the updated spring).
     void evaluate(ParticleStorage const& ps, SpringDashpot const& model, double dt);
 
     [[nodiscard]] std::size_t i(std::size_t k) const { return m_i[k]; }
