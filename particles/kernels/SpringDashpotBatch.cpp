@@ -114,13 +114,13 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
         loadTransposed(w, &m_j[b], &m_wj[0][b], &m_wj[1][b], &m_wj[2][b]);
     }
     if (rolling)
-        evaluateLanes<true>(Grains::of(ps), dt);
+        evaluateLanes<true>(GrainScalars::of(ps), dt);
     else
-        evaluateLanes<false>(Grains::of(ps), dt);
+        evaluateLanes<false>(GrainScalars::of(ps), dt);
 }
 
 template <bool kRolling>
-void SpringDashpotBatch::evaluateLanes(Grains g, double dt) {
+void SpringDashpotBatch::evaluateLanes(GrainScalars g, double dt) {
     std::size_t const n = m_size;
     double const* __restrict const invM = g.invM;
     double const* __restrict const invI = g.invI;

@@ -74,17 +74,17 @@ public:
 private:
     /// The storage's scalars the lane loop reads by index; restrict, so that GCC may gather
     /// from them (it cannot check a gather's overlap with the batch's stores at run time).
-    struct Grains {
+    struct GrainScalars {
         double const* __restrict invM;
         double const* __restrict invI;
         double const* __restrict rad;
-        static Grains of(ParticleStorage const& ps) {
+        static GrainScalars of(ParticleStorage const& ps) {
             return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
     /// evaluate's loop over the lanes, with or without rolling resistance.
     template <bool kRolling>
-    void evaluateLanes(Grains g, double dt);
+    void evaluateLanes(GrainScalars g, double dt);
 
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
