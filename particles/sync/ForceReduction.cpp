@@ -154,9 +154,9 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
 
 void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp) {
     core::CommStats stats;
-    // Along the update list if the storages did not change since the last sync (one rank):
-    // the same sums, without looking the masters up.
-    if (m_updateList && m_updateList->reduce(local, stamp))
+    // Along the update list if no storage changed since the last sync on any rank: the same
+    // shares, without looking the masters up.
+    if (m_updateList && m_updateList->reduce(local, stamp, stats))
         pruneMasterHistories(local, stamp);
     else
         exchangeShadowShares(*m_impl, local, nullptr, stamp, stats);

@@ -85,7 +85,7 @@ core::SendBuffer& ParticleSync::Impl::out(int rank) {
 ParticleSync::ParticleSync(core::Comm const& comm, domain::BlockForest const& forest,
                            SyncConfig config)
     : m_impl(std::make_unique<Impl>(comm, forest, config))
-    , m_updateList(UpdateList::forConfig(config, comm.size()))
+    , m_updateList(UpdateList::forConfig(config, comm, forest))
     , m_config(config) {}
 
 ParticleSync::~ParticleSync() = default;

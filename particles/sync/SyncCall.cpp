@@ -4,14 +4,29 @@
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/UpdateList.hpp"
 
+#include <algorithm>
+
 namespace regolith::particles {
 
+namespace {
+
+/// Adds the traffic of the update list's exchange to the call's.
+void addTraffic(core::CommStats& call, core::CommStats const& list) {
+    call.messages += list.messages;
+    call.bytes += list.bytes;
+    call.peers = std::max(call.peers, list.peers);
+}
+
+} // namespace
+
 void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
+    // Every rank acts on the same verdict: a refresh and the leavers' Alg. 1 are collective.
     UpdateList::Verdict const verdict =
-        m_updateList ? m_updateList->check(local, movedAtMost) : UpdateList::Verdict::Refresh;
+        m_updateList ? m_updateList->agree(m_updateList->check(local, movedAtMost))
+                     : UpdateList::Verdict::Refresh;
     if (verdict == UpdateList::Verdict::Holds) {
         m_last = SyncStats{};
-        m_last.updated = m_updateList->update(local);
+        m_last.updated = m_updateList->update(local, m_last.comm);
         m_last.alongList = true;
         m_counters.record(m_last.comm);
         return;
@@ -19,16 +34,23 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
     if (verdict == UpdateList::Verdict::Leavers) {
         // Every shadow along the list while the indices hold, then Alg. 1 for the masters
         // that left their blocks only; the others keep their shadows on what budget is left.
-        std::size_t const updated = m_updateList->update(local);
+        core::CommStats along;
+        std::size_t const updated = m_updateList->update(local, along);
         syncInFull(local, m_updateList->leavers());
         m_last.updated += updated;
         m_last.leaversOnly = true;
-        m_updateList->rebuild(local, m_impl->rank(), m_updateList->budgetLeft());
+        m_updateList->rebuild(local, m_updateList->budgetLeft(), along);
+        addTraffic(m_last.comm, along);
+        m_counters.record(along);
         return;
     }
     syncInFull(local, {});
-    if (m_updateList)
-        m_updateList->rebuild(local, m_impl->rank(), m_config.skin);
+    if (m_updateList) {
+        core::CommStats keys;
+        m_updateList->rebuild(local, m_config.skin, keys);
+        addTraffic(m_last.comm, keys);
+        m_counters.record(keys);
+    }
 }
 
 } // namespace regolith::particles

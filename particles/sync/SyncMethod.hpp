@@ -33,8 +33,8 @@ struct SyncConfig {
     /// the shadows they have, along a list fixed at the decision, instead of running Alg. 1
     /// every step; masters that leave their blocks are decided alone. All are decided again
     /// when some master moved a skin, or a storage changed. The shadows are then a superset of
-    /// Alg. 1's (copies within r + 2 skin), never fewer (UpdateList.hpp). One rank, method
-    /// "nns" or "hybrid".
+    /// Alg. 1's (copies within r + 2 skin), never fewer (UpdateList.hpp). Any number of ranks
+    /// (remote shadows along the owners' send lists); method "nns" or "hybrid".
     double skin = 0.0;
 };
 

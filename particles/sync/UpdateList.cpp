@@ -25,7 +25,8 @@ bool mayLeave(core::AABB const& box, core::Vec3 const& x, double budget) {
 
 } // namespace
 
-std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, int ranks) {
+std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, core::Comm const& comm,
+                                                  domain::BlockForest const& forest) {
     if (config.skin == 0.0)
         return nullptr;
     if (!(config.skin > 0.0) || !std::isfinite(config.skin))
@@ -33,17 +34,40 @@ std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, int 
     if (config.method == SyncMethod::ShadowOwner)
         throw core::InputError("sync.skin applies to NNS-class grains: use sync.method = "
                                "\"nns\" or \"hybrid\", or sync.skin = 0");
-    if (ranks != 1)
-        throw core::InputError("sync.skin needs one rank (every shadow's master in the process); "
-                               "this run has " +
-                               std::to_string(ranks) + ": set sync.skin = 0");
-    return std::make_unique<UpdateList>();
+    return std::make_unique<UpdateList>(comm, forest.neighbourRanks());
 }
 
-void UpdateList::rebuild(LocalParticles const& local, int rank, double budget) {
+UpdateList::UpdateList(core::Comm const& comm, std::vector<int> peers)
+    : m_comm(comm.duplicate()) {
+    if (m_comm.size() == 1)
+        return;
+    std::erase(peers, m_comm.rank());
+    std::sort(peers.begin(), peers.end());
+    peers.erase(std::unique(peers.begin(), peers.end()), peers.end());
+    m_exchange = std::make_unique<core::NeighbourExchange>(m_comm, std::move(peers));
+    m_from.resize(m_exchange->peers().size());
+    m_to.resize(m_exchange->peers().size());
+}
+
+int UpdateList::peerSlot(int rank) const {
+    if (!m_exchange)
+        return -1;
+    auto const& peers = m_exchange->peers();
+    auto const at = std::lower_bound(peers.begin(), peers.end(), rank);
+    return at != peers.end() && *at == rank ? static_cast<int>(at - peers.begin()) : -1;
+}
+
+void UpdateList::countTraffic(core::CommStats& stats) const {
+    core::CommStats const& call = m_exchange->counters().last();
+    stats.messages += call.messages;
+    stats.bytes += call.bytes;
+    stats.peers = std::max(stats.peers, call.peers);
+}
+
+void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommStats& stats) {
     auto const blocks = local.blocks();
+    int const rank = m_comm.rank();
     m_valid = false;
-    m_rank = rank;
     m_budget = budget;
     m_largestMove = 0.0;
     m_blocks.resize(blocks.size());
@@ -51,7 +75,11 @@ void UpdateList::rebuild(LocalParticles const& local, int rank, double budget) {
     for (std::size_t b = 0; b < blocks.size(); ++b)
         byId.emplace_back(blocks[b].block->id.raw(), static_cast<std::uint32_t>(b));
     std::sort(byId.begin(), byId.end());
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
+    std::vector<std::vector<Key>> keys(m_from.size());
+    for (auto& from : m_from)
+        from.clear();
+    bool valid = true;
+    for (std::size_t b = 0; b < blocks.size() && valid; ++b) {
         ParticleStorage const& ps = blocks[b].particles;
         BlockState& s = m_blocks[b];
         s.revision = ps.layoutRevision();
@@ -59,30 +87,82 @@ void UpdateList::rebuild(LocalParticles const& local, int rank, double budget) {
         s.shadows.clear();
         s.nearFaces.clear();
         core::AABB const& box = blocks[b].block->aabb;
-        for (std::size_t i = 0; i < ps.size(); ++i) {
-            if (ps.flags(i).has(Flag::Spreads))
-                return; // SOS class: Alg. 2 every call
+        for (std::size_t i = 0; i < ps.size() && valid; ++i) {
+            if (ps.flags(i).has(Flag::Spreads)) {
+                valid = false; // SOS class: Alg. 2 every call
+                break;
+            }
             if (!ps.flags(i).isShadow()) {
                 if (mayLeave(box, ps.position(i), budget))
                     s.nearFaces.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
-            // Its master, on this rank (else Alg. 1 every call): in storage order, as the
-            // reduction without the list visits the shadows, so that the sums are the same.
             BlockRef const owner = ps.owner(i);
+            if (owner.rank != rank) { // its owner's send list, in this storage order
+                int const p = peerSlot(owner.rank);
+                valid = p >= 0;
+                if (valid) {
+                    m_from[static_cast<std::size_t>(p)].push_back(
+                        {static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(i)});
+                    keys[static_cast<std::size_t>(p)].push_back({owner.block, ps.uid(i)});
+                }
+                continue;
+            }
+            // Its master, on this rank: in storage order, as the reduction without the list
+            // visits the shadows, so that the sums are the same.
             auto const m = std::lower_bound(byId.begin(), byId.end(),
                                             std::pair(owner.block, std::uint32_t{0}));
-            if (owner.rank != rank || m == byId.end() || m->first != owner.block)
-                return;
-            ParticleStorage const& masters = blocks[m->second].particles;
-            std::size_t const k = masters.find(ps.uid(i));
-            if (k == ParticleStorage::kNotFound || !masters.flags(k).isMaster())
-                return;
-            s.shadows.push_back(
-                {static_cast<std::uint32_t>(i), m->second, static_cast<std::uint32_t>(k)});
+            std::size_t const k = m == byId.end() || m->first != owner.block
+                                      ? ParticleStorage::kNotFound
+                                      : blocks[m->second].particles.find(ps.uid(i));
+            valid =
+                k != ParticleStorage::kNotFound && blocks[m->second].particles.flags(k).isMaster();
+            if (valid)
+                s.shadows.push_back(
+                    {static_cast<std::uint32_t>(i), m->second, static_cast<std::uint32_t>(k)});
         }
     }
-    m_valid = true;
+    if (!valid) // the owners get no keys: the list is not used before the next refresh
+        for (auto& k : keys)
+            k.clear();
+    if (m_exchange)
+        valid = exchangeKeys(local, keys, stats) && valid;
+    m_valid = valid;
+}
+
+bool UpdateList::exchangeKeys(LocalParticles const& local,
+                              std::vector<std::vector<Key>> const& keys, core::CommStats& stats) {
+    auto const& peers = m_exchange->peers();
+    for (std::size_t p = 0; p < peers.size(); ++p) {
+        core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
+        out << std::uint64_t{keys[p].size()};
+        for (Key const& k : keys[p])
+            out << k.block << k.uid;
+    }
+    bool found = true;
+    m_exchange->start();
+    m_exchange->wait([&](int from, core::RecvBuffer& in) {
+        std::vector<CopyAt>& to = m_to[static_cast<std::size_t>(peerSlot(from))];
+        to.clear();
+        std::uint64_t n = 0;
+        if (!in.exhausted())
+            in >> n;
+        for (std::uint64_t q = 0; q < n; ++q) {
+            Key k;
+            in >> k.block >> k.uid;
+            BlockParticles const* bp = local.find(k.block);
+            std::size_t const m =
+                bp == nullptr ? ParticleStorage::kNotFound : bp->particles.find(k.uid);
+            if (m == ParticleStorage::kNotFound || !bp->particles.flags(m).isMaster()) {
+                found = false;
+                continue;
+            }
+            to.push_back({static_cast<std::uint32_t>(bp - local.blocks().data()),
+                          static_cast<std::uint32_t>(m)});
+        }
+    });
+    countTraffic(stats);
+    return found;
 }
 
 bool UpdateList::unchanged(LocalParticles const& local) const {
@@ -155,8 +235,51 @@ UpdateList::Verdict UpdateList::check(LocalParticles const& local, double movedA
     return left ? Verdict::Leavers : Verdict::Holds;
 }
 
-std::size_t UpdateList::update(LocalParticles& local) const {
+UpdateList::Verdict UpdateList::agree(Verdict own) const {
+    if (m_comm.size() == 1)
+        return own;
+    return static_cast<Verdict>(m_comm.allReduce(static_cast<int>(own), core::ReduceOp::Max));
+}
+
+namespace {
+
+/// copyMotion through a message: what the owner sends of master i (its position is every
+/// copy's canonical position; its orientation only if its storage keeps any, else it is the
+/// identity), and what the shadow's rank makes of it, with copyMotion's bits.
+void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i) {
+    bool const oriented = ps.storesOrientations();
+    b << ps.position(i) << ps.velocity(i) << ps.angularVelocity(i) << oriented;
+    if (oriented)
+        b << ps.orientation(i);
+    b << ps.history(i).entries();
+}
+
+void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
+                std::vector<HistoryEntry>& history) {
+    bool oriented = false;
+    b >> ps.position(k) >> ps.velocity(k) >> ps.angularVelocity(k) >> oriented;
+    core::Quat q = core::Quat::Identity();
+    if (oriented)
+        b >> q;
+    b >> history;
+    ps.setOrientation(k, q);
+    if (!history.empty() || !ps.history(k).empty())
+        ps.history(k).assign(history);
+}
+
+} // namespace
+
+std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
     auto blocks = local.blocks();
+    if (m_exchange) { // the remote shadows' messages travel while the local ones are copied
+        auto const& peers = m_exchange->peers();
+        for (std::size_t p = 0; p < peers.size(); ++p) {
+            core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
+            for (CopyAt const& m : m_to[p])
+                writeMotion(out, blocks[m.block].particles, m.index);
+        }
+        m_exchange->start();
+    }
     std::size_t updated = 0;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         BlockParticles& target = blocks[b];
@@ -169,14 +292,49 @@ std::size_t UpdateList::update(LocalParticles& local) const {
         }
         updated += m_blocks[b].shadows.size();
     }
+    if (m_exchange) {
+        std::vector<HistoryEntry> history;
+        m_exchange->wait([&](int from, core::RecvBuffer& in) {
+            for (CopyAt const& s : m_from[static_cast<std::size_t>(peerSlot(from))]) {
+                BlockParticles& target = blocks[s.block];
+                readMotion(in, target.particles, s.index, history);
+                if (!target.sent.empty())
+                    forgetSent(target, target.particles.uid(s.index));
+                ++updated;
+            }
+            if (!in.exhausted())
+                throw core::Error("sync: malformed update message from rank " +
+                                  std::to_string(from));
+        });
+        countTraffic(stats);
+    }
     return updated;
 }
 
-bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp) const {
-    if (!unchanged(local))
+bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats) {
+    bool const here = unchanged(local);
+    if (m_comm.size() > 1 ? !m_comm.allTrue(here) : !here)
         return false;
     auto blocks = local.blocks();
     std::vector<HistoryEntry> entries;
+    if (m_exchange) { // the remote shadows' shares, by their place in the owner's list
+        auto const& peers = m_exchange->peers();
+        for (std::size_t p = 0; p < peers.size(); ++p) {
+            core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
+            for (std::size_t q = 0; q < m_from[p].size(); ++q) {
+                ParticleStorage& ps = blocks[m_from[p][q].block].particles;
+                std::size_t const i = m_from[p][q].index;
+                sync_detail::touchedEntries(ps, i, stamp, entries);
+                // Most shadows of a gas touch nothing: nothing to send (addShadowShare's rule).
+                if (entries.empty() && ps.force(i).isZero(0.0) && ps.torque(i).isZero(0.0))
+                    continue;
+                out << static_cast<std::uint32_t>(q) << ps.force(i) << ps.torque(i) << entries;
+                ps.force(i).setZero();
+                ps.torque(i).setZero();
+            }
+        }
+        m_exchange->start();
+    }
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         ParticleStorage& ps = blocks[b].particles;
         for (Shadow const& s : m_blocks[b].shadows) {
@@ -184,6 +342,25 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp) const {
             sync_detail::addShadowShare(ps, s.index, entries, blocks[s.masterBlock].particles,
                                         s.master);
         }
+    }
+    if (m_exchange) {
+        m_exchange->wait([&](int from, core::RecvBuffer& in) {
+            std::vector<CopyAt> const& to = m_to[static_cast<std::size_t>(peerSlot(from))];
+            while (!in.exhausted()) {
+                std::uint32_t q = 0;
+                core::Vec3 force, torque;
+                in >> q >> force >> torque >> entries;
+                if (q >= to.size())
+                    throw core::Error("sync: malformed force message from rank " +
+                                      std::to_string(from));
+                ParticleStorage& ps = blocks[to[q].block].particles;
+                ps.force(to[q].index) += force;
+                ps.torque(to[q].index) += torque;
+                for (HistoryEntry const& e : entries)
+                    ps.history(to[q].index).set(e);
+            }
+        });
+        countTraffic(stats);
     }
     return true;
 }

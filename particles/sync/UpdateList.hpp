@@ -24,8 +24,21 @@
 /// bound (the integrator's largest move, DemStep) the displacements are not compared: their
 /// sum since the refresh bounds every master's, and only the masters that were within twice
 /// the budget of a block face at the refresh can have left their block (LAMMPS's neighbour
-/// check, Neighbor::decide, compares every atom every step instead). One rank: every
-/// shadow's master is in this process.
+/// check, Neighbor::decide, compares every atom every step instead).
+///
+/// Several ranks. A shadow whose master is on another rank is updated from a message along
+/// the same fixed list: at a refresh each rank sends the owners of its remote shadows their
+/// keys (owner block, uid) in its own storage order, once; until the next refresh the owner
+/// sends those masters' motion and history in that order, and receives back the forces,
+/// torques and touched history entries of the shadows that have any, by their place in it
+/// (LAMMPS's send lists, Comm::borders then forward_comm / reverse_comm). No decision,
+/// look-up or key per call. Whether the
+/// list holds is decided by every rank together (agree(): the most demanding verdict wins),
+/// since a refresh is collective.
+#include "core/mpi/Comm.hpp"
+#include "core/mpi/CommCounters.hpp"
+#include "core/mpi/NeighbourExchange.hpp"
+#include "domain/BlockForest.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/SyncMethod.hpp"
 
@@ -38,18 +51,26 @@ namespace regolith::particles {
 
 class UpdateList {
 public:
-    /// The list for `config` on a communicator of `ranks` ranks: none without a skin. Throws
-    /// core::InputError (the same on every rank) if the skin is negative or not finite, the
-    /// method is SOS, or there is more than one rank.
-    static std::unique_ptr<UpdateList> forConfig(SyncConfig const& config, int ranks);
+    /// The list for `config` over `forest` on `comm`: none without a skin. Throws
+    /// core::InputError (the same on every rank) if the skin is negative or not finite or the
+    /// method is SOS. COLLECTIVE over `comm` (the exchange with the neighbour blocks' ranks).
+    static std::unique_ptr<UpdateList> forConfig(SyncConfig const& config, core::Comm const& comm,
+                                                 domain::BlockForest const& forest);
+
+    /// COLLECTIVE over `comm`; `peers`: the other ranks this one may share a grain with
+    /// (symmetric, as BlockForest::neighbourRanks).
+    UpdateList(core::Comm const& comm, std::vector<int> peers);
 
     /// Records what the full synchronisation left in `local`: per block, every copy's position
-    /// (the masters' are the references) and, per shadow, its master; a master may move
-    /// `budget` from its reference before the list stops holding. Leaves the list invalid if
-    /// some copy is SOS class (Flag::Spreads) or some shadow's master is not on rank `rank`.
-    void rebuild(LocalParticles const& local, int rank, double budget);
+    /// (the masters' are the references) and, per shadow, its master (on this rank, or the
+    /// owner's send list, exchanged here); a master may move `budget` from its reference
+    /// before the list stops holding. Leaves the list invalid if some copy is SOS class
+    /// (Flag::Spreads) or some shadow's master cannot be found. Adds the traffic to `stats`.
+    /// COLLECTIVE.
+    void rebuild(LocalParticles const& local, double budget, core::CommStats& stats);
 
-    enum class Verdict {
+    /// In increasing demand (agree() takes the maximum).
+    enum class Verdict : int {
         Holds,   ///< every master within the budget of its reference and inside its block
         Leavers, ///< within the budget, but some masters left their blocks (leavers())
         Refresh, ///< invalid, a storage changed (add, remove, re-key), or a master moved too far
@@ -58,6 +79,10 @@ public:
     /// `movedAtMost` since the last check() or rebuild() (+inf if unknown). Local; O(copies)
     /// without a bound, O(masters near a face) with one.
     [[nodiscard]] Verdict check(LocalParticles const& local, double movedAtMost);
+    /// The verdict every rank acts on: the most demanding of the ranks' check(). A rank whose
+    /// own was Holds acts on Leavers with no leavers of its own. COLLECTIVE (one all-reduce,
+    /// none on one rank).
+    [[nodiscard]] Verdict agree(Verdict own) const;
     /// After check() said Leavers: per block, the masters that left it, ascending.
     [[nodiscard]] std::vector<std::vector<std::uint32_t>> const& leavers() const {
         return m_leavers;
@@ -69,24 +94,43 @@ public:
 
     /// Copies every master's motion and contact history to its shadows, as Alg. 1's update
     /// does (flags and owner stay as the refresh left them: nothing changes them between
-    /// refreshes); returns the number of shadows updated. Pre: check() said Holds or Leavers,
-    /// and no storage changed since.
-    std::size_t update(LocalParticles& local) const;
+    /// refreshes); returns the number of shadows updated here. Adds the traffic to `stats`.
+    /// Pre: agree() said Holds or Leavers, and no storage changed since. COLLECTIVE.
+    std::size_t update(LocalParticles& local, core::CommStats& stats);
 
     /// ParticleSync::reduceForces' in-place path along the list: adds every shadow's force and
     /// torque and its history entries stamped `stamp` to its master and zeroes the shadow's
-    /// force and torque. Returns false, doing nothing, unless the list is valid and no storage
-    /// changed since rebuild().
-    bool reduce(LocalParticles& local, std::uint32_t stamp) const;
+    /// force and torque. Returns false on every rank, doing nothing, unless on every rank the
+    /// list is valid and no storage changed since rebuild(). Adds the traffic to `stats`.
+    /// COLLECTIVE.
+    bool reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats);
 
 private:
-    [[nodiscard]] bool unchanged(LocalParticles const& local) const;
-
     struct Shadow {
         std::uint32_t index = 0;       ///< in its block's storage
         std::uint32_t masterBlock = 0; ///< index into local.blocks()
         std::uint32_t master = 0;      ///< in that block's storage
     };
+    /// A copy on this rank: index into local.blocks(), index in that block's storage.
+    struct CopyAt {
+        std::uint32_t block = 0;
+        std::uint32_t index = 0;
+    };
+    /// What names a master to its owner: its block's raw id and its uid.
+    struct Key {
+        std::uint64_t block = 0;
+        Uid uid = kInvalidUid;
+    };
+
+    [[nodiscard]] bool unchanged(LocalParticles const& local) const;
+    /// rebuild()'s exchange: sends each owner the keys of this rank's remote shadows (m_from)
+    /// and turns the keys received into m_to. False if some key names no master here.
+    bool exchangeKeys(LocalParticles const& local, std::vector<std::vector<Key>> const& keys,
+                      core::CommStats& stats);
+    /// Index of `rank` in the exchange's peers, or -1.
+    [[nodiscard]] int peerSlot(int rank) const;
+    void countTraffic(core::CommStats& stats) const;
+
     struct BlockState {
         std::uint64_t revision = 0;        ///< ParticleStorage::layoutRevision at rebuild()
         std::vector<core::Vec3> reference; ///< every copy's position at rebuild()
@@ -99,7 +143,10 @@ private:
     std::vector<std::vector<std::uint32_t>> m_leavers;
     double m_budget = 0.0;
     double m_largestMove = 0.0; ///< bound on a master's distance from its reference (check())
-    int m_rank = 0;
+    core::Comm m_comm;          ///< a duplicate of the run's
+    std::unique_ptr<core::NeighbourExchange> m_exchange; ///< with the peers; none on one rank
+    std::vector<std::vector<CopyAt>> m_from; ///< per peer: its masters' shadows here, in order
+    std::vector<std::vector<CopyAt>> m_to;   ///< per peer: masters here with shadows there
     bool m_valid = false;
 };
 

@@ -77,24 +77,28 @@ set(refined "--set domain.refine=[{min=[0,0,0],max=[4,4,4],level=1}]")
 
 # a) Sparse gas: grains collide and cross block, rank and periodic boundaries; walls in z.
 #    Every method (small grains only: NNS applies) must give the same trajectory.
-#    With a sync skin (one rank; the list of shadows fixed between refreshes, UpdateList.hpp)
-#    the trajectory is the same too: 64 blocks and one block, hybrid and NNS.
+#    With a sync skin (the list of shadows fixed between refreshes, remote shadows along the
+#    owners' send lists, UpdateList.hpp) the trajectory is the same too: 64 blocks and one
+#    block, hybrid and NNS, on 1, 2, 3 and 8 ranks.
 set(skin "--set sync.skin=0.2")
 regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
   NP1 base ${one_block} ${skin} "${one_block} ${skin} --set sync.method=nns" # 64, 1
-  NP2 base "--set domain.blocks=[2,2,1]"                               # 32, 2
+  NP2 base "--set domain.blocks=[2,2,1]" ${skin}                       # 32, 2, 32 skin
   NP3 base "--set domain.blocks=[4,3,2]"                               # 21-22, 8
+      "--set domain.blocks=[4,3,2] ${skin} --set sync.method=nns"      # 8 NNS skin
   NP4 "--set sync.method=nns" ${refined}                               # 16 NNS, refined
-  NP8 base "--set domain.blocks=[2,2,2] --set sync.method=sos")        # 8, 1 SOS
+  NP8 base "--set domain.blocks=[2,2,2] --set sync.method=sos"         # 8, 1 SOS
+      "${skin} --set sync.method=nns")                                 # 8 NNS skin
 
 # b) Dense packing under gravity between z walls: long-lived contacts, whose tangential
 #    springs travel with the grains.
 regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
   NP1 base ${one_block} "--set sync.skin=0.1"
-  NP2 base "--set domain.blocks=[2,2,1]"
+  NP2 base "--set domain.blocks=[2,2,1]" "--set sync.skin=0.1"
   NP3 base "--set domain.blocks=[4,3,2]"
   NP4 "--set sync.method=sos" ${refined}
-  NP8 base "--set domain.blocks=[2,2,2] --set sync.method=nns")
+  NP8 base "--set domain.blocks=[2,2,2] --set sync.method=nns"
+      "--set domain.blocks=[2,2,2] --set sync.method=nns --set sync.skin=0.1")
 
 # c) Bidisperse: the sphere of radius 15 spans 4 x 4 x 4 of the 8 x 8 x 8 blocks and crosses
 #    the periodic boundary x = 60 (FINAL: its centre ends near x = 1). Hybrid, and SOS against
@@ -104,7 +108,7 @@ set(bidisperse_refined
 regolith_sync_equality(bidisperse_hybrid SCENE sync-bidisperse.toml FINAL "0 x < 5"
   NP1 base ${one_block} ${skin} # 512, 1; skin: grown NNS-class balls, no list (SOS present)
   NP2 base "--set domain.blocks=[2,2,1]"                               # 256, 2
-  NP3 base "--set domain.blocks=[4,3,2]"                               # 170-171, 8
+  NP3 base "--set domain.blocks=[4,3,2]" ${skin}                       # 170-171, 8
   NP4 base ${bidisperse_refined}                                       # 128, refined
   NP8 base "--set domain.blocks=[2,2,2]")                              # 64, 1
 regolith_sync_equality(bidisperse_sos SCENE sync-bidisperse.toml ARGS --set sync.method=sos
