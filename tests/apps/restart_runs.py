@@ -11,7 +11,8 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     name 2 existing pieces holding the 1000 grains (the 8 blocks);
  3. restarts to the scene's 40 steps (a total): from step 20 on 3 ranks and from step 10 on
     1 rank give the reference's checksum, having run 20 and 30 steps; the first, into the
-    directory of run 2, continues its VTK series (steps 0-10 on 2 ranks, 20-40 on 3);
+    directory of run 2, continues its VTK series (steps 0-10 on 2 ranks, 20-40 on 3); so does
+    the restart from step 20 on 3 ranks with a sync skin;
  4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
     non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
  5. a truncated file, a flipped byte, a scene with another domain and a step beyond
@@ -184,6 +185,14 @@ def main():
                  f"{s['steps']}, particles {s['particles']}; expected {reference}, {steps}, 1000")
 
     check_vtk(first, (0, 10, 20, 30, 40), (2, 2, 3, 3, 3))
+
+    # With a sync skin (shadows along fixed lists, remote ones too) the restart on 3 ranks
+    # follows the same trajectory: the list is decided afresh from the restored grains.
+    s = runner.summary(3, "restart_np3_skin", ["--restart", step20, "--output",
+                                               runner.path("skin"), "--set", "sync.skin=0.1"])
+    if s["checksum"] != reference or s["steps"] != 20:
+        fail(f"restart from {step20} on 3 ranks with sync.skin = 0.1: checksum {s['checksum']}, "
+             f"steps {s['steps']}; expected {reference}, 20")
 
     killed = runner.path("killed")
     command, done = runner.run(2, ["--output", killed, "--set", "output.checkpoint_every=10"],
