@@ -20,6 +20,13 @@ struct CommStats {
     std::uint64_t bytes = 0;    ///< bytes in those messages
     int peers = 0;              ///< distinct other ranks sent at least one message
 
+    /// Adds another exchange's call to this one: its messages and bytes, its peers if more.
+    CommStats& operator+=(CommStats const& other) {
+        messages += other.messages;
+        bytes += other.bytes;
+        peers = std::max(peers, other.peers);
+        return *this;
+    }
     bool operator==(CommStats const&) const = default;
 };
 

@@ -4,20 +4,7 @@
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/UpdateList.hpp"
 
-#include <algorithm>
-
 namespace regolith::particles {
-
-namespace {
-
-/// Adds the traffic of the update list's exchange to the call's.
-void addTraffic(core::CommStats& call, core::CommStats const& list) {
-    call.messages += list.messages;
-    call.bytes += list.bytes;
-    call.peers = std::max(call.peers, list.peers);
-}
-
-} // namespace
 
 void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
     // Every rank acts on the same verdict: a refresh and the leavers' Alg. 1 are collective.
@@ -40,7 +27,7 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
         m_last.updated += updated;
         m_last.leaversOnly = true;
         m_updateList->rebuild(local, m_updateList->budgetLeft(), along);
-        addTraffic(m_last.comm, along);
+        m_last.comm += along;
         m_counters.record(along);
         return;
     }
@@ -48,7 +35,7 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
     if (m_updateList) {
         core::CommStats keys;
         m_updateList->rebuild(local, m_config.skin, keys);
-        addTraffic(m_last.comm, keys);
+        m_last.comm += keys;
         m_counters.record(keys);
     }
 }

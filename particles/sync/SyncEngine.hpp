@@ -39,11 +39,7 @@ public:
         }
         // The exchange's own count of this call: NNS sends its size messages to every
         // neighbour rank, SOS (NBX) only to ranks with records.
-        core::CommStats const& call =
-            m_neighbour ? m_neighbour->counters().last() : m_sparse->counters().last();
-        stats.messages += call.messages;
-        stats.bytes += call.bytes;
-        stats.peers = std::max(stats.peers, call.peers);
+        stats += m_neighbour ? m_neighbour->counters().last() : m_sparse->counters().last();
     }
 
     /// Whether some rank raised its flag in the last sparse exchange (false with NNS's).

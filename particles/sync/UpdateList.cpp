@@ -57,13 +57,6 @@ int UpdateList::peerSlot(int rank) const {
     return at != peers.end() && *at == rank ? static_cast<int>(at - peers.begin()) : -1;
 }
 
-void UpdateList::countTraffic(core::CommStats& stats) const {
-    core::CommStats const& call = m_exchange->counters().last();
-    stats.messages += call.messages;
-    stats.bytes += call.bytes;
-    stats.peers = std::max(stats.peers, call.peers);
-}
-
 void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommStats& stats) {
     auto const blocks = local.blocks();
     int const rank = m_comm.rank();
@@ -161,7 +154,7 @@ bool UpdateList::exchangeKeys(LocalParticles const& local,
                           static_cast<std::uint32_t>(m)});
         }
     });
-    countTraffic(stats);
+    stats += m_exchange->counters().last();
     return found;
 }
 
@@ -306,7 +299,7 @@ std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
                 throw core::Error("sync: malformed update message from rank " +
                                   std::to_string(from));
         });
-        countTraffic(stats);
+        stats += m_exchange->counters().last();
     }
     return updated;
 }
@@ -360,7 +353,7 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
                     ps.history(to[q].index).set(e);
             }
         });
-        countTraffic(stats);
+        stats += m_exchange->counters().last();
     }
     return true;
 }

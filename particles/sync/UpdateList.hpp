@@ -129,7 +129,6 @@ private:
                       core::CommStats& stats);
     /// Index of `rank` in the exchange's peers, or -1.
     [[nodiscard]] int peerSlot(int rank) const;
-    void countTraffic(core::CommStats& stats) const;
 
     struct BlockState {
         std::uint64_t revision = 0;        ///< ParticleStorage::layoutRevision at rebuild()

@@ -385,3 +385,12 @@ TEST(NeighbourExchange, CallbackThrowingOnOneRankLeavesEveryRankUsable) {
     }
     EXPECT_EQ(ex.counters().calls(), static_cast<std::uint64_t>(rounds));
 }
+
+TEST(CommStats, AddingACallSumsMessagesAndBytesAndKeepsTheMostPeers) {
+    // The synchronisation adds the calls of several exchanges into one per step.
+    CommStats call{3, 100, 2};
+    call += CommStats{2, 40, 1};
+    EXPECT_EQ(call, (CommStats{5, 140, 2}));
+    call += CommStats{0, 0, 5};
+    EXPECT_EQ(call, (CommStats{5, 140, 5}));
+}
