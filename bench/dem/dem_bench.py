@@ -10,10 +10,12 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
            8x8x8 blocks per building block; NNS points stop where NNS refuses. CSV + PNG.
   radius-chart  the radius chart again from the CSV of an earlier `radius` run.
   memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
+  skin     the sparse gas with and without a sync skin (sync.skin = --skin, 0), NNS and hybrid,
+           on each of --ranks, alternating; PUpCS ratio skin / none next to each other.
 
-usage: dem_bench.py [methods|radius|radius-chart|memory ...] [--build build/default]
+usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build/default]
                     [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40]
-                    [--radii 4 8 12 16 20 24]
+                    [--radii 4 8 12 16 20 24] [--skin 0.1]
 """
 import argparse
 import csv
@@ -72,6 +74,35 @@ def methods(a):
     write_csv(a.out, "dem_methods.csv",
               ["scene", "ranks", "repeat", "method", "grains", "steps", "wall_s", "pupcs",
                "sync_s", "contact_s", "integrate_s", "bytes_per_step"], rows)
+
+
+def skin(a):
+    app, args, steps = SCENES["granular_gas"]
+    rows = []
+    print(f"\n| ranks | method | grains | PUpCS without skin | with skin {a.skin:g} | ratio "
+          "(range) | sync s without / with |")
+    print("|---|---|---|---|---|---|---|")
+    for ranks in a.ranks:
+        for m in ("nns", "hybrid"):
+            runs = {0.0: [], a.skin: []}
+            for repeat in range(a.repeats):
+                for sk in runs:
+                    s = run(a.build, app, ranks, args + ["--steps", str(steps), "--set",
+                                                         f"sync.method={m}", "--set",
+                                                         f"sync.skin={sk!r}"])
+                    runs[sk].append(s)
+                    rows.append([ranks, m, sk, repeat, s["particles"], s["wall_s"], s["pupcs"],
+                                 s["timing_s"]["sync"], s["comm"]["messages_per_step"],
+                                 s["comm"]["bytes_per_step"]])
+            ratios = [w["pupcs"] / n["pupcs"] for n, w in zip(runs[0.0], runs[a.skin])]
+            med = {sk: statistics.median(r["pupcs"] for r in runs[sk]) for sk in runs}
+            sync = {sk: statistics.median(r["timing_s"]["sync"] for r in runs[sk]) for sk in runs}
+            print(f"| {ranks} | {m} | {runs[0.0][0]['particles']} | {med[0.0]:.3e} | "
+                  f"{med[a.skin]:.3e} | {statistics.median(ratios):.2f} ({min(ratios):.2f}–"
+                  f"{max(ratios):.2f}) | {sync[0.0]:.3f} / {sync[a.skin]:.3f} |", flush=True)
+    write_csv(a.out, "dem_skin.csv", ["ranks", "method", "skin", "repeat", "grains", "wall_s",
+                                      "pupcs", "sync_s", "messages_per_step", "bytes_per_step"],
+              rows)
 
 
 def radius(a):
@@ -179,7 +210,7 @@ def write_csv(out, name, header, rows):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory"])
+    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory", "skin"])
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
     p.add_argument("--repeats", type=int, default=3)
@@ -189,11 +220,12 @@ def main():
     p.add_argument("--radius-steps", type=int, default=50)
     p.add_argument("--radius-ranks", type=int, default=2)
     p.add_argument("--memory-boxes", type=int, nargs="*", default=[100, 159])
+    p.add_argument("--skin", type=float, default=0.1)
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     for part in a.parts:
         {"methods": methods, "radius": radius, "radius-chart": radius_chart,
-         "memory": memory}[part](a)
+         "memory": memory, "skin": skin}[part](a)
 
 
 if __name__ == "__main__":
