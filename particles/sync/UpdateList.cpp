@@ -23,6 +23,33 @@ bool mayLeave(core::AABB const& box, core::Vec3 const& x, double budget) {
     return !(toFace >= 2.0 * budget + 1e-9 * scale);
 }
 
+/// The local blocks by raw id, ascending (id, index into local.blocks()).
+using BlocksById = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+
+BlocksById blocksById(LocalParticles const& local) {
+    BlocksById byId;
+    auto const blocks = local.blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+        byId.emplace_back(blocks[b].block->id.raw(), static_cast<std::uint32_t>(b));
+    std::sort(byId.begin(), byId.end());
+    return byId;
+}
+
+/// Where the master `uid` of local block `blockId` is: (block index, storage index), or false.
+bool findMaster(LocalParticles const& local, BlocksById const& byId, std::uint64_t blockId, Uid uid,
+                std::uint32_t& block, std::uint32_t& index) {
+    auto const m = std::lower_bound(byId.begin(), byId.end(), std::pair(blockId, std::uint32_t{0}));
+    if (m == byId.end() || m->first != blockId)
+        return false;
+    ParticleStorage const& ps = local.blocks()[m->second].particles;
+    std::size_t const k = ps.find(uid);
+    if (k == ParticleStorage::kNotFound || !ps.flags(k).isMaster())
+        return false;
+    block = m->second;
+    index = static_cast<std::uint32_t>(k);
+    return true;
+}
+
 } // namespace
 
 std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, core::Comm const& comm,
@@ -64,10 +91,7 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
     m_budget = budget;
     m_largestMove = 0.0;
     m_blocks.resize(blocks.size());
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> byId; // block id -> local index
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-        byId.emplace_back(blocks[b].block->id.raw(), static_cast<std::uint32_t>(b));
-    std::sort(byId.begin(), byId.end());
+    BlocksById const byId = blocksById(local);
     std::vector<std::vector<Key>> keys(m_from.size());
     for (auto& from : m_from)
         from.clear();
@@ -81,10 +105,9 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
         s.nearFaces.clear();
         core::AABB const& box = blocks[b].block->aabb;
         for (std::size_t i = 0; i < ps.size() && valid; ++i) {
-            if (ps.flags(i).has(Flag::Spreads)) {
-                valid = false; // SOS class: Alg. 2 every call
-                break;
-            }
+            valid = !ps.flags(i).has(Flag::Spreads); // SOS class: Alg. 2 every call
+            if (!valid)
+                continue;
             if (!ps.flags(i).isShadow()) {
                 if (mayLeave(box, ps.position(i), budget))
                     s.nearFaces.push_back(static_cast<std::uint32_t>(i));
@@ -103,27 +126,22 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
             }
             // Its master, on this rank: in storage order, as the reduction without the list
             // visits the shadows, so that the sums are the same.
-            auto const m = std::lower_bound(byId.begin(), byId.end(),
-                                            std::pair(owner.block, std::uint32_t{0}));
-            std::size_t const k = m == byId.end() || m->first != owner.block
-                                      ? ParticleStorage::kNotFound
-                                      : blocks[m->second].particles.find(ps.uid(i));
+            Shadow shadow{static_cast<std::uint32_t>(i), 0, 0};
             valid =
-                k != ParticleStorage::kNotFound && blocks[m->second].particles.flags(k).isMaster();
+                findMaster(local, byId, owner.block, ps.uid(i), shadow.masterBlock, shadow.master);
             if (valid)
-                s.shadows.push_back(
-                    {static_cast<std::uint32_t>(i), m->second, static_cast<std::uint32_t>(k)});
+                s.shadows.push_back(shadow);
         }
     }
     if (!valid) // the owners get no keys: the list is not used before the next refresh
         for (auto& k : keys)
             k.clear();
     if (m_exchange)
-        valid = exchangeKeys(local, keys, stats) && valid;
+        valid = exchangeKeys(local, byId, keys, stats) && valid;
     m_valid = valid;
 }
 
-bool UpdateList::exchangeKeys(LocalParticles const& local,
+bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byId,
                               std::vector<std::vector<Key>> const& keys, core::CommStats& stats) {
     auto const& peers = m_exchange->peers();
     for (std::size_t p = 0; p < peers.size(); ++p) {
@@ -143,15 +161,11 @@ bool UpdateList::exchangeKeys(LocalParticles const& local,
         for (std::uint64_t q = 0; q < n; ++q) {
             Key k;
             in >> k.block >> k.uid;
-            BlockParticles const* bp = local.find(k.block);
-            std::size_t const m =
-                bp == nullptr ? ParticleStorage::kNotFound : bp->particles.find(k.uid);
-            if (m == ParticleStorage::kNotFound || !bp->particles.flags(m).isMaster()) {
+            CopyAt m;
+            if (findMaster(local, byId, k.block, k.uid, m.block, m.index))
+                to.push_back(m);
+            else
                 found = false;
-                continue;
-            }
-            to.push_back({static_cast<std::uint32_t>(bp - local.blocks().data()),
-                          static_cast<std::uint32_t>(m)});
         }
     });
     stats += m_exchange->counters().last();

@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace regolith::particles {
@@ -124,9 +125,11 @@ private:
 
     [[nodiscard]] bool unchanged(LocalParticles const& local) const;
     /// rebuild()'s exchange: sends each owner the keys of this rank's remote shadows (m_from)
-    /// and turns the keys received into m_to. False if some key names no master here.
-    bool exchangeKeys(LocalParticles const& local, std::vector<std::vector<Key>> const& keys,
-                      core::CommStats& stats);
+    /// and turns the keys received into m_to (`byId`: the local blocks by raw id, ascending).
+    /// False if some key names no master here.
+    bool exchangeKeys(LocalParticles const& local,
+                      std::vector<std::pair<std::uint64_t, std::uint32_t>> const& byId,
+                      std::vector<std::vector<Key>> const& keys, core::CommStats& stats);
     /// Index of `rank` in the exchange's peers, or -1.
     [[nodiscard]] int peerSlot(int rank) const;
 
