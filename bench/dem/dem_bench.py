@@ -7,7 +7,8 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
            change of machine load hits all alike; ratios to the NNS run next to each.
   radius   the paper's Fig. 7/8 analogue: PUpCS against the radius of the large sphere in one
            building block, sparse (sc, r = 0.4) and dense (hcp, r = 0.4) surroundings, 4x4x4 and
-           8x8x8 blocks per building block; NNS points stop where NNS refuses. CSV + PNG.
+           8x8x8 blocks per building block, --repeats runs per point (methods alternating;
+           median and range); NNS points stop where NNS refuses. CSV + PNG.
   radius-chart  the radius chart again from the CSV of an earlier `radius` run.
   memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
   skin     the sparse gas with and without a sync skin (sync.skin = --skin, 0), NNS and hybrid,
@@ -106,6 +107,8 @@ def skin(a):
 
 
 def radius(a):
+    """Every point --repeats times, the three methods alternating within a repeat (so that a
+    change of machine load hits all alike); the chart shows each point's median and range."""
     rows = []
     surroundings = {
         "sparse": ["--set", "particles[1].lattice=sc", "--set", "particles[1].radius=0.4"],
@@ -114,23 +117,40 @@ def radius(a):
     for name, extra in surroundings.items():
         for split in (4, 8):
             for r in a.radii:
-                for m in METHODS:
-                    args = ["--steps", str(a.radius_steps), "--set", f"bidisperse.edge={a.edge}",
-                            "--set", f"bidisperse.large_radius={r}", "--set",
-                            f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
-                            "--set", f"sync.method={m}", *extra]
-                    s = run(a.build, "bidisperse", a.radius_ranks, args, allow_refusal=True)
-                    block_edge = a.edge / split
-                    rows.append([name, split, block_edge, r, m,
-                                 "" if s is None else s["particles"],
-                                 "" if s is None else s["pupcs"],
-                                 "refused" if s is None else "ran"])
-                    print(f"{name} {split}^3 r={r} {m}: "
-                          f"{'refused' if s is None else format(s['pupcs'], '.3e')}", flush=True)
+                pupcs = {m: [] for m in METHODS}
+                for repeat in range(a.repeats):
+                    for m in METHODS:
+                        args = ["--steps", str(a.radius_steps), "--set", f"bidisperse.edge={a.edge}",
+                                "--set", f"bidisperse.large_radius={r}", "--set",
+                                f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
+                                "--set", f"sync.method={m}", *extra]
+                        s = run(a.build, "bidisperse", a.radius_ranks, args, allow_refusal=True)
+                        rows.append([name, split, a.edge / split, r, m, repeat,
+                                     "" if s is None else s["particles"],
+                                     "" if s is None else s["pupcs"],
+                                     "refused" if s is None else "ran"])
+                        if s is not None:
+                            pupcs[m].append(s["pupcs"])
+                print(f"{name} {split}^3 r={r}: " + ", ".join(
+                    f"{m} {statistics.median(p):.3e}" if p else f"{m} refused"
+                    for m, p in pupcs.items()), flush=True)
     write_csv(a.out, "dem_radius.csv", ["surroundings", "blocks_per_axis", "block_edge",
-                                        "large_radius", "method", "grains", "pupcs", "status"],
-              rows)
+                                        "large_radius", "method", "repeat", "grains", "pupcs",
+                                        "status"], rows)
     chart_radius(a, rows)
+
+
+def radius_points(rows, name, split, method):
+    """(radius, median, min, max) of the runs of one curve, and the radii where it refused."""
+    ran, refused = {}, set()
+    for r in rows:
+        if r[0] == name and r[1] == split and r[4] == method:
+            if r[8] == "ran":
+                ran.setdefault(r[3], []).append(r[7])
+            else:
+                refused.add(r[3])
+    points = [(x, statistics.median(p), min(p), max(p)) for x, p in sorted(ran.items())]
+    return points, sorted(refused)
 
 
 def chart_radius(a, rows):
@@ -146,25 +166,25 @@ def chart_radius(a, rows):
     for ax, name in zip(axes, ("sparse", "dense")):
         for split in (4, 8):
             for m in METHODS:
-                pts = [(r[3], r[6]) for r in rows
-                       if r[0] == name and r[1] == split and r[4] == m and r[7] == "ran"]
-                if pts:
-                    xs, ys = zip(*pts)
-                    line, = ax.plot(xs, ys, styles[m],
-                                    label=f"{m.upper()} edge {a.edge / split:g}")
-                    # Where a method refused (NNS: radius >= block edge), an x on the axis.
-                    refused = [r[3] for r in rows if r[0] == name and r[1] == split
-                               and r[4] == m and r[7] == "refused"]
-                    if refused:
-                        ax.plot(refused, [0.03 if split == 4 else 0.08] * len(refused), "x",
-                                color=line.get_color(), transform=ax.get_xaxis_transform(),
-                                markersize=8, markeredgewidth=2,
-                                label=f"{m.upper()} edge {a.edge / split:g} refused")
+                points, refused = radius_points(rows, name, split, m)
+                if not points:
+                    continue
+                xs, med, lo, hi = zip(*points)
+                bars = ax.errorbar(xs, med, yerr=[[m_ - l for m_, l in zip(med, lo)],
+                                                  [h - m_ for m_, h in zip(med, hi)]],
+                                   fmt=styles[m], capsize=3,
+                                   label=f"{m.upper()} edge {a.edge / split:g}")
+                # Where a method refused (NNS: radius >= block edge), an x on the axis.
+                if refused:
+                    ax.plot(refused, [0.03 if split == 4 else 0.08] * len(refused), "x",
+                            color=bars.lines[0].get_color(), transform=ax.get_xaxis_transform(),
+                            markersize=8, markeredgewidth=2,
+                            label=f"{m.upper()} edge {a.edge / split:g} refused")
         ax.set_title(f"{name} surroundings, building block {a.edge:g}^3, "
                      f"{a.radius_ranks} rank(s)")
         ax.set_xlabel("radius of the large sphere")
         ax.grid(True, alpha=0.3)
-    axes[0].set_ylabel("PUpCS (x near the axis: refused)")
+    axes[0].set_ylabel("PUpCS, median and range (x near the axis: refused)")
     axes[0].set_ylim(bottom=0.0)
     axes[1].legend(fontsize=8)
     fig.tight_layout()
@@ -178,7 +198,7 @@ def radius_chart(a):
     """The radius chart again from <out>/dem_radius.csv (no runs)."""
     with open(os.path.join(a.out, "dem_radius.csv"), newline="", encoding="utf-8") as f:
         rows = [[r["surroundings"], int(r["blocks_per_axis"]), float(r["block_edge"]),
-                 float(r["large_radius"]), r["method"], r["grains"],
+                 float(r["large_radius"]), r["method"], int(r["repeat"]), r["grains"],
                  float(r["pupcs"]) if r["pupcs"] else "", r["status"]]
                 for r in csv.DictReader(f)]
     chart_radius(a, rows)
@@ -217,7 +237,7 @@ def main():
     p.add_argument("--ranks", type=int, nargs="*", default=[1, 2])
     p.add_argument("--edge", type=float, default=40.0)
     p.add_argument("--radii", type=float, nargs="*", default=[4, 8, 12, 16, 18])
-    p.add_argument("--radius-steps", type=int, default=50)
+    p.add_argument("--radius-steps", type=int, default=200)
     p.add_argument("--radius-ranks", type=int, default=2)
     p.add_argument("--memory-boxes", type=int, nargs="*", default=[100, 159])
     p.add_argument("--skin", type=float, default=0.1)
