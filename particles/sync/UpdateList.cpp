@@ -169,6 +169,11 @@ bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byI
         }
     });
     stats += m_exchange->counters().last();
+    // A key skipped above would shift every later position of that peer's list onto another
+    // master: a list that did not resolve is emptied, not kept (it is invalid anyway).
+    if (!found)
+        for (auto& to : m_to)
+            to.clear();
     return found;
 }
 

@@ -3,7 +3,8 @@
 // block. A random gas drifts through a forest of 2x2x2 blocks, periodic and open:
 // every copy Alg. 1 needs exists after every call (the invariants with the skin's tolerance),
 // the list carries most calls, masters that cross a block face are handled alone, forces go
-// back to the masters along the list, and a storage change ends the list. On several ranks
+// back to the masters along the list with the springs the shadows touched, a storage change on
+// one rank sends every rank the keyed way, and a storage change ends the list. On several ranks
 // (1-8, the same tests) the remote shadows travel along the owners' send lists and every rank
 // acts on the same verdict. With SOS a skin is refused on every rank.
 #include "tests/particles/sync/SyncTestUtil.hpp"
@@ -125,49 +126,117 @@ TEST(UpdateList, ABoundOnTheMotionIsTrustedAndUnknownMotionIsMeasured) {
     }
 }
 
-TEST(UpdateList, ForcesReachTheMastersAlongTheList) {
-    SkinnedGas g(true, SyncMethod::NextNeighbour, "nns periodic");
-    LocalParticles& local = g.local;
-    ParticleSync& sync = g.sync;
-    drift(local, 0.001);
-    sync.sync(local);
-    ASSERT_TRUE(sync.lastStats().alongList);
-    // Every copy gets a force of its own, a multiple of (1, 2, 3) by uid mod 7 for shadows (zero
-    // for a seventh of them: nothing to send) and zero for masters: afterwards a master holds
-    // the sum over its shadows on every rank (small integers: any order gives the same bits).
-    auto share = [](Uid uid) -> Vec3 { return static_cast<double>(uid % 7) * Vec3(1, 2, 3); };
-    std::vector<Uid> shadowUids;
-    std::uint64_t remote = 0;
-    for (BlockParticles& bp : local.blocks()) {
-        bp.particles.resetForces();
-        for (std::size_t i = 0; i < bp.particles.size(); ++i) {
-            if (!bp.particles.flags(i).isShadow())
-                continue;
-            Uid const uid = bp.particles.uid(i);
-            bp.particles.force(i) = share(uid);
-            bp.particles.torque(i) = -share(uid);
-            shadowUids.push_back(uid);
-            remote += bp.particles.owner(i).rank != g.world.rank() ? 1 : 0;
-        }
+/// Shares for every shadow of `local` (on Forest) before a force reduction of pass 1, and the
+/// check that they reached the masters: a force and torque of its own, a multiple of (1, 2, 3)
+/// by uid mod 7 (zero for a seventh of the shadows: nothing to send unless they touched a
+/// spring), and for the shadows whose uid is a multiple of 3 a spring touched in pass 1 keyed
+/// by that shadow's block and image (each must reach the master: a master with several
+/// shadows gets one from each) beside one left from pass 0 (it must not). Small integers: any
+/// order of the sums gives the same bits.
+struct ShadowShares {
+    Comm const& world;
+    std::vector<Uid> all;     ///< every rank's shadows' uids
+    std::vector<Uid> springs; ///< every rank's touched springs' partners
+    static Vec3 share(Uid uid) { return static_cast<double>(uid % 7) * Vec3(1, 2, 3); }
+    /// The partner of the spring the shadow of `uid` in `box` at image `k` touched: the grain's
+    /// counter times 256 plus the block (of Forest's 2 x 2 x 2) and the image.
+    static Uid touched(Uid uid, AABB const& box, CopyImage const& k) {
+        std::uint64_t code = 0;
+        for (int a = 0; a < 3; ++a)
+            code = 2 * code + (box.min[a] > 1.0 ? 1 : 0);
+        for (std::size_t a = 0; a < 3; ++a)
+            code = 3 * code + static_cast<std::uint64_t>(k[a] + 1);
+        return makeUid(9, uidCounter(uid) * 256 + code);
     }
-    std::vector<Uid> const all = gatherUids(g.world, shadowUids);
-    ASSERT_GT(all.size(), 10u);
-    if (g.world.size() > 1) { // the messages along the list are exercised
-        EXPECT_GT(g.world.allReduce(remote, regolith::core::ReduceOp::Sum), 0u);
-    }
-    sync.reduceForces(local, 1);
-    for (BlockParticles& bp : local.blocks())
-        for (std::size_t i = 0; i < bp.particles.size(); ++i) {
-            Uid const uid = bp.particles.uid(i);
-            if (bp.particles.flags(i).isShadow()) {
-                EXPECT_TRUE(bp.particles.force(i).isZero(0.0)) << "shadow of uid " << uid;
-                continue;
+    static Uid stale(Uid uid) { return makeUid(10, uidCounter(uid)); }
+
+    ShadowShares(Comm const& w, LocalParticles& local)
+        : world(w) {
+        std::vector<Uid> shadowUids, partners;
+        std::uint64_t remote = 0;
+        for (BlockParticles& bp : local.blocks()) {
+            ParticleStorage& ps = bp.particles;
+            ps.resetForces();
+            for (std::size_t i = 0; i < ps.size(); ++i) {
+                if (!ps.flags(i).isShadow())
+                    continue;
+                Uid const uid = ps.uid(i);
+                ps.force(i) = share(uid);
+                ps.torque(i) = -share(uid);
+                if (uid % 3 == 0) {
+                    Uid const partner = touched(uid, bp.block->aabb, ps.image(i));
+                    ps.history(i).set(HistoryEntry{partner, share(uid), 1});
+                    ps.history(i).set(HistoryEntry{stale(uid), share(uid), 0});
+                    partners.push_back(partner);
+                }
+                shadowUids.push_back(uid);
+                remote += ps.owner(i).rank != world.rank() ? 1 : 0;
             }
-            auto const n = static_cast<double>(std::count(all.begin(), all.end(), uid));
-            EXPECT_TRUE(sameBits(bp.particles.force(i), Vec3(n * share(uid)))) << "uid " << uid;
-            EXPECT_TRUE(sameBits(bp.particles.torque(i), Vec3(Vec3::Zero() - n * share(uid))))
-                << "uid " << uid;
         }
+        all = gatherUids(world, shadowUids);
+        springs = gatherUids(world, partners);
+        EXPECT_GT(all.size(), 10u);
+        if (world.size() > 1) { // the messages to other ranks are exercised
+            EXPECT_GT(world.allReduce(remote, regolith::core::ReduceOp::Sum), 0u);
+        }
+    }
+
+    void expectReduced(LocalParticles& local, std::string const& where) const {
+        for (BlockParticles& bp : local.blocks()) {
+            ParticleStorage& ps = bp.particles;
+            for (std::size_t i = 0; i < ps.size(); ++i) {
+                Uid const uid = ps.uid(i);
+                if (ps.flags(i).isShadow()) {
+                    EXPECT_TRUE(ps.force(i).isZero(0.0)) << where << ": shadow of uid " << uid;
+                    continue;
+                }
+                auto const n = static_cast<double>(std::count(all.begin(), all.end(), uid));
+                EXPECT_TRUE(sameBits(ps.force(i), Vec3(n * share(uid))))
+                    << where << ": uid " << uid;
+                EXPECT_TRUE(sameBits(ps.torque(i), Vec3(Vec3::Zero() - n * share(uid))))
+                    << where << ": uid " << uid;
+                // Exactly the springs its shadows touched, none left from pass 0.
+                std::vector<Uid> expected, found;
+                for (Uid p : springs)
+                    if (uidRank(uid) == 0 && uidCounter(p) / 256 == uidCounter(uid))
+                        expected.push_back(p);
+                for (HistoryEntry const& e : ps.history(i)) {
+                    EXPECT_NE(e.partner, stale(uid)) << where << ": uid " << uid;
+                    if (uidRank(e.partner) == 9) {
+                        found.push_back(e.partner);
+                        EXPECT_TRUE(sameBits(e.spring, share(uid))) << where << ": uid " << uid;
+                        EXPECT_EQ(e.stamp, 1u) << where << ": uid " << uid;
+                    }
+                }
+                EXPECT_EQ(found, expected) << where << ": the springs of uid " << uid;
+            }
+        }
+    }
+};
+
+TEST(UpdateList, ForcesAndSpringsReachTheMastersAlongTheList) {
+    SkinnedGas g(true, SyncMethod::NextNeighbour, "nns periodic");
+    drift(g.local, 0.001);
+    g.sync.sync(g.local);
+    ASSERT_TRUE(g.sync.lastStats().alongList);
+    ShadowShares const shares(g.world, g.local);
+    g.sync.reduceForces(g.local, 1);
+    shares.expectReduced(g.local, "along the list");
+}
+
+TEST(UpdateList, AStorageChangeOnOneRankSendsEveryRankTheKeyedWay) {
+    SkinnedGas g(true, SyncMethod::Hybrid, "hybrid periodic");
+    drift(g.local, 0.001);
+    g.sync.sync(g.local);
+    ASSERT_TRUE(g.sync.lastStats().alongList);
+    ShadowShares const shares(g.world, g.local);
+    // Between the sync and the reduction one rank's storage changes (a grain deep inside a
+    // block, no shadows): that rank cannot use the list, so no rank may (its peers would wait
+    // for shares by list position that never come, or read keyed ones as such).
+    bool const added = g.local.addMaster(grain(makeUid(5, 1), Vec3(2.0, 2.0, 2.0), 0.2));
+    ASSERT_EQ(g.world.allReduce(static_cast<int>(added), regolith::core::ReduceOp::Sum), 1);
+    g.sync.reduceForces(g.local, 1);
+    shares.expectReduced(g.local, "keyed, after a change on one rank");
 }
 
 TEST(UpdateList, AStorageChangeEndsTheList) {
