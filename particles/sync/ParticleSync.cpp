@@ -273,10 +273,9 @@ bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& 
 } // namespace
 
 void ParticleSync::syncInFull(LocalParticles& local,
-                              std::span<std::vector<std::uint32_t> const> only) {
+                              std::span<std::vector<std::uint32_t> const> only, double grow) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
-    double const grow = m_config.skin; // NNS-class balls grown by the skin (UpdateList.hpp)
     bool const twoRounds = m_config.method != SyncMethod::NextNeighbour;
     // Whether this rank has copies round 2 (spread) may act on: SOS-class shadows, and
     // SOS-class masters processed below. Shadows and promotions that round 1 brings come from

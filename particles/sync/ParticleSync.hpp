@@ -37,6 +37,9 @@ struct SyncStats {
     /// The call ran Alg. 1 only for the masters that left their blocks, and copied along the
     /// list for the others (SyncConfig::skin).
     bool leaversOnly = false;
+    /// A full call without the skin's growth: some rank held an SOS-class copy at the last
+    /// refresh, which no list can carry (UpdateList::Verdict::Idle).
+    bool skinIdle = false;
 };
 
 /// A grain too large for NNS, found by `findNnsViolation`.
@@ -118,8 +121,10 @@ public:
 
 private:
     /// The synchronisation without the update list (Alg. 1 / 2): for the masters the scan
-    /// picks, or, if `only` is not empty, for the masters only[b] of each local block b.
-    void syncInFull(LocalParticles& local, std::span<std::vector<std::uint32_t> const> only);
+    /// picks, or, if `only` is not empty, for the masters only[b] of each local block b; the
+    /// NNS-class balls grown by `grow` (the skin, or 0).
+    void syncInFull(LocalParticles& local, std::span<std::vector<std::uint32_t> const> only,
+                    double grow);
 
     std::unique_ptr<Impl> m_impl;
     std::unique_ptr<UpdateList> m_updateList; ///< with a skin only

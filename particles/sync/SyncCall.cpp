@@ -23,7 +23,7 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
         // that left their blocks only; the others keep their shadows on what budget is left.
         core::CommStats along;
         std::size_t const updated = m_updateList->update(local, along);
-        syncInFull(local, m_updateList->leavers());
+        syncInFull(local, m_updateList->leavers(), m_config.skin);
         m_last.updated += updated;
         m_last.leaversOnly = true;
         m_updateList->rebuild(local, m_updateList->budgetLeft(), along);
@@ -31,7 +31,15 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
         m_counters.record(along);
         return;
     }
-    syncInFull(local, {});
+    if (verdict == UpdateList::Verdict::Idle) {
+        // An SOS-class copy somewhere: a list would not hold, so neither growth (more shadows)
+        // nor a refresh (a pass and a key exchange) would pay. The list retries later.
+        syncInFull(local, {}, 0.0);
+        m_updateList->invalidate();
+        m_last.skinIdle = true;
+        return;
+    }
+    syncInFull(local, {}, m_config.skin);
     if (m_updateList) {
         core::CommStats keys;
         m_updateList->rebuild(local, m_config.skin, keys);

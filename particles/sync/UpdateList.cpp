@@ -96,6 +96,7 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
     for (auto& from : m_from)
         from.clear();
     bool valid = true;
+    bool spreads = false;
     for (std::size_t b = 0; b < blocks.size() && valid; ++b) {
         ParticleStorage const& ps = blocks[b].particles;
         BlockState& s = m_blocks[b];
@@ -105,7 +106,8 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
         s.nearFaces.clear();
         core::AABB const& box = blocks[b].block->aabb;
         for (std::size_t i = 0; i < ps.size() && valid; ++i) {
-            valid = !ps.flags(i).has(Flag::Spreads); // SOS class: Alg. 2 every call
+            spreads = ps.flags(i).has(Flag::Spreads); // SOS class: Alg. 2 every call
+            valid = !spreads;
             if (!valid)
                 continue;
             if (!ps.flags(i).isShadow()) {
@@ -139,6 +141,7 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
     if (m_exchange)
         valid = exchangeKeys(local, byId, keys, stats) && valid;
     m_valid = valid;
+    m_idleCalls = spreads ? kIdleCalls : 0;
 }
 
 bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byId,
@@ -188,6 +191,10 @@ bool UpdateList::unchanged(LocalParticles const& local) const {
 }
 
 UpdateList::Verdict UpdateList::check(LocalParticles const& local, double movedAtMost) {
+    if (m_idleCalls > 0) {
+        --m_idleCalls;
+        return Verdict::Idle;
+    }
     if (!unchanged(local) || !(m_budget > 0.0))
         return Verdict::Refresh;
     auto const blocks = local.blocks();

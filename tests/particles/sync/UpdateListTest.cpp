@@ -4,9 +4,11 @@
 // every copy Alg. 1 needs exists after every call (the invariants with the skin's tolerance),
 // the list carries most calls, masters that cross a block face are handled alone, forces go
 // back to the masters along the list with the springs the shadows touched, a storage change on
-// one rank sends every rank the keyed way, and a storage change ends the list. On several ranks
+// one rank sends every rank the keyed way, a storage change ends the list, and an SOS-class grain
+// (hybrid) leaves it idle while it exists. On several ranks
 // (1-8, the same tests) the remote shadows travel along the owners' send lists and every rank
 // acts on the same verdict. With SOS a skin is refused on every rank.
+#include "particles/sync/UpdateList.hpp"
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <algorithm>
@@ -253,6 +255,45 @@ TEST(UpdateList, AStorageChangeEndsTheList) {
     EXPECT_FALSE(sync.lastStats().alongList);
     EXPECT_GT(g.world.allReduce(sync.lastStats().created, regolith::core::ReduceOp::Sum), 0u);
     auto const v = checkSyncInvariants(local, g.world, true, kSkin);
+    EXPECT_TRUE(v.empty()) << joined(v);
+}
+
+TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
+    // Hybrid on an open forest: a gas at rest and one grain wider than a block (SOS class),
+    // moving towards the face x = 0.
+    Forest f(false);
+    LocalParticles local(f.forest);
+    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
+    addAll(local, f.world, randomGas(f.domain, 120, 0.2, 0.6, 0.0, 11));
+    Uid const big = makeUid(1, 0);
+    addAll(local, f.world, {grain(big, Vec3(1.0, 4.0, 4.0), 4.5)});
+    // The first call's refresh meets the SOS-class copies; the calls after it are idle: the
+    // full algorithm without growth (exactly Alg. 1/2's copies), no refresh.
+    int idle = sync.syncUntilConverged(local) - 1;
+    while (idle < UpdateList::kIdleCalls) {
+        sync.sync(local);
+        ASSERT_TRUE(sync.lastStats().skinIdle) << "idle call " << idle + 1;
+        auto const v = checkSyncInvariants(local, f.world, true, 0.0);
+        EXPECT_TRUE(v.empty()) << "idle call " << idle + 1 << joined(v);
+        ++idle;
+    }
+    sync.sync(local); // a refresh tried again, with growth: it meets the grain again
+    EXPECT_FALSE(sync.lastStats().skinIdle);
+    EXPECT_FALSE(sync.lastStats().alongList);
+    EXPECT_TRUE(checkSyncInvariants(local, f.world, true, kSkin).empty());
+    sync.sync(local);
+    EXPECT_TRUE(sync.lastStats().skinIdle);
+    // The large grain leaves the domain: the list carries calls again once the idle ones ran.
+    if (auto [bp, i] = findMaster(local, big); bp != nullptr)
+        bp->particles.position(i) = Vec3(-6.0, 4.0, 4.0);
+    int calls = 0;
+    while (calls < UpdateList::kIdleCalls + 2 && !sync.lastStats().alongList) {
+        sync.sync(local);
+        ++calls;
+    }
+    EXPECT_TRUE(sync.lastStats().alongList) << "after " << calls << " calls";
+    EXPECT_EQ(globalMasters(local, f.world), 120u);
+    auto const v = checkSyncInvariants(local, f.world, true, kSkin);
     EXPECT_TRUE(v.empty()) << joined(v);
 }
 
