@@ -274,7 +274,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             // A cheap rejection first (most listed pairs are apart), generous by the slack:
             // the rule decides exactly.
             core::Vec3 d = x[b] - x[a];
-            if (ps.image(a) != ps.image(b))
+            if (!sameImage(ps.image(a), ps.image(b)))
                 d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a)),
                                  period);
             double const reach = ps.radius(a) + ps.radius(b) + slack;

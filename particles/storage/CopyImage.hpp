@@ -26,6 +26,13 @@ inline constexpr int kMaxImage = 7;
     return k[0] == 0 && k[1] == 0 && k[2] == 0;
 }
 
+/// a == b without a call: GCC 12 compiles std::array<std::int8_t, 3>'s operator== to a call of
+/// memcmp (3 bytes), and images are compared in every (uid, image) look-up, holder list and
+/// sent cache of the synchronisation (1.4 % of the SOS gas's profile on two ranks).
+[[nodiscard]] constexpr bool sameImage(CopyImage const& a, CopyImage const& b) {
+    return ((a[0] ^ b[0]) | (a[1] ^ b[1]) | (a[2] ^ b[2])) == 0;
+}
+
 /// k * period per axis [length]; `period` is the domain extent on periodic axes (any value on
 /// the others: their image is 0).
 [[nodiscard]] inline core::Vec3 imageOffset(CopyImage const& k, core::Vec3 const& period) {
@@ -74,7 +81,9 @@ namespace copy_image_detail {
 struct CopyKey {
     Uid uid = kInvalidUid;
     CopyImage image = kNoImage;
-    friend bool operator==(CopyKey const&, CopyKey const&) = default;
+    friend bool operator==(CopyKey const& a, CopyKey const& b) {
+        return a.uid == b.uid && sameImage(a.image, b.image);
+    }
     friend auto operator<=>(CopyKey const&, CopyKey const&) = default;
 };
 

@@ -111,7 +111,7 @@ ParticleStorage::Index ParticleStorage::find(Uid uid, CopyImage const& image) co
 }
 
 void ParticleStorage::setImage(Index i, CopyImage const& image) {
-    if (image == m_image[i])
+    if (sameImage(image, m_image[i]))
         return;
     touchLayout();
     // The index confirms keys in m_image: drop the old key first, so that slot i is never

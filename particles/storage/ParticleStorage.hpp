@@ -33,7 +33,9 @@ struct CopyRef {
     std::uint64_t block = 0;
     CopyImage image = kNoImage;
     [[nodiscard]] BlockRef blockRef() const { return {rank, block}; }
-    friend bool operator==(CopyRef const&, CopyRef const&) = default;
+    friend bool operator==(CopyRef const& a, CopyRef const& b) {
+        return a.rank == b.rank && a.block == b.block && sameImage(a.image, b.image);
+    }
     friend auto operator<=>(CopyRef const&, CopyRef const&) = default;
 };
 

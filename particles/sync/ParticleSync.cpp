@@ -214,7 +214,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
             // A shadow on this rank that keeps its key: written in place, not serialised.
             // Safe before the receive round: no record of this round removes or moves it (its
             // master sends it this update only), and it changes no index.
-            if (t.rank == me && t.image == k &&
+            if (t.rank == me && sameImage(t.image, k) &&
                 updateInPlace(local, ps, i, newPosition, t, newOwner)) {
                 ++stats.updated;
                 continue;

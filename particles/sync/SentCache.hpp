@@ -18,7 +18,9 @@ struct SentEntry {
     std::uint64_t block = 0; ///< the neighbour block (BlockId::raw)
     Uid uid = kInvalidUid;
     CopyImage image = kNoImage; ///< the image of the copy on the neighbour
-    friend bool operator==(SentEntry const&, SentEntry const&) = default;
+    friend bool operator==(SentEntry const& a, SentEntry const& b) {
+        return a.block == b.block && a.uid == b.uid && sameImage(a.image, b.image);
+    }
 };
 
 /// The set of SentEntry of one block, sorted by (uid, block, image) in one vector: the

@@ -101,7 +101,7 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
     // Updates that re-key: take those copies out first so that old and new keys never clash.
     std::vector<std::pair<FullState, UpdateState const*>> rekeyed;
     for (UpdateState const& u : box.updates) {
-        if (u.oldImage == u.newImage)
+        if (sameImage(u.oldImage, u.newImage))
             continue;
         std::size_t const i = ps.find(u.uid, u.oldImage);
         if (i == ParticleStorage::kNotFound)
@@ -128,7 +128,7 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
         ++stats.updated;
     }
     for (UpdateState const& u : box.updates) {
-        if (u.oldImage != u.newImage)
+        if (!sameImage(u.oldImage, u.newImage))
             continue;
         std::size_t const i = ps.find(u.uid, u.oldImage);
         if (i == ParticleStorage::kNotFound)
