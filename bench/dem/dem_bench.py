@@ -11,8 +11,9 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
            median and range); NNS points stop where NNS refuses. CSV + PNG.
   radius-chart  the radius chart again from the CSV of an earlier `radius` run.
   memory   peak resident memory per grain of the sparse gas on 2 ranks for 1 M and 4 M grains.
-  skin     the sparse gas with and without a sync skin (sync.skin = --skin, 0), NNS and hybrid,
-           on each of --ranks, alternating; PUpCS ratio skin / none next to each other.
+  skin     with and without a sync skin (sync.skin = --skin, 0), alternating, on each of --ranks:
+           the sparse gas (NNS, hybrid) and the bidisperse scene (hybrid, large radius 8 and
+           16: NNS class, and SOS class, which leaves the list idle); PUpCS ratio skin / none.
 
 usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build/default]
                     [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40]
@@ -80,32 +81,40 @@ def methods(a):
 
 
 def skin(a):
-    app, args, steps = SCENES["granular_gas"]
+    """The sparse gas (NNS and hybrid) and the bidisperse scene (hybrid; large radius 8, NNS
+    class there, and 16, SOS class, where the list stays idle), each with sync.skin = --skin
+    and 0, alternating; PUpCS ratio skin / none of the runs next to each other."""
+    gas_app, gas_args, gas_steps = SCENES["granular_gas"]
+    bi_app, bi_args, bi_steps = SCENES["bidisperse"]
+    cases = [("granular_gas", m, gas_app, gas_args + ["--set", f"sync.method={m}"], gas_steps)
+             for m in ("nns", "hybrid")]
+    cases += [(f"bidisperse r={r}", "hybrid", bi_app,
+               bi_args + ["--set", f"bidisperse.large_radius={r}", "--set", "sync.method=hybrid"],
+               bi_steps) for r in (8, 16)]
     rows = []
-    print(f"\n| ranks | method | grains | PUpCS without skin | with skin {a.skin:g} | ratio "
-          "(range) | sync s without / with |")
-    print("|---|---|---|---|---|---|---|")
+    print(f"\n| scene | ranks | method | grains | PUpCS without skin | with skin {a.skin:g} | "
+          "ratio (range) | sync s without / with |")
+    print("|---|---|---|---|---|---|---|---|")
     for ranks in a.ranks:
-        for m in ("nns", "hybrid"):
+        for scene, m, app, args, steps in cases:
             runs = {0.0: [], a.skin: []}
             for repeat in range(a.repeats):
                 for sk in runs:
-                    s = run(a.build, app, ranks, args + ["--steps", str(steps), "--set",
-                                                         f"sync.method={m}", "--set",
-                                                         f"sync.skin={sk!r}"])
+                    s = run(a.build, app, ranks,
+                            args + ["--steps", str(steps), "--set", f"sync.skin={sk!r}"])
                     runs[sk].append(s)
-                    rows.append([ranks, m, sk, repeat, s["particles"], s["wall_s"], s["pupcs"],
-                                 s["timing_s"]["sync"], s["comm"]["messages_per_step"],
+                    rows.append([scene, ranks, m, sk, repeat, s["particles"], s["wall_s"],
+                                 s["pupcs"], s["timing_s"]["sync"], s["comm"]["messages_per_step"],
                                  s["comm"]["bytes_per_step"]])
             ratios = [w["pupcs"] / n["pupcs"] for n, w in zip(runs[0.0], runs[a.skin])]
             med = {sk: statistics.median(r["pupcs"] for r in runs[sk]) for sk in runs}
             sync = {sk: statistics.median(r["timing_s"]["sync"] for r in runs[sk]) for sk in runs}
-            print(f"| {ranks} | {m} | {runs[0.0][0]['particles']} | {med[0.0]:.3e} | "
+            print(f"| {scene} | {ranks} | {m} | {runs[0.0][0]['particles']} | {med[0.0]:.3e} | "
                   f"{med[a.skin]:.3e} | {statistics.median(ratios):.2f} ({min(ratios):.2f}–"
                   f"{max(ratios):.2f}) | {sync[0.0]:.3f} / {sync[a.skin]:.3f} |", flush=True)
-    write_csv(a.out, "dem_skin.csv", ["ranks", "method", "skin", "repeat", "grains", "wall_s",
-                                      "pupcs", "sync_s", "messages_per_step", "bytes_per_step"],
-              rows)
+    write_csv(a.out, "dem_skin.csv", ["scene", "ranks", "method", "skin", "repeat", "grains",
+                                      "wall_s", "pupcs", "sync_s", "messages_per_step",
+                                      "bytes_per_step"], rows)
 
 
 def radius(a):

@@ -141,7 +141,8 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
     if (m_exchange)
         valid = exchangeKeys(local, byId, keys, stats) && valid;
     m_valid = valid;
-    m_idleCalls = spreads ? kIdleCalls : 0;
+    m_idleCalls = spreads ? m_idleLength : 0;
+    m_idleLength = spreads ? std::min(2 * m_idleLength, kMaxIdleCalls) : kIdleCalls;
 }
 
 bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byId,

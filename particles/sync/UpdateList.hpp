@@ -76,12 +76,15 @@ public:
         Leavers, ///< within the budget, but some masters left their blocks (leavers())
         Refresh, ///< invalid, a storage changed (add, remove, re-key), or a master moved too far
         /// A refresh found an SOS-class copy (hybrid), which the list cannot carry: for the
-        /// next kIdleCalls calls, full calls without the skin's growth and no refresh, then a
-        /// refresh is tried again. Without this, every call would be a full one with grown
-        /// balls plus a refresh: slower than no skin (1.4x on the bidisperse scene with r = 16).
+        /// next calls (kIdleCalls after a refresh that held, twice as many after each one that
+        /// met such a copy again, up to kMaxIdleCalls), full calls without the skin's growth
+        /// and no refresh, then a refresh is tried again. Without this, every call would be a
+        /// full one with grown balls plus a refresh: slower than no skin (1.4x on the
+        /// bidisperse scene with r = 16); each retry adds and removes the grown balls' shadows.
         Idle,
     };
     static constexpr int kIdleCalls = 32;
+    static constexpr int kMaxIdleCalls = 1024;
     /// Where `local` stands against the list, given that no master moved more than
     /// `movedAtMost` since the last check() or rebuild() (+inf if unknown); Idle while idle
     /// calls are left (counting this one). Local; O(copies) without a bound, O(masters near a
@@ -160,6 +163,7 @@ private:
     std::vector<std::vector<CopyAt>> m_to;   ///< per peer: masters here with shadows there
     bool m_valid = false;
     int m_idleCalls = 0; ///< Idle verdicts left (set by a refresh that met an SOS-class copy)
+    int m_idleLength = kIdleCalls; ///< the Idle verdicts the next such refresh sets
 };
 
 } // namespace regolith::particles

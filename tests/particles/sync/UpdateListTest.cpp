@@ -9,6 +9,7 @@
 // (1-8, the same tests) the remote shadows travel along the owners' send lists and every rank
 // acts on the same verdict. With SOS a skin is refused on every rank.
 #include "particles/sync/UpdateList.hpp"
+
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <algorithm>
@@ -281,13 +282,19 @@ TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
     EXPECT_FALSE(sync.lastStats().skinIdle);
     EXPECT_FALSE(sync.lastStats().alongList);
     EXPECT_TRUE(checkSyncInvariants(local, f.world, true, kSkin).empty());
+    // Idle again, twice as long: the grain is still there.
+    for (int call = 1; call <= 2 * UpdateList::kIdleCalls; ++call) {
+        sync.sync(local);
+        ASSERT_TRUE(sync.lastStats().skinIdle) << "second idle stretch, call " << call;
+    }
     sync.sync(local);
-    EXPECT_TRUE(sync.lastStats().skinIdle);
-    // The large grain leaves the domain: the list carries calls again once the idle ones ran.
+    EXPECT_FALSE(sync.lastStats().skinIdle);
+    // The large grain leaves the domain: the list carries calls again once the idle ones (4 x
+    // kIdleCalls now) ran.
     if (auto [bp, i] = findMaster(local, big); bp != nullptr)
         bp->particles.position(i) = Vec3(-6.0, 4.0, 4.0);
     int calls = 0;
-    while (calls < UpdateList::kIdleCalls + 2 && !sync.lastStats().alongList) {
+    while (calls < 4 * UpdateList::kIdleCalls + 2 && !sync.lastStats().alongList) {
         sync.sync(local);
         ++calls;
     }
