@@ -87,8 +87,8 @@ public:
     static constexpr int kMaxIdleCalls = 1024;
     /// Where `local` stands against the list, given that no master moved more than
     /// `movedAtMost` since the last check() or rebuild() (+inf if unknown); Idle while idle
-    /// calls are left (counting this one). Local; O(copies) without a bound, O(masters near a
-    /// face) with one.
+    /// calls are left (counting this one). Local; O(copies) without a bound, O(blocks + masters
+    /// near a face) with one.
     [[nodiscard]] Verdict check(LocalParticles const& local, double movedAtMost);
     /// The verdict every rank acts on: the most demanding of the ranks' check(). A rank whose
     /// own was Holds acts on Leavers with no leavers of its own. COLLECTIVE (one all-reduce,
