@@ -60,6 +60,12 @@ struct SkinnedGas : Forest {
         EXPECT_FALSE(checkSyncInvariants(local, world, true, 0.0).empty())
             << where << ": no shadow for the grown balls only";
     }
+    /// One call after a small drift, carried along the list.
+    void callAlongTheList() {
+        drift(local, 0.001);
+        sync.sync(local);
+        EXPECT_TRUE(sync.lastStats().alongList);
+    }
 };
 
 TEST(UpdateList, EveryNeededCopyExistsAndTheListCarriesMostCalls) {
@@ -219,9 +225,7 @@ struct ShadowShares {
 
 TEST(UpdateList, ForcesAndSpringsReachTheMastersAlongTheList) {
     SkinnedGas g(true, SyncMethod::NextNeighbour, "nns periodic");
-    drift(g.local, 0.001);
-    g.sync.sync(g.local);
-    ASSERT_TRUE(g.sync.lastStats().alongList);
+    g.callAlongTheList();
     ShadowShares const shares(g.world, g.local);
     g.sync.reduceForces(g.local, 1);
     shares.expectReduced(g.local, "along the list");
@@ -229,9 +233,7 @@ TEST(UpdateList, ForcesAndSpringsReachTheMastersAlongTheList) {
 
 TEST(UpdateList, AStorageChangeOnOneRankSendsEveryRankTheKeyedWay) {
     SkinnedGas g(true, SyncMethod::Hybrid, "hybrid periodic");
-    drift(g.local, 0.001);
-    g.sync.sync(g.local);
-    ASSERT_TRUE(g.sync.lastStats().alongList);
+    g.callAlongTheList();
     ShadowShares const shares(g.world, g.local);
     // Between the sync and the reduction one rank's storage changes (a grain deep inside a
     // block, no shadows): that rank cannot use the list, so no rank may (its peers would wait
