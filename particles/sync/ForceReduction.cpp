@@ -156,7 +156,8 @@ void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp) {
     core::CommStats stats;
     // Along the update list if no storage changed since the last sync on any rank: the same
     // shares, without looking the masters up.
-    if (m_updateList && m_updateList->reduce(local, stamp, stats))
+    m_reducedAlongList = m_updateList && m_updateList->reduce(local, stamp, stats);
+    if (m_reducedAlongList)
         pruneMasterHistories(local, stamp);
     else
         exchangeShadowShares(*m_impl, local, nullptr, stamp, stats);

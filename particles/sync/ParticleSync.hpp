@@ -107,6 +107,9 @@ public:
 
     [[nodiscard]] SyncConfig const& config() const { return m_config; }
     [[nodiscard]] SyncStats const& lastStats() const { return m_last; }
+    /// Whether the last reduceForces(local, stamp) went along the skin's list (the same on
+    /// every rank), not by key.
+    [[nodiscard]] bool lastReductionAlongList() const { return m_reducedAlongList; }
     /// Totals over all calls of sync() and reduceForces() since construction or reset.
     [[nodiscard]] core::CommCounters const& counters() const { return m_counters; }
     void resetCounters() { m_counters.reset(); }
@@ -130,6 +133,7 @@ private:
     std::unique_ptr<UpdateList> m_updateList; ///< with a skin only
     SyncConfig m_config;
     SyncStats m_last;
+    bool m_reducedAlongList = false;
     core::CommCounters m_counters;
 };
 

@@ -76,11 +76,12 @@ public:
         Leavers, ///< within the budget, but some masters left their blocks (leavers())
         Refresh, ///< invalid, a storage changed (add, remove, re-key), or a master moved too far
         /// A refresh found an SOS-class copy (hybrid), which the list cannot carry: for the
-        /// next calls (kIdleCalls after a refresh that held, twice as many after each one that
-        /// met such a copy again, up to kMaxIdleCalls), full calls without the skin's growth
-        /// and no refresh, then a refresh is tried again. Without this, every call would be a
-        /// full one with grown balls plus a refresh: slower than no skin (1.4x on the
-        /// bidisperse scene with r = 16); each retry adds and removes the grown balls' shadows.
+        /// next calls (kIdleCalls, twice as many after each refresh that met such a copy on
+        /// this rank again, up to kMaxIdleCalls; the longest stretch over the ranks counts),
+        /// full calls without the skin's growth and no refresh, then a refresh is tried again.
+        /// Without this, every call would be a full one with grown balls plus a refresh: slower
+        /// than no skin (1.4x on the bidisperse scene with r = 16); each retry adds and removes the
+        /// grown balls' shadows.
         Idle,
     };
     static constexpr int kIdleCalls = 32;

@@ -228,6 +228,7 @@ TEST(UpdateList, ForcesAndSpringsReachTheMastersAlongTheList) {
     g.callAlongTheList();
     ShadowShares const shares(g.world, g.local);
     g.sync.reduceForces(g.local, 1);
+    EXPECT_TRUE(g.sync.lastReductionAlongList());
     shares.expectReduced(g.local, "along the list");
 }
 
@@ -241,6 +242,7 @@ TEST(UpdateList, AStorageChangeOnOneRankSendsEveryRankTheKeyedWay) {
     bool const added = g.local.addMaster(grain(makeUid(5, 1), Vec3(2.0, 2.0, 2.0), 0.2));
     ASSERT_EQ(g.world.allReduce(static_cast<int>(added), regolith::core::ReduceOp::Sum), 1);
     g.sync.reduceForces(g.local, 1);
+    EXPECT_FALSE(g.sync.lastReductionAlongList());
     shares.expectReduced(g.local, "keyed, after a change on one rank");
 }
 
@@ -262,28 +264,39 @@ TEST(UpdateList, AStorageChangeEndsTheList) {
 }
 
 TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
-    // Hybrid on an open forest: a gas at rest and one grain wider than a block (SOS class),
-    // moving towards the face x = 0.
-    Forest f(false);
-    LocalParticles local(f.forest);
-    ParticleSync sync(f.world, f.forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
-    addAll(local, f.world, randomGas(f.domain, 120, 0.2, 0.6, 0.0, 11));
+    // Hybrid on an open forest of 4 x 4 x 4 blocks of edge 2: a gas at rest and, in a corner,
+    // one grain wider than a block (SOS class), whose copies reach 8 of the 64 blocks: on
+    // several ranks some rank holds none, acts on the others' verdict and must idle too.
+    Comm world;
+    AABB const domain{Vec3::Zero(), Vec3(8, 8, 8)};
+    domain::BlockForest forest(world,
+                               forestSpec(domain.min, domain.max, {4, 4, 4}, allAxes(false)));
+    LocalParticles local(forest);
+    ParticleSync sync(world, forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
+    addAll(local, world, randomGas(domain, 120, 0.2, 0.6, 0.0, 11));
     Uid const big = makeUid(1, 0);
-    addAll(local, f.world, {grain(big, Vec3(1.0, 4.0, 4.0), 4.5)});
+    addAll(local, world, {grain(big, Vec3(1.0, 1.0, 1.0), 2.2)});
     // The first call's refresh meets the SOS-class copies; the calls after it are idle: the
     // full algorithm without growth (exactly Alg. 1/2's copies), no refresh.
     int idle = sync.syncUntilConverged(local) - 1;
     while (idle < UpdateList::kIdleCalls) {
         sync.sync(local);
         ASSERT_TRUE(sync.lastStats().skinIdle) << "idle call " << idle + 1;
-        auto const v = checkSyncInvariants(local, f.world, true, 0.0);
+        auto const v = checkSyncInvariants(local, world, true, 0.0);
         EXPECT_TRUE(v.empty()) << "idle call " << idle + 1 << joined(v);
         ++idle;
+    }
+    if (world.size() > 1) { // some rank holds no copy of the grain
+        bool const holds = std::ranges::any_of(local.blocks(), [&](BlockParticles const& bp) {
+            return bp.particles.find(big) != ParticleStorage::kNotFound; // open: image 0
+        });
+        EXPECT_LT(world.allReduce(static_cast<int>(holds), regolith::core::ReduceOp::Sum),
+                  world.size());
     }
     sync.sync(local); // a refresh tried again, with growth: it meets the grain again
     EXPECT_FALSE(sync.lastStats().skinIdle);
     EXPECT_FALSE(sync.lastStats().alongList);
-    EXPECT_TRUE(checkSyncInvariants(local, f.world, true, kSkin).empty());
+    EXPECT_TRUE(checkSyncInvariants(local, world, true, kSkin).empty());
     // Idle again, twice as long: the grain is still there.
     for (int call = 1; call <= 2 * UpdateList::kIdleCalls; ++call) {
         sync.sync(local);
@@ -294,15 +307,15 @@ TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
     // The large grain leaves the domain: the list carries calls again once the idle ones (4 x
     // kIdleCalls now) ran.
     if (auto [bp, i] = findMaster(local, big); bp != nullptr)
-        bp->particles.position(i) = Vec3(-6.0, 4.0, 4.0);
+        bp->particles.position(i) = Vec3(-4.0, 1.0, 1.0);
     int calls = 0;
     while (calls < 4 * UpdateList::kIdleCalls + 2 && !sync.lastStats().alongList) {
         sync.sync(local);
         ++calls;
     }
     EXPECT_TRUE(sync.lastStats().alongList) << "after " << calls << " calls";
-    EXPECT_EQ(globalMasters(local, f.world), 120u);
-    auto const v = checkSyncInvariants(local, f.world, true, kSkin);
+    EXPECT_EQ(globalMasters(local, world), 120u);
+    auto const v = checkSyncInvariants(local, world, true, kSkin);
     EXPECT_TRUE(v.empty()) << joined(v);
 }
 
