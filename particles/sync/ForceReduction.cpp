@@ -88,8 +88,8 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
             if (records == nullptr)
                 prefetchLocalMaster(engine, local, ps, i + kAhead);
             touchedEntries(ps, i, stamp, hist);
-            bool const hasForce = !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
-            if (hist.empty() && (records != nullptr || !hasForce))
+            // Reproducible mode sends the forces as records: only the history here.
+            if (records != nullptr ? hist.empty() : !hasShare(ps, i, hist))
                 return;
             BlockRef const owner = ps.owner(i);
             if (owner.rank == engine.rank() && records == nullptr) {
@@ -132,10 +132,7 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
                 core::Vec3 f, t;
                 std::vector<HistoryEntry> entries;
                 in >> f >> t >> entries;
-                ps.force(i) += f;
-                ps.torque(i) += t;
-                for (HistoryEntry const& e : entries)
-                    ps.history(i).set(e);
+                addShare(ps, i, f, t, entries);
             } else if (kind == RecordKind::ForceRecords) {
                 Contribution c{b, i, kInvalidUid, {}, {}};
                 in >> c.partner >> c.force >> c.torque;

@@ -86,14 +86,23 @@ void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stam
             out.push_back(e);
 }
 
-void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry const> entries,
-                    ParticleStorage& master, std::size_t m) {
-    if (entries.empty() && ps.force(i).isZero(0.0) && ps.torque(i).isZero(0.0))
-        return;
-    master.force(m) += ps.force(i);
-    master.torque(m) += ps.torque(i);
+void addShare(ParticleStorage& master, std::size_t m, core::Vec3 const& force,
+              core::Vec3 const& torque, std::span<HistoryEntry const> entries) {
+    master.force(m) += force;
+    master.torque(m) += torque;
     for (HistoryEntry const& e : entries)
         master.history(m).set(e);
+}
+
+bool hasShare(ParticleStorage const& ps, std::size_t i, std::span<HistoryEntry const> entries) {
+    return !entries.empty() || !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
+}
+
+void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry const> entries,
+                    ParticleStorage& master, std::size_t m) {
+    if (!hasShare(ps, i, entries))
+        return;
+    addShare(master, m, ps.force(i), ps.torque(i), entries);
     ps.force(i).setZero();
     ps.torque(i).setZero();
 }

@@ -88,7 +88,15 @@ void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
 /// The history entries of copy i of `ps` stamped `stamp` (evaluated in this pass), into `out`.
 void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
                     std::vector<HistoryEntry>& out);
-/// What a Force record does on arrival, for a shadow on this rank: adds shadow i's force and
+/// What a Force record does on arrival: adds a shadow's force, torque and touched history
+/// `entries` to master m of `master`.
+void addShare(ParticleStorage& master, std::size_t m, core::Vec3 const& force,
+              core::Vec3 const& torque, std::span<HistoryEntry const> entries);
+/// Whether shadow i of `ps` has a share to send its master: touched `entries`, or a force or
+/// torque (most shadows of a gas touch nothing and are skipped).
+[[nodiscard]] bool hasShare(ParticleStorage const& ps, std::size_t i,
+                            std::span<HistoryEntry const> entries);
+/// addShare for a shadow on this rank: adds shadow i's force and
 /// torque and `entries` (touchedEntries) to master m of `master` and zeroes the shadow's force
 /// and torque -- unless there is nothing to add (no entry, zero force and torque).
 void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry const> entries,

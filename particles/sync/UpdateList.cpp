@@ -345,8 +345,7 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
                 ParticleStorage& ps = blocks[m_from[p][q].block].particles;
                 std::size_t const i = m_from[p][q].index;
                 sync_detail::touchedEntries(ps, i, stamp, entries);
-                // Most shadows of a gas touch nothing: nothing to send (addShadowShare's rule).
-                if (entries.empty() && ps.force(i).isZero(0.0) && ps.torque(i).isZero(0.0))
+                if (!sync_detail::hasShare(ps, i, entries))
                     continue;
                 out << static_cast<std::uint32_t>(q) << ps.force(i) << ps.torque(i) << entries;
                 ps.force(i).setZero();
@@ -373,11 +372,8 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
                 if (q >= to.size())
                     throw core::Error("sync: malformed force message from rank " +
                                       std::to_string(from));
-                ParticleStorage& ps = blocks[to[q].block].particles;
-                ps.force(to[q].index) += force;
-                ps.torque(to[q].index) += torque;
-                for (HistoryEntry const& e : entries)
-                    ps.history(to[q].index).set(e);
+                sync_detail::addShare(blocks[to[q].block].particles, to[q].index, force, torque,
+                                      entries);
             }
         });
         stats += m_exchange->counters().last();
