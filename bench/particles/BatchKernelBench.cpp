@@ -54,7 +54,7 @@ void springDashpotBatch(benchmark::State& state) {
     auto fill = [&] {
         batch.clear();
         for (std::size_t k = 0; k < kContacts; ++k)
-            batch.add(ps, PairOverlap{2 * k, 2 * k + 1, Vec3::Zero()}, entries[k], 0);
+            batch.add(PairOverlap{2 * k, 2 * k + 1, Vec3::Zero()}, entries[k], 0);
     };
     fill();
     for (auto _ : state) {

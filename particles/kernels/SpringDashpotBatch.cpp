@@ -9,16 +9,13 @@
 
 namespace regolith::particles {
 
-void SpringDashpotBatch::add(ParticleStorage const& ps, PairOverlap const& p, HistoryEntry& entry,
-                             std::uint8_t hint) {
+void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint) {
     std::size_t const k = m_size++;
     std::size_t const i = p.i, j = p.j;
     m_i[k] = static_cast<std::uint32_t>(i);
     m_j[k] = static_cast<std::uint32_t>(j);
     m_hint[k] = hint;
     m_entry[k] = &entry;
-    m_typeI[k] = ps.type(i);
-    m_typeJ[k] = ps.type(j);
     m_shift[0][k] = p.shiftJ.x();
     m_shift[1][k] = p.shiftJ.y();
     m_shift[2][k] = p.shiftJ.z();
@@ -35,8 +32,8 @@ using Vector8 = double __attribute__((vector_size(64)));
 /// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes: eight loads and
 /// eleven shuffles, where a gather per component cost ~2.5x more (docs/results.md, issue 5,
 /// "Loads by index and transposed").
-inline void loadTransposed(double const* base, std::uint32_t const* idx, double* x, double* y,
-                           double* z) {
+[[gnu::always_inline]] inline void loadTransposed(double const* base, std::uint32_t const* idx,
+                                                  double* x, double* y, double* z) {
     Vector4 r[8]; // r[k] = (x_k y_k z_k 0), without reading past z_k (the last copy's Vec3
                   // ends its array); no function returns a vector (an ABI without AVX)
     for (int k = 0; k < 8; ++k) {
@@ -74,27 +71,29 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
                                   double dt) {
     std::size_t const n = m_size;
     auto const& materials = model.materials();
-    auto fill = [this](std::size_t k, LinearContactParams const& p, double ratio) {
-        m_k[k] = p.stiffness;
-        m_kt[k] = p.tangentialStiffness;
-        m_ratio[k] = ratio;
-        m_mu[k] = p.friction;
-        m_ctRatio[k] = p.tangentialDampingRatio;
-        m_muRoll[k] = p.rollingFriction;
-    };
-    if (materials.numTypes() == 1) { // one material: the same numbers in every lane
-        LinearContactParams const& p = materials(0, 0);
-        double const ratio = model.dampingRatio(0, 0);
-        for (std::size_t k = 0; k < n; ++k)
-            fill(k, p, ratio);
-    } else {
-        for (std::size_t k = 0; k < n; ++k)
-            fill(k, materials(m_typeI[k], m_typeJ[k]), model.dampingRatio(m_typeI[k], m_typeJ[k]));
+    // One material (most scenes): the parameters are the same in every lane, so the lanes
+    // read them as constants; several: gathered per contact from the tables.
+    bool const uniform = materials.numTypes() == 1;
+    LinearContactParams const& one = materials(0, 0);
+    Parameters const uniformParameters{
+        one.stiffness, one.tangentialStiffness,    model.dampingRatio(0, 0),
+        one.friction,  one.tangentialDampingRatio, one.rollingFriction};
+    if (!uniform) {
+        for (std::size_t k = 0; k < n; ++k) {
+            std::uint32_t const a = ps.type(m_i[k]), b = ps.type(m_j[k]);
+            LinearContactParams const& p = materials(a, b);
+            m_k[k] = p.stiffness;
+            m_kt[k] = p.tangentialStiffness;
+            m_ratio[k] = model.dampingRatio(a, b);
+            m_mu[k] = p.friction;
+            m_ctRatio[k] = p.tangentialDampingRatio;
+            m_muRoll[k] = p.rollingFriction;
+        }
     }
     // Rolling resistance costs a root and two divisions per lane; a batch without it (most
     // scenes: rolling friction 0) skips them, with the same bits (its torque is then + 0.0).
-    bool rolling = false;
-    for (std::size_t k = 0; k < n; ++k)
+    bool rolling = uniform && one.rollingFriction > 0.0;
+    for (std::size_t k = 0; !uniform && k < n; ++k)
         rolling = rolling || m_muRoll[k] > 0.0;
     // The centres, velocities and spins, eight contacts at a time (the lanes beyond n repeat
     // contact 0's copies: computed, never read).
@@ -113,14 +112,22 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
         loadTransposed(w, &m_i[b], &m_wi[0][b], &m_wi[1][b], &m_wi[2][b]);
         loadTransposed(w, &m_j[b], &m_wj[0][b], &m_wj[1][b], &m_wj[2][b]);
     }
-    if (rolling)
-        evaluateLanes<true>(GrainScalars::of(ps), dt);
-    else
-        evaluateLanes<false>(GrainScalars::of(ps), dt);
+    GrainScalars const g = GrainScalars::of(ps);
+    if (uniform) {
+        if (rolling)
+            evaluateLanes<true, true>(g, uniformParameters, dt);
+        else
+            evaluateLanes<false, true>(g, uniformParameters, dt);
+    } else {
+        if (rolling)
+            evaluateLanes<true, false>(g, uniformParameters, dt);
+        else
+            evaluateLanes<false, false>(g, uniformParameters, dt);
+    }
 }
 
-template <bool kRolling>
-void SpringDashpotBatch::evaluateLanes(GrainScalars g, double dt) {
+template <bool kRolling, bool kUniform>
+void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const& uniform, double dt) {
     std::size_t const n = m_size;
     double const* __restrict const invM = g.invM;
     double const* __restrict const invI = g.invI;
@@ -131,6 +138,10 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, double dt) {
     // a lane then discards; the bits of the results kept are the same). The comments name the
     // scalar code each part mirrors (same operations, same order).
     for (std::size_t k = 0; k < n; ++k) {
+        double const kn = kUniform ? uniform.k : m_k[k], kt = kUniform ? uniform.kt : m_kt[k];
+        double const ratio = kUniform ? uniform.ratio : m_ratio[k];
+        double const mu = kUniform ? uniform.mu : m_mu[k];
+        double const ctRatio = kUniform ? uniform.ctRatio : m_ctRatio[k];
         double const xix = m_xi[0][k], xiy = m_xi[1][k], xiz = m_xi[2][k];
         double const xjx = m_xj[0][k] + m_shift[0][k], xjy = m_xj[1][k] + m_shift[1][k],
                      xjz = m_xj[2][k] + m_shift[2][k];
@@ -162,13 +173,12 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, double dt) {
         [[maybe_unused]] double const reff = a * b / (a + b);
         [[maybe_unused]] double const invIsum = invI[m_i[k]] + invI[m_j[k]];
         // SpringDashpot::operator(): normal force.
-        double const cn = 2.0 * m_ratio[k] * std::sqrt(m_k[k] * meff);
+        double const cn = 2.0 * ratio * std::sqrt(kn * meff);
         double const vn = ux * nx + uy * ny + uz * nz;
         double const vtx = ux - vn * nx, vty = uy - vn * ny, vtz = uz - vn * nz;
-        double const fn = m_k[k] * pen - cn * vn;
-        double const kt = m_kt[k];
-        double const ct = m_ctRatio[k] * cn;
-        double const limit = m_mu[k] * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)
+        double const fn = kn * pen - cn * vn;
+        double const ct = ctRatio * cn;
+        double const limit = mu * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)
         // tangentialForce: projectSpring, grow, trial force, Coulomb limit.
         double sx = m_s[0][k], sy = m_s[1][k], sz = m_s[2][k];
         double const before = sx * sx + sy * sy + sz * sz;
@@ -208,7 +218,7 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, double dt) {
         // rollingTorque (+0.0 where it does not roll, as the scalar code adds).
         double mx = 0.0, my = 0.0, mz = 0.0;
         if constexpr (kRolling) {
-            double const muRoll = m_muRoll[k];
+            double const muRoll = kUniform ? uniform.muRoll : m_muRoll[k];
             double const spin = ox * nx + oy * ny + oz * nz;
             double const qx = ox - spin * nx, qy = oy - spin * ny, qz = oz - spin * nz;
             double const qNorm = std::sqrt(qx * qx + qy * qy + qz * qz);

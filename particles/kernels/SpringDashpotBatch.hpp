@@ -41,11 +41,11 @@ public:
     [[nodiscard]] bool full() const { return m_size == kCapacity; }
     void clear() { m_size = 0; }
 
-    /// Adds the overlapping pair `p` of `ps` (canonical order) with `entry`, its history entry
-    /// (the tangential spring, written back after evaluate), and `hint` (the entry's slot in
-    /// i's ContactHistory, to find it again if the history moved). Pre: !full().
-    void add(ParticleStorage const& ps, PairOverlap const& p, HistoryEntry& entry,
-             std::uint8_t hint);
+    /// Adds the overlapping pair `p` (canonical order, copies of the storage evaluate will
+    /// read) with `entry`, its history entry (the tangential spring, written back after
+    /// evaluate), and `hint` (the entry's slot in i's ContactHistory, to find it again if the
+    /// history moved). Pre: !full().
+    void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint);
 
     /// Evaluates every added contact of `ps` (the storage add saw, unchanged since) with
     /// `model` and time step `dt`: afterwards force(k), torqueI(k), torqueJ(k) and spring(k)
@@ -82,9 +82,14 @@ private:
             return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
-    /// evaluate's loop over the lanes, with or without rolling resistance.
-    template <bool kRolling>
-    void evaluateLanes(GrainScalars g, double dt);
+    /// A pair's material parameters as the lanes read them.
+    struct Parameters {
+        double k, kt, ratio, mu, ctRatio, muRoll;
+    };
+    /// evaluate's loop over the lanes, with or without rolling resistance, with `uniform`'s
+    /// parameters in every lane or each lane's own (m_k ...).
+    template <bool kRolling, bool kUniform>
+    void evaluateLanes(GrainScalars g, Parameters const& uniform, double dt);
 
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
@@ -94,8 +99,6 @@ private:
     std::array<std::uint32_t, kCapacity> m_j{};
     std::array<std::uint8_t, kCapacity> m_hint{};
     std::array<HistoryEntry*, kCapacity> m_entry{};
-    std::array<std::uint32_t, kCapacity> m_typeI{};
-    std::array<std::uint32_t, kCapacity> m_typeJ{};
     // Inputs: centres x_i and x_j (j's periodic shift apart), velocities and spins (filled by
     // evaluate), the spring (updated in place).
     alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
@@ -139,7 +142,7 @@ public:
             finish();
             e = &history.touch(m_ps.uid(p.j), m_stamp, hint);
         }
-        m_batch.add(m_ps, p, *e, hint);
+        m_batch.add(p, *e, hint);
     }
     void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
 

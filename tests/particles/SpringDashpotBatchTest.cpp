@@ -108,10 +108,20 @@ SpringDashpot twoMaterialsWithoutRolling() {
     return SpringDashpot{table};
 }
 
+/// One material, (0, 0) of twoMaterials(), with or without rolling resistance: the lanes then
+/// read the parameters as constants.
+SpringDashpot oneMaterial(bool rolling) {
+    LinearContactParams p = twoMaterials().materials()(0, 0);
+    p.rollingFriction = rolling ? p.rollingFriction : 0.0;
+    return SpringDashpot{MaterialTable<LinearContactParams>(1, p)};
+}
+
 /// Four passes over a dense random pack, evaluated with evaluatePair and in batches.
 void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
     double const dt = 2e-3;
     ParticleStorage one = randomPack(3, 600, 7.0);
+    for (std::size_t k = 0; k < one.size(); ++k) // every grain of a known material
+        one.setType(k, one.type(k) % static_cast<std::uint32_t>(model.materials().numTypes()));
     WallList walls;
     ContactDetector detector;
     ContactList contacts;
@@ -173,6 +183,11 @@ TEST(SpringDashpotBatch, SameSharesAndSpringsAsEvaluatePairOverSeveralPasses) {
 
 TEST(SpringDashpotBatch, SameSharesAndSpringsWithoutRollingResistance) {
     expectSameSharesAndSpringsAsEvaluatePair(twoMaterialsWithoutRolling());
+}
+
+TEST(SpringDashpotBatch, SameSharesAndSpringsWithOneMaterial) {
+    expectSameSharesAndSpringsAsEvaluatePair(oneMaterial(true));
+    expectSameSharesAndSpringsAsEvaluatePair(oneMaterial(false));
 }
 
 TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation) {
