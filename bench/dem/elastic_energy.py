@@ -11,7 +11,7 @@ import tempfile
 import numpy as np
 from scipy.spatial import cKDTree
 
-from run_summary import MPI_ENV
+from run_summary import MPI_ENV, mpiexec
 
 
 def run_with_dump(app, ranks, args, timeout=900):
@@ -21,8 +21,7 @@ def run_with_dump(app, ranks, args, timeout=900):
     with tempfile.TemporaryDirectory() as tmp:
         summary = os.path.join(tmp, "summary.json")
         dump = os.path.join(tmp, "final.csv")
-        command = ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", app,
-                   *args, "--quiet", "--json", summary, "--dump", dump]
+        command = [*mpiexec(ranks), app, *args, "--quiet", "--json", summary, "--dump", dump]
         try:
             done = subprocess.run(command, capture_output=True, text=True, check=False,
                                   timeout=timeout, env={**os.environ, **MPI_ENV})

@@ -29,7 +29,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from chart_output import ROOT, pyplot, read_csv, save_chart, write_csv  # noqa: E402
-from run_summary import MPI_ENV  # noqa: E402
+from run_summary import MPI_ENV, mpiexec  # noqa: E402
 
 METHODS = "direct,tree,mutual,tree-nodes,occupied-cells,pm,stale-tree"
 # Legend label, marker, colour and what `param` is, per method.
@@ -52,9 +52,9 @@ def error_floor(rows, key):
 
 
 def run_bench(a, raw):
-    command = ["mpiexec", "-n", "1", "--oversubscribe", "--bind-to", "none",
-               os.path.join(a.build, "bin", "gravity_bench"), "--instances", a.instance,
-               "--methods", a.methods, "--thetas", a.thetas, "--spacings", a.spacings,
+    command = [*mpiexec(1), os.path.join(a.build, "bin", "gravity_bench"),
+               "--instances", a.instance, "--methods", a.methods, "--thetas", a.thetas,
+               "--spacings", a.spacings,
                "--node-spacings", a.node_spacings, "--thresholds", a.thresholds,
                "--step-displacement", str(a.step_displacement),
                "--samples", str(a.samples), "--repeat", str(a.repeat), "--csv", raw]

@@ -22,7 +22,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from chart_output import ROOT, pyplot, save_chart, write_csv  # noqa: E402
-from run_summary import MPI_ENV  # noqa: E402
+from run_summary import MPI_ENV, mpiexec  # noqa: E402
 
 
 def run(a, split, radius, method):
@@ -30,8 +30,8 @@ def run(a, split, radius, method):
     app = os.path.join(a.build, "bin", "bidisperse")
     with tempfile.TemporaryDirectory() as tmp:
         summary = os.path.join(tmp, "summary.json")
-        command = ["mpiexec", "-n", str(a.ranks), "--oversubscribe", "--bind-to", "none", app,
-                   "--steps", str(a.steps), "--set", f"bidisperse.edge={a.edge}",
+        command = [*mpiexec(a.ranks), app, "--steps", str(a.steps),
+                   "--set", f"bidisperse.edge={a.edge}",
                    "--set", f"bidisperse.large_radius={radius!r}",
                    "--set", f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
                    "--set", f"sync.method={method}", "--quiet", "--json", summary]
