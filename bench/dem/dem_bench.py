@@ -66,6 +66,8 @@ def methods(a):
           "SOS / NNS at equal speed | hybrid / NNS at equal speed |")
     print("|---|---|---|---|---|---|---|---|")
     for scene, (app, args, steps) in SCENES.items():
+        if scene not in a.scenes:
+            continue
         for ranks in a.ranks:
             runs = {m: [] for m in METHODS}
             for repeat in range(a.repeats):
@@ -259,6 +261,8 @@ def main():
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--ranks", type=int, nargs="*", default=[1, 2])
+    p.add_argument("--scenes", nargs="*", default=list(SCENES), choices=list(SCENES),
+                   help="the scenes `methods` runs")
     p.add_argument("--edge", type=float, default=40.0)
     p.add_argument("--radii", type=float, nargs="*", default=[4, 8, 12, 16, 18])
     p.add_argument("--radius-steps", type=int, default=200)
