@@ -49,6 +49,11 @@ std::string toJson(RunSummary const& s) {
         .member("bytes_per_step", s.comm.bytesPerStep)
         .member("max_peers", s.comm.maxPeers)
         .endObject();
+    w.key("neighbour_list")
+        .beginObject()
+        .member("skin", s.neighbourList.skin)
+        .member("rebuilds", s.neighbourList.rebuilds)
+        .endObject();
     w.key("conserved")
         .beginObject()
         .member("momentum", s.conserved.momentum)

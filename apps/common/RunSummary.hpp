@@ -45,6 +45,14 @@ struct RunSummary {
     };
     std::vector<AutoChoice> autoChoices;
 
+    /// The contact detection's Verlet lists (JSON key "neighbour_list", beyond the contract's
+    /// keys): the largest skin of the blocks' last rebuilds (0: no list, contact.neighbour_skin
+    /// = 0) and the rebuilds during the loop, over all blocks and ranks.
+    struct NeighbourList {
+        double skin = 0.0;
+        long long rebuilds = 0;
+    } neighbourList;
+
     struct Communication {
         double messagesPerStep = 0.0;
         double bytesPerStep = 0.0;

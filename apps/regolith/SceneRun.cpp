@@ -165,6 +165,10 @@ int runScene(core::AppContext& ctx) {
     stepConfig.dt = scene.time.dt;
     stepConfig.gravity = scene.gravity.external;
     stepConfig.keepContacts = false; // read after setUp only (checkOverlapsAcrossBlocks)
+    if (scene.contact.neighbourSkin) { // else DemStep's default, relative to the radius
+        stepConfig.detector.skin = *scene.contact.neighbourSkin;
+        stepConfig.detector.relativeSkin = 0.0;
+    }
     particles::DemStep dem(world, sync, local, makeContactModel(scene), makeIntegrator(scene),
                            makeWalls(scene), stepConfig, timers);
     // Self-gravity as the step's body forces (after contacts and their reduction).

@@ -85,6 +85,9 @@ ContactSection parseContact(core::ConfigTable const& t) {
     s.initialOverlap = t.getOrIf<double>(
         "initial_overlap", s.initialOverlap, [](double f) { return f >= 0.0 && f < 1.0; },
         "a fraction of the smaller radius in [0, 1)");
+    if (t.has("neighbour_skin"))
+        s.neighbourSkin = t.getOrIf<double>("neighbour_skin", 0.0, isNonNegativeFinite,
+                                            "a non-negative finite length (0: no neighbour list)");
     return s;
 }
 

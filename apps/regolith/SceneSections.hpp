@@ -18,6 +18,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,7 +51,9 @@ enum class ContactModel { SpringDashpot, Hertz };
 /// [contact] model ("spring-dashpot" | "hertz"), stiffness (> 0; N/m for spring-dashpot,
 /// the effective modulus in Pa for Hertz), restitution in [0, 1], friction >= 0 (Coulomb
 /// coefficient), rolling_friction >= 0, initial_overlap (how far two grains may overlap at
-/// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry).
+/// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry),
+/// neighbour_skin (the Verlet list's skin, a length >= 0, LAMMPS's `neighbor` skin; 0: no
+/// list, linked cells every step; absent: a quarter of each block's small grains' radius).
 /// Defaults as in DESIGN.md: 1e4, 0.9, 0.5, 0; initial_overlap 1e-6.
 struct ContactSection {
     ContactModel model = ContactModel::SpringDashpot;
@@ -59,6 +62,7 @@ struct ContactSection {
     double friction = 0.5;
     double rollingFriction = 0.0;
     double initialOverlap = 1e-6;
+    std::optional<double> neighbourSkin;
 };
 
 enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, MutualTree, Auto };

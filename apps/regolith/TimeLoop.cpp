@@ -14,6 +14,7 @@ LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
     timers.reset();
     sync.resetCounters();
     std::uint64_t const leftBefore = dem.leftDomain();
+    std::uint64_t const rebuildsBefore = dem.listRebuilds();
     comm.barrier(); // every rank starts the clock together
     double const start = MPI_Wtime();
     for (std::int64_t n = 0; n < steps; ++n) {
@@ -30,8 +31,12 @@ LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
     out.wallSeconds = comm.allReduce(elapsed, core::ReduceOp::Max);
     out.timers = timers.reduce(comm);
     out.comm = sync.counters().reduce(comm);
-    out.leftDomain =
-        comm.allReduce(static_cast<long long>(dem.leftDomain() - leftBefore), core::ReduceOp::Sum);
+    std::array<long long, 2> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
+                                    static_cast<long long>(dem.listRebuilds() - rebuildsBefore)};
+    comm.allReduceInPlace(std::span<long long>(counts), core::ReduceOp::Sum);
+    out.leftDomain = counts[0];
+    out.listRebuilds = counts[1];
+    out.listSkin = comm.allReduce(dem.listSkin(), core::ReduceOp::Max);
     return out;
 }
 
@@ -89,6 +94,8 @@ void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
         summary.comm.bytesPerStep = static_cast<double>(loop.comm.bytes) / steps;
     }
     summary.comm.maxPeers = loop.comm.maxPeers;
+    summary.neighbourList.skin = loop.listSkin;
+    summary.neighbourList.rebuilds = loop.listRebuilds;
 }
 
 } // namespace regolith::apps

@@ -22,9 +22,11 @@ struct LoopOutcome {
     /// The loop alone, from a barrier before the first step to the end of the slowest
     /// rank's last step [s] (set-up and output excluded, like LAMMPS's "Loop time").
     double wallSeconds = 0.0;
-    core::TimerReport timers;    ///< the step's phases (sync, contact, integrate), over ranks
-    core::CommTotals comm;       ///< the synchronisation's traffic during the loop
-    std::int64_t leftDomain = 0; ///< masters that left an open domain, over all ranks
+    core::TimerReport timers;      ///< the step's phases (sync, contact, integrate), over ranks
+    core::CommTotals comm;         ///< the synchronisation's traffic during the loop
+    std::int64_t leftDomain = 0;   ///< masters that left an open domain, over all ranks
+    std::int64_t listRebuilds = 0; ///< Verlet-list rebuilds, over all blocks and ranks
+    double listSkin = 0.0;         ///< the largest skin of the blocks' last rebuilds
 };
 
 /// Called after every step with the number of steps done (dem.stepsDone()): output,
@@ -57,8 +59,8 @@ using ObservesStep = std::function<bool(std::int64_t stepsDone)>;
 
 /// Fills the loop's keys of `summary`: steps, wall_s, timing_s (average over ranks of each
 /// phase, gravity from the body-force timer), comm (messages and bytes summed over ranks per
-/// step, the largest number of peers of one exchange), left_domain, and the final global
-/// counts of masters (particles) and shadow copies (shadows) in `local`.
+/// step, the largest number of peers of one exchange), left_domain, neighbour_list, and the
+/// final global counts of masters (particles) and shadow copies (shadows) in `local`.
 /// COLLECTIVE over `comm`.
 void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
                      particles::LocalParticles const& local, RunSummary& summary);

@@ -22,8 +22,9 @@ data file, so both codes start from the same bits. Contact: Regolith's spring-da
 k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k_t = 2/7 k_n,
 c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
 (gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
-nve/sphere). Both use Verlet lists with a skin: LAMMPS --skin, Regolith r/4 (its
-DemStep default, 0.1 for the gas). Both decide their ghost copies with a skin and only copy
+nve/sphere). Both use Verlet lists with the same skin, --skin (LAMMPS's neighbor command,
+Regolith's contact.neighbour_skin; before that key existed, Regolith ran with its default r/4:
+0.1 for the gas, 0.15 for the lattice, 0.125 for the ramp). Both decide their ghost copies with a skin and only copy
 them between decisions: LAMMPS always (its ghost cut-off is the pair cut-off plus the neighbour
 skin), Regolith with sync.skin (scenes/README.md), set here to --skin on every Regolith run
 (a later --set sync.skin=... overrides it, e.g. 0 for the paper's per-step Alg. 1). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
@@ -210,7 +211,8 @@ def main():
     for case in a.cases:
         with tempfile.TemporaryDirectory() as tmp:
             c = make_case(case, a.box)
-            args = c.regolith_args([f"sync.skin={a.skin!r}"] + a.overrides)
+            args = c.regolith_args([f"sync.skin={a.skin!r}",
+                                    f"contact.neighbour_skin={a.skin!r}"] + a.overrides)
             dump = os.path.join(tmp, "init.csv")
             regolith(app, c, args, os.path.join(tmp, "init.json"),
                      ["--steps", "0", "--dump", dump])

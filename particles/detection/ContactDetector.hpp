@@ -167,6 +167,8 @@ public:
     [[nodiscard]] std::vector<std::size_t> spatialOrder() const;
 
     [[nodiscard]] DetectorStats const& stats() const { return m_stats; }
+    /// The Verlet skin of the last list rebuild [length]; 0 if none was built (no skin).
+    [[nodiscard]] double listSkin() const { return m_listSkin; }
     [[nodiscard]] DetectorConfig const& config() const { return m_config; }
     /// Frees every work array and the neighbour list (the next detect starts afresh).
     void release();

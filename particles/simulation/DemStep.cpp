@@ -128,6 +128,13 @@ void DemStep::completeStep() {
     m_kickPending = false;
 }
 
+double DemStep::listSkin() const {
+    double skin = 0.0;
+    for (ContactDetector const& d : m_detectors)
+        skin = std::max(skin, d.listSkin());
+    return skin;
+}
+
 void DemStep::releaseWorkspace() {
     for (ContactDetector& d : m_detectors)
         d.release();
@@ -216,6 +223,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
                     }
                 },
                 m_model);
+            m_listRebuilds += m_detectors[b].stats().rebuilt ? 1 : 0;
         }
     }
     {

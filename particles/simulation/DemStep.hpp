@@ -165,6 +165,12 @@ public:
     /// removes none: every master starts in the block containing it). Local: sum over ranks
     /// for the run's total.
     [[nodiscard]] std::uint64_t leftDomain() const { return m_leftDomain; }
+    /// Verlet-list rebuilds of the local blocks' detectors over all force computations (a
+    /// block's rebuild counts once). Local: sum over ranks for the run's total.
+    [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
+    /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
+    /// (DemStepConfig::detector without a skin). Local.
+    [[nodiscard]] double listSkin() const;
     /// The contacts each local block evaluated in the last force computation (indices into
     /// that block's storage; valid until the next synchronisation), in the order of
     /// LocalParticles::blocks(). With DemStepConfig::keepContacts false, the pair contacts
@@ -204,6 +210,7 @@ private:
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
+    std::uint64_t m_listRebuilds = 0;
 };
 
 } // namespace regolith::particles

@@ -37,6 +37,9 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
     EXPECT_EQ(s.contact.rollingFriction, 0.01);
+    EXPECT_FALSE(s.contact.neighbourSkin); // the default: relative to the radius
+    EXPECT_EQ(parse({"contact.neighbour_skin=0.2"}).contact.neighbourSkin, 0.2);
+    EXPECT_EQ(parse({"contact.neighbour_skin=0"}).contact.neighbourSkin, 0.0);
     EXPECT_EQ(s.gravity.self, apps::SelfGravity::Tree);
     EXPECT_EQ(s.gravity.external, core::Vec3(0, 0, -9.81));
     EXPECT_EQ(s.gravity.petscOptions, "-pc_type gamg");

@@ -1,8 +1,9 @@
 """Checks a run summary (--json) against the contract in DESIGN.md.
 
 usage: check_summary.py summary.json [key=value ...]
-Every contract key must be present with the right type; each key=value compares a top-level
-value (numbers compared as numbers, the rest as strings). Exit code 1 with a reason if not.
+Every contract key must be present with the right type; each key=value compares a value, the
+key a top-level one or a dotted path into the objects (neighbour_list.skin), numbers compared
+as numbers, the rest as strings. Exit code 1 with a reason if not.
 """
 import json
 import sys
@@ -13,6 +14,7 @@ SCHEMA = {
     "left_domain": int, "steps": int, "wall_s": NUMBER, "pupcs": NUMBER, "peak_rss_bytes": int,
     "timing_s": {"sync": NUMBER, "contact": NUMBER, "gravity": NUMBER, "integrate": NUMBER},
     "comm": {"messages_per_step": NUMBER, "bytes_per_step": NUMBER, "max_peers": int},
+    "neighbour_list": {"skin": NUMBER, "rebuilds": int},
     "conserved": {"momentum": list, "angular_momentum": list, "kinetic_energy": NUMBER,
                   "potential_energy": NUMBER, "center_of_mass": list},
     "checksum": str,
@@ -42,7 +44,11 @@ def main():
         sys.exit("peak_rss_bytes must be positive")
     for expectation in sys.argv[2:]:
         key, expected = expectation.split("=", 1)
-        actual = summary[key]
+        actual = summary
+        for part in key.split("."):
+            if not isinstance(actual, dict) or part not in actual:
+                sys.exit(f"{key}: not in the summary")
+            actual = actual[part]
         same = (actual == float(expected)) if isinstance(actual, NUMBER) else str(actual) == expected
         if not same:
             sys.exit(f"{key}: expected {expected}, got {actual!r}")
