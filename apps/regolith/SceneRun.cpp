@@ -164,7 +164,7 @@ int runScene(core::AppContext& ctx) {
     particles::DemStepConfig stepConfig;
     stepConfig.dt = scene.time.dt;
     stepConfig.gravity = scene.gravity.external;
-    stepConfig.keepContacts = false; // read after setUp only (checkOverlapsAcrossBlocks)
+    stepConfig.keepContacts = false;   // read after setUp only (checkOverlapsAcrossBlocks)
     if (scene.contact.neighbourSkin) { // else DemStep's default, relative to the radius
         stepConfig.detector.skin = *scene.contact.neighbourSkin;
         stepConfig.detector.relativeSkin = 0.0;
