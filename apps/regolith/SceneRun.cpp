@@ -34,6 +34,8 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <algorithm>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -72,6 +74,23 @@ std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
             "original run chose (its run summary lists them under \"auto\") with --set",
             keys.substr(1)));
     return {};
+}
+
+/// contact.neighbour_skin, if given, below the smallest block edge: toward a block's diagonal
+/// the Verlet list would hold every pair of grains in a block (memory quadratic in its
+/// grains). InputError on every rank otherwise. COLLECTIVE.
+void requireSkinBelowBlockEdges(core::Comm const& world, domain::BlockForest const& forest,
+                                std::optional<double> skin) {
+    if (!skin)
+        return;
+    double edge = std::numeric_limits<double>::infinity();
+    for (domain::Block const& b : forest.blocks())
+        edge = std::min(edge, b.aabb.minEdge());
+    edge = world.allReduce(edge, core::ReduceOp::Min);
+    if (!(*skin < edge))
+        throw core::InputError(fmt::format("contact.neighbour_skin = {}: expected a length below "
+                                           "the smallest block edge, {}",
+                                           *skin, edge));
 }
 
 /// The grid fields for VTK output: those of grid gravity once computed, else none.
@@ -161,6 +180,7 @@ int runScene(core::AppContext& ctx) {
     // the initial forces computed (a restart has them from the checkpoint).
     particles::ParticleSync sync(world, forest, scene.sync);
     core::TimerTree timers([] { return MPI_Wtime(); });
+    requireSkinBelowBlockEdges(world, forest, scene.contact.neighbourSkin);
     particles::DemStepConfig stepConfig;
     stepConfig.dt = scene.time.dt;
     stepConfig.gravity = scene.gravity.external;
