@@ -10,10 +10,11 @@ MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 
 
 def mpiexec(ranks):
-    """The mpiexec prefix for `ranks` ranks: each bound to a core while there are enough (on
-    this 2-core VM, unbound ranks share a core at times: 2-rank gas runs then spread 2.0e7 to
-    3.2e7 PUpCS against 2.7e7 to 3.2e7 bound), unbound and oversubscribed beyond."""
-    bind = "core" if ranks <= (os.cpu_count() or 1) else "none"
+    """The mpiexec prefix for `ranks` ranks: each bound to a core while this process may use
+    enough (on this 2-core VM, unbound ranks share a core at times: 2-rank gas runs then spread
+    2.0e7 to 3.2e7 PUpCS against 2.7e7 to 3.2e7 bound), unbound and oversubscribed beyond.
+    Bound runs of two benchmarks started together would share the same cores: run one alone."""
+    bind = "core" if ranks <= len(os.sched_getaffinity(0)) else "none"
     return ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", bind]
 
 

@@ -50,7 +50,7 @@ struct RunSummary {
     /// = 0) and the rebuilds during the loop, over all blocks and ranks.
     struct NeighbourList {
         double skin = 0.0;
-        long long rebuilds = 0;
+        std::int64_t rebuilds = 0;
     } neighbourList;
 
     struct Communication {

@@ -76,9 +76,10 @@ std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
     return {};
 }
 
-/// contact.neighbour_skin, if given, below the smallest block edge: toward a block's diagonal
-/// the Verlet list would hold every pair of grains in a block (memory quadratic in its
-/// grains). InputError on every rank otherwise. COLLECTIVE.
+/// contact.neighbour_skin, if given, below the smallest block edge: a sanity bound, as a skin
+/// of a block edge already lists pairs across most of a block (memory growing with the square
+/// of its grains) and one of its diagonal every pair. InputError on every rank otherwise.
+/// COLLECTIVE.
 void requireSkinBelowBlockEdges(core::Comm const& world, domain::BlockForest const& forest,
                                 std::optional<double> skin) {
     if (!skin)
@@ -143,6 +144,8 @@ int runScene(core::AppContext& ctx) {
     // The particles of this rank's blocks: masters now, shadows from the set-up's sync. They
     // are placed on equally weighted blocks, then the blocks are re-assigned by their load.
     BlockPlacement placement = uniformPlacement(world, scene);
+    // Before any grain is made: the blocks' geometry is final here (balancing moves owners).
+    requireSkinBelowBlockEdges(world, *placement.forest, scene.contact.neighbourSkin);
     RunStart start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
     std::int64_t const startStep = start.step;
     std::vector<AutoChoice> const choices =
@@ -180,7 +183,6 @@ int runScene(core::AppContext& ctx) {
     // the initial forces computed (a restart has them from the checkpoint).
     particles::ParticleSync sync(world, forest, scene.sync);
     core::TimerTree timers([] { return MPI_Wtime(); });
-    requireSkinBelowBlockEdges(world, forest, scene.contact.neighbourSkin);
     particles::DemStepConfig stepConfig;
     stepConfig.dt = scene.time.dt;
     stepConfig.gravity = scene.gravity.external;

@@ -4,7 +4,9 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
 
   methods  PUpCS of NNS, SOS and hybrid for granular_gas, dense_ramp and bidisperse on 1 and 2
            ranks, the three methods run alternating (nns, sos, hybrid, nns, ...) so that a
-           change of machine load hits all alike; ratios to the NNS run next to each.
+           change of machine load hits all alike; ratios to the NNS run next to each, raw and
+           at equal machine speed (normalised by the contact + integration seconds); --scenes
+           picks scenes. Run it alone: its ranks are bound to cores (run_summary.mpiexec).
   radius   the paper's Fig. 7/8 analogue: PUpCS against the radius of the large sphere in one
            building block, sparse (sc, r = 0.4) and dense (hcp, r = 0.4) surroundings, 4x4x4 and
            8x8x8 blocks per building block, --repeats runs per point (methods alternating;
@@ -16,7 +18,7 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
            16: NNS class, and SOS class, which leaves the list idle); PUpCS ratio skin / none.
 
 usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build/default]
-                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--edge 40]
+                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--scenes ...] [--edge 40]
                     [--radii 4 8 12 16 20 24] [--skin 0.1]
 """
 import argparse
@@ -60,11 +62,15 @@ def methods(a):
     """PUpCS of SOS and hybrid over NNS, the three alternating within each repeat; per pair of
     runs also the ratio at equal machine speed: the raw ratio times the ratio of the runs'
     fixed-work seconds (fixed_work_s), which takes out the speed this VM had during each run
-    (its contact phase alone varies up to 1.8x between neighbouring runs)."""
+    (its contact phase alone varies up to 1.8x between neighbouring runs). The last column
+    shows each method's median fixed-work seconds: where they differ beyond the noise, the
+    work is not the same after all (e.g. a storage order that suits the contact loop better)
+    and the equal-speed ratio is biased by that much."""
     rows = []
     print("\n| scene | ranks | grains | NNS PUpCS | SOS / NNS | hybrid / NNS | "
-          "SOS / NNS at equal speed | hybrid / NNS at equal speed |")
-    print("|---|---|---|---|---|---|---|---|")
+          "SOS / NNS at equal speed | hybrid / NNS at equal speed | "
+          f"contact + integration s ({' / '.join(METHODS)}, medians) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for scene, (app, args, steps) in SCENES.items():
         if scene not in a.scenes:
             continue
@@ -87,9 +93,11 @@ def methods(a):
                 return (f"{statistics.median(ratios):.3f} "
                         f"({min(ratios):.2f}–{max(ratios):.2f})")
             nns = statistics.median(r["pupcs"] for r in runs["nns"])
+            fixed = " / ".join(f"{statistics.median(fixed_work_s(r) for r in runs[m]):.3f}"
+                               for m in METHODS)
             print(f"| {scene} | {ranks} | {runs['nns'][0]['particles']} | {nns:.3e} | "
                   f"{cell(raw['sos'])} | {cell(raw['hybrid'])} | {cell(even['sos'])} | "
-                  f"{cell(even['hybrid'])} |", flush=True)
+                  f"{cell(even['hybrid'])} | {fixed} |", flush=True)
     write_csv(a.out, "dem_methods.csv",
               ["scene", "ranks", "repeat", "method", "grains", "steps", "wall_s", "pupcs",
                "sync_s", "contact_s", "integrate_s", "bytes_per_step"], rows)

@@ -17,17 +17,18 @@ Cases:
            --box x (--box sqrt(3)/2) x 8; LAMMPS walls are fix wall/gran hooke/history with
            Regolith's sphere-wall damping (effective mass m, not m/2)
 
-The initial state comes from Regolith itself (--steps 0 --dump) and is written as a LAMMPS
-data file, so both codes start from the same bits. Contact: Regolith's spring-dashpot with
-k_n = contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k_t = 2/7 k_n,
-c_t = c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers
-(gamma_n = c_n / m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix
-nve/sphere). Both use Verlet lists with the same skin, --skin (LAMMPS's neighbor command,
-Regolith's contact.neighbour_skin; before that key existed, Regolith ran with its default r/4:
-0.1 for the gas, 0.15 for the lattice, 0.125 for the ramp). Both decide their ghost copies with a skin and only copy
-them between decisions: LAMMPS always (its ghost cut-off is the pair cut-off plus the neighbour
-skin), Regolith with sync.skin (scenes/README.md), set here to --skin on every Regolith run
-(a later --set sync.skin=... overrides it, e.g. 0 for the paper's per-step Alg. 1). Decks: granular.in (periodic cube), ramp.in (walls, gravity).
+The initial state comes from Regolith itself (--steps 0 --dump) and is written as a LAMMPS data
+file, so both codes start from the same bits. Contact: Regolith's spring-dashpot with k_n =
+contact.stiffness, damping from the restitution e (c_n = 2 m_eff gamma), k_t = 2/7 k_n, c_t =
+c_n / 2, Coulomb mu; LAMMPS pair_style gran/hooke/history with the same numbers (gamma_n = c_n /
+m_eff, gamma_t = gamma_n / 2), velocity Verlet on both sides (fix nve/sphere). Both use Verlet
+lists with the same skin, --skin (LAMMPS's neighbor command, Regolith's contact.neighbour_skin;
+before that key existed, Regolith ran with its default r/4: 0.1 for the gas, 0.15 for the
+lattice, 0.125 for the ramp). Both decide their ghost copies with a skin and only copy them
+between decisions: LAMMPS always (its ghost cut-off is the pair cut-off plus the neighbour
+skin), Regolith with sync.skin (scenes/README.md), set here to --skin on every Regolith run (a
+later --set sync.skin=... overrides it, e.g. 0 for the paper's per-step Alg. 1). Decks:
+granular.in (periodic cube), ramp.in (walls, gravity).
 
 --set KEY=VALUE (repeatable) passes a scene override to every Regolith run, e.g.
 --set time.orientation=true: the three scenes leave orientations out by default (as LAMMPS's

@@ -127,7 +127,7 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
 }
 
 template <bool kRolling, bool kUniform>
-void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const& uniform, double dt) {
+void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const uniform, double dt) {
     std::size_t const n = m_size;
     double const* __restrict const invM = g.invM;
     double const* __restrict const invI = g.invI;

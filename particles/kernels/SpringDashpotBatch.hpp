@@ -47,7 +47,8 @@ public:
     /// history moved). Pre: !full().
     void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint);
 
-    /// Evaluates every added contact of `ps` (the storage add saw, unchanged since) with
+    /// Evaluates every added contact of `ps` (the storage whose copies were added, its
+    /// positions, motion, radii, masses and types unchanged since) with
     /// `model` and time step `dt`: afterwards force(k), torqueI(k), torqueJ(k) and spring(k)
     /// hold what overlapGeometry and evaluatePair would give (force on j, torques on i and j,
     /// the updated spring).
@@ -89,7 +90,7 @@ private:
     /// evaluate's loop over the lanes, with or without rolling resistance, with `uniform`'s
     /// parameters in every lane or each lane's own (m_k ...).
     template <bool kRolling, bool kUniform>
-    void evaluateLanes(GrainScalars g, Parameters const& uniform, double dt);
+    void evaluateLanes(GrainScalars g, Parameters uniform, double dt);
 
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
@@ -103,7 +104,8 @@ private:
     // evaluate), the spring (updated in place).
     alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
     alignas(64) Lane3 m_s;
-    // The pair's material parameters, gathered from the tables.
+    // The pair's material parameters, from the tables (several materials only: with one, the
+    // lanes read Parameters and these are neither filled nor read).
     alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll;
     // Outputs.
     alignas(64) Lane3 m_f, m_ti, m_tj;

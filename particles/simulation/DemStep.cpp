@@ -223,7 +223,8 @@ void DemStep::computeForces(std::uint32_t stamp) {
                     }
                 },
                 m_model);
-            m_listRebuilds += m_detectors[b].stats().rebuilt ? 1 : 0;
+            // A block without copies "rebuilds" an empty list every call: not counted.
+            m_listRebuilds += m_detectors[b].stats().rebuilt && !ps.empty() ? 1 : 0;
         }
     }
     {

@@ -166,7 +166,8 @@ public:
     /// for the run's total.
     [[nodiscard]] std::uint64_t leftDomain() const { return m_leftDomain; }
     /// Verlet-list rebuilds of the local blocks' detectors over all force computations (a
-    /// block's rebuild counts once). Local: sum over ranks for the run's total.
+    /// block's rebuild counts once; a block without copies counts none). Local: sum over
+    /// ranks for the run's total.
     [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
     /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
     /// (DemStepConfig::detector without a skin). Local.

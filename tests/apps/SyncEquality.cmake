@@ -83,9 +83,9 @@ set(refined "--set domain.refine=[{min=[0,0,0],max=[4,4,4],level=1}]")
 set(skin "--set sync.skin=0.2")
 regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
   NP1 base ${one_block} ${skin} "${one_block} ${skin} --set sync.method=nns" # 64, 1
-      "--set contact.neighbour_skin=0"                                 # no Verlet list
+      "--set contact.neighbour_skin=0"                                 # 64, no Verlet list
   NP2 base "--set domain.blocks=[2,2,1]" ${skin}                       # 32, 2, 32 skin
-      "--set contact.neighbour_skin=0.3"                               # a wide Verlet skin
+      "--set contact.neighbour_skin=0.3"                               # 32, Verlet skin 0.3
   NP3 base "--set domain.blocks=[4,3,2]"                               # 21-22, 8
       "--set domain.blocks=[4,3,2] ${skin} --set sync.method=nns"      # 8 NNS skin
   NP4 "--set sync.method=nns" ${refined}                               # 16 NNS, refined

@@ -1,11 +1,13 @@
 """Checks a run summary (--json) against the contract in DESIGN.md.
 
-usage: check_summary.py summary.json [key=value ...]
+usage: check_summary.py summary.json [key=value | key>number ...]
 Every contract key must be present with the right type; each key=value compares a value, the
 key a top-level one or a dotted path into the objects (neighbour_list.skin), numbers compared
-as numbers, the rest as strings. Exit code 1 with a reason if not.
+as numbers, the rest as strings; key>number requires a number above it. Exit code 1 with a
+reason if not.
 """
 import json
+import re
 import sys
 
 NUMBER = (int, float)
@@ -43,13 +45,20 @@ def main():
     if summary["peak_rss_bytes"] <= 0:
         sys.exit("peak_rss_bytes must be positive")
     for expectation in sys.argv[2:]:
-        key, expected = expectation.split("=", 1)
+        key, op, expected = re.fullmatch(r"([\w.]+)([=>])(.*)", expectation).groups()
         actual = summary
         for part in key.split("."):
             if not isinstance(actual, dict) or part not in actual:
                 sys.exit(f"{key}: not in the summary")
             actual = actual[part]
-        same = (actual == float(expected)) if isinstance(actual, NUMBER) else str(actual) == expected
+        if op == ">":
+            if not isinstance(actual, NUMBER) or not actual > float(expected):
+                sys.exit(f"{key}: expected above {expected}, got {actual!r}")
+            continue
+        if isinstance(actual, NUMBER):
+            same = actual == float(expected)
+        else:
+            same = str(actual) == expected
         if not same:
             sys.exit(f"{key}: expected {expected}, got {actual!r}")
 

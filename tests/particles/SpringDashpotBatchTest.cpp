@@ -1,8 +1,9 @@
 // The batched spring-dashpot evaluation (SpringDashpotBatch, BatchedSpringDashpot) against
 // evaluatePair one contact at a time: the same sink calls with the same bits, and the same
 // springs and stamps in the histories, over several passes of a dense random pack with two
-// materials, sliding and sticking contacts, rolling resistance, springs that are zero, tiny,
-// along the normal or far beyond the Coulomb limit, and a pair met twice in one pass.
+// materials and with one (its parameters constants in the lanes), sliding and sticking contacts,
+// rolling resistance, springs that are zero, tiny, along the normal or far beyond the Coulomb
+// limit, and a pair met twice in one pass.
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
 #include "particles/detection/ContactDetector.hpp"
