@@ -22,16 +22,13 @@ usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build
                     [--radii 4 8 12 16 20 24] [--skin 0.1]
 """
 import argparse
-import csv
 import os
-import shutil
 import statistics
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from chart_output import ROOT, pyplot, read_csv, save_chart, write_csv  # noqa: E402
 from run_summary import run_app  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 METHODS = ("nns", "sos", "hybrid")
 
 # Per scene: app, arguments for a benchmark-sized run on one rank's share (weak scaling: the
@@ -52,9 +49,16 @@ def run(build, app, ranks, args, allow_refusal=False):
     return run_app(os.path.join(build, "bin", app), ranks, args, allow_refusal)
 
 
+def median_range(ratios, digits=3):
+    """'median (min–max)' of a list of ratios."""
+    return (f"{statistics.median(ratios):.{digits}f} "
+            f"({min(ratios):.2f}–{max(ratios):.2f})")
+
+
 def fixed_work_s(s):
-    """Seconds of a run's phases whose work does not depend on the sync method (contact
-    detection and evaluation, integration: the same grains and contacts under all three)."""
+    """Seconds of a run's phases whose work is meant not to depend on the sync method (contact
+    detection and evaluation, integration: the same grains and contacts under all three; see
+    methods for where it does after all)."""
     return s["timing_s"]["contact"] + s["timing_s"]["integrate"]
 
 
@@ -88,17 +92,14 @@ def methods(a):
                    for m in METHODS}
             even = {m: [q * fixed_work_s(r) / fixed_work_s(n)
                         for q, r, n in zip(raw[m], runs[m], runs["nns"])] for m in METHODS}
-
-            def cell(ratios):
-                return (f"{statistics.median(ratios):.3f} "
-                        f"({min(ratios):.2f}–{max(ratios):.2f})")
             nns = statistics.median(r["pupcs"] for r in runs["nns"])
             fixed = " / ".join(f"{statistics.median(fixed_work_s(r) for r in runs[m]):.3f}"
                                for m in METHODS)
             print(f"| {scene} | {ranks} | {runs['nns'][0]['particles']} | {nns:.3e} | "
-                  f"{cell(raw['sos'])} | {cell(raw['hybrid'])} | {cell(even['sos'])} | "
-                  f"{cell(even['hybrid'])} | {fixed} |", flush=True)
-    write_csv(a.out, "dem_methods.csv",
+                  f"{median_range(raw['sos'])} | {median_range(raw['hybrid'])} | "
+                  f"{median_range(even['sos'])} | {median_range(even['hybrid'])} | {fixed} |",
+                  flush=True)
+    write_csv(os.path.join(a.out, "dem_methods.csv"),
               ["scene", "ranks", "repeat", "method", "grains", "steps", "wall_s", "pupcs",
                "sync_s", "contact_s", "integrate_s", "bytes_per_step"], rows)
 
@@ -133,11 +134,11 @@ def skin(a):
             med = {sk: statistics.median(r["pupcs"] for r in runs[sk]) for sk in runs}
             sync = {sk: statistics.median(r["timing_s"]["sync"] for r in runs[sk]) for sk in runs}
             print(f"| {scene} | {ranks} | {m} | {runs[0.0][0]['particles']} | {med[0.0]:.3e} | "
-                  f"{med[a.skin]:.3e} | {statistics.median(ratios):.2f} ({min(ratios):.2f}–"
-                  f"{max(ratios):.2f}) | {sync[0.0]:.3f} / {sync[a.skin]:.3f} |", flush=True)
-    write_csv(a.out, "dem_skin.csv", ["scene", "ranks", "method", "skin", "repeat", "grains",
-                                      "wall_s", "pupcs", "sync_s", "messages_per_step",
-                                      "bytes_per_step"], rows)
+                  f"{med[a.skin]:.3e} | {median_range(ratios, 2)} | "
+                  f"{sync[0.0]:.3f} / {sync[a.skin]:.3f} |", flush=True)
+    write_csv(os.path.join(a.out, "dem_skin.csv"),
+              ["scene", "ranks", "method", "skin", "repeat", "grains", "wall_s", "pupcs",
+               "sync_s", "messages_per_step", "bytes_per_step"], rows)
 
 
 def radius(a):
@@ -154,7 +155,8 @@ def radius(a):
                 pupcs = {m: [] for m in METHODS}
                 for repeat in range(a.repeats):
                     for m in METHODS:
-                        args = ["--steps", str(a.radius_steps), "--set", f"bidisperse.edge={a.edge}",
+                        args = ["--steps", str(a.radius_steps),
+                                "--set", f"bidisperse.edge={a.edge}",
                                 "--set", f"bidisperse.large_radius={r}", "--set",
                                 f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
                                 "--set", f"sync.method={m}", *extra]
@@ -168,9 +170,9 @@ def radius(a):
                 print(f"{name} {split}^3 r={r}: " + ", ".join(
                     f"{m} {statistics.median(p):.3e}" if p else f"{m} refused"
                     for m, p in pupcs.items()), flush=True)
-    write_csv(a.out, "dem_radius.csv", ["surroundings", "blocks_per_axis", "block_edge",
-                                        "large_radius", "method", "repeat", "grains", "pupcs",
-                                        "status"], rows)
+    write_csv(os.path.join(a.out, "dem_radius.csv"),
+              ["surroundings", "blocks_per_axis", "block_edge", "large_radius", "method",
+               "repeat", "grains", "pupcs", "status"], rows)
     chart_radius(a, rows)
 
 
@@ -189,9 +191,7 @@ def radius_points(rows, name, split, method):
 
 def chart_radius(a, rows):
     try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
     except ImportError:
         print("dem_bench: no matplotlib (apt-get install python3-matplotlib): no chart")
         return
@@ -222,19 +222,15 @@ def chart_radius(a, rows):
     axes[0].set_ylim(bottom=0.0)
     axes[1].legend(fontsize=8)
     fig.tight_layout()
-    path = os.path.join(a.out, "dem_radius.png")
-    fig.savefig(path, dpi=110)
-    print(f"chart: {path}")
-    shutil.copyfile(path, os.path.join(ROOT, "docs", "images", "dem-radius.png"))
+    save_chart(fig, a.out, "dem-radius")
 
 
 def radius_chart(a):
     """The radius chart again from <out>/dem_radius.csv (no runs)."""
-    with open(os.path.join(a.out, "dem_radius.csv"), newline="", encoding="utf-8") as f:
-        rows = [[r["surroundings"], int(r["blocks_per_axis"]), float(r["block_edge"]),
-                 float(r["large_radius"]), r["method"], int(r["repeat"]), r["grains"],
-                 float(r["pupcs"]) if r["pupcs"] else "", r["status"]]
-                for r in csv.DictReader(f)]
+    rows = [[r["surroundings"], int(r["blocks_per_axis"]), float(r["block_edge"]),
+             float(r["large_radius"]), r["method"], int(r["repeat"]), r["grains"],
+             float(r["pupcs"]) if r["pupcs"] else "", r["status"]]
+            for r in read_csv(os.path.join(a.out, "dem_radius.csv"))]
     chart_radius(a, rows)
 
 
@@ -251,15 +247,8 @@ def memory(a):
         rows.append([s["particles"], s["ranks"], s["peak_rss_bytes"], per_grain])
         print(f"| {s['particles']} | {s['ranks']} | {s['peak_rss_bytes'] / 1e6:.1f} | "
               f"{per_grain:.0f} |", flush=True)
-    write_csv(a.out, "dem_memory.csv", ["grains", "ranks", "peak_rss_bytes_max_rank",
-                                        "bytes_per_grain"], rows)
-
-
-def write_csv(out, name, header, rows):
-    with open(os.path.join(out, name), "w", newline="", encoding="utf-8") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(rows)
+    write_csv(os.path.join(a.out, "dem_memory.csv"),
+              ["grains", "ranks", "peak_rss_bytes_max_rank", "bytes_per_grain"], rows)
 
 
 def main():

@@ -106,10 +106,11 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
         s.nearFaces.clear();
         core::AABB const& box = blocks[b].block->aabb;
         for (std::size_t i = 0; i < ps.size() && valid; ++i) {
-            spreads = ps.flags(i).has(Flag::Spreads); // SOS class: Alg. 2 every call
-            valid = !spreads;
-            if (!valid)
+            if (ps.flags(i).has(Flag::Spreads)) { // SOS class: Alg. 2 every call
+                spreads = true;
+                valid = false;
                 continue;
+            }
             if (!ps.flags(i).isShadow()) {
                 if (mayLeave(box, ps.position(i), budget))
                     s.nearFaces.push_back(static_cast<std::uint32_t>(i));
