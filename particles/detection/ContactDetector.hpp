@@ -77,10 +77,12 @@ void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint) {
 /// grain wider than the period) is ignored.
 ///
 /// Contact-point rule (which block evaluates a pair). The ownership point q is the contact
-/// point if it lies strictly inside both balls (|point - x_i| < r_i and |point - (x_j +
-/// shiftJ)| < r_j), else -- one sphere has swallowed the other's centre -- the centre of the
-/// smaller sphere (ties: j), in i's canonical frame. Either way q is strictly inside both balls,
-/// so the block containing q holds both copies (ParticleSync's overlap margin covers rounding).
+/// point if it lies strictly between the two centres (r_i - delta/2 > 0 and r_j - delta/2 > 0),
+/// else -- the overlap reaches the smaller diameter, and the contact point lies behind the
+/// smaller centre, where an open domain face may cut it off from every block -- the centre of
+/// the smaller sphere (ties: j), in i's canonical frame. Either way q is strictly inside both
+/// balls and inside the domain (a master's centre is), so some block contains q and holds both
+/// copies (ParticleSync's overlap margin covers rounding).
 /// With (w, o) = frame.wrap(q), the copy pair is emitted iff image(i) == -o (q seen from this copy
 /// of i lies in the domain image the block tiles) and `evaluationRegion` (half-open,
 /// core::AABB::contains) contains w. Among blocks tiling the domain, and among the several image

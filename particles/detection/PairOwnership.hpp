@@ -19,9 +19,10 @@ enum class Settled {
 
 /// The bound on the ownership point q of a pair i, j (radii ri, rj) over a list's life, from
 /// the midpoint m of the two centres: |q - m| <= |ri - rj| / 2 at any time (q is the contact
-/// point m + (ri - rj)/2 n, or, for a swallowed centre, a centre at distance |x_j - x_i| / 2 <=
-/// |ri - rj| / 2 from m), and m moves less than skin / 2 (each centre less than skin / 2). Plus
-/// `rounding` [length], which must cover the rounding of q, m and the periodic wrap.
+/// point m + (ri - rj)/2 n, or, once the overlap reaches the smaller diameter, the smaller
+/// centre, at distance |x_j - x_i| / 2 <= |ri - rj| / 2 from m), and m moves less than skin / 2
+/// (each centre less than skin / 2). Plus `rounding` [length], which must cover the rounding of q,
+/// m and the periodic wrap.
 [[nodiscard]] inline double ownershipReach(double ri, double rj, double skin, double rounding) {
     double const dr = ri > rj ? ri - rj : rj - ri;
     return 0.5 * skin + 0.5 * dr + rounding;

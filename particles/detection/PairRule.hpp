@@ -123,11 +123,13 @@ public:
         ParticleStorage const& ps = m_ps;
         double const ri = ps.radius(c.i), rj = ps.radius(c.j);
         double const delta = c.penetration;
-        // p = x_i + (r_i - delta/2) n lies at distance |r_i - delta/2| from x_i and
-        // |r_j - delta/2| from x_j along the normal: strictly inside both balls unless one has
-        // swallowed the other's centre (no square roots needed).
+        // p = x_i + (r_i - delta/2) n lies r_i - delta/2 from x_i and r_j - delta/2 from x_j
+        // along the normal: strictly between the two centres (so strictly inside both balls,
+        // and inside the domain) while both are positive. Otherwise the overlap is at least the
+        // smaller diameter and p lies behind the smaller centre, possibly outside an open
+        // domain face where no block would evaluate the pair; that centre decides then.
         core::Vec3 q = c.point;
-        if (!(std::abs(ri - 0.5 * delta) < ri && std::abs(rj - 0.5 * delta) < rj))
+        if (!(ri - 0.5 * delta > 0.0 && rj - 0.5 * delta > 0.0))
             q = ri < rj ? ps.position(c.i) : core::Vec3(ps.position(c.j) + c.shiftJ);
         auto const [w, o] = m_frame.wrap(q);
         CopyImage const& ki = ps.image(c.i);

@@ -31,8 +31,8 @@ struct OwnedContact {
 
 /// Brute force: every pair i < j by index, the same geometric definitions as the detector's
 /// documentation (written out independently here), kept if the ownership point -- the contact
-/// point, or the smaller sphere's centre if the contact point is not inside both balls -- is
-/// in `region`.
+/// point, or the smaller sphere's centre if the contact point does not lie strictly between
+/// the two centres -- is in `region`.
 std::map<PairKey, OwnedContact> bruteForcePairs(ParticleStorage const& ps, AABB const& region) {
     std::map<PairKey, OwnedContact> out;
     for (std::size_t a = 0; a < ps.size(); ++a)
@@ -46,10 +46,10 @@ std::map<PairKey, OwnedContact> bruteForcePairs(ParticleStorage const& ps, AABB 
                 continue;
             Vec3 const n = d.normalized();
             Vec3 const p = ps.position(i) + (ps.radius(i) - delta / 2) * n;
-            bool const inBoth = (p - ps.position(i)).norm() < ps.radius(i) &&
-                                (p - ps.position(j)).norm() < ps.radius(j);
+            double const along = (p - ps.position(i)).dot(n); // from x_i towards x_j
+            bool const between = along > 0.0 && along < d.norm();
             Vec3 const owner =
-                inBoth ? p : (ps.radius(i) < ps.radius(j) ? ps.position(i) : ps.position(j));
+                between ? p : (ps.radius(i) < ps.radius(j) ? ps.position(i) : ps.position(j));
             if (region.contains(owner))
                 out[{ps.uid(i), ps.uid(j)}] = OwnedContact{Contact{i, j, p, n, delta}, owner};
         }

@@ -261,7 +261,7 @@ TEST(PeriodicDetection, RandomSpheresEveryContactOnceWithTheSameBitsForAnyTiling
 }
 
 TEST(PeriodicDetection, SwallowedCentreIsEvaluatedOnceByTheBlockOfTheSmallCentre) {
-    // A radius-2 sphere swallows the centre of a radius-0.3 one (distance < 2 - 3 * 0.3): the
+    // A radius-2 sphere swallows the centre of a radius-0.3 one (distance < 2 - 0.3): the
     // contact point lies beyond the small sphere, in another block than its centre. The small
     // centre decides, in both uid orders; case 2 has the point across the periodic face.
     struct Case {
@@ -292,6 +292,32 @@ TEST(PeriodicDetection, SwallowedCentreIsEvaluatedOnceByTheBlockOfTheSmallCentre
             ASSERT_EQ(one.pairs.size(), 1U);
             ASSERT_EQ(one.pairs.begin()->second.size(), 1U);
             EXPECT_TRUE(sameBits(one.pairs.begin()->second[0], list[0]));
+        }
+    }
+}
+
+TEST(PeriodicDetection, DeepOverlapAtAnOpenFaceIsEvaluatedOnce) {
+    // A radius-0.5 grain 0.3 from the open face x = 0, a radius-3 one overlapping it by more
+    // than the small diameter but less than 2 diameters: the contact point lies behind the
+    // small centre, outside the domain (x = -0.1 and -0.15 below), so while it decided, no block
+    // evaluated the pair. The small centre decides, on one block and on two.
+    for (double bigX : {2.0, 1.9}) {
+        for (bool bigFirst : {true, false}) {
+            SCOPED_TRACE(::testing::Message()
+                         << "big at " << bigX << ", big uid lower " << bigFirst);
+            std::vector<ParticleInit> const bodies{
+                sphere(bigFirst ? 1 : 2, Vec3(bigX, 5, 5), 3.0, 10.0),
+                sphere(bigFirst ? 2 : 1, Vec3(0.3, 5, 5), 0.5, 1.0)};
+            for (int blocks : {1, 2}) {
+                Tiling const tiling = tile(kDomain, {false, false, false}, {blocks, 1, 1});
+                Emitted const e = detectAll(bodies, tiling);
+                ASSERT_EQ(e.pairs.size(), 1U) << blocks << " blocks";
+                auto const& list = e.pairs.begin()->second;
+                ASSERT_EQ(list.size(), 1U);
+                EXPECT_EQ(e.pairsPerBlock[0], 1U); // the block of the small centre
+                EXPECT_LT(list[0].point.x(), 0.0); // the contact point left the domain
+                EXPECT_GT(list[0].penetration, 1.0);
+            }
         }
     }
 }
