@@ -1,12 +1,17 @@
 // Bad input: a grain inserted twice with the same uid is refused on every rank with one clear
 // message; a synchronisation message cut short is detected by the bounds-checked buffer (a
-// core::BufferError naming what was being read), never read past its end.
+// core::BufferError naming what was being read), never read past its end; a grain whose
+// position became non-finite (an unstable step) stops the run, naming it.
 #include "core/Error.hpp"
+#include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncMessages.hpp"
 #include "particles/sync/UniqueUids.hpp"
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <fmt/format.h>
+
+#include <limits>
+#include <string>
 
 using namespace regolith::particles;
 using namespace regolith::particles::synctest;
@@ -174,5 +179,39 @@ TEST(TruncatedMessage, CorruptCountIsDetected) {
         ADD_FAILURE() << "a corrupt history count was accepted";
     } catch (BufferError const& e) {
         EXPECT_NE(std::string(e.what()).find("corrupt"), std::string::npos) << e.what();
+    }
+}
+
+TEST(NonFinitePosition, StopsTheSynchronisationNamingTheGrain) {
+    // Periodic on every axis: there is no open face to leave through. Every rank spoils one of
+    // its masters, so every rank throws before any message (none waits for another).
+    Comm world;
+    domain::BlockForest const forest(
+        world, forestSpec(Vec3::Zero(), Vec3(16, 8, 8), {4, 2, 2}, allAxes(true)));
+    for (SyncMethod const method :
+         {SyncMethod::NextNeighbour, SyncMethod::ShadowOwner, SyncMethod::Hybrid}) {
+        LocalParticles local(forest);
+        addAll(local, world, randomGas(forest.domain(), 300, 0.1, 0.2, 1.0, 3));
+        ParticleSync sync(world, forest, SyncConfig{method, false});
+        sync.syncUntilConverged(local);
+        ParticleStorage* spoilt = nullptr;
+        for (BlockParticles& bp : local.blocks())
+            if (spoilt == nullptr && !bp.particles.empty())
+                spoilt = &bp.particles;
+        ASSERT_NE(spoilt, nullptr) << "the gas fills every block";
+        std::size_t k = 0;
+        while (!spoilt->flags(k).isMaster())
+            ++k;
+        Uid const uid = spoilt->uid(k);
+        spoilt->position(k).x() = std::numeric_limits<double>::infinity();
+        try {
+            sync.sync(local);
+            ADD_FAILURE() << "a grain at infinity was synchronised";
+        } catch (regolith::core::Error const& e) {
+            std::string const msg = e.what();
+            EXPECT_NE(msg.find("uid " + std::to_string(uid) + " has a non-finite position"),
+                      std::string::npos)
+                << msg;
+        }
     }
 }
