@@ -44,6 +44,11 @@ GridGravity::GridGravity(core::Comm const& comm, domain::BlockForest const& fore
         listBoundaryGhosts();
 }
 
+void GridGravity::resetInitialGuess() {
+    if (m_solver)
+        m_solver->resetInitialGuess();
+}
+
 SolveStats GridGravity::update(Grains const& grains) {
     m_density.fill(0.0);
     m_transfer.deposit(grains, m_density);

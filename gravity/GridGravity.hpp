@@ -53,6 +53,11 @@ public:
     /// (includes each grain's mesh-softened self-energy). COLLECTIVE.
     [[nodiscard]] double potentialEnergy(Grains const& grains);
 
+    /// The next PETSc solve starts from a zero potential instead of the last one (after
+    /// solves of another problem, e.g. P3M's calibration sources, whose potential would be
+    /// a start many times farther from the answer than zero). Not collective.
+    void resetInitialGuess();
+
     [[nodiscard]] CellLayout const& layout() const { return m_layout; }
     [[nodiscard]] CellField& density() { return m_density; }
     [[nodiscard]] CellField const& potential() const { return m_potential; }

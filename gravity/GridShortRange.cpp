@@ -76,6 +76,9 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
                     vector[3 * v + static_cast<std::size_t>(a)] += g[first + v][a];
         }
     }
+    // The grains' first solve must not start from the last unit source's potential: with a
+    // periodic domain its residual exceeded PETSc's divergence bound before the first step.
+    gravity.resetInitialGuess();
     comm.allReduceInPlace(std::span<double>(m_table), core::ReduceOp::Sum);
     comm.allReduceInPlace(std::span<double>(vector), core::ReduceOp::Sum);
     for (double& v : m_table)

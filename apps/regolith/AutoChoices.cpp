@@ -76,6 +76,23 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
     if (!(g.self == SelfGravity::Auto || g.thresholdAuto || scene.time.dtAuto))
         return out;
     GrainExtremes const e = extremes(comm, masters);
+    auto const& periodic = scene.forest.periodic;
+    if (g.self == SelfGravity::Auto && (periodic[0] || periodic[1] || periodic[2])) {
+        // Only the grid methods are periodic (SceneSections: requireGravityMatchesPeriodicity).
+        auto const p3m = p3mExpectedError(scene, e);
+        if (!p3m)
+            throw core::InputError(
+                "gravity.self = \"auto\": the domain is periodic, and only the grid methods (pm, "
+                "p3m) have periodic images; they need every axis periodic, domain.cells_per_block "
+                "and no refinement: give those, an open domain, or gravity.self");
+        g.self = SelfGravity::P3m;
+        out.push_back(
+            {"gravity.self", "p3m",
+             fmt::format("{} grains in a periodic domain, where only the grid methods "
+                         "apply; its measured median force error on this grid ({:.2g}) "
+                         "{} accuracy {:g}",
+                         e.count, *p3m, *p3m <= g.accuracy ? "meets" : "misses", g.accuracy)});
+    }
     if (g.self == SelfGravity::Auto) {
         auto const* point =
             std::find_if(std::begin(kTreeErrors), std::end(kTreeErrors),
@@ -114,7 +131,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
     }
     if (g.thresholdAuto) {
         g.updateThreshold = g.accuracy * e.minRadius; // accuracy x (2 r_min) / 2
-        out.push_back({"gravity.update_threshold", fmt::format("{:.6g}", g.updateThreshold),
+        out.push_back({"gravity.update_threshold", fmt::format("{}", g.updateThreshold),
                        fmt::format("accuracy {:g} x the smallest grain diameter {:g} / 2",
                                    g.accuracy, 2.0 * e.minRadius)});
     }
@@ -139,7 +156,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                                    "derive a time step from; give time.dt a value");
         scene.time.dt = dt;
         scene.time.dtAuto = false;
-        out.push_back({"time.dt", fmt::format("{:.6g}", dt), reason});
+        out.push_back({"time.dt", fmt::format("{}", dt), reason});
     }
     return out;
 }

@@ -6,6 +6,8 @@
 #include "domain/ForestConfig.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -159,6 +161,35 @@ OutputSection parseOutput(core::ConfigTable const& t) {
     return s;
 }
 
+namespace {
+
+/// The sums over grains (direct, the trees, the paper's node methods) give the free-space
+/// field of the grains as they lie, with no periodic images: across a periodic face, where
+/// the contacts see neighbours, they would pull the two grains apart through the whole domain,
+/// and the pull would jump when a grain crosses the face. Only the grid methods are periodic.
+void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
+                                      SceneDescription const& scene) {
+    auto const& periodic = scene.forest.periodic;
+    std::string axes;
+    for (std::size_t a = 0; a < 3; ++a)
+        if (periodic[a])
+            axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
+    SelfGravity const self = scene.gravity.self;
+    bool const freeSpace = self != SelfGravity::None && self != SelfGravity::Pm &&
+                           self != SelfGravity::P3m && self != SelfGravity::Auto;
+    if (axes.empty() || !freeSpace)
+        return;
+    // Not the default (none): the key was written, so the section exists.
+    root.findTable("gravity")->fail(
+        "self", fmt::format("\"{}\" sums the grains' gravity in free space, without periodic "
+                            "images, but domain.periodic makes {} periodic (grains across a "
+                            "periodic face would attract each other through the whole domain); "
+                            "use \"pm\" or \"p3m\" with every axis periodic, or an open domain",
+                            toString(self), axes));
+}
+
+} // namespace
+
 SceneDescription parseScene(core::ConfigTable const& root, std::string const& scenePath) {
     SceneDescription scene;
     std::filesystem::path const source(scenePath);
@@ -178,6 +209,7 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     for (std::size_t i = 0; i < walls.size(); ++i)
         scene.walls.push_back(parseWall(walls[i], i));
     root.rejectUnknownKeys();
+    requireGravityMatchesPeriodicity(root, scene);
     // The value rules of [[particles]] are the generators' (one place); checked here too so a
     // bad entry fails before anything is built, with the line it was written on.
     try {

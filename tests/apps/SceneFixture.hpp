@@ -16,7 +16,7 @@ inline constexpr char const* kScene = R"([domain]
 min = [0, 0, 0]
 max = [8, 8, 4]
 blocks = [2, 2, 1]
-periodic = [true, false, false]
+periodic = [false, false, false]
 refine = [{ min = [0, 0, 0], max = [2, 2, 2], level = 1 }]
 cells_per_block = [8, 8, 8]
 [time]
@@ -83,9 +83,13 @@ inline SceneDescription parse(std::initializer_list<std::string_view> overrides 
 }
 
 /// The InputError message for the scene with `override` applied.
+inline std::string errorWith(std::initializer_list<std::string_view> overrides);
 inline std::string errorWith(std::string_view override) {
+    return errorWith({override});
+}
+inline std::string errorWith(std::initializer_list<std::string_view> overrides) {
     try {
-        (void)parse({override});
+        (void)parse(overrides);
     } catch (core::InputError const& e) {
         return e.what();
     }

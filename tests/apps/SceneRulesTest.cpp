@@ -92,6 +92,13 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "\"direct\", \"tree\", \"pm\", \"p3m\", \"occupied-cells\", \"tree-nodes\", "
               "\"mutual-tree\", \"auto\", got \"occupied_cells\" \u2014 did you mean "
               "\"occupied-cells\"?");
+    // The sums over grains have no periodic images (the grid methods refuse a mixed one).
+    EXPECT_EQ(errorWith("domain.periodic=[false,true,true]"),
+              "scenes/s.toml:21: gravity.self: \"tree\" sums the grains' gravity in free space, "
+              "without periodic images, but domain.periodic makes y, z periodic (grains across a "
+              "periodic face would attract each other through the whole domain); use \"pm\" or "
+              "\"p3m\" with every axis periodic, or an open domain");
+    EXPECT_EQ(errorWith({"domain.periodic=[true,false,false]", "gravity.self=pm"}), "(no error)");
     EXPECT_EQ(errorWith("gravity.theta=0"),
               "--set gravity.theta=0: gravity.theta: expected a positive finite number, got 0");
     EXPECT_EQ(errorWith("gravity.G=-1"),

@@ -23,7 +23,7 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(s.name, "s");
     EXPECT_EQ(s.forest.domain.max, core::Vec3(8, 8, 4));
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{2, 2, 1}));
-    EXPECT_EQ(s.forest.periodic, (std::array<bool, 3>{true, false, false}));
+    EXPECT_EQ(s.forest.periodic, (std::array<bool, 3>{false, false, false}));
     ASSERT_EQ(s.forest.refine.size(), 1u);
     EXPECT_EQ(s.forest.refine[0].level, 1);
     EXPECT_EQ(s.forest.cellsPerBlock, (std::array<int, 3>{8, 8, 8}));
