@@ -109,7 +109,14 @@ public:
                std::string const& context, bool abortMidway) override {
         H5Handle const fapl = h5own(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, context, "H5Pcreate");
         h5check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), context, "H5Pset_fapl_mpio");
-        hid_t const created = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+        // The root's attributes in dense storage (file format 1.8 on): the scene text is one,
+        // and an attribute in the object header cannot exceed 64 KiB (a scene listing a few
+        // thousand grains does).
+        h5check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST), context,
+                "H5Pset_libver_bounds");
+        H5Handle const fcpl = h5own(H5Pcreate(H5P_FILE_CREATE), H5Pclose, context, "H5Pcreate");
+        h5check(H5Pset_attr_phase_change(fcpl.get(), 0, 0), context, "H5Pset_attr_phase_change");
+        hid_t const created = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get());
         if (!allTrue(comm, created >= 0)) {
             if (created >= 0)
                 H5Fclose(created);

@@ -172,6 +172,22 @@ TEST(Checkpoint, RoundTripIsBitwise) {
     }
 }
 
+TEST(Checkpoint, SceneTextBeyond64KiBRoundTrips) {
+    // A scene listing a few thousand grains: an HDF5 attribute in the object header stops at
+    // 64 KiB, and the write failed (the run aborted at its first checkpoint).
+    core::Comm const world;
+    std::string const path = fileName(world, "large_scene");
+    domain::BlockForest const forest(world, spec());
+    auto const grains = io::collectMasters(fill(forest));
+    io::CheckpointInfo written = info();
+    for (int k = 0; written.scene.size() < 200'000; ++k)
+        written.scene += fmt::format("  [{}.0, 1.5, 2.5],\n", k);
+    io::writeCheckpoint(world, path, written, grains);
+    io::CheckpointSlice const slice = io::readCheckpoint(world, path);
+    EXPECT_EQ(slice.info.scene, written.scene);
+    EXPECT_EQ(slice.info.grainCount, 64U);
+}
+
 TEST(Checkpoint, SelfGravityStateSurvivesBitForBit) {
     // The self-gravity state (format 2): per grain its reference position and cached field
     // (NaN rows for grains without one), and the run-wide update count and energy. Each rank
