@@ -146,8 +146,10 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     }
     std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);
     double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
-    if (m_comm->rank() == 0)
-        io::rotateCheckpoints(m_output.dir, m_output.checkpointKeep);
+    if (m_comm->rank() == 0) {
+        m_written.push_back(path);
+        io::rotateCheckpoints(m_written, m_output.checkpointKeep);
+    }
     core::log::info("checkpoint {}: {} grains, {} history entries, {:.3g} MB in {:.3g} s", path,
                     info.grainCount, info.historyCount, static_cast<double>(bytes) * 1e-6, seconds);
     return path;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -64,6 +65,7 @@ private:
     domain::ForestSpec m_forest;
     std::string m_text;
     TimeAt m_timeAt;
+    std::vector<std::string> m_written; ///< this run's checkpoints, oldest first (rank 0)
 };
 
 } // namespace regolith::apps

@@ -10,9 +10,11 @@ namespace regolith::io {
 /// by step. Not collective.
 [[nodiscard]] std::string checkpointPath(std::string const& dir, std::int64_t step);
 
-/// Deletes every file of `dir` named like checkpointPath except the `keep` with the highest
-/// steps (keep <= 0: deletes none); returns the deleted paths. Files that are not
-/// checkpoints, and temporary files, are left alone. Call on one rank. Not collective.
-std::vector<std::string> rotateCheckpoints(std::string const& dir, std::int64_t keep);
+/// Deletes the checkpoints of `written` (the ones this run wrote, oldest first) except the
+/// newest `keep` (keep <= 0: deletes none), drops them from the list and returns them. Files
+/// this run did not write -- an earlier run's in the same directory, the checkpoint it
+/// restarted from -- are never touched, so a run cannot rotate its own new checkpoints away
+/// behind higher-numbered old ones. Call on one rank. Not collective.
+std::vector<std::string> rotateCheckpoints(std::vector<std::string>& written, std::int64_t keep);
 
 } // namespace regolith::io
