@@ -1,6 +1,8 @@
 #include "apps/regolith/Checkpointing.hpp"
 
+#include "apps/common/AgreeOnInputError.hpp"
 #include "apps/common/StateChecksum.hpp"
+#include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
@@ -69,6 +71,17 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
     if (info.dt != scene.time.dt)
         core::log::warn("{}: the checkpoint was written with time.dt = {}, the scene has {}",
                         context, info.dt, scene.time.dt);
+    // The contact model's tables are indexed by type without a check (the contact loop).
+    std::size_t const types = materialTypeCount(scene);
+    agreeOnInputError(comm, [&] {
+        for (io::GrainState const& g : slice.grains)
+            if (g.type >= types)
+                throw core::InputError(fmt::format(
+                    "{}: grain uid {} has material type {}, but the scene's [[particles]] and "
+                    "[[walls]] name types up to {} only (the checkpoint was written for another "
+                    "scene)",
+                    context, g.uid, g.type, types - 1));
+    });
     return slice;
 }
 

@@ -54,8 +54,6 @@ void addMasters(particles::LocalParticles& local, std::span<particles::GrainInit
             notLocal(g);
 }
 
-namespace {
-
 std::size_t materialTypeCount(SceneDescription const& scene) {
     std::uint32_t maxType = 0;
     for (auto const& spec : scene.particles)
@@ -64,6 +62,8 @@ std::size_t materialTypeCount(SceneDescription const& scene) {
         maxType = std::max(maxType, wall.type);
     return static_cast<std::size_t>(maxType) + 1;
 }
+
+namespace {
 
 /// The largest relative impact speed to expect: twice the fastest grain, or a fall over the
 /// domain under external gravity, whichever is larger; 1 when both are zero (a scene at rest

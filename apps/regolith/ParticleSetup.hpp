@@ -23,6 +23,10 @@ namespace regolith::apps {
                                                          particles::ParticleStorage const& ps,
                                                          SceneDescription const& scene);
 
+/// The material types the scene's [[particles]] and [[walls]] use: 0 to the largest type
+/// named, the size of the contact model's tables. Not collective.
+[[nodiscard]] std::size_t materialTypeCount(SceneDescription const& scene);
+
 /// Appends `g` to `masters` as a master owned by (`rank`, the local block of `forest` that
 /// contains its centre), for the checks of the initial state. Throws core::Error if no local
 /// block contains it (generateLocalGrains gives each rank only grains of its blocks). Not

@@ -15,9 +15,10 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     the restart from step 20 on 3 ranks with a sync skin;
  4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
     non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
- 5. a truncated file, a flipped byte, a scene with another domain and a step beyond
-    time.steps are refused on 2 ranks: exit code 2, the message once on stderr naming the
-    file, no crash, every checkpoint file byte-identical before and after.
+ 5. a truncated file, a flipped byte, a scene with another domain, a step beyond
+    time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
+    code 2, the message once on stderr naming the file, no crash, every checkpoint file
+    byte-identical before and after.
 
 Case "gravity", on tests/apps/scenes/restart_gravity.toml (729 grains, direct self-gravity
 with update_threshold > 0: the field is recomputed only every few steps; between updates
@@ -229,6 +230,15 @@ def main():
                    f"--restart {step20}: the checkpoint was written for the domain", files)
     expect_refused(runner, 2, ["--restart", step20, "--output", refused, "--steps", "10"],
                    f"--restart {step20}: the checkpoint is at step 20, beyond", files)
+    # Grains of a material type the scene does not name (the contact tables are indexed by
+    # type unchecked): refused, not read out of bounds.
+    typed = runner.path("typed")
+    runner.summary(1, "typed", ["--steps", "10", "--output", typed,
+                                "--set", "output.checkpoint_every=10", "--set", "particles.0.type=1"])
+    typed10 = os.path.join(typed, "checkpoint_00000010.h5")
+    expect_refused(runner, 2, ["--restart", typed10, "--output", refused],
+                   "has material type 1, but the scene's [[particles]] and [[walls]] name types "
+                   "up to 0 only (the checkpoint was written for another scene)", [typed10])
     print(f"restart_runs: all checks passed (reference checksum {reference})")
 
 
