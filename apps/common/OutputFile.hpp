@@ -17,7 +17,8 @@ void writeFileAtomically(std::string const& path, std::string_view text);
 /// the outcome and throws the same core::InputError if it failed. COLLECTIVE over `comm`.
 void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::string_view text);
 
-/// Checks before the run that `path` could be written: its directory exists and is writable.
+/// Checks before the run that `path` could be written: its directory exists (created if
+/// missing) and is writable.
 /// Rank 0 checks; every rank throws the same core::InputError "<option> <path>: ..." if not,
 /// so a long run never ends with an unwritable summary. COLLECTIVE over `comm`.
 void checkWritable(core::Comm const& comm, std::string const& path, std::string_view option);
