@@ -52,6 +52,21 @@ void validate(GridMethodOptions const& o) {
             o.neighbourhood));
 }
 
+namespace {
+
+/// nodesAround, whose InputError (a grain beyond the grid's index range) only the ranks
+/// holding such a grain would see: agreed on every rank, so none waits in the reduction at
+/// the end of evaluate. (interpolateToGrains then looks up the same cells: it cannot fail.)
+std::vector<std::uint64_t> agreedNodesAround(core::Comm const& comm,
+                                             GridMethodOptions const& options,
+                                             PointMasses const& local) {
+    std::vector<std::uint64_t> keys;
+    agreeOnInputError(comm, [&] { keys = nodesAround(options.grid, local, options.expand64); });
+    return keys;
+}
+
+} // namespace
+
 OccupiedCells::OccupiedCells(GridMethodOptions const& options)
     : m_options(options) {
     validate(m_options);
@@ -63,8 +78,8 @@ double OccupiedCells::evaluate(core::Comm const& comm, PointMasses const& local,
     OwnedMasses const all = gatherAll(comm, local);
     PointMasses const sources = all.view();
     std::vector<double> px, py, pz;
-    NodeField nodes = prepareNodes(
-        m_options.grid, nodesAround(m_options.grid, local, m_options.expand64), px, py, pz);
+    NodeField nodes =
+        prepareNodes(m_options.grid, agreedNodesAround(comm, m_options, local), px, py, pz);
     std::size_t const n = nodes.keys.size();
     constexpr std::size_t kTile = 256;
     for (std::size_t t0 = 0; t0 < n; t0 += kTile) {
@@ -93,8 +108,8 @@ double TreeAtNodes::evaluate(core::Comm const& comm, PointMasses const& local, F
         all.view(), {1, m_options.grid.spacing, m_options.theta, m_options.quadrupole});
     PointMasses const grains{octree.x(), octree.y(), octree.z(), octree.m(), octree.r()};
     std::vector<double> px, py, pz;
-    NodeField nodes = prepareNodes(
-        m_options.grid, nodesAround(m_options.grid, local, m_options.expand64), px, py, pz);
+    NodeField nodes =
+        prepareNodes(m_options.grid, agreedNodesAround(comm, m_options, local), px, py, pz);
     tree::TreeView const view = octree.view();
     tree::InteractionList list;
     std::vector<std::int32_t> stack;

@@ -49,11 +49,10 @@ void validateFieldOut(FieldOut const& out, std::size_t n) {
 
 namespace regolith::gravity {
 
-void validatePointMassesCollective(core::Comm const& comm, PointMasses const& masses,
-                                   char const* key) {
+void agreeOnInputError(core::Comm const& comm, std::function<void()> const& action) {
     std::string message;
     try {
-        validatePointMasses(masses, key);
+        action();
     } catch (core::InputError const& e) {
         message = e.what();
     }
@@ -63,6 +62,11 @@ void validatePointMassesCollective(core::Comm const& comm, PointMasses const& ma
         return;
     comm.broadcast(message, firstBad);
     throw core::InputError(message);
+}
+
+void validatePointMassesCollective(core::Comm const& comm, PointMasses const& masses,
+                                   char const* key) {
+    agreeOnInputError(comm, [&] { validatePointMasses(masses, key); });
 }
 
 } // namespace regolith::gravity
