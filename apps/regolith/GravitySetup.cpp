@@ -62,6 +62,7 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     c.theta = g.theta;
     c.allowLargeTheta = g.allowLargeTheta;
     c.updateThreshold = g.updateThreshold;
+    c.reproducible = scene.sync.reproducible;
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
 }
 

@@ -10,6 +10,8 @@
 #include "gravity/tree/MutualTree.hpp"
 #include "gravity/tree/TreeOptions.hpp"
 
+#include <algorithm>
+#include <numeric>
 #include <variant>
 
 namespace regolith::coupling {
@@ -152,7 +154,8 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
                                      SelfGravityConfig const& config)
     : m_comm(&comm)
     , m_method(std::make_unique<Method>(comm, forest, config))
-    , m_policy(config.updateThreshold) {}
+    , m_policy(config.updateThreshold)
+    , m_uidOrder(config.reproducible) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
 
@@ -174,6 +177,27 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
             m_r.push_back(ps.radius(i));
         });
     }
+    if (!m_uidOrder)
+        return;
+    std::size_t const n = m_uid.size();
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), std::uint32_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return m_uid[a] < m_uid[b]; });
+    m_slot.resize(n);
+    for (std::size_t j = 0; j < n; ++j)
+        m_slot[order[j]] = static_cast<std::uint32_t>(j);
+    auto permute = [&](auto& v) {
+        auto const copy = v;
+        for (std::size_t j = 0; j < n; ++j)
+            v[j] = copy[order[j]];
+    };
+    permute(m_uid);
+    permute(m_x);
+    permute(m_y);
+    permute(m_z);
+    permute(m_m);
+    permute(m_r);
 }
 
 void SelfGravityForces::addForces(particles::LocalParticles& local) {
@@ -197,7 +221,8 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         particles::ParticleStorage& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             if (updated) {
-                ps.force(i) += ps.mass(i) * core::Vec3(m_ax[k], m_ay[k], m_az[k]);
+                std::size_t const s = m_uidOrder ? m_slot[k] : k;
+                ps.force(i) += ps.mass(i) * core::Vec3(m_ax[s], m_ay[s], m_az[s]);
             } else {
                 auto const& a = m_policy.record(ps.uid(i))->field;
                 ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);

@@ -41,6 +41,10 @@ struct SelfGravityConfig {
     double theta = 0.5;           ///< gravity.theta (tree methods)
     bool allowLargeTheta = false; ///< gravity.allow_large_theta
     double updateThreshold = 0.0; ///< gravity.update_threshold [m]; 0: every step
+    /// sync.reproducible: each update from the local grains in uid order and (grid methods)
+    /// each Poisson solve from zero, so that the field depends on the grains only, not on
+    /// their storage order or the last solve: a restart, which has neither, repeats the bits.
+    bool reproducible = false;
     // Mesh only:
     std::array<int, 3> cellsPerBlock{0, 0, 0};                      ///< domain.cells_per_block
     std::string petscOptions;                                       ///< gravity.petsc.options
@@ -112,9 +116,12 @@ private:
     std::unique_ptr<Method> m_method;
     gravity::UpdatePolicy m_policy;
     SelfGravityStats m_stats;
-    // The local masters, in block then storage order (reused between calls).
+    bool m_uidOrder; ///< SelfGravityConfig::reproducible
+    // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
+    /// With m_uidOrder: the slot in those arrays of the k-th master in block then storage order.
+    std::vector<std::uint32_t> m_slot;
     // The field of the last update per grain lives in m_policy's records (keyed by uid): it
     // follows a grain to another block or rank.
 };

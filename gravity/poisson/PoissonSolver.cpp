@@ -158,6 +158,8 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
 
     petsc::SolveResult r;
     try {
+        if (m_options.coldStart)
+            p.system->zeroSolution();
         r = p.system->solve(p.b.data(), p.x.data());
     } catch (petsc::Failure const& e) {
         rethrow(e, m_options.petscOptions);

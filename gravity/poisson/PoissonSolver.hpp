@@ -27,6 +27,10 @@ struct PoissonOptions {
     std::string petscOptions;
     double rtol = 1e-10;       ///< default relative tolerance (unpreconditioned residual)
     int maxIterations = 10000; ///< default iteration limit
+    /// Every solve starts from a zero potential instead of the last solution (the warm
+    /// start): the result then depends on the density only, so a restarted run, which has
+    /// no last solution, repeats the bits of the run it continues (sync.reproducible).
+    bool coldStart = false;
 };
 
 /// What one solve did.
