@@ -36,6 +36,17 @@ std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_
                                        GeneratorDomain const& domain, OverlapIndex const& obstacles,
                                        std::string const& key) {
     auto const count = static_cast<std::size_t>(spec.count);
+    // The grains' volume is at least count r_min^3: a count that cannot fit is refused before
+    // the arrays for it are allocated (10^12 grains would end in std::bad_alloc).
+    double const rMin = spec.grainRadiusMin;
+    double const leastFraction = static_cast<double>(spec.count) * (rMin / spec.radius) *
+                                 (rMin / spec.radius) * (rMin / spec.radius);
+    if (leastFraction >= 1.0)
+        throw core::InputError(fmt::format(
+            "{}: {} grains cannot fit in the sphere: their packing fraction sum(r^3)/radius^3 "
+            "is at least {:.4g} with grain_radius {} and radius {}; decrease count or "
+            "grain_radius, or increase radius",
+            key, spec.count, leastFraction, rMin, spec.radius));
     std::vector<core::random::CounterRng> rng;
     rng.reserve(count);
     std::vector<GrainInit> grains(count);
