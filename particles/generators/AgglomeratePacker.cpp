@@ -44,7 +44,7 @@ std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_
     if (leastFraction >= 1.0)
         throw core::InputError(fmt::format(
             "{}: {} grains cannot fit in the sphere: their packing fraction sum(r^3)/radius^3 "
-            "is at least {:.4g} with grain_radius {} and radius {}; decrease count or "
+            "is at least {:.4f} with grain_radius {} and radius {}; decrease count or "
             "grain_radius, or increase radius",
             key, spec.count, leastFraction, rMin, spec.radius));
     std::vector<core::random::CounterRng> rng;
