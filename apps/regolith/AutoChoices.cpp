@@ -80,6 +80,11 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
     if (g.self == SelfGravity::Auto && (periodic[0] || periodic[1] || periodic[2])) {
         // Only the grid methods are periodic (SceneSections: requireGravityMatchesPeriodicity).
         auto const p3m = p3mExpectedError(scene, e);
+        if (g.poisson == "fft")
+            throw core::InputError(
+                "gravity.self = \"auto\": the domain is periodic, where only the grid methods "
+                "apply, and gravity.poisson = \"fft\" is the free-space solver; set "
+                "gravity.poisson = \"petsc\"");
         if (!p3m)
             throw core::InputError(
                 "gravity.self = \"auto\": the domain is periodic, and only the grid methods (pm, "

@@ -14,7 +14,7 @@ gravity::GridGravityOptions gridGravityOptions(SelfGravityConfig const& c) {
     o.gradientOrder = c.gradientOrder;
     o.poisson.G = c.G;
     o.poisson.petscOptions = c.petscOptions;
-    o.poisson.coldStart = c.reproducible;
+    o.poisson.reproducible = c.reproducible;
     o.poissonMethod = c.poisson;
     return o;
 }

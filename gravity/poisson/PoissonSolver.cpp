@@ -91,8 +91,11 @@ PoissonSolver::PoissonSolver(core::Comm const& comm, CellLayout const& layout,
                         p.system->addRow(row, count, cols.data(), vals.data());
                     }
         }
-        m_solverName = p.system->finish(m_periodic, m_options.petscOptions, m_options.rtol,
-                                        m_options.maxIterations);
+        std::string const petscOptions = m_options.reproducible
+                                             ? "-pc_type bjacobi " + m_options.petscOptions
+                                             : m_options.petscOptions;
+        m_solverName =
+            p.system->finish(m_periodic, petscOptions, m_options.rtol, m_options.maxIterations);
     } catch (petsc::Failure const& e) {
         rethrow(e, m_options.petscOptions);
     }
@@ -158,7 +161,7 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
 
     petsc::SolveResult r;
     try {
-        if (m_options.coldStart)
+        if (m_options.reproducible)
             p.system->zeroSolution();
         r = p.system->solve(p.b.data(), p.x.data());
     } catch (petsc::Failure const& e) {

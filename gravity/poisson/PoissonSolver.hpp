@@ -27,10 +27,12 @@ struct PoissonOptions {
     std::string petscOptions;
     double rtol = 1e-10;       ///< default relative tolerance (unpreconditioned residual)
     int maxIterations = 10000; ///< default iteration limit
-    /// Every solve starts from a zero potential instead of the last solution (the warm
-    /// start): the result then depends on the density only, so a restarted run, which has
-    /// no last solution, repeats the bits of the run it continues (sync.reproducible).
-    bool coldStart = false;
+    /// sync.reproducible: every solve starts from a zero potential instead of the last
+    /// solution (the warm start), and the default preconditioner is block Jacobi instead of
+    /// GAMG, whose aggregation gave other bits from run to run on 3 or more ranks; the result
+    /// then depends on the density and the layout only, so a restarted run, which has no last
+    /// solution, repeats the bits of the run it continues. `petscOptions` still apply last.
+    bool reproducible = false;
 };
 
 /// What one solve did.
