@@ -5,14 +5,16 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <charconv>
 #include <memory>
+#include <system_error>
 
 namespace regolith::core {
 
 namespace {
 
 /// The CLI11 parser, bound to `o`. One definition for parsing and for the usage text.
-std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, std::int64_t& steps) {
+std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, std::string& steps) {
     auto app = std::make_unique<CLI::App>(
         "Runs a Regolith scene (TOML). Without a scene file it runs its embedded default "
         "scene.\nScene keys can be overridden with --set section.key=value, where value is "
@@ -53,11 +55,23 @@ std::string tomlString(std::string_view s) {
     return out + "\"";
 }
 
+/// `--steps` in base 10 (CLI11's own conversion reads "010" as octal and caps an overflow
+/// silently); the scene's rules (time.steps >= 0) apply afterwards.
+std::int64_t parseSteps(std::string const& text) {
+    std::int64_t steps = 0;
+    char const* const end = text.data() + text.size();
+    auto const [last, error] = std::from_chars(text.data(), end, steps);
+    if (text.empty() || error != std::errc{} || last != end)
+        throw InputError(fmt::format("--steps {}: expected a decimal integer{}", text,
+                                     error == std::errc::result_out_of_range ? " below 2^63" : ""));
+    return steps;
+}
+
 } // namespace
 
 CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view appName) {
     CliOptions options;
-    std::int64_t steps = 0;
+    std::string steps;
     auto app = makeParser(appName, options, steps);
     try {
         app->parse(argc, argv);
@@ -68,13 +82,13 @@ CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view 
         throw InputError(fmt::format("{} (run '{} --help' for the options)", e.what(), appName));
     }
     if (app->count("--steps") > 0)
-        options.steps = steps;
+        options.steps = parseSteps(steps);
     return options;
 }
 
 std::string usage(std::string_view appName) {
     CliOptions options;
-    std::int64_t steps = 0;
+    std::string steps;
     return makeParser(appName, options, steps)->help();
 }
 

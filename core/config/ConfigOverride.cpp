@@ -67,14 +67,18 @@ std::optional<std::size_t> parseIndex(std::string_view s) {
 }
 
 /// The value of an override as a TOML node whose source path is `origin`. A bare word that is
-/// not valid TOML becomes a string, so `--set sync.method=sos` works without shell quoting.
+/// not a number or boolean becomes a string, so `--set sync.method=sos` works without shell
+/// quoting -- also one that TOML would read as a date or time (`--set output.dir=2024-05-01`:
+/// no scene key takes a date).
 toml::table parseValue(std::string_view value, std::string const& origin) {
     std::string const doc = fmt::format("v = {}", value);
     try {
         toml::table t = toml::parse(doc, std::string_view(origin));
         if (t.size() != 1 || !t.contains("v"))
             throw InputError(fmt::format("{}: the value must be a single TOML value", origin));
-        return t;
+        toml::node const& v = *t.get("v");
+        if (!(v.is_date() || v.is_time() || v.is_date_time()))
+            return t;
     } catch (toml::parse_error const& e) {
         bool const bareWord = value.find_first_of("\"'[{\n\r#=") == std::string_view::npos;
         if (!bareWord)

@@ -53,6 +53,11 @@ TEST(CliOptions, BadCommandLinesAreInputErrors) {
     EXPECT_NE(err({"--bogus"}).find("run 'regolith --help'"), std::string::npos);
     EXPECT_NE(err({"a.toml", "b.toml"}).find("b.toml"), std::string::npos);
     EXPECT_NE(err({"--steps", "many"}).find("--steps"), std::string::npos);
+    // Decimal only (CLI11 itself reads 010 as octal 8, 0x10 as 16), and no silent overflow.
+    EXPECT_EQ(parse({"--steps", "010"}).steps, 10);
+    EXPECT_EQ(err({"--steps", "0x10"}), "--steps 0x10: expected a decimal integer");
+    EXPECT_EQ(err({"--steps", "99999999999999999999"}),
+              "--steps 99999999999999999999: expected a decimal integer below 2^63");
     EXPECT_NE(err({"--json"}).find("--json"), std::string::npos);
 }
 

@@ -55,6 +55,11 @@ TEST(ConfigOverride, BooleansStringsAndBareWords) {
     auto const root = withOverride("time.dt=fast");
     EXPECT_EQ(inputErrorOf([&] { (void)root.table("time").get<double>("dt"); }),
               "--set time.dt=fast: time.dt: expected a number, got \"fast\" (a string)");
+    // Bare words TOML would read as a date or a time are strings too (no key takes a date).
+    EXPECT_EQ(withOverride("output.dir=2024-05-01").table("output").getString("dir"), "2024-05-01");
+    EXPECT_EQ(withOverride("output.dir=07:30:00").table("output").getString("dir"), "07:30:00");
+    EXPECT_EQ(withOverride("output.dir=1979-05-27T07:32:00Z").table("output").getString("dir"),
+              "1979-05-27T07:32:00Z");
     // Spaces inside a bare value are kept (PETSc options).
     EXPECT_EQ(withOverride("gravity.petsc.options=-pc_type gamg -ksp_rtol 1e-8")
                   .table("gravity")
