@@ -1,11 +1,11 @@
 #include "apps/regolith/Checkpointing.hpp"
 
-#include "apps/common/AgreeOnInputError.hpp"
 #include "apps/common/StateChecksum.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "io/checkpoint/CheckpointSeries.hpp"
 #include "io/checkpoint/CheckpointWriter.hpp"
 #include "io/checkpoint/GrainState.hpp"
@@ -73,7 +73,7 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
                         context, info.dt, scene.time.dt);
     // The contact model's tables are indexed by type without a check (the contact loop).
     std::size_t const types = materialTypeCount(scene);
-    agreeOnInputError(comm, [&] {
+    core::agreeOnInputError(comm, [&] {
         for (io::GrainState const& g : slice.grains)
             if (g.type >= types)
                 throw core::InputError(fmt::format(

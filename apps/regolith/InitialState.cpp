@@ -1,9 +1,9 @@
 #include "apps/regolith/InitialState.hpp"
 
-#include "apps/common/AgreeOnInputError.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "particles/generators/ParticleGenerator.hpp"
 
 #include <algorithm>
@@ -19,7 +19,7 @@ void generateLocalGrains(core::Comm const& comm, core::ConfigTable const& sceneR
         boxes.push_back(block.aabb);
     // Every rank generates alone (files are read by every rank), so an error may be seen by
     // some ranks only: agree on it before anyone reaches the next collective.
-    agreeOnInputError(comm, [&] {
+    core::agreeOnInputError(comm, [&] {
         try {
             (void)particles::generateGrains(scene.particles, forest.domain(), forest.periodic(),
                                             boxes, sink);

@@ -1,6 +1,7 @@
 #include "gravity/baselines/GridMethods.hpp"
 
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "gravity/common/GatherAll.hpp"
 #include "gravity/tree/InteractionList.hpp"
 #include "gravity/tree/Octree.hpp"
@@ -61,7 +62,8 @@ std::vector<std::uint64_t> agreedNodesAround(core::Comm const& comm,
                                              GridMethodOptions const& options,
                                              PointMasses const& local) {
     std::vector<std::uint64_t> keys;
-    agreeOnInputError(comm, [&] { keys = nodesAround(options.grid, local, options.expand64); });
+    core::agreeOnInputError(comm,
+                            [&] { keys = nodesAround(options.grid, local, options.expand64); });
     return keys;
 }
 

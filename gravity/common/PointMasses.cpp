@@ -1,6 +1,7 @@
 #include "gravity/common/PointMasses.hpp"
 
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 
 #include <fmt/format.h>
 
@@ -39,34 +40,9 @@ void validateFieldOut(FieldOut const& out, std::size_t n) {
                                       n));
 }
 
-} // namespace regolith::gravity
-
-#include "core/mpi/Comm.hpp"
-
-#include <climits>
-
-#include <string>
-
-namespace regolith::gravity {
-
-void agreeOnInputError(core::Comm const& comm, std::function<void()> const& action) {
-    std::string message;
-    try {
-        action();
-    } catch (core::InputError const& e) {
-        message = e.what();
-    }
-    int const firstBad =
-        comm.allReduce(message.empty() ? INT_MAX : comm.rank(), core::ReduceOp::Min);
-    if (firstBad == INT_MAX)
-        return;
-    comm.broadcast(message, firstBad);
-    throw core::InputError(message);
-}
-
 void validatePointMassesCollective(core::Comm const& comm, PointMasses const& masses,
                                    char const* key) {
-    agreeOnInputError(comm, [&] { validatePointMasses(masses, key); });
+    core::agreeOnInputError(comm, [&] { validatePointMasses(masses, key); });
 }
 
 } // namespace regolith::gravity

@@ -4,7 +4,6 @@
 /// potential in m²/s²). Gravity never sees the particle storage (DESIGN.md layers): the caller
 /// hands spans of its masters, so a kernel test needs no particles and no forest.
 #include <cstddef>
-#include <functional>
 #include <span>
 
 namespace regolith::gravity {
@@ -47,12 +46,8 @@ class Comm;
 
 namespace regolith::gravity {
 
-/// Runs `action` on this rank; if it throws core::InputError on any rank, every rank throws
-/// core::InputError with the message of the lowest failing rank, so that none is left waiting
-/// in the next collective. `action` must not call collectives. COLLECTIVE over `comm`.
-void agreeOnInputError(core::Comm const& comm, std::function<void()> const& action);
-
-/// validatePointMasses on every rank, agreed (agreeOnInputError). COLLECTIVE over `comm`.
+/// validatePointMasses on every rank, agreed (core::agreeOnInputError). COLLECTIVE over
+/// `comm`.
 void validatePointMassesCollective(core::Comm const& comm, PointMasses const& masses,
                                    char const* key);
 

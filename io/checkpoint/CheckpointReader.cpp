@@ -1,8 +1,8 @@
 #include "io/checkpoint/CheckpointReader.hpp"
 
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "io/checkpoint/GrainColumns.hpp"
-#include "io/detail/AgreeOnError.hpp"
 
 #include <fmt/format.h>
 
@@ -65,7 +65,7 @@ CheckpointSlice readCheckpoint(core::Comm const& comm, std::string const& path) 
     std::uint64_t stored = 0;
     std::uint64_t hashSum = 0;
     CheckpointSlice out;
-    detail::agreeOnError(comm, [&] { out = readLocal(comm, path, context, stored, hashSum); });
+    core::agreeOnInputError(comm, [&] { out = readLocal(comm, path, context, stored, hashSum); });
     unsigned long long const local = hashSum;
     std::uint64_t const computed = infoHash(out.info) + comm.allReduce(local, core::ReduceOp::Sum);
     if (computed != stored)

@@ -1,8 +1,8 @@
 #include "io/checkpoint/RestoreGrains.hpp"
 
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "core/mpi/SparseExchange.hpp"
-#include "io/detail/AgreeOnError.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
@@ -124,7 +124,7 @@ void restoreGrains(core::Comm const& comm, particles::LocalParticles& local,
     domain::BlockForest const& forest = local.forest();
     OwnerLookup const owners(gatherBlockBoxes(comm, forest), forest);
     core::SparseExchange exchange(comm);
-    detail::agreeOnError(comm, [&] {
+    core::agreeOnInputError(comm, [&] {
         for (GrainState const& g : grains) {
             if (!forest.insideDomain(g.position))
                 throw core::InputError(

@@ -2,7 +2,7 @@
 
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
-#include "io/detail/AgreeOnError.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 #include "io/vtk/GridPieces.hpp"
 #include "io/vtk/VtkPieces.hpp"
 #include "io/vtk/VtkSeries.hpp"
@@ -69,7 +69,7 @@ std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, 
 VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
     : m_comm(&comm)
     , m_options(std::move(options)) {
-    detail::agreeOnError(comm, [&] {
+    core::agreeOnInputError(comm, [&] {
         if (comm.rank() != 0)
             return;
         std::error_code ec;
@@ -123,7 +123,7 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
     };
     std::string const particleIndex = fmt::format("particles_{:08d}.pvtu", step);
     std::string const blockIndex = fmt::format("blocks_{:08d}.pvtu", step);
-    detail::agreeOnError(*m_comm, [&] {
+    core::agreeOnInputError(*m_comm, [&] {
         try {
             detail::writeParticlePiece((vtkDir / piece("particles", m_comm->rank())).string(),
                                        local, m_options.shadows);
@@ -142,7 +142,7 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
         }
     });
     // Rank 0 writes the indices after every piece exists (the agreement above is a barrier).
-    detail::agreeOnError(*m_comm, [&] {
+    core::agreeOnInputError(*m_comm, [&] {
         if (m_comm->rank() != 0)
             return;
         std::vector<std::string> particlePieces;

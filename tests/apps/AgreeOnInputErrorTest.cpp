@@ -1,6 +1,6 @@
 // agreeOnInputError: an InputError seen by some ranks only becomes the same InputError on
 // every rank (the lowest failing rank's message); success and other errors pass through.
-#include "apps/common/AgreeOnInputError.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 
 #include "core/Error.hpp"
 #include "core/mpi/Comm.hpp"
@@ -10,7 +10,7 @@
 
 #include <string>
 
-using regolith::apps::agreeOnInputError;
+using regolith::core::agreeOnInputError;
 using regolith::core::Comm;
 using regolith::core::InputError;
 

@@ -1,10 +1,10 @@
-#include "apps/common/AgreeOnInputError.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 
 #include "core/Error.hpp"
 
 #include <string>
 
-namespace regolith::apps {
+namespace regolith::core {
 
 void agreeOnInputError(core::Comm const& comm, std::function<void()> const& action) {
     std::string failure;
@@ -26,4 +26,4 @@ void agreeOnInputError(core::Comm const& comm, std::function<void()> const& acti
     throw core::InputError(failure);
 }
 
-} // namespace regolith::apps
+} // namespace regolith::core

@@ -4,7 +4,7 @@
 
 #include <functional>
 
-namespace regolith::apps {
+namespace regolith::core {
 
 /// Runs `action` on this rank. If it throws core::InputError on any rank — also on some ranks
 /// only, e.g. a file readable on some nodes, or a check of rank-local data — every rank
@@ -18,4 +18,4 @@ namespace regolith::apps {
 /// it, and `action` must not call collectives that other ranks could skip by failing early.
 void agreeOnInputError(core::Comm const& comm, std::function<void()> const& action);
 
-} // namespace regolith::apps
+} // namespace regolith::core
