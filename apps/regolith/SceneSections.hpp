@@ -97,10 +97,9 @@ struct GravitySection {
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),
 /// checkpoint_keep >= 0 (how many of the newest checkpoints this run wrote to keep; files it
-/// did not write are never touched; 0: all; default 2), vtk_shadows (also write the shadow copies,
-/// flagged; default false), progress_seconds
-/// (>= 0: interval of the progress lines when standard output is not a terminal; 0: none;
-/// default 10).
+/// did not write are never touched; 0: all; default 2), vtk_shadows (also write the shadow
+/// copies, flagged; default false), progress_seconds (>= 0: interval of the progress lines
+/// when standard output is not a terminal; 0: none; default 10).
 struct OutputSection {
     std::string dir = "out";
     std::int64_t vtkEvery = 0;
