@@ -60,7 +60,7 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
 
 /// A restart continues with the original run's settings, which "auto" would re-derive from
 /// the restored grains (and could change): refused, naming the keys to set.
-std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
+void refuseAutoOnRestart(SceneDescription const& scene) {
     std::string keys;
     if (scene.time.dtAuto)
         keys += " time.dt";
@@ -73,7 +73,6 @@ std::vector<AutoChoice> refuseAutoOnRestart(SceneDescription const& scene) {
             "--restart: \"auto\" is not resolved again on a restart ({}); set the values the "
             "original run chose (its run summary lists them under \"auto\") with --set",
             keys.substr(1)));
-    return {};
 }
 
 /// contact.neighbour_skin, if given, below the smallest block edge: a sanity bound, as a skin
@@ -146,10 +145,12 @@ int runScene(core::AppContext& ctx) {
     BlockPlacement placement = uniformPlacement(world, scene);
     // Before any grain is made: the blocks' geometry is final here (balancing moves owners).
     requireSkinBelowBlockEdges(world, *placement.forest, scene.contact.neighbourSkin);
+    if (restart) // before the checkpoint is read: its dt would be compared with an unresolved one
+        refuseAutoOnRestart(scene);
     RunStart start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
     std::int64_t const startStep = start.step;
     std::vector<AutoChoice> const choices =
-        restart ? refuseAutoOnRestart(scene)
+        restart ? std::vector<AutoChoice>{}
                 : generateInitialState(ctx, scene, *placement.forest, *placement.local);
     balanceByLoad(world, scene, placement);
     domain::BlockForest const& forest = *placement.forest;
