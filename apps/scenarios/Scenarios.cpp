@@ -2,6 +2,7 @@
 
 #include "apps/scenarios/RankGrid.hpp"
 #include "core/Error.hpp"
+#include "domain/BlockId.hpp"
 
 #include <fmt/format.h>
 
@@ -134,6 +135,19 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
     requireDomainUnset(scene, "bidisperse");
     Counts const count = positiveCounts(s, "building_blocks", {1, 1, 1});
     Counts const split = positiveCounts(s, "blocks_per_building_block", {4, 4, 4});
+    // Bounded before the large spheres are written out one per building block below (10^15
+    // of them exhausted the memory before domain.blocks was checked): every building block
+    // is that many root blocks. In double: exact up to 2^53, far above the bound.
+    double const rootBlocks = static_cast<double>(count[0]) * static_cast<double>(count[1]) *
+                              static_cast<double>(count[2]) * static_cast<double>(split[0]) *
+                              static_cast<double>(split[1]) * static_cast<double>(split[2]);
+    double const maxRootBlocks = static_cast<double>(domain::BlockId::kMaxRootIndex) + 1.0;
+    if (!(rootBlocks <= maxRootBlocks))
+        s.fail("building_blocks",
+               fmt::format("{} x {} x {} building blocks of {} x {} x {} root blocks each exceed "
+                           "the forest's {} root blocks",
+                           count[0], count[1], count[2], split[0], split[1], split[2],
+                           maxRootBlocks));
     double const edge = s.getOrIf<double>(
         "edge", 80.0, [](double v) { return v > 0.0 && std::isfinite(v); }, "a positive length");
     double const radius = s.getOrIf<double>(
