@@ -70,13 +70,14 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
             throw core::InputError(fmt::format("{} {}: is a directory", option, path));
         // Created as the VTK and checkpoint output directories are: `--json out/summary.json`
         // in a fresh directory works.
-        std::error_code made;
-        if (!std::filesystem::is_directory(dir, ec) &&
-            (std::filesystem::create_directories(dir, made),
-             !std::filesystem::is_directory(dir, ec)))
-            throw core::InputError(
-                fmt::format("{} {}: cannot create the directory '{}': {}", option, path, dir,
-                            made ? made.message() : (ec ? ec.message() : "not a directory")));
+        if (!std::filesystem::is_directory(dir, ec)) {
+            std::error_code made;
+            std::filesystem::create_directories(dir, made);
+            if (!std::filesystem::is_directory(dir, ec))
+                throw core::InputError(
+                    fmt::format("{} {}: cannot create the directory '{}': {}", option, path, dir,
+                                made ? made.message() : (ec ? ec.message() : "not a directory")));
+        }
         if (access(dir.c_str(), W_OK) != 0)
             throw core::InputError(fmt::format("{} {}: directory '{}' is not writable: {}", option,
                                                path, dir, std::strerror(errno)));

@@ -308,8 +308,7 @@ void ParticleSync::syncInFull(LocalParticles& local,
             if (n + kLookAhead < visit.size())
                 prefetchShadowLookups(engine, local, ps, visit[n + kLookAhead]);
             std::size_t const i = visit[n];
-            // Such a grain is in no block and not inside the domain either: it would be taken
-            // for one that left an open domain and dropped silently, even in a periodic one.
+            // Else taken for a grain that left an open domain, and dropped, even if periodic.
             if (!ps.position(i).allFinite())
                 throw core::Error("sync: particle uid " + std::to_string(ps.uid(i)) +
                                   " has a non-finite position; the step is unstable: reduce "
