@@ -37,7 +37,10 @@ enum class LatticeKind { SimpleCubic, HexagonalClosePacked };
 ///                    sqrt(2/3) * k),
 ///    the close packing of spheres of diameter `spacing`, layers ABAB along z (Conway &
 ///    Sloane, "Sphere Packings, Lattices and Groups", ch. 1; the same coordinates as the
-///    "Close-packing of equal spheres" article's hcp formula).
+///    "Close-packing of equal spheres" article's hcp formula). On a periodic x axis the
+///    shifted rows (j + k odd) start at region.min instead, x = region.min + spacing * i,
+///    so that they tile across the face like the others (their site at region.max is the
+///    image of the one at region.min).
 /// A site is used iff, on every axis, its centre lies in [region.min, region.max) when the
 /// axis is periodic, and its whole grain (centre +- radius) lies in [region.min, region.max]
 /// when the axis is not: a periodic lattice tiles across the boundary, and no grain crosses a

@@ -58,9 +58,15 @@ core::Vec3 LatticeSites::centre(std::int64_t i, std::int64_t j, std::int64_t k) 
         return {coord(0, i, 0.0), coord(1, j, 0.0), coord(2, k, 0.0)};
     // hcp (Conway & Sloane ch. 1): rows of a layer shifted by half a spacing in x when
     // j + k is odd; odd layers (B) shifted by a third of a row step in y.
-    double const xOffset = ((j + k) % 2 != 0) ? 0.5 : 0.0;
-    double const yOffset = (k % 2 != 0) ? 1.0 / 3.0 : 0.0;
-    return {coord(0, i, xOffset), coord(1, j, yOffset), coord(2, k, 0.0)};
+    double const y = coord(1, j, (k % 2 != 0) ? 1.0 / 3.0 : 0.0);
+    if (!shiftedRow(j, k))
+        return {coord(0, i, 0.0), y, coord(2, k, 0.0)};
+    // On a periodic x the shifted rows start at region.min itself, so that their site at
+    // region.max is that one's image and every row has the same sites on the period;
+    // written without the origin so that the first is exactly region.min.
+    double const x =
+        m_periodic[0] ? m_region.min.x() + m_spacing * static_cast<double>(i) : coord(0, i, 0.5);
+    return {x, y, coord(2, k, 0.0)};
 }
 
 bool LatticeSites::used(core::Vec3 const& c) const {

@@ -49,6 +49,10 @@ private:
         return m_origin[axis] + m_spacing * (m_step[static_cast<std::size_t>(axis)] *
                                              (static_cast<double>(n) + offset));
     }
+    /// hcp: rows with j + k odd are shifted by half a spacing in x.
+    [[nodiscard]] bool shiftedRow(std::int64_t j, std::int64_t k) const {
+        return m_kind == LatticeKind::HexagonalClosePacked && (j + k) % 2 != 0;
+    }
     /// Conservative index range along `axis` for coordinates in [lo, hi]; empty if lo > hi.
     [[nodiscard]] std::array<std::int64_t, 2> indexRange(int axis, double lo, double hi) const;
 

@@ -86,8 +86,13 @@ def site(case, i, j, k):
     o = [m + s / 2 for m in case["min"]]
     if case["lattice"] == "sc":
         return [o[0] + s * i, o[1] + s * j, o[2] + s * k]
-    return [o[0] + s * (i + ((j + k) % 2) / 2),
-            o[1] + s * math.sqrt(3) / 2 * (j + (k % 2) / 3),
+    shifted = (j + k) % 2 == 1
+    # On a periodic x the shifted rows start at min, with the other rows' indices i.
+    if shifted and case["periodic"][0]:
+        x = case["min"][0] + s * i if o[0] + s * i < case["max"][0] else math.inf
+    else:
+        x = o[0] + s * (i + (0.5 if shifted else 0.0))
+    return [x, o[1] + s * math.sqrt(3) / 2 * (j + (k % 2) / 3),
             o[2] + s * math.sqrt(2 / 3) * k]
 
 
@@ -100,7 +105,8 @@ def used(case, c):
     for a in range(3):
         lo, hi = case["min"][a], case["max"][a]
         if case["periodic"][a]:
-            if near(c[a], lo) or near(c[a], hi):
+            # (the shifted hcp rows' first site is exactly min: no tie)
+            if (near(c[a], lo) and c[a] != lo) or near(c[a], hi):
                 fail(f"{case['name']}: site {c} is a near-tie on axis {a}")
             if not lo <= c[a] < hi:
                 return False

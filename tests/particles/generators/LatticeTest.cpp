@@ -44,7 +44,9 @@ PairStats pairStats(std::vector<GrainInit> const& g, double spacing) {
 
 /// hcp centres from the textbook formula for spheres of radius r' = spacing / 2
 /// (x, y, z) = r' (2i + ((j + k) mod 2), sqrt(3) (j + (k mod 2) / 3), 2 sqrt(6) / 3 k),
-/// shifted by region.min + r', filtered by the site rule; sorted.
+/// shifted by region.min + r', filtered by the site rule; sorted. On a periodic x the
+/// shifted rows (j + k odd) start one r' lower, at region.min, and have the same indices i
+/// as the other rows (those whose unshifted centre is below region.max).
 std::vector<Vec3> hcpReference(double spacing, double radius, core::AABB const& region,
                                Periodic const& periodic) {
     double const rp = spacing / 2.0;
@@ -52,11 +54,14 @@ std::vector<Vec3> hcpReference(double spacing, double radius, core::AABB const& 
     for (int k = 0; k < 200; ++k)
         for (int j = 0; j < 200; ++j)
             for (int i = 0; i < 200; ++i) {
-                Vec3 const c =
-                    region.min.array() + rp +
-                    Vec3(rp * (2 * i + ((j + k) % 2)), rp * std::sqrt(3.0) * (j + (k % 2) / 3.0),
-                         rp * 2.0 * std::sqrt(6.0) / 3.0 * k)
-                        .array();
+                bool const shifted = (j + k) % 2 != 0;
+                int const xUnits = shifted && periodic[0] ? 2 * i - 1 : 2 * i + (shifted ? 1 : 0);
+                if (shifted && periodic[0] && region.min.x() + rp * (2 * i + 1) >= region.max.x())
+                    continue;
+                Vec3 const c = region.min.array() + rp +
+                               Vec3(rp * xUnits, rp * std::sqrt(3.0) * (j + (k % 2) / 3.0),
+                                    rp * 2.0 * std::sqrt(6.0) / 3.0 * k)
+                                   .array();
                 bool ok = true;
                 for (int a = 0; a < 3; ++a)
                     ok = ok && (periodic[static_cast<std::size_t>(a)]
@@ -171,10 +176,58 @@ TEST(LatticeHcp, MatchesTextbookCoordinatesAndHasTwelveNeighbours) {
     }
 }
 
+TEST(LatticeHcp, TilesAPeriodicXWithoutHoleOrOverlap) {
+    // Periodic in x and y with whole periods (8 spacings, 8 rows), walls in z: every row of
+    // every layer has 8 sites, and across the faces each grain touches its 6 in-layer
+    // neighbours at the spacing exactly (the minimum image distance is the spacing).
+    double const rowPeriod = 8.0 * std::sqrt(3.0) / 2.0;
+    core::AABB const domain = box(Vec3::Zero(), Vec3(8.0, rowPeriod, 4.0));
+    Periodic const periodic{true, true, false};
+    auto const g =
+        generateOne(lattice(LatticeKind::HexagonalClosePacked, 1.0, 0.5, domain), domain, periodic);
+    std::map<std::pair<double, double>, int> rows;
+    for (auto const& x : g)
+        ++rows[{x.position.z(), x.position.y()}];
+    EXPECT_EQ(rows.size(), 8u * 4); // 8 rows in each of the 4 layers that fit in z
+    for (auto const& [row, n] : rows)
+        EXPECT_EQ(n, 8) << "row at z " << row.first << ", y " << row.second;
+    auto const minimumImage = [&](Vec3 d) {
+        for (int a = 0; a < 2; ++a)
+            d[a] -= domain.extent()[a] * std::round(d[a] / domain.extent()[a]);
+        return d.norm();
+    };
+    for (auto const& a : g) {
+        int inLayer = 0;
+        for (auto const& b : g) {
+            if (&a == &b)
+                continue;
+            double const d = minimumImage(b.position - a.position);
+            EXPECT_GT(d, 1.0 - 1e-9) << a.uid << " " << b.uid;
+            inLayer += (std::abs(d - 1.0) < 1e-9 && b.position.z() == a.position.z()) ? 1 : 0;
+        }
+        EXPECT_EQ(inLayer, 6) << "uid " << a.uid;
+    }
+    // A period that is not a multiple of the spacing (9.25): every row keeps 9 sites (the
+    // shifted ones x = 0 ... 8, the others 0.5 ... 8.5), and nothing overlaps across the face.
+    core::AABB const odd = box(Vec3::Zero(), Vec3(9.25, rowPeriod, 4.0));
+    auto const h =
+        generateOne(lattice(LatticeKind::HexagonalClosePacked, 1.0, 0.5, odd), odd, periodic);
+    EXPECT_EQ(h.size(), 9u * 8 * 4);
+    for (auto const& a : h)
+        for (auto const& b : h) {
+            if (&a == &b)
+                continue;
+            Vec3 d = b.position - a.position;
+            d.x() -= 9.25 * std::round(d.x() / 9.25);
+            d.y() -= rowPeriod * std::round(d.y() / rowPeriod);
+            EXPECT_GT(d.norm(), 1.0 - 1e-9) << a.uid << " " << b.uid;
+        }
+}
+
 TEST(LatticeHcp, PackingFractionOfLargeRegion) {
     // Centres in [0, L)^3 (periodic): N / V -> sqrt(2) / d^3, phi -> pi / (3 sqrt 2) = 0.7405.
-    // Boundary effects: the lattice starts half a spacing in and rows shifted by half a
-    // spacing lose their last site, about 1 / L per axis (4.1 % in all at L = 24), so the
+    // Boundary effects: 24 is not a whole number of rows in y or layers in z, about 1 / L
+    // per axis (4.1 % in all at L = 24), so the
     // whole-region fraction is checked to 5 % and the density of an interior box to 2 %.
     core::AABB const domain = box(Vec3::Zero(), Vec3(24, 24, 24));
     auto const g = generateOne(lattice(LatticeKind::HexagonalClosePacked, 1.0, 0.5, domain), domain,
