@@ -63,6 +63,7 @@ public:
     [[nodiscard]] CellField const& potential() const { return m_potential; }
     [[nodiscard]] CellField const& acceleration() const { return m_acceleration; }
     [[nodiscard]] double G() const { return m_options.poisson.G; }
+    [[nodiscard]] Assignment assignment() const { return m_options.assignment; }
     [[nodiscard]] bool periodic() const { return m_periodic; }
     /// The fields of the last update (density, potential, acceleration), read-only; valid
     /// while this object lives. Not collective.

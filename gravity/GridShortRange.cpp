@@ -8,38 +8,20 @@
 
 namespace regolith::gravity {
 
-namespace {
-
-/// 26 directions (cube faces, edges and corners), normalised: a cheap, symmetric cover of
-/// the sphere for the radial average.
-std::vector<core::Vec3> directions() {
-    std::vector<core::Vec3> out;
-    for (int z = -1; z <= 1; ++z)
-        for (int y = -1; y <= 1; ++y)
-            for (int x = -1; x <= 1; ++x)
-                if (x != 0 || y != 0 || z != 0)
-                    out.push_back(core::Vec3(x, y, z).normalized());
-    return out;
-}
-
-} // namespace
-
 GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, double cutoffCells)
-    : m_G(gravity.G()) {
+    : m_layout(&gravity.layout())
+    , m_assignment(gravity.assignment())
+    , m_G(gravity.G()) {
     if (!(cutoffCells >= 2.0))
         throw core::InputError("gravity.p3m_cutoff: expected at least 2 cells");
     auto const& layout = gravity.layout();
     double const h = layout.spacing().minCoeff();
     m_cutoff = cutoffCells * h;
-    m_dr = 0.125 * h;
     m_dv = 0.25 * h;
     m_half = static_cast<int>(std::ceil(m_cutoff / m_dv));
     int const side = 2 * m_half + 1;
-    auto const samples = static_cast<std::size_t>(std::ceil(m_cutoff / m_dr)) + 1;
-    m_table.assign(samples, 0.0);
     std::vector<double> vector(3 * static_cast<std::size_t>(side * side * side), 0.0);
     core::Vec3 const centre = layout.forest().domain().center();
-    auto const dirs = directions();
     // Source positions at several sub-cell offsets, so that the tables average over where a
     // grain sits in its cell (the lattice symmetries below multiply them by up to 48).
     std::array<core::Vec3, 4> const offsets{core::Vec3{0.0, 0.0, 0.0}, core::Vec3{0.5, 0.5, 0.5},
@@ -53,12 +35,9 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
             mass.push_back(1.0 / m_G); // unit G m
         }
         gravity.update({src, {}, mass});
-        // Probes: the radial samples (26 directions), then the lattice of displacements.
+        // Probes: the lattice of displacements.
         std::vector<core::Vec3> probes;
         if (comm.rank() == 0) {
-            for (std::size_t k = 0; k < samples; ++k)
-                for (auto const& d : dirs)
-                    probes.push_back(source + static_cast<double>(k + 1) * m_dr * d);
             for (int k = -m_half; k <= m_half; ++k)
                 for (int j = -m_half; j <= m_half; ++j)
                     for (int i = -m_half; i <= m_half; ++i)
@@ -66,36 +45,126 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
         }
         std::vector<core::Vec3> g(probes.size());
         gravity.accelerations({probes, {}, {}}, g);
-        if (comm.rank() == 0) {
-            for (std::size_t k = 0; k < samples; ++k)
-                for (std::size_t d = 0; d < dirs.size(); ++d)
-                    m_table[k] += -g[k * dirs.size() + d].dot(dirs[d]); // towards the source
-            std::size_t const first = samples * dirs.size();
-            for (std::size_t v = 0; v + first < g.size(); ++v)
+        if (comm.rank() == 0)
+            for (std::size_t v = 0; v < g.size(); ++v)
                 for (int a = 0; a < 3; ++a)
-                    vector[3 * v + static_cast<std::size_t>(a)] += g[first + v][a];
-        }
+                    vector[3 * v + static_cast<std::size_t>(a)] += g[v][a];
     }
-    // The grains' first solve must not start from the last unit source's potential: with a
-    // periodic domain its residual exceeded PETSc's divergence bound before the first step.
-    gravity.resetInitialGuess();
-    comm.allReduceInPlace(std::span<double>(m_table), core::ReduceOp::Sum);
     comm.allReduceInPlace(std::span<double>(vector), core::ReduceOp::Sum);
-    for (double& v : m_table)
-        v /= static_cast<double>(offsets.size() * dirs.size());
     for (double& v : vector)
         v /= static_cast<double>(offsets.size());
     symmetrise(vector, layout.spacing());
-    // The pair potential from the force table, integrated inwards from the cut-off: the
-    // trapezoid rule on the table's own spacing is exact for its linear interpolation.
-    auto const steps = static_cast<std::size_t>(std::ceil(m_cutoff / m_dr));
-    m_integral.assign(steps + 1, 0.0);
-    for (std::size_t k = steps; k-- > 0;) {
-        double const a = static_cast<double>(k) * m_dr;
-        double const b = std::min(a + m_dr, m_cutoff);
-        m_integral[k] =
-            m_integral[k + 1] + 0.5 * (b - a) * (meshPairAcceleration(a) + meshPairAcceleration(b));
+    measureCellPotential(comm, gravity, centre);
+    // The grains' first solve must not start from the unit sources' potential: with a
+    // periodic domain its residual exceeded PETSc's divergence bound before the first step.
+    gravity.resetInitialGuess();
+}
+
+void GridShortRange::measureCellPotential(core::Comm const& comm, GridGravity& gravity,
+                                          core::Vec3 const& source) {
+    CellLayout const& layout = gravity.layout();
+    // Offsets a pair inside the cut-off reaches: the cells between the two grains plus each
+    // kernel's width (TSC: 3 cells, so the weights' offsets differ by up to 2 more).
+    m_reach = static_cast<std::int64_t>(std::ceil(m_cutoff / layout.spacing().minCoeff())) + 3;
+    auto const side = static_cast<std::size_t>(2 * m_reach + 1);
+    core::Vec3 const u = layout.cellCoordinate(source);
+    GlobalCell const cell{std::llround(u[0]), std::llround(u[1]), std::llround(u[2])};
+    CellField& density = gravity.density();
+    density.fill(0.0);
+    auto const at = layout.owner(cell);
+    if (!at)
+        throw core::Error("GridShortRange: the calibration cell lies outside the domain");
+    if (at->localBlock >= 0) // unit G m in one cell
+        density.block(static_cast<std::size_t>(at->localBlock))[at->pad] =
+            1.0 / (m_G * layout.cellVolume());
+    gravity.solveFromDensity();
+    // Each offset read where its cell lives (value, 1), summed over the ranks.
+    std::vector<double> raw(2 * side * side * side, 0.0);
+    CellField const& phi = gravity.potential();
+    std::size_t v = 0;
+    for (std::int64_t k = -m_reach; k <= m_reach; ++k)
+        for (std::int64_t j = -m_reach; j <= m_reach; ++j)
+            for (std::int64_t i = -m_reach; i <= m_reach; ++i, ++v) {
+                auto const o = layout.owner({cell[0] + i, cell[1] + j, cell[2] + k});
+                if (!o || o->localBlock < 0)
+                    continue;
+                raw[2 * v] = phi.block(static_cast<std::size_t>(o->localBlock))[o->pad];
+                raw[2 * v + 1] = 1.0;
+            }
+    comm.allReduceInPlace(std::span<double>(raw), core::ReduceOp::Sum);
+    // Averaged over the reflections (and the axis permutations of cubic cells) of the
+    // offsets the domain holds: the free-space boundary breaks the symmetry only slightly.
+    core::Vec3 const& h = layout.spacing();
+    bool const cubic = (h.maxCoeff() - h.minCoeff()) <= 1e-12 * h.maxCoeff();
+    std::vector<std::array<int, 3>> perms{{0, 1, 2}};
+    if (cubic)
+        perms = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    auto index = [&](std::array<std::int64_t, 3> const& e) {
+        auto const s = static_cast<std::int64_t>(side);
+        return static_cast<std::size_t>((e[0] + m_reach) +
+                                        s * ((e[1] + m_reach) + s * (e[2] + m_reach)));
+    };
+    m_cell.assign(side * side * side, 0.0);
+    for (std::int64_t k = -m_reach; k <= m_reach; ++k)
+        for (std::int64_t j = -m_reach; j <= m_reach; ++j)
+            for (std::int64_t i = -m_reach; i <= m_reach; ++i) {
+                std::array<std::int64_t, 3> const e{i, j, k};
+                double sum = 0.0, count = 0.0;
+                for (auto const& p : perms)
+                    for (int signs = 0; signs < 8; ++signs) {
+                        std::array<std::int64_t, 3> w{};
+                        for (std::size_t a = 0; a < 3; ++a)
+                            w[a] = (((signs >> a) & 1) != 0 ? -1 : 1) *
+                                   e[static_cast<std::size_t>(p[a])];
+                        sum += raw[2 * index(w)];
+                        count += raw[2 * index(w) + 1];
+                    }
+                double const r =
+                    core::Vec3(static_cast<double>(i) * h.x(), static_cast<double>(j) * h.y(),
+                               static_cast<double>(k) * h.z())
+                        .norm();
+                m_cell[index(e)] = count > 0.0 ? sum / count : -1.0 / r;
+            }
+}
+
+double GridShortRange::cellPotential(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    auto const s = 2 * m_reach + 1;
+    return m_cell[static_cast<std::size_t>((i + m_reach) +
+                                           s * ((j + m_reach) + s * (k + m_reach)))];
+}
+
+double GridShortRange::meshPotential(core::Vec3 const& xi, core::Vec3 const& xj) const {
+    // Per axis, the two stencils' products summed by cell offset (cell of i minus cell of
+    // j): the 3-D sum over both deposits factorises into these, 125 table reads for TSC.
+    core::Vec3 const ui = m_layout->cellCoordinate(xi);
+    core::Vec3 const uj = m_layout->cellCoordinate(xj);
+    std::array<std::array<double, 5>, 3> weight{};
+    std::array<std::int64_t, 3> lowest{};
+    std::array<int, 3> width{};
+    for (int a = 0; a < 3; ++a) {
+        auto const ua = static_cast<std::size_t>(a);
+        Stencil1D const si = stencil(m_assignment, ui[a]);
+        Stencil1D const sj = stencil(m_assignment, uj[a]);
+        lowest[ua] = si.first - sj.first - (sj.count - 1);
+        width[ua] = si.count + sj.count - 1;
+        for (int p = 0; p < si.count; ++p)
+            for (int q = 0; q < sj.count; ++q)
+                weight[ua][static_cast<std::size_t>(p - q + sj.count - 1)] +=
+                    si.w[static_cast<std::size_t>(p)] * sj.w[static_cast<std::size_t>(q)];
     }
+    for (std::size_t a = 0; a < 3; ++a)
+        if (std::abs(lowest[a]) > m_reach || std::abs(lowest[a] + width[a] - 1) > m_reach)
+            throw core::Error("GridShortRange::meshPotential: the grains are beyond the table");
+    double sum = 0.0;
+    for (int z = 0; z < width[2]; ++z)
+        for (int y = 0; y < width[1]; ++y) {
+            double const wyz =
+                weight[1][static_cast<std::size_t>(y)] * weight[2][static_cast<std::size_t>(z)];
+            for (int x = 0; x < width[0]; ++x)
+                sum += weight[0][static_cast<std::size_t>(x)] * wyz *
+                       cellPotential(lowest[0] + x, lowest[1] + y, lowest[2] + z);
+        }
+    return m_G * sum;
 }
 
 void GridShortRange::symmetrise(std::vector<double> const& raw, core::Vec3 const& spacing) {
@@ -162,17 +231,6 @@ core::Vec3 GridShortRange::meshPairVector(core::Vec3 const& e) const {
     return out;
 }
 
-double GridShortRange::meshPairAcceleration(double r) const {
-    double const u = r / m_dr - 1.0; // table index of r
-    if (u <= 0.0) // below the first sample: the mesh force vanishes linearly at r = 0
-        return m_table.front() * r / m_dr;
-    auto const k = static_cast<std::size_t>(u);
-    if (k + 1 >= m_table.size())
-        return m_table.back();
-    double const f = u - static_cast<double>(k);
-    return (1.0 - f) * m_table[k] + f * m_table[k + 1];
-}
-
 core::Vec3 GridShortRange::correction(core::Vec3 const& d, double mj) const {
     return mj * pairCorrection(d, 0.0);
 }
@@ -186,19 +244,12 @@ core::Vec3 GridShortRange::pairCorrection(core::Vec3 const& d, double softening)
     return m_G * (d / (s2 * std::sqrt(s2)) + meshPairVector(d));
 }
 
-double GridShortRange::pairPotential(double r, double softening) const {
+double GridShortRange::pairPotential(core::Vec3 const& xi, core::Vec3 const& xj,
+                                     double softening) const {
+    double const r = (xj - xi).norm();
     if (r >= m_cutoff)
         return 0.0;
-    double const u = r / m_dr;
-    auto const k = std::min(static_cast<std::size_t>(u), m_integral.size() - 2);
-    double const f = std::min(u - static_cast<double>(k), 1.0);
-    double const integral = (1.0 - f) * m_integral[k] + f * m_integral[k + 1];
-    double const meshPsi = 1.0 / m_cutoff + integral;
-    return -m_G * (1.0 / std::sqrt(r * r + softening * softening) - meshPsi);
-}
-
-double GridShortRange::selfPotential() const {
-    return -m_G * (1.0 / m_cutoff + m_integral.front());
+    return -m_G / std::sqrt(r * r + softening * softening) - meshPotential(xi, xj);
 }
 
 } // namespace regolith::gravity

@@ -4,14 +4,19 @@
 /// P3M adds, for each such pair, the exact Newtonian force minus the mesh's own pair force.
 /// The mesh pair force is measured once on this very mesh (calibration: a unit point mass
 /// at a few sub-cell positions, the mesh acceleration interpolated on a lattice of
-/// displacements around it, averaged over the lattice symmetries; also radially, for the
-/// potential), so the correction cancels the mesh's softening and its anisotropy, and leaves
-/// only how the mesh force depends on where a grain sits in its cell.
+/// displacements around it, averaged over the lattice symmetries), so the correction cancels
+/// the mesh's softening and its anisotropy, and leaves only how the mesh force depends on
+/// where a grain sits in its cell. The energy needs no such average: the mesh potential is
+/// linear in the deposit, so the potential one grain's deposit gives at another's (and at
+/// its own) is exactly the deposit weights applied to the potential of a unit mass in one
+/// cell, measured once as a table of cell offsets (Hockney & Eastwood, ch. 7: the mesh
+/// Green's function).
 ///
 /// Pairs are the caller's: the particle side finds them with its contact detector's cell
 /// structure (gravity/ knows no particles). Point-like grains are assumed (radius <~ h/2).
 #include "gravity/GridGravity.hpp"
 
+#include <cstdint>
 #include <vector>
 
 namespace regolith::gravity {
@@ -26,9 +31,6 @@ public:
 
     /// Cut-off distance [length].
     [[nodiscard]] double cutoff() const { return m_cutoff; }
-    /// The mesh's radial pair acceleration at distance r for unit G m (table, linear
-    /// interpolation) [1 / length^2]. Local.
-    [[nodiscard]] double meshPairAcceleration(double r) const;
     /// The mesh's acceleration at displacement e from a unit (G m = 1) point source, from the
     /// lattice table (spacing h/4, trilinear; averaged over source offsets and the lattice
     /// symmetries, odd in e) [1 / length^2]. Pre: |e_a| <= cutoff. Local, pure.
@@ -44,30 +46,38 @@ public:
     /// diagonals), which a radial table cannot. Odd in d: the pair's corrections are equal
     /// and opposite. Local, pure.
     [[nodiscard]] core::Vec3 pairCorrection(core::Vec3 const& d, double softening) const;
-    /// Correction to the potential at grain i due to grain j, per unit m_j [length² / (mass
-    /// time²)]: -G (ψ(r) - ψ_mesh(r)) with ψ = 1 / sqrt(r² + ε²) and the mesh's pair
-    /// potential ψ_mesh(r) = 1 / cutoff + ∫_r^cutoff mesh(s) ds (the table integrated with
-    /// the trapezoid rule, taking the mesh as exact at the cut-off); 0 from the cut-off on.
-    /// Local, pure.
-    [[nodiscard]] double pairPotential(double r, double softening) const;
-    /// The mesh potential a point grain feels from itself, per unit mass of it: -G ψ_mesh(0)
-    /// [length² / (mass time²)]. A grain's mesh potential includes this; P3M subtracts it so
-    /// that ½ Σ m φ is the pair energy alone, as for the direct sum. Local, pure.
-    [[nodiscard]] double selfPotential() const;
+    /// Correction to the potential at grain i (at xi) due to grain j (at xj, the image
+    /// nearest to xi) per unit m_j [length² / (mass time²)]: the exact -G / sqrt(r² + ε²)
+    /// minus what the mesh gave, meshPotential(xi, xj); 0 from the cut-off on (the mesh taken
+    /// as exact there). Local, pure.
+    [[nodiscard]] double pairPotential(core::Vec3 const& xi, core::Vec3 const& xj,
+                                       double softening) const;
+    /// The mesh potential at xi due to a grain at xj per unit mass of it (the deposit of xj
+    /// read with the weights of xi from the unit-cell table); with xi = xj, what a point grain
+    /// at xi feels from itself, which ½ Σ m φ includes and P3M subtracts so that the energy
+    /// is the pairs' alone, as for the direct sum [length² / (mass time²)]. Local, pure.
+    [[nodiscard]] double meshPotential(core::Vec3 const& xi, core::Vec3 const& xj) const;
 
 private:
+    /// Fills m_cell: the potential at cell offsets up to m_reach of a unit G m in one cell at
+    /// `source`, averaged over the lattice symmetries; offsets the domain does not hold take
+    /// the Newtonian value (the mesh follows it to ~1 % from 4 cells on). COLLECTIVE.
+    void measureCellPotential(core::Comm const& comm, GridGravity& gravity,
+                              core::Vec3 const& source);
+    /// m_cell at offset (i, j, k), each in [-m_reach, m_reach].
+    [[nodiscard]] double cellPotential(std::int64_t i, std::int64_t j, std::int64_t k) const;
+    /// Fills m_vector from the raw offset-averaged table (3 doubles per node).
+    void symmetrise(std::vector<double> const& raw, core::Vec3 const& spacing);
+
+    CellLayout const* m_layout = nullptr;
+    Assignment m_assignment = Assignment::Tsc;
     double m_G = 0.0;
     double m_cutoff = 0.0;
-    double m_dr = 0.0;           ///< table spacing [length]
-    std::vector<double> m_table; ///< mesh(r) at r = (k + 1) * m_dr
-    /// ∫_r^cutoff mesh(s) ds at r = k * m_dr (k = 0 .. ceil(cutoff / m_dr), 0 from the cut-off)
-    std::vector<double> m_integral;
     double m_dv = 0.0;                ///< vector table spacing [length]
     int m_half = 0;                   ///< vector table: displacements (i, j, k) m_dv, |i| <= m_half
     std::vector<core::Vec3> m_vector; ///< meshPairVector at the lattice nodes, x fastest
-
-    /// Fills m_vector from the raw offset-averaged table (3 doubles per node).
-    void symmetrise(std::vector<double> const& raw, core::Vec3 const& spacing);
+    std::int64_t m_reach = 0;         ///< unit-cell table: offsets |i| <= m_reach
+    std::vector<double> m_cell;       ///< unit-cell table, x fastest
 };
 
 } // namespace regolith::gravity

@@ -99,7 +99,8 @@ double P3mGravity::addShortRange(gravity::PointMasses const& grains) {
         if (r == 0.0)
             return; // coincident grains exert nothing on each other, as in the direct sum
         core::Vec3 const correction = m_shortRange.pairCorrection(d, m_softening);
-        double const potential = m_shortRange.pairPotential(r, m_softening);
+        double const potential =
+            m_shortRange.pairPotential(m_position[a], m_position[b], m_softening);
         ++m_pairs;
         if (a < n) {
             m_acc[a] += m_mass[b] * correction;
@@ -110,10 +111,11 @@ double P3mGravity::addShortRange(gravity::PointMasses const& grains) {
             energy += 0.5 * m_mass[a] * m_mass[b] * potential;
         }
     });
-    // The mesh potential at each grain includes the grain's own (mesh-softened) potential.
-    double const self = m_shortRange.selfPotential();
+    // The mesh potential at each grain includes the grain's own (mesh-softened) potential,
+    // which depends on where it sits in its cell.
     for (std::size_t k = 0; k < n; ++k)
-        energy -= 0.5 * m_mass[k] * m_mass[k] * self;
+        energy -=
+            0.5 * m_mass[k] * m_mass[k] * m_shortRange.meshPotential(m_position[k], m_position[k]);
     return energy;
 }
 
