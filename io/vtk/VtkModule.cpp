@@ -5,6 +5,7 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
+#include <vtkErrorCode.h>
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -66,7 +67,9 @@ bool write(vtkXMLWriter* writer, std::string const& path, vtkDataObject* data) {
     writer->SetDataModeToAppended();
     writer->EncodeAppendedDataOff();
     writer->SetHeaderTypeToUInt64();
-    return writer->Write() == 1;
+    // Write() reports success even when the file cannot be opened (a directory in its place,
+    // no permission, a full disk); the error code says so.
+    return writer->Write() == 1 && writer->GetErrorCode() == vtkErrorCode::NoError;
 }
 
 class VtkModule final : public Module {

@@ -164,3 +164,34 @@ TEST(VtkOutput, UnwritableDirectoryIsRefused) {
             << e.what();
     }
 }
+
+/// A piece that cannot be written (here a directory in its place, on the last rank; a full
+/// disk or a missing permission alike) stops every rank with the file's name, and no index
+/// names it: VTK's writer reports success then, only its error code tells.
+TEST(VtkOutput, UnwritablePieceIsAnErrorOnEveryRank) {
+    core::Comm const world;
+    domain::BlockForest const forest(world, spec());
+    particles::LocalParticles local(forest);
+    fill(local);
+    std::string const dir = fmt::format("vtk_unwritable_np{}", world.size());
+    std::string const blocked =
+        fmt::format("{}/vtk/particles_00000010_r{:04d}.vtu", dir, world.size() - 1);
+    if (world.rank() == 0) {
+        fs::remove_all(dir);
+        fs::create_directories(blocked);
+    }
+    world.barrier();
+    io::VtkOutput out(world, io::VtkOptions{dir, false, true});
+    try {
+        out.write(10, 0.25, local);
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot write VTK file '" + blocked + "'"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir + "/vtk/particles_00000010.pvtu"));
+    world.barrier();
+    if (world.rank() == 0)
+        fs::remove_all(dir);
+}
