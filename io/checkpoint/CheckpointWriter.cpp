@@ -76,8 +76,10 @@ std::uint64_t writeCheckpoint(core::Comm const& comm, std::string const& path, C
         std::error_code ec;
         bytes = std::filesystem::file_size(tmp, ec);
         std::filesystem::rename(tmp, path, ec);
-        if (ec)
+        if (ec) {
             failure = fmt::format("{}: renaming '{}' failed: {}", context, tmp, ec.message());
+            std::filesystem::remove(tmp, ec); // no stale temporary beside the checkpoints
+        }
     }
     comm.broadcast(failure, 0);
     if (!failure.empty())

@@ -21,19 +21,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Writes `text` to `path` through a temporary file and a rename. Throws core::InputError.
+/// Writes `text` to `path` through a temporary file and a rename; on failure removes the
+/// temporary. Throws core::InputError.
 void writeText(fs::path const& path, std::string const& text) {
     fs::path const tmp = path.string() + ".tmp";
+    std::error_code ec;
+    bool written = false;
     {
         std::ofstream out(tmp, std::ios::binary);
         out << text;
-        if (!out.flush())
-            throw core::InputError(fmt::format("cannot write '{}'", tmp.string()));
+        written = static_cast<bool>(out.flush());
     }
-    std::error_code ec;
+    if (!written) {
+        fs::remove(tmp, ec);
+        throw core::InputError(fmt::format("cannot write '{}'", tmp.string()));
+    }
     fs::rename(tmp, path, ec);
-    if (ec)
-        throw core::InputError(fmt::format("cannot write '{}': {}", path.string(), ec.message()));
+    if (ec) {
+        std::string const reason = ec.message();
+        fs::remove(tmp, ec);
+        throw core::InputError(fmt::format("cannot write '{}': {}", path.string(), reason));
+    }
 }
 
 std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {

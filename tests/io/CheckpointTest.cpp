@@ -188,6 +188,32 @@ TEST(Checkpoint, SceneTextBeyond64KiBRoundTrips) {
     EXPECT_EQ(slice.info.grainCount, 64U);
 }
 
+TEST(Checkpoint, FailedRenameLeavesNoTemporary) {
+    // A directory where the checkpoint goes: the rename fails, every rank gets the error, and
+    // the temporary is removed (it stayed behind, a full-size file per failed checkpoint).
+    core::Comm const world;
+    std::string const path = fileName(world, "blocked");
+    if (world.rank() == 0) {
+        fs::remove_all(path);
+        fs::create_directories(path + "/x");
+    }
+    world.barrier();
+    domain::BlockForest const forest(world, spec());
+    io::CheckpointInfo written = info();
+    try {
+        io::writeCheckpoint(world, path, written, io::collectMasters(fill(forest)));
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find("renaming '" + path + ".tmp' failed"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_FALSE(fs::exists(path + ".tmp"));
+    world.barrier();
+    if (world.rank() == 0)
+        fs::remove_all(path);
+}
+
 TEST(Checkpoint, SelfGravityStateSurvivesBitForBit) {
     // The self-gravity state (format 2): per grain its reference position and cached field
     // (NaN rows for grains without one), and the run-wide update count and energy. Each rank

@@ -192,6 +192,15 @@ TEST(VtkOutput, UnwritablePieceIsAnErrorOnEveryRank) {
     }
     EXPECT_FALSE(fs::exists(dir + "/vtk/particles_00000010.pvtu"));
     world.barrier();
+    // An index that cannot be renamed into place leaves no temporary behind.
+    if (world.rank() == 0) {
+        fs::remove_all(blocked);
+        fs::create_directories(dir + "/particles.pvd/x");
+    }
+    world.barrier();
+    EXPECT_THROW(out.write(20, 0.5, local), core::InputError);
+    EXPECT_FALSE(fs::exists(dir + "/particles.pvd.tmp"));
+    world.barrier();
     if (world.rank() == 0)
         fs::remove_all(dir);
 }
