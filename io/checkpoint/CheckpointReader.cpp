@@ -28,6 +28,20 @@ CheckpointSlice readLocal(core::Comm const& comm, std::string const& path,
     CheckpointSlice out;
     out.info = file->info(storedChecksum);
 
+    // The counts size this rank's buffers: bound them by what the file can hold (at least a
+    // byte per value) before allocating, so that a damaged count is an input error, not an
+    // allocation of exabytes (the checksum is verified only after the reads).
+    std::size_t grainValues = 0, entryValues = 0;
+    detail::GrainColumns none;
+    for (auto const& col : detail::columnViews(none))
+        (col.history ? entryValues : grainValues) += col.width;
+    std::uintmax_t const bytes = std::filesystem::file_size(path, ec);
+    if (ec || out.info.grainCount > bytes / grainValues ||
+        out.info.historyCount > bytes / entryValues)
+        throw core::InputError(fmt::format(
+            "{}: {} grains and {} history entries cannot fit in its {} bytes: the file is "
+            "damaged",
+            context, out.info.grainCount, out.info.historyCount, bytes));
     auto const n = out.info.grainCount;
     auto const p = static_cast<std::uint64_t>(comm.size());
     auto const r = static_cast<std::uint64_t>(comm.rank());

@@ -331,6 +331,28 @@ TEST(Checkpoint, FlippedDataByteIsRefused) {
         << message;
 }
 
+TEST(Checkpoint, ImpossibleGrainCountIsRefusedBeforeAllocating) {
+    // A damaged grain_count sized the read buffers before the checksum was checked: 2^62 ended
+    // in std::bad_alloc (an internal error and MPI_Abort) instead of an input error.
+    core::Comm const world;
+    std::string const path = fileName(world, "grain_count");
+    writeSample(world, path);
+    if (world.rank() == 0) {
+        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        hid_t const attr = H5Aopen(file, "grain_count", H5P_DEFAULT);
+        std::uint64_t const n = std::uint64_t{1} << 62;
+        H5Awrite(attr, H5T_NATIVE_UINT64, &n);
+        H5Aclose(attr);
+        H5Fclose(file);
+    }
+    world.barrier();
+    std::string const message = readError(world, path);
+    EXPECT_NE(message.find("checkpoint '" + path + "': 4611686018427387904 grains"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("cannot fit in its"), std::string::npos) << message;
+}
+
 TEST(Checkpoint, OtherFormatVersionIsRefused) {
     core::Comm const world;
     std::string const path = fileName(world, "version");
