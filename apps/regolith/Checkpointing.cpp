@@ -4,6 +4,7 @@
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
+#include "core/config/ConfigTable.hpp"
 #include "core/log/Log.hpp"
 #include "core/mpi/AgreeOnInputError.hpp"
 #include "io/checkpoint/CheckpointSeries.hpp"
@@ -49,10 +50,28 @@ std::string describe(core::AABB const& box, std::array<bool, 3> const& periodic)
                        fmt::join(periodic, ", "));
 }
 
+/// The sections of the checkpoint's scene text that differ from `text`'s (the command-line
+/// overrides are comment lines of both, so only the files count; output and time are expected
+/// to change on a restart). Empty if either text does not parse.
+std::vector<std::string> differingSections(std::string const& stored, std::string const& text) {
+    try {
+        auto const a = core::ConfigTable::fromString(stored, "checkpoint scene");
+        auto const b = core::ConfigTable::fromString(text, "scene");
+        std::vector<std::string> out;
+        for (char const* key :
+             {"name", "domain", "particles", "walls", "contact", "gravity", "sync"})
+            if (!a.sameValue(key, b))
+                out.emplace_back(key);
+        return out;
+    } catch (core::InputError const&) {
+        return {};
+    }
+}
+
 } // namespace
 
 io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
-                                SceneDescription const& scene) {
+                                SceneDescription const& scene, std::string const& sceneText) {
     io::CheckpointSlice slice = io::readCheckpoint(comm, path);
     io::CheckpointInfo const& info = slice.info;
     std::string const context = "--restart " + path;
@@ -71,6 +90,11 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
     if (info.dt != scene.time.dt)
         core::log::warn("{}: the checkpoint was written with time.dt = {}, the scene has {}",
                         context, info.dt, scene.time.dt);
+    if (auto const differ = differingSections(info.scene, sceneText); !differ.empty())
+        core::log::warn("{}: the checkpoint was written by another scene (it differs in {}): the "
+                        "grains, their contact history and the self-gravity state come from the "
+                        "checkpoint, everything else from this scene",
+                        context, fmt::join(differ, ", "));
     // The contact model's tables are indexed by type without a check (the contact loop).
     std::size_t const types = materialTypeCount(scene);
     core::agreeOnInputError(comm, [&] {

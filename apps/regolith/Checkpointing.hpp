@@ -22,10 +22,13 @@ namespace regolith::apps {
 
 /// Reads the checkpoint `path` (io::readCheckpoint: every rank its slice) and checks that it
 /// belongs to `scene`: the same domain box and periodicity, and a step not beyond
-/// time.steps. A different time step is allowed, with a warning. Throws the same
-/// core::InputError on every rank naming the file and what differs. COLLECTIVE over `comm`.
+/// time.steps. A different time step, or a scene file (`sceneText`, as sceneText() gives it)
+/// that differs from the checkpoint's in other sections than [output] and [time], is allowed
+/// with a warning naming them. Throws the same core::InputError on every rank naming the
+/// file and what differs. COLLECTIVE over `comm`.
 [[nodiscard]] io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
-                                              SceneDescription const& scene);
+                                              SceneDescription const& scene,
+                                              std::string const& sceneText);
 
 /// Hands the self-gravity state of a checkpoint (this rank's slice of the per-grain records,
 /// and the run-wide state) to `selfGravity`, which brings each record to its grain's rank at

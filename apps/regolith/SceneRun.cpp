@@ -112,7 +112,7 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
                       particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
     double const start = MPI_Wtime();
-    io::CheckpointSlice slice = readRestart(ctx.world, path, scene);
+    io::CheckpointSlice slice = readRestart(ctx.world, path, scene, sceneText(ctx));
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
     if (restored != slice.info.stateChecksum)

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <limits>
+#include <type_traits>
 
 namespace regolith::core {
 
@@ -280,6 +281,21 @@ std::string ConfigTable::location(std::string_view key) const {
     if (auto it = t.find(key); it != t.end())
         return m_doc->locateKey(it->first, it->second, location());
     return location();
+}
+
+bool ConfigTable::sameValue(std::string_view key, ConfigTable const& other) const {
+    auto const* a = m_doc->entry(m_id).table->get(key);
+    auto const* b = other.m_doc->entry(other.m_id).table->get(key);
+    if (a == nullptr || b == nullptr)
+        return a == b;
+    return a->visit([b](auto const& x) {
+        return b->visit([&x](auto const& y) {
+            if constexpr (std::is_same_v<decltype(x), decltype(y)>)
+                return x == y; // toml++ compares tables and arrays element by element
+            else
+                return false;
+        });
+    });
 }
 
 std::string ConfigTable::describe(std::string_view key) const {

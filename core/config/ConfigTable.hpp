@@ -143,6 +143,9 @@ public:
     [[nodiscard]] std::string location(std::string_view key) const;
     /// Where this table was defined ("scene.toml:4"; the file name for the root).
     [[nodiscard]] std::string location() const;
+    /// Does `key` hold the same value here and in `other` (tables and arrays compared in full,
+    /// both absent counting as the same)?
+    [[nodiscard]] bool sameValue(std::string_view key, ConfigTable const& other) const;
     /// The value of `key` as written, compact: `[4, 0, 4]`, `"sos"`; "(missing)" if absent.
     [[nodiscard]] std::string describe(std::string_view key) const;
 

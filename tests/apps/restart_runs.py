@@ -18,7 +18,10 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
  5. a truncated file, a flipped byte, a scene with another domain, a step beyond
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
-    byte-identical before and after.
+    byte-identical before and after;
+ 6. another scene file (name and friction changed, an [output] added) restarts with one
+    warning naming the sections that differ (name, contact); the same file with a --set
+    change does not warn.
 
 Case "gravity", on tests/apps/scenes/restart_gravity.toml (729 grains, direct self-gravity
 with update_threshold > 0: the field is recomputed only every few steps; between updates
@@ -259,6 +262,29 @@ def main():
     expect_refused(runner, 2, ["--restart", typed10, "--output", refused],
                    "has material type 1, but the scene's [[particles]] and [[walls]] name types "
                    "up to 0 only (the checkpoint was written for another scene)", [typed10])
+    # Another scene file (its name, friction and output changed) restarts with one warning
+    # naming the sections that differ, output and time not among them.
+    with open(runner.scene, encoding="utf-8") as f:
+        text = f.read()
+    other = runner.path("other.toml")
+    with open(other, "w", encoding="utf-8") as f:
+        f.write(text.replace('name = "restart"', 'name = "other"')
+                    .replace("friction = 0.5", "friction = 0.4") + "\n[output]\nvtk_every = 0\n")
+    def loud(scene, args):  # without --quiet, which silences warnings
+        command = [runner.mpiexec, "-n", "2", "--oversubscribe", runner.app, scene, *args]
+        return command, subprocess.run(command, capture_output=True, text=True, timeout=60,
+                                       check=False)
+    command, done = loud(other, ["--restart", step20, "--output", runner.path("other")])
+    warning = (f"--restart {step20}: the checkpoint was written by another scene (it differs in "
+               "name, contact)")
+    if done.returncode != 0 or done.stdout.count(warning) != 1:
+        fail(f"{' '.join(command)}: exit {done.returncode}, expected 0 and the warning "
+             f"{warning!r} once\n--- stdout:\n{done.stdout}")
+    command, done = loud(runner.scene, ["--restart", step20, "--output", runner.path("same"),
+                                        "--set", "contact.friction=0.4"])
+    if done.returncode != 0 or "another scene" in done.stdout:
+        fail(f"{' '.join(command)}: exit {done.returncode}, or the same scene file warned\n"
+             f"{done.stdout}")
     print(f"restart_runs: all checks passed (reference checksum {reference})")
 
 
