@@ -57,7 +57,10 @@ inline core::Vec3 tangentialForce(core::Vec3& spring, core::Vec3 const& normal,
 /// 269, model A): a couple of magnitude mu_r * R_eff * max(F_n, 0) on j opposing the rolling
 /// part of omega_j - omega_i (the component normal to the contact normal; twisting is not
 /// resisted). Its magnitude is capped at what would stop the relative rolling within `dt`,
-/// the usual fix for model A's chattering around zero rolling velocity.
+/// the usual fix for model A's chattering around zero rolling velocity. Known limit: it
+/// cannot hold a grain at rest against a driving torque T, which creeps at the relative spin
+/// T dt ΣI⁻¹ (docs/results.md, "Known limits of the contact models"); model C's rolling
+/// spring would.
 inline core::Vec3 rollingTorque(ContactState const& s, double rollingFriction, double normalForce,
                                 double dt) {
     if (!(rollingFriction > 0.0) || !(normalForce > 0.0))
