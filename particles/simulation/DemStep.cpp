@@ -4,9 +4,13 @@
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -27,6 +31,9 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     , m_frame(local.forest().geometry()) {
     if (!(config.dt > 0.0) || !std::isfinite(config.dt))
         throw core::Error("DemStep: the time step must be positive and finite");
+    for (BlockParticles const& bp : local.blocks())
+        m_smallestEdge = std::min(m_smallestEdge, bp.block->aabb.extent().minCoeff());
+    m_smallestEdge = comm.allReduce(m_smallestEdge, core::ReduceOp::Min);
     std::size_t const blocks = local.blocks().size();
     m_detectors.assign(blocks, ContactDetector(config.detector));
     m_contacts.resize(blocks);
@@ -100,11 +107,13 @@ void DemStep::step(StepEnd end) {
     core::Vec3 const& g = m_config.gravity;
     {
         auto const t = m_timers->scope(kIntegrateTimer);
-        m_moved += largestOverBlocks(
+        double const moved = largestOverBlocks(
             m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
                 return m_kickPending ? postThenPreForce(integrator, ps, dt, g)
                                      : integrator.preForce(ps, dt, g);
             });
+        m_moved += moved;
+        m_movedSinceSync += moved;
         m_kickPending = false;
     }
     syncParticles();
@@ -121,10 +130,12 @@ void DemStep::completeStep() {
     auto const t = m_timers->scope(kIntegrateTimer);
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;
-    m_moved +=
+    double const moved =
         largestOverBlocks(m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
             return integrator.postForce(ps, dt, g);
         });
+    m_moved += moved;
+    m_movedSinceSync += moved;
     m_kickPending = false;
 }
 
@@ -147,14 +158,25 @@ void DemStep::releaseWorkspace() {
 void DemStep::syncParticles() {
     {
         auto const t = m_timers->scope(kSyncTimer);
+        // Over all ranks before the sync, so that every rank refuses a step that moved a
+        // grain beyond what the sync reaches (else an internal error on one rank mid-sync).
+        std::array<double, 2> motion{m_moved, m_movedSinceSync};
+        if (m_comm->size() > 1)
+            m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
+        if (!(motion[1] < m_smallestEdge))
+            throw core::InputError(fmt::format(
+                "step {}: a grain moved {:.6g} in one step, not less than the smallest block "
+                "edge {:.6g}: the motion is unstable or far too fast for time.dt; reduce "
+                "time.dt (or the velocities, forces and stiffness that drive the grains)",
+                m_steps + 1, motion[1], m_smallestEdge));
         m_sync->sync(*m_local, m_moved);
         m_leftDomain += m_sync->lastStats().leftDomain;
         // The detectors' bound covers the copies of other ranks' masters too.
-        if (m_comm->size() > 1)
-            m_moved = m_comm->allReduce(m_moved, core::ReduceOp::Max);
+        m_moved = motion[0];
         for (ContactDetector& d : m_detectors)
             d.noteMotion(m_moved);
         m_moved = 0.0;
+        m_movedSinceSync = 0.0;
     }
     // One call per step keeps SOS-class grains converged after set-up.
     if (m_config.checkInvariants)

@@ -208,6 +208,11 @@ private:
     /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
     /// unknown, before the first step).
     double m_moved = std::numeric_limits<double>::infinity();
+    /// The same, measured (never +inf for "unknown"): what syncParticles checks.
+    double m_movedSinceSync = 0.0;
+    /// The smallest block edge of the forest: a grain that moves farther in one step may
+    /// skip the neighbour blocks the sync reaches.
+    double m_smallestEdge = std::numeric_limits<double>::infinity();
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
