@@ -210,6 +210,18 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
         scene.walls.push_back(parseWall(walls[i], i));
     root.rejectUnknownKeys();
     requireGravityMatchesPeriodicity(root, scene);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+        // A grain crossing the periodic face would come back on the wall's other side.
+        for (int a = 0; a < 3; ++a)
+            if (scene.forest.periodic[static_cast<std::size_t>(a)] &&
+                scene.walls[i].normal[a] != 0.0)
+                walls[i].fail("normal", fmt::format("the wall crosses the periodic axis {0} (its "
+                                                    "normal has a {0} component; domain.periodic): "
+                                                    "grains leaving through the periodic face "
+                                                    "would come back behind it; make the normal "
+                                                    "perpendicular to the periodic axes",
+                                                    "xyz"[a]));
+    }
     // The value rules of [[particles]] are the generators' (one place); checked here too so a
     // bad entry fails before anything is built, with the line it was written on.
     try {
