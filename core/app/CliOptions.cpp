@@ -83,6 +83,12 @@ CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view 
     }
     if (app->count("--steps") > 0)
         options.steps = parseSteps(steps);
+    // An empty name was ignored: --restart "" started afresh, --json "" wrote nothing.
+    for (char const* name : {"--json", "--dump", "--output", "--restart", "scene"})
+        if (app->count(name) > 0 && app->get_option(name)->as<std::string>().empty())
+            throw InputError(
+                fmt::format("{}: expected a {} name, got an empty string", name,
+                            std::string_view(name) == "--output" ? "directory" : "file"));
     return options;
 }
 

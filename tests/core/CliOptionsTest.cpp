@@ -59,6 +59,12 @@ TEST(CliOptions, BadCommandLinesAreInputErrors) {
     EXPECT_EQ(err({"--steps", "99999999999999999999"}),
               "--steps 99999999999999999999: expected a decimal integer below 2^63");
     EXPECT_NE(err({"--json"}).find("--json"), std::string::npos);
+    // An empty name is refused (it was ignored: --restart "" started a fresh run).
+    EXPECT_EQ(err({"--restart", ""}), "--restart: expected a file name, got an empty string");
+    EXPECT_EQ(err({"--json", ""}), "--json: expected a file name, got an empty string");
+    EXPECT_EQ(err({"--dump", ""}), "--dump: expected a file name, got an empty string");
+    EXPECT_EQ(err({"--output", ""}), "--output: expected a directory name, got an empty string");
+    EXPECT_EQ(err({""}), "scene: expected a file name, got an empty string");
 }
 
 TEST(CliOptions, SceneOptionsEditTheSceneWithTheirOwnOrigin) {
