@@ -78,9 +78,15 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
                     fmt::format("{} {}: cannot create the directory '{}': {}", option, path, dir,
                                 made ? made.message() : (ec ? ec.message() : "not a directory")));
         }
-        if (access(dir.c_str(), W_OK) != 0)
-            throw core::InputError(fmt::format("{} {}: directory '{}' is not writable: {}", option,
+        // A file created and removed there, as the write will (access() says yes to root
+        // even where nothing can be created, e.g. in /proc, and the run's end is too late).
+        std::string const probe = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
+        std::FILE* f = std::fopen(probe.c_str(), "wb");
+        if (f == nullptr)
+            throw core::InputError(fmt::format("{} {}: cannot create a file in '{}': {}", option,
                                                path, dir, std::strerror(errno)));
+        std::fclose(f);
+        std::remove(probe.c_str());
     });
 }
 
