@@ -40,14 +40,15 @@ void set(core::ConfigTable& scene, std::string_view key, std::string const& valu
                         fmt::format("{} (from {})", key, because));
 }
 
-/// The domain keys the expansion owns must not be set by the scene.
-void requireDomainUnset(core::ConfigTable const& scene, std::string_view section) {
+/// The domain keys the expansion owns must not be set by the scene; `instead` names the
+/// scenario's keys that decide them.
+void requireDomainUnset(core::ConfigTable const& scene, std::string_view section,
+                        std::string_view instead) {
     auto const domain = scene.findTable("domain");
     for (std::string_view key : {"max", "blocks"})
         if (domain && domain->has(key))
-            domain->fail(key, fmt::format("is set by the [{}] scenario; change {}.per_rank, "
-                                          "{}.box or {}.blocks_per_rank instead",
-                                          section, section, section, section));
+            domain->fail(key, fmt::format("is set by the [{}] scenario; change {} instead", section,
+                                          instead));
 }
 
 Counts positiveCounts(core::ConfigTable const& s, std::string_view key, Counts fallback) {
@@ -75,7 +76,8 @@ Vec positiveExtent(core::ConfigTable const& s, std::string_view key, Vec fallbac
 Vec layOut(core::ConfigTable& scene, std::string_view section, int ranks, int axes,
            Vec perRankDefault) {
     core::ConfigTable const s = scene.table(section);
-    requireDomainUnset(scene, section);
+    requireDomainUnset(scene, section,
+                       fmt::format("{0}.per_rank, {0}.box or {0}.blocks_per_rank", section));
     static constexpr std::array<std::string_view, 2> kScaling{"weak", "strong"};
     bool const weak = s.getChoiceOr("scaling", kScaling, 0) == 0;
     auto const grid = rankGrid(ranks, axes);
@@ -83,6 +85,9 @@ Vec layOut(core::ConfigTable& scene, std::string_view section, int ranks, int ax
     Vec extent{};
     for (std::size_t a = 0; a < 3; ++a)
         extent[a] = perRank[a] * grid[a];
+    if (weak && s.has("box"))
+        s.fail("box", "applies only with scaling = \"strong\" (weak scaling takes the extent "
+                      "from per_rank and the rank count)");
     if (!weak) {
         if (!s.has("box"))
             s.fail("box", "is required with scaling = \"strong\" (the fixed domain extent)");
@@ -132,7 +137,9 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
     if (!scene.findTable("bidisperse"))
         return;
     core::ConfigTable const s = scene.table("bidisperse");
-    requireDomainUnset(scene, "bidisperse");
+    requireDomainUnset(scene, "bidisperse",
+                       "bidisperse.building_blocks, bidisperse.blocks_per_building_block or "
+                       "bidisperse.edge");
     Counts const count = positiveCounts(s, "building_blocks", {1, 1, 1});
     Counts const split = positiveCounts(s, "blocks_per_building_block", {4, 4, 4});
     // Bounded before the large spheres are written out one per building block below (10^15
@@ -179,6 +186,18 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
 }
 
 void expandScenarios(core::ConfigTable& scene, int ranks) {
+    // Each lays out the whole domain: two would overwrite each other's.
+    std::string first;
+    for (char const* section : {"granular_gas", "dense_ramp", "bidisperse"}) {
+        if (!scene.findTable(section))
+            continue;
+        if (!first.empty())
+            throw core::InputError(
+                fmt::format("{}: [{}]: a scene takes one scenario section, and [{}] is one "
+                            "already",
+                            scene.table(section).location(), section, first));
+        first = section;
+    }
     expandGranularGas(scene, ranks);
     expandDenseRamp(scene, ranks);
     expandBidisperse(scene, ranks);

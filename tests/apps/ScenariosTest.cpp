@@ -61,6 +61,26 @@ TEST(Scenarios, RefusesWhatItCannotLayOut) {
     auto badRadius = scene("[bidisperse]\nedge = 20.0\nlarge_radius = 10.0\n[domain]\n"
                            "[[particles]]\nkind = \"list\"\n");
     EXPECT_THROW(expandScenarios(badRadius, 1), core::InputError);
+    // Found by a review: the messages named keys of another scenario, or none.
+    auto const message = [](std::string const& text) {
+        auto s = scene(text);
+        try {
+            expandScenarios(s, 1);
+        } catch (core::InputError const& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message("[bidisperse]\n[domain]\nblocks = [1, 1, 1]\n"),
+              "test.toml:3: domain.blocks: is set by the [bidisperse] scenario; change "
+              "bidisperse.building_blocks, bidisperse.blocks_per_building_block or "
+              "bidisperse.edge instead");
+    EXPECT_EQ(message("[granular_gas]\n[bidisperse]\n[domain]\n"),
+              "test.toml:2: [bidisperse]: a scene takes one scenario section, and "
+              "[granular_gas] is one already");
+    EXPECT_EQ(message("[granular_gas]\nbox = [4.0, 4.0, 4.0]\n[domain]\n"),
+              "test.toml:2: granular_gas.box: applies only with scaling = \"strong\" (weak "
+              "scaling takes the extent from per_rank and the rank count)");
 }
 
 TEST(Scenarios, DenseRampTiltsGravityAndLiftsTheTopWall) {
