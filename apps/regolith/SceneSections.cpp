@@ -222,6 +222,23 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
                                                     "perpendicular to the periodic axes",
                                                     "xyz"[a]));
     }
+    // A lattice whose neighbours overlap more than the validation accepts would be refused
+    // after generation, and a spacing far below the diameter generates (and compares) more
+    // grains than memory holds first: refused here.
+    auto const entries = root.tableArray("particles");
+    for (std::size_t i = 0; i < scene.particles.size(); ++i)
+        if (auto const* lattice = std::get_if<particles::LatticeSpec>(&scene.particles[i].kind)) {
+            double const overlap = 2.0 * lattice->radius - lattice->spacing;
+            if (overlap > scene.contact.initialOverlap * lattice->radius)
+                entries[i].fail(
+                    "spacing", fmt::format("grains of radius {:g} at spacing {:g} overlap their "
+                                           "neighbours by {:g}, more than contact."
+                                           "initial_overlap = {:g} of the radius; expected a "
+                                           "spacing of at least {:g}",
+                                           lattice->radius, lattice->spacing, overlap,
+                                           scene.contact.initialOverlap,
+                                           (2.0 - scene.contact.initialOverlap) * lattice->radius));
+        }
     // The value rules of [[particles]] are the generators' (one place); checked here too so a
     // bad entry fails before anything is built, with the line it was written on.
     try {

@@ -112,9 +112,23 @@ TEST(SceneSections, DefaultSceneFileIsValid) {
 }
 
 TEST(SceneSections, OverlappingLatticeIsAccepted) {
-    // MESA-PD's GranularGas geometry: sc spacing 1, radius 0.6, neighbours overlap.
-    auto const s = parse({"particles.0.lattice=sc", "particles.0.radius=0.6"});
+    // MESA-PD's GranularGas geometry: sc spacing 1, radius 0.6, neighbours overlap by a
+    // third of the radius, which contact.initial_overlap must allow; refused at parse time
+    // otherwise (a spacing far below the diameter generated more grains than memory holds
+    // before the overlap check refused them).
+    auto const s =
+        parse({"particles.0.lattice=sc", "particles.0.radius=0.6", "contact.initial_overlap=0.34"});
     EXPECT_EQ(std::get<particles::LatticeSpec>(s.particles[0].kind).radius, 0.6);
+    try {
+        (void)parse({"particles.0.lattice=sc", "particles.0.radius=0.6"});
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find(
+                      "particles[0].spacing: grains of radius 0.6 at spacing 1 overlap their "
+                      "neighbours by 0.2, more than contact.initial_overlap"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(SceneSections, VelocityForms) {
