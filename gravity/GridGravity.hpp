@@ -40,7 +40,7 @@ public:
 
     /// Deposits `grains` (this rank's share) and computes φ and g on the cells. Throws
     /// core::InputError on every rank for mass outside the domain (MeshTransfer::deposit) and
-    /// core::Error for a solve that does not converge. COLLECTIVE.
+    /// core::InputError (alike on every rank) for a solve that does not converge. COLLECTIVE.
     SolveStats update(Grains const& grains);
     /// As update(), from density() as the caller filled it (interior cells). COLLECTIVE.
     SolveStats solveFromDensity();

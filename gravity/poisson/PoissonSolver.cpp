@@ -172,8 +172,10 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
     stats.residual = r.residual;
     stats.setupSeconds = r.setupSeconds;
     stats.solveSeconds = r.solveSeconds;
+    // KSP's converged reason is the same on every rank: an error every rank agrees on, caused
+    // by the options, tolerances or grid the scene chose.
     if (!r.converged)
-        throw core::Error(fmt::format(
+        throw core::InputError(fmt::format(
             "grid gravity: the Poisson solve ({}) did not converge: {} after {} iterations, "
             "residual norm {:.3e} (gravity.petsc.options = \"{}\")",
             m_solverName, r.reason, stats.iterations, stats.residual, m_options.petscOptions));

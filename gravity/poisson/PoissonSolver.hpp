@@ -57,7 +57,7 @@ public:
 
     /// Solves for φ [length^2 / time^2] from density component 0 [mass / length^3] (interior
     /// cells) and writes φ into the interior cells of `potential`. Starts from the previous
-    /// solution (zero at first). Throws core::Error on every rank if the solve does not
+    /// solution (zero at first). Throws core::InputError on every rank if the solve does not
     /// converge, naming iterations, residual and PETSc's reason. COLLECTIVE.
     SolveStats solve(CellField const& density, CellField& potential);
 
