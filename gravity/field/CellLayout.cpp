@@ -1,6 +1,7 @@
 #include "gravity/field/CellLayout.hpp"
 
 #include "core/Error.hpp"
+#include "core/memory/MemoryBudget.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -35,6 +36,13 @@ CellLayout::CellLayout(core::Comm const& comm, domain::BlockForest const& forest
     , m_n(cellsPerBlock)
     , m_ghost(ghost) {
     validate(forest, cellsPerBlock, ghost);
+    // Before anything is sized by it: the fields (5 doubles a cell) and PETSc's matrix and
+    // vectors (~100 bytes a row) of this rank's share, alike on every rank.
+    double globalCells = 1.0;
+    for (int a = 0; a < 3; ++a)
+        globalCells *= static_cast<double>(forest.rootBlocks()[a]) * cellsPerBlock[a];
+    core::requireMemory(globalCells / comm.size() * 140.0, "domain.cells_per_block",
+                        fmt::format("a grid of {:.3g} cells", globalCells));
     auto const& geo = forest.geometry();
     for (int a = 0; a < 3; ++a) {
         m_padded[a] = m_n[a] + 2 * ghost;
