@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace regolith::particles {
@@ -60,6 +61,7 @@ public:
 private:
     domain::BlockForest const* m_forest;
     std::vector<BlockParticles> m_blocks;
+    std::vector<std::pair<std::uint64_t, std::size_t>> m_byId; ///< (raw id, index), sorted
 };
 
 } // namespace regolith::particles
