@@ -19,7 +19,11 @@ CheckpointSlice readLocal(core::Comm const& comm, std::string const& path,
                           std::uint64_t& hashSum) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw core::InputError(context + ": no such file");
+        throw core::InputError(context + (std::filesystem::is_directory(path, ec)
+                                              ? ": is a directory, not a checkpoint file"
+                                          : std::filesystem::exists(path, ec)
+                                              ? ": not a regular file"
+                                              : ": no such file"));
     std::unique_ptr<detail::CheckpointFile> const file = detail::hdf5().open(path, context);
     std::int64_t const version = file->formatVersion();
     if (version != kCheckpointFormatVersion)

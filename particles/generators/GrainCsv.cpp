@@ -8,6 +8,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <limits>
@@ -219,6 +220,9 @@ CsvGrainTable parseGrainCsv(std::istream& in, std::string const& fileName, std::
 }
 
 CsvGrainTable readGrainCsv(std::string const& path, std::string const& key) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) // opens "fine" and reads as empty
+        throw core::InputError(fmt::format("{}: '{}' is a directory, not a CSV file", key, path));
     std::ifstream in(path);
     if (!in)
         throw core::InputError(fmt::format("{}: cannot open '{}'", key, path));

@@ -377,6 +377,7 @@ TEST(Checkpoint, MissingFileIsRefused) {
     core::Comm const world;
     EXPECT_EQ(readError(world, "no_such_checkpoint.h5"),
               "checkpoint 'no_such_checkpoint.h5': no such file");
+    EXPECT_EQ(readError(world, "."), "checkpoint '.': is a directory, not a checkpoint file");
 }
 
 TEST(Checkpoint, GrainOutsideTheDomainIsRefused) {

@@ -154,6 +154,12 @@ TEST(GrainCsv, FileEntryErrorsNameTheEntryFileAndLine) {
                        (void)particles::generateGrains(missing, kDomain, {false, false, false});
                    }),
                    {"particles[0].path", "cannot open", "does-not-exist.csv"});
+    std::vector<ParticleSpec> const directory{
+        fileEntry(std::filesystem::temp_directory_path().string())};
+    expectContains(inputErrorOf([&] {
+                       (void)particles::generateGrains(directory, kDomain, {false, false, false});
+                   }),
+                   {"particles[0].path", "is a directory, not a CSV file"});
 }
 
 TEST(GrainCsv, RowIndexUidsAndDensityFromTheEntry) {
