@@ -8,6 +8,19 @@
 
 namespace regolith::gravity {
 
+namespace {
+
+/// The permutations of the axes that map the mesh onto itself: all six with cubic cells,
+/// the identity otherwise (with the eight reflections, the lattice symmetries the tables are
+/// averaged over).
+std::vector<std::array<int, 3>> axisPermutations(core::Vec3 const& spacing) {
+    if ((spacing.maxCoeff() - spacing.minCoeff()) <= 1e-12 * spacing.maxCoeff())
+        return {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    return {{0, 1, 2}};
+}
+
+} // namespace
+
 GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, double cutoffCells)
     : m_layout(&gravity.layout())
     , m_assignment(gravity.assignment())
@@ -95,10 +108,7 @@ void GridShortRange::measureCellPotential(core::Comm const& comm, GridGravity& g
     // Averaged over the reflections (and the axis permutations of cubic cells) of the
     // offsets the domain holds: the free-space boundary breaks the symmetry only slightly.
     core::Vec3 const& h = layout.spacing();
-    bool const cubic = (h.maxCoeff() - h.minCoeff()) <= 1e-12 * h.maxCoeff();
-    std::vector<std::array<int, 3>> perms{{0, 1, 2}};
-    if (cubic)
-        perms = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    auto const perms = axisPermutations(h);
     auto index = [&](std::array<std::int64_t, 3> const& e) {
         auto const s = static_cast<std::int64_t>(side);
         return static_cast<std::size_t>((e[0] + m_reach) +
@@ -173,10 +183,7 @@ void GridShortRange::symmetrise(std::vector<double> const& raw, core::Vec3 const
     // another: averaging T(P e) mapped back by P^-1 over the group P averages over the mapped
     // offsets too, and makes the table odd, T(-e) = -T(e), so the correction conserves
     // momentum pair by pair.
-    bool const cubic = (spacing.maxCoeff() - spacing.minCoeff()) <= 1e-12 * spacing.maxCoeff();
-    std::vector<std::array<int, 3>> perms{{0, 1, 2}};
-    if (cubic)
-        perms = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+    auto const perms = axisPermutations(spacing);
     int const side = 2 * m_half + 1;
     auto index = [&](std::array<int, 3> const& e) {
         return static_cast<std::size_t>((e[0] + m_half) +
