@@ -58,13 +58,17 @@ ForestSpec parseForestSpec(core::ConfigTable const& section) {
                                         "max = {}",
                                         str(spec.domain.min), str(spec.domain.max)));
 
-    spec.rootBlocks = section.getOrIf<std::array<int, 3>>(
+    // Read as 64-bit integers, so that a count beyond int is told the limit, not the type.
+    auto const blocks = section.getOrIf<std::array<std::int64_t, 3>>(
         "blocks", {1, 1, 1},
         [](auto const& n) {
-            return std::all_of(n.begin(), n.end(),
-                               [](int v) { return v > 0 && v <= kMaxRootBlocksPerAxis; });
+            return std::all_of(n.begin(), n.end(), [](std::int64_t v) {
+                return v > 0 && v <= std::int64_t{kMaxRootBlocksPerAxis};
+            });
         },
         fmt::format("an array of 3 positive integers (at most {} each)", kMaxRootBlocksPerAxis));
+    for (std::size_t a = 0; a < 3; ++a)
+        spec.rootBlocks[a] = static_cast<int>(blocks[a]);
     std::uint64_t const total = static_cast<std::uint64_t>(spec.rootBlocks[0]) *
                                 static_cast<std::uint64_t>(spec.rootBlocks[1]) *
                                 static_cast<std::uint64_t>(spec.rootBlocks[2]);

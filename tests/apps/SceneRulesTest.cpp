@@ -20,6 +20,10 @@ TEST(SceneSections, DomainRules) {
     EXPECT_EQ(errorWith("domain.blocks=[4,0,4]"),
               "--set domain.blocks=[4,0,4]: domain.blocks: expected an array of 3 positive "
               "integers (at most 2097152 each), got [4, 0, 4]");
+    // Beyond int: the limit, not "expected integers" (found by a review).
+    EXPECT_EQ(errorWith("domain.blocks=[9223372036854775807,1,1]"),
+              "--set domain.blocks=[9223372036854775807,1,1]: domain.blocks: expected an array of "
+              "3 positive integers (at most 2097152 each), got [9223372036854775807, 1, 1]");
     EXPECT_EQ(errorWith("domain.balance=grains"),
               "--set domain.balance=grains: domain.balance: expected one of \"load\", "
               "\"blocks\", got \"grains\"");
