@@ -163,6 +163,11 @@ void DemStep::syncParticles() {
         std::array<double, 2> motion{m_moved, m_movedSinceSync};
         if (m_comm->size() > 1)
             m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
+        if (!std::isfinite(motion[1])) // LargestMove: +inf for a non-finite displacement
+            throw core::InputError(fmt::format(
+                "step {}: a grain's position became non-finite: the motion is unstable; reduce "
+                "time.dt or the contact stiffness",
+                m_steps + 1));
         if (!(motion[1] < m_smallestEdge))
             throw core::InputError(fmt::format(
                 "step {}: a grain moved {:.6g} in one step, not less than the smallest block "
