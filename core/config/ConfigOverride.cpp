@@ -117,6 +117,7 @@ void ConfigTable::applyOverride(std::string_view assignment, std::string_view or
 
     // Walk to the container of the last segment, creating missing tables on the way.
     toml::node* current = m_doc->entry(m_id).table;
+    toml::key const* key = nullptr; // of `current` in its table, if it is in one
     std::string walked = path();
     for (std::size_t i = 0; i < segments.size(); ++i) {
         std::string const& seg = segments[i];
@@ -128,7 +129,9 @@ void ConfigTable::applyOverride(std::string_view assignment, std::string_view or
             }
             if (!table->contains(seg))
                 table->insert(seg, toml::table{});
-            current = table->get(seg);
+            auto const it = table->find(seg);
+            key = &it->first;
+            current = &it->second;
             walked = detail::joinPath(walked, seg);
         } else if (auto* array = current->as_array()) {
             auto const index = parseIndex(seg);
@@ -143,8 +146,12 @@ void ConfigTable::applyOverride(std::string_view assignment, std::string_view or
             current = array->get(*index);
             walked = fmt::format("{}[{}]", walked, *index);
         } else {
-            throw InputError(fmt::format("{}: '{}' is {}, not a table", from, walked,
-                                         detail::typeName(*current)));
+            // Name where the blocking value was written: it may be another option's doing
+            // (--set time=3 before --steps, which writes time.steps).
+            std::string const where = key ? m_doc->locateKey(*key, *current, "") : "";
+            throw InputError(fmt::format(
+                "{}: '{}' is {}{}, not a table", from, walked, detail::typeName(*current),
+                where.empty() || where == from ? "" : fmt::format(" (written by {})", where)));
         }
     }
 }

@@ -147,13 +147,19 @@ TEST(ConfigOverride, MalformedAssignmentsAreInputErrors) {
               "--set particles.5.radius=1: 'particles' has 2 entries; '5' is not an index of it");
     EXPECT_EQ(err("particles.x.radius=1"),
               "--set particles.x.radius=1: 'particles' has 2 entries; 'x' is not an index of it");
-    EXPECT_EQ(err("time.dt.x=1"), "--set time.dt.x=1: 'time.dt' is a number, not a table");
+    EXPECT_EQ(err("time.dt.x=1"), "--set time.dt.x=1: 'time.dt' is a number (written by "
+                                  "scene.toml:6), not a table");
     std::string const m = err("domain.blocks=[2,2");
     EXPECT_EQ(m.rfind("--set domain.blocks=[2,2: malformed value '[2,2': ", 0), 0u) << m;
     EXPECT_EQ(err("sync.method=\"sos").rfind("--set sync.method=\"sos: malformed value", 0), 0u);
     EXPECT_EQ(err("time.dt=1\nsteps=3").rfind("--set time.dt=1\nsteps=3: ", 0), 0u);
     // Nothing above changed the document.
     EXPECT_EQ(root.table("time").get<double>("dt"), 0.1);
+    // The blocking value came from another option: it is named (the message blamed only the
+    // option that ran into it, e.g. --steps after --set time=3).
+    root.applyOverride("time=3");
+    EXPECT_EQ(inputErrorOf([&] { root.applyOverride("time.steps=3", "--steps 3"); }),
+              "--steps 3: 'time' is an integer (written by --set time=3), not a table");
 }
 
 TEST(ConfigOverride, LaterOverridesWinAndCustomOriginsAreReported) {
