@@ -168,7 +168,14 @@ public:
             m_setUp = true;
         }
         double const t0 = MPI_Wtime();
-        check(KSPSolve(m_ksp, m_b, m_x), "KSPSolve");
+        // With -ksp_error_if_not_converged a divergence is an error code, not a reason: it is
+        // reported as the reason (the same on every rank), so that the caller's collective
+        // "did not converge" applies; any other error is a failure.
+        if (PetscErrorCode const ierr = KSPSolve(m_ksp, m_b, m_x); ierr != 0) {
+            KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+            if (KSPGetConvergedReason(m_ksp, &reason) != 0 || reason >= 0)
+                check(ierr, "KSPSolve");
+        }
         r.solveSeconds = MPI_Wtime() - t0;
         PetscInt its = 0;
         PetscReal rnorm = 0.0;
