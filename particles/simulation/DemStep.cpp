@@ -31,9 +31,15 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     , m_frame(local.forest().geometry()) {
     if (!(config.dt > 0.0) || !std::isfinite(config.dt))
         throw core::Error("DemStep: the time step must be positive and finite");
-    for (BlockParticles const& bp : local.blocks())
-        m_smallestEdge = std::min(m_smallestEdge, bp.block->aabb.extent().minCoeff());
-    m_smallestEdge = comm.allReduce(m_smallestEdge, core::ReduceOp::Min);
+    // Per block, the smallest edge of it and its neighbours: a master that moves less in a
+    // step stays within the blocks the sync reaches from its block.
+    for (BlockParticles const& bp : local.blocks()) {
+        double edge = bp.block->aabb.extent().minCoeff();
+        for (domain::BlockLink const& l : bp.block->neighbours)
+            edge = std::min(edge, l.aabb.extent().minCoeff());
+        m_reachEdge.push_back(edge);
+    }
+    m_movedSinceSync.assign(m_reachEdge.size(), 0.0);
     std::size_t const blocks = local.blocks().size();
     m_detectors.assign(blocks, ContactDetector(config.detector));
     m_contacts.resize(blocks);
@@ -87,14 +93,20 @@ double postThenPreForce(I const& integrator, ParticleStorage& ps, double dt, cor
 }
 
 /// The largest over the local blocks of what `phase(integrator, storage)` returns (the
-/// distance it moved a copy; +inf wins).
+/// distance it moved a copy; +inf wins); `relative[b]` grows by block b's share of it over
+/// `edges[b]`.
 template <class Phase>
-double largestOverBlocks(AnyIntegrator const& any, LocalParticles& local, Phase&& phase) {
+double largestOverBlocks(AnyIntegrator const& any, LocalParticles& local,
+                         std::span<double const> edges, std::span<double> relative, Phase&& phase) {
     return std::visit(
         [&](auto const& integrator) {
             double moved = 0.0;
-            for (BlockParticles& bp : local.blocks())
-                moved = std::max(moved, phase(integrator, bp.particles));
+            auto const blocks = local.blocks();
+            for (std::size_t b = 0; b < blocks.size(); ++b) {
+                double const d = phase(integrator, blocks[b].particles);
+                relative[b] += d / edges[b];
+                moved = std::max(moved, d);
+            }
             return moved;
         },
         any);
@@ -107,13 +119,13 @@ void DemStep::step(StepEnd end) {
     core::Vec3 const& g = m_config.gravity;
     {
         auto const t = m_timers->scope(kIntegrateTimer);
-        double const moved = largestOverBlocks(
-            m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
-                return m_kickPending ? postThenPreForce(integrator, ps, dt, g)
-                                     : integrator.preForce(ps, dt, g);
-            });
+        double const moved =
+            largestOverBlocks(m_integrator, *m_local, m_reachEdge, m_movedSinceSync,
+                              [&](auto const& integrator, ParticleStorage& ps) {
+                                  return m_kickPending ? postThenPreForce(integrator, ps, dt, g)
+                                                       : integrator.preForce(ps, dt, g);
+                              });
         m_moved += moved;
-        m_movedSinceSync += moved;
         m_kickPending = false;
     }
     syncParticles();
@@ -130,12 +142,10 @@ void DemStep::completeStep() {
     auto const t = m_timers->scope(kIntegrateTimer);
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;
-    double const moved =
-        largestOverBlocks(m_integrator, *m_local, [&](auto const& integrator, ParticleStorage& ps) {
-            return integrator.postForce(ps, dt, g);
-        });
-    m_moved += moved;
-    m_movedSinceSync += moved;
+    m_moved += largestOverBlocks(m_integrator, *m_local, m_reachEdge, m_movedSinceSync,
+                                 [&](auto const& integrator, ParticleStorage& ps) {
+                                     return integrator.postForce(ps, dt, g);
+                                 });
     m_kickPending = false;
 }
 
@@ -160,7 +170,15 @@ void DemStep::syncParticles() {
         auto const t = m_timers->scope(kSyncTimer);
         // Over all ranks before the sync, so that every rank refuses a step that moved a
         // grain beyond what the sync reaches (else an internal error on one rank mid-sync).
-        std::array<double, 2> motion{m_moved, m_movedSinceSync};
+        // motion: the bound, then the largest share of a block's reach and that block's edge
+        // (the reach as a negative, so that one Max reduction finds the largest share and,
+        // among equal shares, the smallest edge).
+        std::array<double, 3> motion{m_moved, 0.0, -std::numeric_limits<double>::infinity()};
+        for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
+            if (m_movedSinceSync[b] > motion[1] || !(m_movedSinceSync[b] <= motion[1])) {
+                motion[1] = m_movedSinceSync[b];
+                motion[2] = -m_reachEdge[b];
+            }
         if (m_comm->size() > 1)
             m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
         if (!std::isfinite(motion[1])) // LargestMove: +inf for a non-finite displacement
@@ -168,12 +186,13 @@ void DemStep::syncParticles() {
                 "step {}: a grain's position became non-finite: the motion is unstable; reduce "
                 "time.dt or the contact stiffness",
                 m_steps + 1));
-        if (!(motion[1] < m_smallestEdge))
+        if (!(motion[1] < 1.0))
             throw core::InputError(fmt::format(
-                "step {}: a grain moved {:.6g} in one step, not less than the smallest block "
-                "edge {:.6g}: the motion is unstable or far too fast for time.dt; reduce "
-                "time.dt (or the velocities, forces and stiffness that drive the grains)",
-                m_steps + 1, motion[1], m_smallestEdge));
+                "step {}: a grain moved {:.6g} block edges in one step, beyond the neighbour "
+                "blocks the synchronisation reaches (the smallest edge around it is {:.6g}): "
+                "the motion is unstable or far too fast for time.dt; reduce time.dt (or the "
+                "velocities, forces and stiffness that drive the grains)",
+                m_steps + 1, motion[1], -motion[2]));
         m_sync->sync(*m_local, m_moved);
         m_leftDomain += m_sync->lastStats().leftDomain;
         // The detectors' bound covers the copies of other ranks' masters too.
@@ -181,7 +200,7 @@ void DemStep::syncParticles() {
         for (ContactDetector& d : m_detectors)
             d.noteMotion(m_moved);
         m_moved = 0.0;
-        m_movedSinceSync = 0.0;
+        std::fill(m_movedSinceSync.begin(), m_movedSinceSync.end(), 0.0);
     }
     // One call per step keeps SOS-class grains converged after set-up.
     if (m_config.checkInvariants)

@@ -208,11 +208,12 @@ private:
     /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
     /// unknown, before the first step).
     double m_moved = std::numeric_limits<double>::infinity();
-    /// The same, measured (never +inf for "unknown"): what syncParticles checks.
-    double m_movedSinceSync = 0.0;
-    /// The smallest block edge of the forest: a grain that moves farther in one step may
-    /// skip the neighbour blocks the sync reaches.
-    double m_smallestEdge = std::numeric_limits<double>::infinity();
+    /// Per local block, the largest displacement since the last sync call over m_reachEdge
+    /// (measured, never +inf for "unknown"): what syncParticles checks against 1.
+    std::vector<double> m_movedSinceSync;
+    /// Per local block, the smallest edge of it and its neighbours: a master that moves
+    /// farther in one step may skip the neighbour blocks the sync reaches.
+    std::vector<double> m_reachEdge;
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
