@@ -1,6 +1,7 @@
 #include "domain/BlockForest.hpp"
 
 #include "domain/ForestBuilder.hpp"
+#include "domain/SpecValidation.hpp"
 
 #include <algorithm>
 
@@ -10,6 +11,8 @@ namespace {
 
 /// Builds the global forest once; kept out of BlockForest so that it is gone after set-up.
 ForestBuilder buildAndAssign(ForestSpec const& spec, BlockWeight const& weight, int ranks) {
+    validate(spec);
+    requireRefinementFits(spec, ranks);
     ForestBuilder builder(spec);
     builder.assign(weight, ranks);
     return builder;

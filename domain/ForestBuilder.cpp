@@ -17,33 +17,11 @@ namespace regolith::domain {
 
 namespace {
 
-/// Memory a block costs a rank with the particle module's per-block state, measured: 8.8 KB
-/// a block from 6,763 to 42,351 blocks (refinement levels 4 and 5, one rank).
-constexpr double kBytesPerBlock = 8.0e3;
-
 int maxRefineLevel(ForestSpec const& spec) {
     validate(spec); // before anything reads the spec
     int level = 0;
-    // The blocks of the finest level in each region, a lower bound on the leaves (2:1
-    // balance adds more): a region refined beyond what memory holds is refused up front.
-    double blocks = 0.0;
-    for (RefineRegion const& r : spec.refine) {
+    for (RefineRegion const& r : spec.refine)
         level = std::max(level, r.level);
-        double n = 1.0;
-        for (int a = 0; a < 3; ++a) {
-            double const edge = spec.domain.extent()[a] /
-                                spec.rootBlocks[static_cast<std::size_t>(a)] /
-                                std::ldexp(1.0, r.level);
-            n *= std::max(0.0, std::floor((std::min(r.region.max[a], spec.domain.max[a]) -
-                                           std::max(r.region.min[a], spec.domain.min[a])) /
-                                          edge) +
-                                   1.0);
-        }
-        blocks += n;
-    }
-    core::requireMemory(
-        blocks * kBytesPerBlock, "domain.refine",
-        fmt::format("refining to level {} (at least {:.3g} blocks)", level, blocks));
     return level;
 }
 
@@ -66,6 +44,33 @@ LatticeBox childBox(LatticeBox const& parent, int k) {
 }
 
 } // namespace
+
+void requireRefinementFits(ForestSpec const& spec, int ranks) {
+    // Memory a block costs with the particle module's per-block state, measured: 8.8 KB a
+    // block from 6,763 to 42,351 blocks (refinement levels 4 and 5, one rank), shared out
+    // among the ranks. The blocks of the finest level in each region are a lower bound on
+    // the leaves (2:1 balance adds more).
+    constexpr double kBytesPerBlock = 8.0e3;
+    int level = 0;
+    double blocks = 0.0;
+    for (RefineRegion const& r : spec.refine) {
+        level = std::max(level, r.level);
+        double n = 1.0;
+        for (int a = 0; a < 3; ++a) {
+            double const edge = spec.domain.extent()[a] /
+                                spec.rootBlocks[static_cast<std::size_t>(a)] /
+                                std::ldexp(1.0, r.level);
+            n *= std::max(0.0, std::floor((std::min(r.region.max[a], spec.domain.max[a]) -
+                                           std::max(r.region.min[a], spec.domain.min[a])) /
+                                          edge) +
+                                   1.0);
+        }
+        blocks += n;
+    }
+    core::requireMemory(
+        blocks * kBytesPerBlock / ranks, "domain.refine",
+        fmt::format("refining to level {} (at least {:.3g} blocks)", level, blocks));
+}
 
 ForestBuilder::ForestBuilder(ForestSpec const& spec)
     : m_geometry(spec.domain, spec.rootBlocks, spec.periodic, maxRefineLevel(spec)) {

@@ -27,6 +27,11 @@ struct LeafLink {
     PeriodicImage image{0, 0, 0};
 };
 
+/// Throws core::InputError naming domain.refine if the blocks `spec`'s refinement makes at
+/// least, with their per-block state shared among `ranks`, exceed this node's memory. Pre:
+/// `spec` validated.
+void requireRefinementFits(ForestSpec const& spec, int ranks);
+
 /// Builds the whole forest on one rank. Not collective; O(blocks) memory and time for the tree
 /// and the curve, O(27 + links) per neighbour query (a search over the root grid cells around
 /// the block and their octrees, not over all blocks).
