@@ -68,6 +68,23 @@ GridShortRange::GridShortRange(core::Comm const& comm, GridGravity& gravity, dou
         v /= static_cast<double>(offsets.size());
     symmetrise(vector, layout.spacing());
     measureCellPotential(comm, gravity, centre);
+    // On a periodic domain the table also holds the images' and the background's potential:
+    // its regular part at the cut-off stays in the corrections, so that they vanish there (no
+    // jump in the energy as a pair crosses it) and each grain keeps its share with its own
+    // images, as the Ewald sum has it. Averaged over the 26 directions of the cube's faces,
+    // edges and corners. In free space the mesh is taken as exact from the cut-off on, as
+    // the forces are (its ~0.4 % there would only shift every close pair's energy).
+    double sum = 0.0;
+    int count = 0;
+    for (int z = -1; z <= 1 && gravity.periodic(); ++z)
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x)
+                if (x != 0 || y != 0 || z != 0) {
+                    core::Vec3 const d = core::Vec3(x, y, z).normalized();
+                    sum += meshPotential(centre, centre + m_cutoff * d) + m_G / m_cutoff;
+                    ++count;
+                }
+    m_regular = count > 0 ? sum / count : 0.0;
     // The grains' first solve must not start from the unit sources' potential: with a
     // periodic domain its residual exceeded PETSc's divergence bound before the first step.
     gravity.resetInitialGuess();
@@ -256,7 +273,11 @@ double GridShortRange::pairPotential(core::Vec3 const& xi, core::Vec3 const& xj,
     double const r = (xj - xi).norm();
     if (r >= m_cutoff)
         return 0.0;
-    return -m_G / std::sqrt(r * r + softening * softening) - meshPotential(xi, xj);
+    return -m_G / std::sqrt(r * r + softening * softening) - meshPotential(xi, xj) + m_regular;
+}
+
+double GridShortRange::selfPotential(core::Vec3 const& x) const {
+    return meshPotential(x, x) - m_regular;
 }
 
 } // namespace regolith::gravity

@@ -48,15 +48,20 @@ public:
     [[nodiscard]] core::Vec3 pairCorrection(core::Vec3 const& d, double softening) const;
     /// Correction to the potential at grain i (at xi) due to grain j (at xj, the image
     /// nearest to xi) per unit m_j [length² / (mass time²)]: the exact -G / sqrt(r² + ε²)
-    /// minus what the mesh gave, meshPotential(xi, xj); 0 from the cut-off on (the mesh taken
-    /// as exact there). Local, pure.
+    /// minus what the mesh gave, meshPotential(xi, xj), plus the table's regular part at the
+    /// cut-off (images and background on a periodic domain, ~0 in free space), so that it
+    /// vanishes at the cut-off; 0 from the cut-off on. Local, pure.
     [[nodiscard]] double pairPotential(core::Vec3 const& xi, core::Vec3 const& xj,
                                        double softening) const;
     /// The mesh potential at xi due to a grain at xj per unit mass of it (the deposit of xj
-    /// read with the weights of xi from the unit-cell table); with xi = xj, what a point grain
-    /// at xi feels from itself, which ½ Σ m φ includes and P3M subtracts so that the energy
-    /// is the pairs' alone, as for the direct sum [length² / (mass time²)]. Local, pure.
+    /// read with the weights of xi from the unit-cell table) [length² / (mass time²)].
+    /// Local, pure.
     [[nodiscard]] double meshPotential(core::Vec3 const& xi, core::Vec3 const& xj) const;
+    /// What a point grain at x feels from its own deposit, per unit mass of it, less the
+    /// table's regular part: ½ Σ m φ includes it and P3M subtracts it, so that in free space
+    /// the energy is the pairs' alone, as for the direct sum, and on a periodic domain each
+    /// grain keeps its images' share. Local, pure.
+    [[nodiscard]] double selfPotential(core::Vec3 const& x) const;
 
 private:
     /// Fills m_cell: the potential at cell offsets up to m_reach of a unit G m in one cell at
@@ -78,6 +83,7 @@ private:
     std::vector<core::Vec3> m_vector; ///< meshPairVector at the lattice nodes, x fastest
     std::int64_t m_reach = 0;         ///< unit-cell table: offsets |i| <= m_reach
     std::vector<double> m_cell;       ///< unit-cell table, x fastest
+    double m_regular = 0.0;           ///< the table's regular part at the cut-off (see above)
 };
 
 } // namespace regolith::gravity

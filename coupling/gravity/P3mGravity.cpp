@@ -114,8 +114,7 @@ double P3mGravity::addShortRange(gravity::PointMasses const& grains) {
     // The mesh potential at each grain includes the grain's own (mesh-softened) potential,
     // which depends on where it sits in its cell.
     for (std::size_t k = 0; k < n; ++k)
-        energy -=
-            0.5 * m_mass[k] * m_mass[k] * m_shortRange.meshPotential(m_position[k], m_position[k]);
+        energy -= 0.5 * m_mass[k] * m_mass[k] * m_shortRange.selfPotential(m_position[k]);
     return energy;
 }
 
