@@ -58,8 +58,8 @@ std::vector<std::string> differingSections(std::string const& stored, std::strin
         auto const a = core::ConfigTable::fromString(stored, "checkpoint scene");
         auto const b = core::ConfigTable::fromString(text, "scene");
         std::vector<std::string> out;
-        for (char const* key :
-             {"name", "domain", "particles", "walls", "contact", "gravity", "sync"})
+        for (char const* key : {"name", "domain", "particles", "walls", "contact", "gravity",
+                                "sync", "granular_gas", "dense_ramp", "bidisperse"})
             if (!a.sameValue(key, b))
                 out.emplace_back(key);
         return out;
