@@ -109,10 +109,10 @@ struct RunStart {
 /// The masters of a restarted run, from --restart FILE (any rank count), checked against
 /// the state checksum the writer stored. Returns the checkpoint's step and time. COLLECTIVE.
 RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
-                      particles::LocalParticles& local) {
+                      std::string const& text, particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
     double const start = MPI_Wtime();
-    io::CheckpointSlice slice = readRestart(ctx.world, path, scene, sceneText(ctx));
+    io::CheckpointSlice slice = readRestart(ctx.world, path, scene, text);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
     if (restored != slice.info.stateChecksum)
@@ -147,7 +147,8 @@ int runScene(core::AppContext& ctx) {
     requireSkinBelowBlockEdges(world, *placement.forest, scene.contact.neighbourSkin);
     if (restart) // before the checkpoint is read: its dt would be compared with an unresolved one
         refuseAutoOnRestart(scene);
-    RunStart start = restart ? restoreState(ctx, scene, *placement.local) : RunStart{};
+    std::string const text = sceneText(ctx); // stored in checkpoints, compared on a restart
+    RunStart start = restart ? restoreState(ctx, scene, text, *placement.local) : RunStart{};
     std::int64_t const startStep = start.step;
     std::vector<AutoChoice> const choices =
         restart ? std::vector<AutoChoice>{}
@@ -206,7 +207,7 @@ int runScene(core::AppContext& ctx) {
     }
 
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.
-    CheckpointSchedule checkpoints(world, scene, sceneText(ctx), local, timeAt);
+    CheckpointSchedule checkpoints(world, scene, text, local, timeAt);
     checkpoints.setSelfGravity(selfGravity.get());
     std::optional<io::VtkOutput> vtk;
     if (scene.output.vtkEvery > 0) {

@@ -203,7 +203,8 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     scene.gravity = optionalSection<GravitySection>(root, "gravity", parseGravity);
     scene.output = optionalSection<OutputSection>(root, "output", parseOutput);
     std::string const sceneDir = source.parent_path().string();
-    for (auto const& entry : root.tableArray("particles"))
+    auto const entries = root.tableArray("particles");
+    for (auto const& entry : entries)
         scene.particles.push_back(parseParticleSource(entry, scene.forest.domain, sceneDir));
     auto const walls = root.tableArray("walls");
     for (std::size_t i = 0; i < walls.size(); ++i)
@@ -225,7 +226,6 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     // A lattice whose neighbours overlap more than the validation accepts would be refused
     // after generation, and a spacing far below the diameter generates (and compares) more
     // grains than memory holds first: refused here.
-    auto const entries = root.tableArray("particles");
     for (std::size_t i = 0; i < scene.particles.size(); ++i)
         if (auto const* lattice = std::get_if<particles::LatticeSpec>(&scene.particles[i].kind)) {
             double const overlap = 2.0 * lattice->radius - lattice->spacing;

@@ -129,6 +129,16 @@ void writeSample(core::Comm const& comm, std::string const& path) {
 }
 
 /// The message readCheckpoint throws on every rank (or "" if it does not throw).
+/// Overwrites the root attribute `name` of the file at `path` (rank 0 only).
+template <class T>
+void overwriteAttribute(std::string const& path, char const* name, hid_t type, T value) {
+    hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    hid_t const attr = H5Aopen(file, name, H5P_DEFAULT);
+    H5Awrite(attr, type, &value);
+    H5Aclose(attr);
+    H5Fclose(file);
+}
+
 std::string readError(core::Comm const& comm, std::string const& path) {
     try {
         (void)io::readCheckpoint(comm, path);
@@ -337,14 +347,8 @@ TEST(Checkpoint, ImpossibleGrainCountIsRefusedBeforeAllocating) {
     core::Comm const world;
     std::string const path = fileName(world, "grain_count");
     writeSample(world, path);
-    if (world.rank() == 0) {
-        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-        hid_t const attr = H5Aopen(file, "grain_count", H5P_DEFAULT);
-        std::uint64_t const n = std::uint64_t{1} << 62;
-        H5Awrite(attr, H5T_NATIVE_UINT64, &n);
-        H5Aclose(attr);
-        H5Fclose(file);
-    }
+    if (world.rank() == 0)
+        overwriteAttribute(path, "grain_count", H5T_NATIVE_UINT64, std::uint64_t{1} << 62);
     world.barrier();
     std::string const message = readError(world, path);
     EXPECT_NE(message.find("checkpoint '" + path + "': 4611686018427387904 grains"),
@@ -357,14 +361,8 @@ TEST(Checkpoint, OtherFormatVersionIsRefused) {
     core::Comm const world;
     std::string const path = fileName(world, "version");
     writeSample(world, path);
-    if (world.rank() == 0) {
-        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-        hid_t const attr = H5Aopen(file, "format_version", H5P_DEFAULT);
-        std::int64_t const v = 99;
-        H5Awrite(attr, H5T_NATIVE_INT64, &v);
-        H5Aclose(attr);
-        H5Fclose(file);
-    }
+    if (world.rank() == 0)
+        overwriteAttribute(path, "format_version", H5T_NATIVE_INT64, std::int64_t{99});
     world.barrier();
     std::string const message = readError(world, path);
     EXPECT_NE(message.find(fmt::format("format version 99, this build reads version {}",
