@@ -104,6 +104,7 @@ particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
         p.restitution = c.restitution;
         p.friction = c.friction;
         p.rollingFriction = c.rollingFriction;
+        p.rollingSpring = c.rollingSpring;
         return particles::SpringDashpot(
             particles::MaterialTable<particles::LinearContactParams>(types, p));
     }
@@ -115,6 +116,7 @@ particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
     p.restitution = c.restitution;
     p.friction = c.friction;
     p.rollingFriction = c.rollingFriction;
+    p.rollingSpring = c.rollingSpring;
     return particles::HertzMindlin(
         particles::MaterialTable<particles::HertzMindlinParams>(types, p));
 }

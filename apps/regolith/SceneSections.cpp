@@ -27,6 +27,7 @@ using namespace std::string_view_literals;
 /// particles::syncMethodName's.
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
+constexpr std::array kRollingNames{"constant"sv, "spring"sv};
 constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
                                 "pm"sv,         "p3m"sv,         "occupied-cells"sv,
                                 "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
@@ -84,6 +85,16 @@ ContactSection parseContact(core::ConfigTable const& t) {
                                    "a non-negative finite number");
     s.rollingFriction = t.getOrIf<double>("rolling_friction", s.rollingFriction,
                                           isNonNegativeFinite, "a non-negative finite number");
+    s.rollingSpring.enabled = t.getChoiceOr("rolling_model", kRollingNames, 0) == 1;
+    for (char const* key : {"rolling_stiffness", "rolling_damping_ratio"})
+        if (t.has(key) && !s.rollingSpring.enabled)
+            t.fail(key, "applies only with rolling_model = \"spring\" (model C)");
+    s.rollingSpring.stiffness =
+        t.getOrIf<double>("rolling_stiffness", s.rollingSpring.stiffness, isNonNegativeFinite,
+                          "a non-negative finite number (0: 2.25 rolling_friction^2 stiffness)");
+    s.rollingSpring.dampingRatio =
+        t.getOrIf<double>("rolling_damping_ratio", s.rollingSpring.dampingRatio,
+                          isNonNegativeFinite, "a non-negative finite number");
     s.initialOverlap = t.getOrIf<double>(
         "initial_overlap", s.initialOverlap, [](double f) { return f >= 0.0 && f < 1.0; },
         "a fraction of the smaller radius in [0, 1)");

@@ -13,6 +13,7 @@
 #include "core/math/AABB.hpp"
 #include "domain/ForestSpec.hpp"
 #include "particles/generators/GeneratorSpec.hpp"
+#include "particles/kernels/TangentialSpring.hpp"
 #include "particles/storage/WallList.hpp"
 #include "particles/sync/SyncMethod.hpp"
 
@@ -50,7 +51,11 @@ enum class ContactModel { SpringDashpot, Hertz };
 
 /// [contact] model ("spring-dashpot" | "hertz"), stiffness (> 0; N/m for spring-dashpot,
 /// the effective modulus in Pa for Hertz), restitution in [0, 1], friction >= 0 (Coulomb
-/// coefficient), rolling_friction >= 0, initial_overlap (how far two grains may overlap at
+/// coefficient), rolling_friction >= 0 (mu_r: the rolling couple is at most mu_r R_eff F_n),
+/// rolling_model ("constant": model A, a constant couple that cannot hold a grain at rest;
+/// "spring": model C, a spring-dashpot-slider that can, with rolling_stiffness >= 0, default
+/// 2.25 mu_r^2 k_n, and rolling_damping_ratio >= 0, default 0.3; TangentialSpring.hpp),
+/// initial_overlap (how far two grains may overlap at
 /// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry),
 /// neighbour_skin (the Verlet list's skin, a length >= 0, LAMMPS's `neighbor` skin; 0: no
 /// list, linked cells every step; absent: a quarter of each block's small grains' radius).
@@ -61,6 +66,7 @@ struct ContactSection {
     double restitution = 0.9;
     double friction = 0.5;
     double rollingFriction = 0.0;
+    particles::RollingSpring rollingSpring; ///< model C if enabled
     double initialOverlap = 1e-6;
     std::optional<double> neighbourSkin;
 };

@@ -78,6 +78,7 @@ void scalarPairLoop(benchmark::State& state) {
     SpringDashpot const model = regolith::bench::oneMaterialSpringDashpot(50.0, 0.9, 0.5);
     double const dt = 0.01;
     std::vector<Vec3> spring(l.neighbour.size(), Vec3::Zero());
+    Vec3 rolling = Vec3::Zero(); // model A: untouched
     std::size_t const grains = l.x.size();
     for (auto _ : state) {
         for (std::size_t i = 0; i < grains; ++i)
@@ -110,7 +111,7 @@ void scalarPairLoop(benchmark::State& state) {
                                      0.0,
                                      0,
                                      0};
-                ContactResponse const r = model(s, spring[q], dt);
+                ContactResponse const r = model(s, spring[q], rolling, dt);
                 l.f[j] += r.force;
                 l.t[j] += rj.cross(r.force) + r.torque;
                 fi -= r.force;

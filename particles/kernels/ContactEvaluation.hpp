@@ -44,6 +44,23 @@ inline ContactState pairState(ParticleStorage const& ps, Contact const& c) {
                         ps.type(c.j)};
 }
 
+/// Calls `f(spring, rolling)` with the contact's springs from `history`: the tangential one
+/// keyed by `partner` (found through `hint`), and with `rolling` (model C) the rolling one
+/// keyed by rollingKey(partner), both touched with `stamp`; without, a zero vector that is
+/// not stored. Returns f's result. The rolling entry is read and written by value around f:
+/// touching one entry may insert it and move the other.
+template <class F>
+auto withSprings(ContactHistory& history, Uid partner, std::uint32_t stamp, std::uint8_t& hint,
+                 bool rolling, F&& f) {
+    core::Vec3 roll = core::Vec3::Zero();
+    if (!rolling)
+        return f(history.touch(partner, stamp, hint).spring, roll);
+    roll = history.touch(rollingKey(partner), stamp).spring;
+    auto const result = f(history.touch(partner, stamp, hint).spring, roll);
+    history.find(rollingKey(partner))->spring = roll;
+    return result;
+}
+
 /// Something that receives one participant's share of one contact:
 /// `sink(copy, partnerUid, force, torque)` with `copy` a storage index.
 template <class S>
@@ -62,8 +79,9 @@ template <ContactModel M, ContactSink S>
 void evaluatePair(ParticleStorage& ps, Contact const& c, M const& model, double dt,
                   std::uint32_t stamp, std::uint8_t& hint, S&& sink) {
     ContactState const s = pairState(ps, c);
-    core::Vec3& spring = ps.history(c.i).touch(ps.uid(c.j), stamp, hint).spring;
-    ContactResponse const r = model(s, spring, dt);
+    ContactResponse const r =
+        withSprings(ps.history(c.i), ps.uid(c.j), stamp, hint, model.hasRollingSpring(),
+                    [&](auto& spring, auto& roll) { return model(s, spring, roll, dt); });
     core::Vec3 const torqueJ = (c.point - partnerCentre(ps, c)).cross(r.force) + r.torque;
     core::Vec3 const torqueI = (c.point - ps.position(c.i)).cross(r.force) + r.torque;
     sink(c.j, ps.uid(c.i), r.force, torqueJ);
@@ -77,8 +95,10 @@ void evaluateWallsWith(ParticleStorage& ps, WallList& walls, std::vector<WallCon
     for (WallContact const& c : list) {
         ContactState const s = wallState(ps, walls, c);
         Uid const wall = walls[c.wall].uid;
-        core::Vec3& spring = ps.history(c.particle).touch(wall, stamp).spring;
-        ContactResponse const r = model(s, spring, dt);
+        std::uint8_t hint = 0;
+        ContactResponse const r =
+            withSprings(ps.history(c.particle), wall, stamp, hint, model.hasRollingSpring(),
+                        [&](auto& spring, auto& roll) { return model(s, spring, roll, dt); });
         sink(c.particle, wall, r.force,
              core::Vec3((c.point - ps.position(c.particle)).cross(r.force) + r.torque));
         walls.force(c.wall) -= r.force;

@@ -33,11 +33,14 @@ struct ContactResponse {
 };
 
 /// A contact force model: a stateless functor that, given the contact's kinematics, its
-/// tangential spring from the history (updated in place) and the time step, returns the
-/// force and couple on j.
+/// tangential and rolling springs from the history (updated in place) and the time step,
+/// returns the force and couple on j; it says whether it uses the rolling spring (model C)
+/// at all, so that histories keep one only then.
 template <class M>
-concept ContactModel = requires(M const& m, ContactState const& s, core::Vec3& spring, double dt) {
-    { m(s, spring, dt) } -> std::same_as<ContactResponse>;
+concept ContactModel = requires(M const& m, ContactState const& s, core::Vec3& spring,
+                                core::Vec3& rolling, double dt) {
+    { m(s, spring, rolling, dt) } -> std::same_as<ContactResponse>;
+    { m.hasRollingSpring() } -> std::convertible_to<bool>;
 };
 
 } // namespace regolith::particles

@@ -43,6 +43,8 @@ HertzMindlin::HertzMindlin(MaterialTable<HertzMindlinParams> materials)
         check.restitution(p.restitution);
         check.nonNegative("friction", p.friction);
         check.nonNegative("rolling_friction", p.rollingFriction);
+        check.rollingSpring(p.rollingSpring.stiffness, p.rollingSpring.dampingRatio, 0.0);
+        m_rollingSpring = m_rollingSpring || p.rollingSpring.enabled;
         double const l = std::log(p.restitution);
         double const beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
         m_beta.set(a, b, -2.0 * std::sqrt(5.0 / 6.0) * beta);

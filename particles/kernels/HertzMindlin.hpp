@@ -19,6 +19,7 @@ struct HertzMindlinParams {
     double restitution = 1.0;            ///< e in (0, 1]
     double friction = 0.0;               ///< Coulomb mu >= 0
     double rollingFriction = 0.0;        ///< mu_r >= 0, dimensionless
+    RollingSpring rollingSpring; ///< model C if enabled, else model A (TangentialSpring.hpp)
 
     /// The pair of two materials with Young's moduli E and Poisson ratios nu:
     /// 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b,
@@ -45,9 +46,12 @@ public:
     explicit HertzMindlin(MaterialTable<HertzMindlinParams> materials);
 
     /// Inline: the fused contact loop runs it once per contact and step.
-    ContactResponse operator()(ContactState const& s, core::Vec3& spring, double dt) const;
+    ContactResponse operator()(ContactState const& s, core::Vec3& spring, core::Vec3& rolling,
+                               double dt) const;
 
     [[nodiscard]] MaterialTable<HertzMindlinParams> const& materials() const { return m_materials; }
+    /// Whether some pair of materials has model C's rolling spring.
+    [[nodiscard]] bool hasRollingSpring() const { return m_rollingSpring; }
     /// Duration of an elastic impact at relative normal velocity `impactVelocity`:
     /// 2.87 (m_eff^2 / (R_eff E*^2 v))^(1/5) (Johnson, "Contact Mechanics", 1985, sec. 11.4;
     /// the constant is 2.868) [time].
@@ -57,12 +61,13 @@ public:
 private:
     MaterialTable<HertzMindlinParams> m_materials;
     MaterialTable<double> m_beta; ///< -2 sqrt(5/6) beta per pair (>= 0)
+    bool m_rollingSpring = false;
 };
 
 static_assert(ContactModel<HertzMindlin>);
 
 inline ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec3& spring,
-                                                double dt) const {
+                                                core::Vec3& rolling, double dt) const {
     HertzMindlinParams const& p = m_materials(s.typeI, s.typeJ);
     double const damping = m_beta(s.typeI, s.typeJ);
     double const a = std::sqrt(s.effectiveRadius * s.penetration);
@@ -77,7 +82,8 @@ inline ContactResponse HertzMindlin::operator()(ContactState const& s, core::Vec
     r.force = fn * s.normal;
     r.force += tangentialForce(spring, s.normal, vt, st, damping * std::sqrt(st * s.effectiveMass),
                                p.friction * std::max(fn, 0.0), dt);
-    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
+    // Model C's default k_r from the contact's current normal stiffness S_n.
+    r.torque = rollingResistance(s, rolling, p.rollingFriction, p.rollingSpring, sn, fn, dt);
     return r;
 }
 

@@ -37,4 +37,16 @@ void MaterialCheck::restitution(double value) const {
         throwBadMaterial(*this, "restitution", value, "a value in (0, 1]");
 }
 
+void MaterialCheck::rollingSpring(double stiffness, double dampingRatio,
+                                  double normalStiffness) const {
+    nonNegative("rolling_stiffness", stiffness);
+    nonNegative("rolling_damping_ratio", dampingRatio);
+    if (normalStiffness > 0.0 && stiffness > normalStiffness)
+        throw core::InputError(fmt::format(
+            "contact.rolling_stiffness = {} for material types ({}, {}): expected at most the "
+            "normal stiffness {} (a stiffer rolling spring oscillates faster than the normal "
+            "contact, whose duration sets the time step)",
+            stiffness, a, b, normalStiffness));
+}
+
 } // namespace regolith::particles

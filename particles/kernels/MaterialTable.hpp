@@ -18,6 +18,11 @@ struct MaterialCheck {
     void positive(char const* key, double value) const;    ///< finite and > 0
     void nonNegative(char const* key, double value) const; ///< finite and >= 0
     void restitution(double value) const;                  ///< in (0, 1]
+    /// Model C's rolling spring: stiffness and damping ratio finite and >= 0, the stiffness at
+    /// most `normalStiffness` if that is > 0 (a linear model's k_n): stiffer, the rolling
+    /// oscillation (inertia 1 / (R_eff^2 ΣI⁻¹), at least 0.4 m_eff) would outrun the normal
+    /// one, whose period sets the time step; up to k_n it is at most 1.6 times faster.
+    void rollingSpring(double stiffness, double dampingRatio, double normalStiffness) const;
 };
 
 /// A symmetric `numTypes x numTypes` table of contact parameters `P`. Type indices are the

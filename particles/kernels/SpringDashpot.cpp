@@ -25,6 +25,8 @@ SpringDashpot::SpringDashpot(MaterialTable<LinearContactParams> materials)
         check.nonNegative("friction", p.friction);
         check.nonNegative("tangential_damping_ratio", p.tangentialDampingRatio);
         check.nonNegative("rolling_friction", p.rollingFriction);
+        check.rollingSpring(p.rollingSpring.stiffness, p.rollingSpring.dampingRatio, p.stiffness);
+        m_rollingSpring = m_rollingSpring || p.rollingSpring.enabled;
         m_dampingRatio.set(a, b, dampingRatioFromRestitution(p.restitution));
     });
 }

@@ -20,6 +20,7 @@ struct LinearContactParams {
     /// Tangential damping c_t = ratio * c_n (LAMMPS gran/hooke/history uses 1/2).
     double tangentialDampingRatio = 0.5;
     double rollingFriction = 0.0; ///< mu_r >= 0, dimensionless (0: no rolling resistance)
+    RollingSpring rollingSpring;  ///< model C if enabled, else model A (TangentialSpring.hpp)
 };
 
 /// gamma / omega_0 = -ln e / sqrt(pi^2 + ln^2 e): the damping that makes a free two-body
@@ -30,10 +31,10 @@ double dampingRatioFromRestitution(double restitution);
 /// The model: on j, F = (k_n delta - c_n v_n) n + F_t with c_n = 2 m_eff gamma,
 /// gamma = -ln(e) sqrt(k_n/m_eff) / sqrt(pi^2 + ln^2 e), v_n = v_rel . n (negative when
 /// approaching), and F_t from tangentialForce with k_t, c_t = ratio * c_n, limit
-/// mu * max(k_n delta - c_n v_n, 0). The normal force is not clamped at zero: the analytic
-/// restitution e = exp(-gamma t_c) holds for the unclamped oscillator, whose force turns
-/// slightly attractive just before separation (Schwager & Poeschel 2007 discuss the clamped
-/// variant, which has a different e).
+/// mu * max(k_n delta - c_n v_n, 0), and the couple of rollingResistance. The normal force is not
+/// clamped at zero: the analytic restitution e = exp(-gamma t_c) holds for the unclamped
+/// oscillator, whose force turns slightly attractive just before separation (Schwager & Poeschel
+/// 2007 discuss the clamped variant, which has a different e).
 class SpringDashpot {
 public:
     using Params = LinearContactParams;
@@ -42,7 +43,8 @@ public:
     explicit SpringDashpot(MaterialTable<LinearContactParams> materials);
 
     /// Inline: the fused contact loop runs it once per contact and step.
-    ContactResponse operator()(ContactState const& s, core::Vec3& spring, double dt) const;
+    ContactResponse operator()(ContactState const& s, core::Vec3& spring, core::Vec3& rolling,
+                               double dt) const;
 
     [[nodiscard]] MaterialTable<LinearContactParams> const& materials() const {
         return m_materials;
@@ -51,18 +53,22 @@ public:
     [[nodiscard]] double dampingRatio(std::uint32_t a, std::uint32_t b) const {
         return m_dampingRatio(a, b);
     }
+    /// Whether some pair of materials has model C's rolling spring (SpringDashpotBatch does
+    /// not evaluate it).
+    [[nodiscard]] bool hasRollingSpring() const { return m_rollingSpring; }
     /// Duration of a free normal collision: pi / sqrt(k/m_eff - gamma^2) [time].
     static double contactTime(LinearContactParams const& p, double effectiveMass);
 
 private:
     MaterialTable<LinearContactParams> m_materials;
     MaterialTable<double> m_dampingRatio; ///< dampingRatioFromRestitution per pair
+    bool m_rollingSpring = false;
 };
 
 static_assert(ContactModel<SpringDashpot>);
 
 inline ContactResponse SpringDashpot::operator()(ContactState const& s, core::Vec3& spring,
-                                                 double dt) const {
+                                                 core::Vec3& rolling, double dt) const {
     LinearContactParams const& p = m_materials(s.typeI, s.typeJ);
     double const cn =
         2.0 * m_dampingRatio(s.typeI, s.typeJ) * std::sqrt(p.stiffness * s.effectiveMass);
@@ -74,7 +80,8 @@ inline ContactResponse SpringDashpot::operator()(ContactState const& s, core::Ve
     r.force = fn * s.normal;
     r.force += tangentialForce(spring, s.normal, vt, p.tangentialStiffness,
                                p.tangentialDampingRatio * cn, p.friction * std::max(fn, 0.0), dt);
-    r.torque = rollingTorque(s, p.rollingFriction, fn, dt);
+    r.torque =
+        rollingResistance(s, rolling, p.rollingFriction, p.rollingSpring, p.stiffness, fn, dt);
     return r;
 }
 

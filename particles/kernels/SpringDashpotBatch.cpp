@@ -1,5 +1,7 @@
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
+#include "core/Error.hpp"
+
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -69,6 +71,8 @@ inline double cross(int c, double ax, double ay, double az, double bx, double by
 
 void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const& model,
                                   double dt) {
+    if (model.hasRollingSpring())
+        throw core::Error("SpringDashpotBatch: model C's rolling spring is evaluated pair by pair");
     std::size_t const n = m_size;
     auto const& materials = model.materials();
     // One material (most scenes): the parameters are the same in every lane, so the lanes

@@ -1,7 +1,8 @@
 #pragma once
 /// Pieces shared by the contact models: the tangential spring with Coulomb limit and the
-/// constant-torque rolling resistance. Inline: they run once per contact and step, inside the
-/// models' operator(), which the fused contact loop inlines too.
+/// rolling resistance (constant torque, model A, or spring-dashpot-slider, model C). Inline: they
+/// run once per contact and step, inside the models' operator(), which the fused contact loop
+/// inlines too.
 #include "core/math/Vec3.hpp"
 #include "particles/kernels/ContactState.hpp"
 
@@ -59,8 +60,8 @@ inline core::Vec3 tangentialForce(core::Vec3& spring, core::Vec3 const& normal,
 /// resisted). Its magnitude is capped at what would stop the relative rolling within `dt`,
 /// the usual fix for model A's chattering around zero rolling velocity. Known limit: it
 /// cannot hold a grain at rest against a driving torque T, which creeps at the relative spin
-/// T dt ΣI⁻¹ (docs/results.md, "Known limits of the contact models"); model C's rolling
-/// spring would.
+/// T dt ΣI⁻¹ (docs/results.md, "Known limits of the contact models"); model C
+/// (rollingSpringTorque) does.
 inline core::Vec3 rollingTorque(ContactState const& s, double rollingFriction, double normalForce,
                                 double dt) {
     if (!(rollingFriction > 0.0) || !(normalForce > 0.0))
@@ -74,6 +75,67 @@ inline core::Vec3 rollingTorque(ContactState const& s, double rollingFriction, d
     if (s.inverseInertiaSum > 0.0)
         magnitude = std::min(magnitude, wNorm / (dt * s.inverseInertiaSum));
     return -magnitude / wNorm * w;
+}
+
+/// Model C's parameters for one pair of materials (rollingSpringTorque); off: model A.
+struct RollingSpring {
+    bool enabled = false;
+    /// k_r [force/length] on the rolling displacement; 0: Ai et al.'s 2.25 mu_r^2 k_n (their
+    /// eq. 18 written for a displacement, k_n the normal stiffness of the contact).
+    double stiffness = 0.0;
+    /// eta_r: c_r = 2 eta_r sqrt(k_r m_r), m_r = 1 / (R_eff^2 ΣI⁻¹) the inertia of the
+    /// relative rolling (Ai et al. recommend 0.3).
+    double dampingRatio = 0.3;
+};
+
+/// Spring-dashpot-slider rolling resistance (Ai, Chen, Rotter & Ooi, Powder Technol. 206
+/// (2011) 269, model C; the displacement form of LAMMPS's pair granular `rolling sds`), the
+/// couple on j; updates `rolling` in place. The relative rolling velocity
+/// v_r = R_eff (omega_j - omega_i) x n (twisting about n is not resisted) accumulates in
+/// `rolling`, kept in the tangent plane like the tangential spring (projectSpring); the trial
+/// force f = -k_r rolling - c_r v_r is capped at mu_r max(F_n, 0), the spring truncated to what
+/// the cap implies (the slider), and the couple is R_eff n x f, so at most mu_r R_eff F_n as in
+/// model A. Unlike model A it holds a grain at rest against a driving torque below that cap
+/// (tests/particles/InclineTest.cpp). With mu_r = 0, k_r = 0 or F_n <= 0 the spring is reset
+/// and there is no couple.
+/// Units: normalStiffness k_n [force/length] (for the default k_r), normalForce [force].
+inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling,
+                                      double rollingFriction, RollingSpring const& law,
+                                      double normalStiffness, double normalForce, double dt) {
+    double const kr = law.stiffness > 0.0
+                          ? law.stiffness
+                          : 2.25 * rollingFriction * rollingFriction * normalStiffness;
+    double const limit = rollingFriction * std::max(normalForce, 0.0);
+    if (!(kr > 0.0) || !(limit > 0.0)) {
+        rolling.setZero();
+        return core::Vec3::Zero();
+    }
+    double const reff = s.effectiveRadius;
+    core::Vec3 const vr = reff * s.relativeAngularVelocity.cross(s.normal);
+    double const cr =
+        s.inverseInertiaSum > 0.0
+            ? 2.0 * law.dampingRatio * std::sqrt(kr / (reff * reff * s.inverseInertiaSum))
+            : 0.0;
+    projectSpring(rolling, s.normal);
+    rolling += vr * dt;
+    core::Vec3 f = -kr * rolling - cr * vr;
+    double const f2 = f.squaredNorm();
+    if (f2 > limit * limit) {
+        f *= limit / std::sqrt(f2);
+        rolling = -(f + cr * vr) / kr;
+    }
+    return reff * s.normal.cross(f);
+}
+
+/// The couple on j of the pair's rolling resistance: model C (rollingSpringTorque) if `law`
+/// is enabled, else model A (rollingTorque), which leaves `rolling` alone.
+inline core::Vec3 rollingResistance(ContactState const& s, core::Vec3& rolling,
+                                    double rollingFriction, RollingSpring const& law,
+                                    double normalStiffness, double normalForce, double dt) {
+    if (law.enabled)
+        return rollingSpringTorque(s, rolling, rollingFriction, law, normalStiffness, normalForce,
+                                   dt);
+    return rollingTorque(s, rollingFriction, normalForce, dt);
 }
 
 } // namespace regolith::particles

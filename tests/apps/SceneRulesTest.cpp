@@ -85,6 +85,17 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
     EXPECT_EQ(errorWith("contact.restitution=1.5"),
               "--set contact.restitution=1.5: contact.restitution: expected a number in (0, 1], "
               "got 1.5");
+    EXPECT_EQ(errorWith("contact.rolling_model=sds"),
+              "--set contact.rolling_model=sds: contact.rolling_model: expected one of "
+              "\"constant\", \"spring\", got \"sds\"");
+    EXPECT_EQ(errorWith("contact.rolling_stiffness=10"),
+              "--set contact.rolling_stiffness=10: contact.rolling_stiffness: applies only with "
+              "rolling_model = \"spring\" (model C)");
+    EXPECT_EQ(errorWith({"contact.rolling_damping_ratio=-1", "contact.rolling_model=spring"}),
+              "--set contact.rolling_damping_ratio=-1: contact.rolling_damping_ratio: expected a "
+              "non-negative finite number, got -1");
+    EXPECT_EQ(errorWith({"contact.rolling_model=spring", "contact.rolling_stiffness=5"}),
+              "(no error)");
     EXPECT_EQ(errorWith("contact.friction=-0.1"),
               "--set contact.friction=-0.1: contact.friction: expected a non-negative finite "
               "number, got -0.1");

@@ -37,6 +37,13 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
     EXPECT_EQ(s.contact.rollingFriction, 0.01);
+    EXPECT_FALSE(s.contact.rollingSpring.enabled); // the default: model A
+    auto const c = parse({"contact.rolling_model=\"spring\"", "contact.rolling_stiffness=40",
+                          "contact.rolling_damping_ratio=0.5"})
+                       .contact.rollingSpring;
+    EXPECT_TRUE(c.enabled);
+    EXPECT_EQ(c.stiffness, 40.0);
+    EXPECT_EQ(c.dampingRatio, 0.5);
     EXPECT_FALSE(s.contact.neighbourSkin); // the default: relative to the radius
     EXPECT_EQ(parse({"contact.neighbour_skin=0.2"}).contact.neighbourSkin, 0.2);
     EXPECT_EQ(parse({"contact.neighbour_skin=0"}).contact.neighbourSkin, 0.0);

@@ -102,6 +102,14 @@ regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
   NP8 base "--set domain.blocks=[2,2,2] --set sync.method=nns"
       "--set domain.blocks=[2,2,2] --set sync.method=nns --set sync.skin=0.1")
 
+#    With model C's rolling resistance the rolling springs travel with them too (and the
+#    contact loop is the pair-by-pair one: SpringDashpotBatch has no rolling spring).
+regolith_sync_equality(dense_packing_rolling_spring SCENE sync-dense-packing.toml
+  ARGS --set contact.rolling_friction=0.1 --set contact.rolling_model=spring
+  NP1 base ${one_block}
+  NP3 base "--set domain.blocks=[4,3,2] --set sync.skin=0.1"
+  NP4 "--set sync.method=sos" ${refined})
+
 # c) Bidisperse: the sphere of radius 15 spans 4 x 4 x 4 of the 8 x 8 x 8 blocks and crosses
 #    the periodic boundary x = 60 (FINAL: its centre ends near x = 1). Hybrid, and SOS against
 #    the hybrid reference: both must give the same trajectory. NNS must refuse it (below).

@@ -26,6 +26,15 @@ TEST(Uid, PacksRankAndCounterAndRejectsOverflow) {
     EXPECT_THROW((void)makeUid(kGlobalObjectRank + 1, 0), Error);
     EXPECT_THROW((void)makeUid(0, kUidCounterMask + 1), Error);
     EXPECT_THROW((void)makeUid(kGlobalObjectRank, kUidCounterMask), Error); // == kInvalidUid
+    // Rolling-spring keys are nobody's uid: the ranks they would take create none.
+    EXPECT_THROW((void)makeUid(kFirstReservedRank, 0), Error);
+    EXPECT_THROW((void)makeUid(kGlobalObjectRank - 1, 0), Error);
+    for (Uid const id : {makeUid(0, 0), makeUid(kFirstReservedRank - 1, kUidCounterMask),
+                         makeUid(kGlobalObjectRank, 0), makeUid(kGlobalObjectRank, 7)}) {
+        EXPECT_EQ(rollingKey(rollingKey(id)), id);
+        int const rank = uidRank(rollingKey(id));
+        EXPECT_TRUE(rank >= kFirstReservedRank && rank < kGlobalObjectRank) << rank;
+    }
 
     UidGenerator gen(5, 10);
     EXPECT_EQ(gen.next(), makeUid(5, 10));
