@@ -21,6 +21,15 @@ public:
     using Error::Error;
 };
 
+/// An error in the input that one rank finds alone, inside a collective step where the others
+/// cannot be told (NNS meeting a grain that the step carried beyond its reach, mid-sync). The
+/// entry point prints it as an input error, naming the rank, and ends the job with the input
+/// error's exit code (MPI_Abort: the other ranks may be waiting for this one).
+class RankInputError : public Error {
+public:
+    using Error::Error;
+};
+
 /// A message buffer that is shorter than what is read from it, or corrupt.
 class BufferError : public Error {
 public:

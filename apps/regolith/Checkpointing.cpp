@@ -50,13 +50,36 @@ std::string describe(core::AABB const& box, std::array<bool, 3> const& periodic)
                        fmt::join(periodic, ", "));
 }
 
-/// The sections of the checkpoint's scene text that differ from `text`'s (the command-line
-/// overrides are comment lines of both, so only the files count; output and time are expected
-/// to change on a restart). Empty if either text does not parse.
+/// The scene a run's text stands for: the file with the command-line overrides that
+/// sceneTextForCheckpoint appended as trailing comment lines ("# --set a.b=c") applied.
+core::ConfigTable effectiveScene(std::string const& text, std::string const& name) {
+    std::vector<std::string_view> lines;
+    std::string_view rest = text;
+    while (!rest.empty()) {
+        std::size_t const end = rest.find('\n');
+        lines.push_back(rest.substr(0, end));
+        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+    }
+    std::size_t first = lines.size();
+    auto const appended = [](std::string_view l) {
+        return l.starts_with("# --set ") || l.starts_with("# --steps ");
+    };
+    while (first > 0 && appended(lines[first - 1]))
+        --first;
+    auto table = core::ConfigTable::fromString(text, name);
+    for (std::size_t k = first; k < lines.size(); ++k)
+        if (lines[k].starts_with("# --set "))
+            table.applyOverride(lines[k].substr(8));
+    return table;
+}
+
+/// The sections of the checkpoint's scene that differ from this run's, both with their
+/// command-line overrides (output and time are expected to change on a restart). Empty if
+/// either does not parse.
 std::vector<std::string> differingSections(std::string const& stored, std::string const& text) {
     try {
-        auto const a = core::ConfigTable::fromString(stored, "checkpoint scene");
-        auto const b = core::ConfigTable::fromString(text, "scene");
+        auto const a = effectiveScene(stored, "checkpoint scene");
+        auto const b = effectiveScene(text, "scene");
         std::vector<std::string> out;
         for (char const* key : {"name", "domain", "particles", "walls", "contact", "gravity",
                                 "sync", "granular_gas", "dense_ramp", "bidisperse"})

@@ -30,7 +30,8 @@ double expectedGridError(std::span<GridErrorPoint const> points, double cellsAcr
     if (points.size() < 2 || cellsAcross >= points.back().cellsAcrossBody)
         return points.back().medianError;
     if (cellsAcross <= points.front().cellsAcrossBody)
-        return std::max(points.front().medianError, along(points[0], points[1]));
+        return std::max(points.front().medianError * points.front().cellsAcrossBody / cellsAcross,
+                        along(points[0], points[1]));
     std::size_t k = 1;
     while (points[k].cellsAcrossBody < cellsAcross)
         ++k;

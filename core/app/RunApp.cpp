@@ -5,6 +5,9 @@
 #include "core/log/Log.hpp"
 #include "core/memory/HeapPolicy.hpp"
 
+#include <fmt/format.h>
+#include <mpi.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -91,6 +94,11 @@ int runApp(int argc, char** argv, std::string_view appName, std::string_view def
         // rank 0's message: mpiexec kills the job as soon as one rank exits non-zero.
         MPI_Barrier(MPI_COMM_WORLD);
         return kExitInputError;
+    } catch (RankInputError const& e) {
+        std::fflush(stdout);
+        printInputError(appName, fmt::format("[rank {}] {}", rank, e.what()));
+        MPI_Abort(MPI_COMM_WORLD, kExitInputError);
+        std::_Exit(kExitInputError);
     } catch (std::exception const& e) {
         abortJob(appName, rank, e.what());
     } catch (...) {

@@ -3,17 +3,41 @@
 #include "core/Error.hpp"
 
 #include <fmt/format.h>
+#include <mpi.h>
 
+#include <limits>
 #include <unistd.h>
 
 namespace regolith::core {
+namespace {
 
-std::uint64_t physicalMemoryBytes() {
+std::uint64_t localPhysicalMemoryBytes() {
     long const pages = sysconf(_SC_PHYS_PAGES);
     long const size = sysconf(_SC_PAGE_SIZE);
     if (pages <= 0 || size <= 0)
         return 0;
     return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(size);
+}
+
+/// The smallest node's memory once agreed (0: not agreed, or unknown on every node).
+std::uint64_t g_agreedBytes = 0;
+bool g_agreed = false;
+
+} // namespace
+
+std::uint64_t physicalMemoryBytes() {
+    return g_agreed ? g_agreedBytes : localPhysicalMemoryBytes();
+}
+
+void agreeOnPhysicalMemory() {
+    // Unknown (0) takes no part in the minimum.
+    std::uint64_t const local = localPhysicalMemoryBytes();
+    std::uint64_t mine = local == 0 ? std::numeric_limits<std::uint64_t>::max() : local;
+    std::uint64_t least = mine;
+    if (MPI_Allreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS)
+        return; // keep each node's own figure
+    g_agreedBytes = least == std::numeric_limits<std::uint64_t>::max() ? 0 : least;
+    g_agreed = true;
 }
 
 void requireMemory(double bytesPerRank, std::string_view key, std::string_view what) {

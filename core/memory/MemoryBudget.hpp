@@ -7,12 +7,18 @@
 
 namespace regolith::core {
 
-/// Physical memory of this node [bytes] (sysconf), or 0 if unknown.
+/// Physical memory of this node [bytes] (sysconf), or 0 if unknown; after
+/// agreeOnPhysicalMemory, the smallest node's.
 [[nodiscard]] std::uint64_t physicalMemoryBytes();
+
+/// Collective over MPI_COMM_WORLD, once after MPI_Init (MpiEnvironment): from then on
+/// physicalMemoryBytes is the smallest of every rank's node, so that requireMemory, called with
+/// values every rank agrees on, refuses on every rank or on none also when nodes differ.
+void agreeOnPhysicalMemory();
 
 /// Throws InputError "<key>: <what> needs about X GiB per rank, more than the Y GiB of this
 /// machine" if `bytesPerRank` (a lower estimate; a double, so that products cannot overflow)
-/// exceeds the node's physical memory. Does nothing when that is unknown. Local: call it with
+/// exceeds physicalMemoryBytes. Does nothing when that is unknown. Not collective: call it with
 /// values every rank agrees on, or agree on the outcome.
 void requireMemory(double bytesPerRank, std::string_view key, std::string_view what);
 

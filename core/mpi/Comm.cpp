@@ -1,6 +1,7 @@
 #include "core/mpi/Comm.hpp"
 
 #include "core/Error.hpp"
+#include "core/memory/MemoryBudget.hpp"
 
 #include <utility>
 
@@ -16,6 +17,7 @@ MpiEnvironment::MpiEnvironment(int& argc, char**& argv) {
     }
     // Errors come back as codes that Comm::check turns into exceptions.
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    agreeOnPhysicalMemory();
 }
 
 MpiEnvironment::~MpiEnvironment() {

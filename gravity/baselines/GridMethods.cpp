@@ -92,7 +92,7 @@ double OccupiedCells::evaluate(core::Comm const& comm, PointMasses const& local,
     }
     m_stats.nodes = static_cast<long long>(n);
     m_stats.interactions = static_cast<long long>(n * sources.size());
-    double const energy = interpolateToGrains(m_options.grid, nodes, local, out);
+    double const energy = interpolateToGrains(m_options.grid, nodes, local, m_options.G, out);
     return comm.allReduce(energy, core::ReduceOp::Sum);
 }
 
@@ -147,7 +147,7 @@ double TreeAtNodes::evaluate(core::Comm const& comm, PointMasses const& local, F
                       &nodes.az[i], &nodes.phi[i]);
         m_stats.interactions += static_cast<long long>(list.cellCount() + list.grainCount());
     }
-    double const energy = interpolateToGrains(m_options.grid, nodes, local, out);
+    double const energy = interpolateToGrains(m_options.grid, nodes, local, m_options.G, out);
     return comm.allReduce(energy, core::ReduceOp::Sum);
 }
 

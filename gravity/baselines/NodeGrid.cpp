@@ -87,13 +87,24 @@ core::Vec3 nodePosition(NodeGrid const& grid, std::uint64_t k) {
 }
 
 double interpolateToGrains(NodeGrid const& grid, NodeField const& nodes, PointMasses const& targets,
-                           FieldOut out) {
+                           double G, FieldOut out) {
     validateFieldOut(out, targets.size());
     double energy = 0.0;
     std::array<double, 3> t{};
     for (std::size_t i = 0; i < targets.size(); ++i) {
         auto const c = cellOf(grid, targets.x[i], targets.y[i], targets.z[i], t);
         double a[4] = {0, 0, 0, 0};
+        // The target's own field at the 8 corners.
+        std::array<double, 8> cx{}, cy{}, cz{}, sx{}, sy{}, sz{}, sphi{};
+        for (int corner = 0; corner < 8; ++corner) {
+            core::Vec3 const p = nodePosition(
+                grid, key(c[0] + (corner & 1), c[1] + ((corner >> 1) & 1), c[2] + (corner >> 2)));
+            cx[static_cast<std::size_t>(corner)] = p.x();
+            cy[static_cast<std::size_t>(corner)] = p.y();
+            cz[static_cast<std::size_t>(corner)] = p.z();
+        }
+        accumulateSphereField(cx.data(), cy.data(), cz.data(), 8, targets, i, i + 1, G, sx.data(),
+                              sy.data(), sz.data(), sphi.data());
         for (int corner = 0; corner < 8; ++corner) {
             int const di = corner & 1;
             int const dj = (corner >> 1) & 1;
@@ -105,10 +116,11 @@ double interpolateToGrains(NodeGrid const& grid, NodeField const& nodes, PointMa
             if (it == nodes.keys.end() || *it != k)
                 throw core::Error("gravity grid: a grain's cell corner has no node value");
             auto const n = static_cast<std::size_t>(it - nodes.keys.begin());
-            a[0] += w * nodes.ax[n];
-            a[1] += w * nodes.ay[n];
-            a[2] += w * nodes.az[n];
-            a[3] += w * nodes.phi[n];
+            auto const s = static_cast<std::size_t>(corner);
+            a[0] += w * (nodes.ax[n] - sx[s]);
+            a[1] += w * (nodes.ay[n] - sy[s]);
+            a[2] += w * (nodes.az[n] - sz[s]);
+            a[3] += w * (nodes.phi[n] - sphi[s]);
         }
         out.ax[i] = a[0];
         out.ay[i] = a[1];

@@ -34,9 +34,14 @@ struct NodeField {
 };
 
 /// Trilinear interpolation of `nodes` to `targets` (the 8 corners of each target's cell
-/// must be in `nodes`, else core::Error). Overwrites `out`. Returns ½ Σ m φ. Not collective.
+/// must be in `nodes`, else core::Error), minus each target's own field (accumulateSphereField
+/// with constant `G`) at those corners interpolated with the same weights: the nodes hold the
+/// field of every grain, the target's included, and interpolated it does not vanish at the
+/// grain (a lone grain 0.3 spacings from a node accelerated itself at ~G m / h², and its
+/// potential energy held a self part that changed as it moved). Overwrites `out`. Returns
+/// ½ Σ m φ. Not collective.
 double interpolateToGrains(NodeGrid const& grid, NodeField const& nodes, PointMasses const& targets,
-                           FieldOut out);
+                           double G, FieldOut out);
 
 /// Adds to points [0, n) the field of sources of finite radius (uniform spheres): outside a
 /// grain the point-mass law, inside it the linear interior field a = G m d / r³ and

@@ -120,6 +120,7 @@ public:
 
         check(KSPCreate(m_comm, &m_ksp), "KSPCreate");
         std::string const prefix = "regolith_grav" + std::to_string(g_systemCount++) + "_";
+        m_prefix = prefix;
         check(KSPSetOptionsPrefix(m_ksp, prefix.c_str()), "KSPSetOptionsPrefix");
         check(KSPSetOperators(m_ksp, m_A, m_A), "KSPSetOperators");
         check(KSPSetType(m_ksp, KSPCG), "KSPSetType");
@@ -177,6 +178,18 @@ public:
                 check(ierr, "KSPSolve");
         }
         r.solveSeconds = MPI_Wtime() - t0;
+        if (!m_checkedUse) {
+            // Every option is read by now (KSPSetFromOptions, the set-up, the first solve).
+            m_checkedUse = true;
+            for (auto const& name : m_optionNames) {
+                PetscBool used = PETSC_FALSE;
+                // The database keeps names without the leading '-'.
+                check(PetscOptionsUsed(nullptr, name.c_str() + 1, &used), "PetscOptionsUsed");
+                if (!used)
+                    r.unusedOptions +=
+                        (r.unusedOptions.empty() ? "-" : " -") + name.substr(m_prefix.size() + 1);
+            }
+        }
         PetscInt its = 0;
         PetscReal rnorm = 0.0;
         KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -205,6 +218,8 @@ private:
     KSP m_ksp = nullptr;
     MatNullSpace m_nullSpace = nullptr;
     bool m_setUp = false;
+    bool m_checkedUse = false; ///< unusedOptions reported (first solve)
+    std::string m_prefix;
     std::vector<std::string> m_optionNames;
 };
 

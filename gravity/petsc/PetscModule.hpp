@@ -30,6 +30,9 @@ struct SolveResult {
     double solveSeconds = 0.0;
     bool converged = false;
     std::string reason; ///< KSPConvergedReasons[reason]
+    /// The first solve only: the options of finish() that PETSc had not read by then
+    /// (misspelt, or for another solver or preconditioner), space-separated; else empty.
+    std::string unusedOptions;
 };
 
 /// A symmetric sparse system A x = b over the rows of this rank (an AIJ matrix, CG with GAMG

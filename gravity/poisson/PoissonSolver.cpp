@@ -1,6 +1,7 @@
 #include "gravity/poisson/PoissonSolver.hpp"
 
 #include "core/Error.hpp"
+#include "core/log/Log.hpp"
 #include "gravity/petsc/PetscModule.hpp"
 
 #include <fmt/format.h>
@@ -167,6 +168,12 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
     } catch (petsc::Failure const& e) {
         rethrow(e, m_options.petscOptions);
     }
+    // The same on every rank (the options and the solver are); a misspelt option would
+    // otherwise be ignored without a word.
+    if (!r.unusedOptions.empty())
+        core::log::warn("gravity.petsc.options: PETSc did not use {} (misspelt, or for another "
+                        "solver or preconditioner than {})",
+                        r.unusedOptions, m_solverName);
     SolveStats stats;
     stats.iterations = r.iterations;
     stats.residual = r.residual;

@@ -1,6 +1,7 @@
 #include "gravity/transfer/MeshTransfer.hpp"
 
 #include "core/Error.hpp"
+#include "core/mpi/AgreeOnInputError.hpp"
 
 #include <fmt/format.h>
 
@@ -97,11 +98,11 @@ bool MeshTransfer::forEachCell(Grains const& grains, std::size_t i, Visit&& visi
 }
 
 void MeshTransfer::agree(std::string const& error) const {
-    if (m_comm.allTrue(error.empty()))
-        return;
-    throw core::InputError(error.empty() ? std::string("grid gravity: a grain on another rank "
-                                                       "puts mass outside the domain")
-                                         : error);
+    // The lowest failing rank's message on every rank (rank 0 prints it).
+    core::agreeOnInputError(m_comm, [&] {
+        if (!error.empty())
+            throw core::InputError(error);
+    });
 }
 
 namespace {
@@ -111,21 +112,23 @@ std::string checkGrain(Grains const& g, std::size_t i, domain::BlockForest const
     double const r = g.radius.empty() ? 0.0 : g.radius[i];
     double const m = g.mass.empty() ? 0.0 : g.mass[i];
     if (!p.allFinite() || !std::isfinite(r) || r < 0.0 || !std::isfinite(m) || m < 0.0)
-        return fmt::format("grid gravity: grain {} has position {}, radius {}, mass {}: expected "
+        return fmt::format("grid gravity: a grain has position {}, radius {}, mass {}: expected "
                            "finite values, radius and mass >= 0",
-                           i, str(p), r, m);
+                           str(p), r, m);
     if (!forest.insideDomain(p))
-        return fmt::format("grid gravity: grain {} at {} (mass outside the domain): the "
-                           "domain is {} - {}",
-                           i, str(p), str(forest.domain().min), str(forest.domain().max));
+        return fmt::format("grid gravity: a grain at {} lies outside the domain {} - {}, which "
+                           "the grid must hold (the particle methods drop such grains; enlarge the "
+                           "domain)",
+                           str(p), str(forest.domain().min), str(forest.domain().max));
     return {};
 }
 
 std::string outside(Grains const& g, std::size_t i, domain::BlockForest const& forest) {
-    return fmt::format("grid gravity: grain {} at {} with radius {} puts mass outside the "
-                       "domain {} - {} (its kernel reaches past a non-periodic face; enlarge "
-                       "the domain)",
-                       i, str(g.position[i]), g.radius.empty() ? 0.0 : g.radius[i],
+    return fmt::format("grid gravity: a grain at {}{} puts mass outside the domain {} - {} (its "
+                       "deposit reaches past a non-periodic face; enlarge the domain)",
+                       str(g.position[i]),
+                       g.radius.empty() ? std::string(" (deposited as a point)")
+                                        : fmt::format(" with radius {}", g.radius[i]),
                        str(forest.domain().min), str(forest.domain().max));
 }
 

@@ -329,8 +329,10 @@ void ParticleSync::syncInFull(LocalParticles& local,
                     << (small ? " plus its displacement in one step reach" : " is not below")
                     << " the smallest block edge " << edge
                     << " it may touch; set sync.method = \"sos\" or \"hybrid\""
+                    << (grow > 0.0 ? ", reduce sync.skin" : "")
                     << (small ? ", or reduce time.dt" : "");
-                throw core::Error(msg.str());
+                // Found here alone, mid-sync: the job ends with this message (exit 2).
+                throw core::RankInputError(msg.str());
             }
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);

@@ -204,7 +204,7 @@ TEST(GridSolver, BadInputNamesTheKey) {
                      "gravity.poisson");
     expectInputError([] { (void)parsePoissonMethod("multigrid"); }, "gravity.poisson");
 
-    // Mass outside the domain, held by the last rank only: every rank gets the error.
+    // Mass outside the domain, held by the last rank only: every rank gets its message.
     GridGravity gravity(world, forest, spec.cellsPerBlock, ok);
     std::vector<core::Vec3> pos;
     std::vector<double> mass;
@@ -212,7 +212,11 @@ TEST(GridSolver, BadInputNamesTheKey) {
         pos.push_back(core::Vec3{0.2, 1.3, 0.0});
         mass.push_back(1.0);
     }
-    expectInputError([&] { gravity.update({pos, {}, mass}); }, "outside the domain");
+    expectInputError(
+        [&] {
+            gravity.update({pos, {}, mass});
+        },
+        "a grain at [0.2, 1.3, 0] lies outside the domain");
     // The good options still work afterwards (the bad solver's options were removed).
     pos.clear();
     mass.clear();
