@@ -22,6 +22,11 @@
 
 namespace regolith::apps {
 
+namespace {
+/// The line between the scene file and its command-line overrides in sceneText.
+constexpr std::string_view kCommandLineMarker = "# regolith command line:";
+} // namespace
+
 std::string sceneText(core::AppContext const& ctx) {
     std::string text;
     if (ctx.isRoot()) {
@@ -33,6 +38,7 @@ std::string sceneText(core::AppContext const& ctx) {
             s << in.rdbuf();
             text = s.str(); // the scene was read moments ago; an empty text only loses provenance
         }
+        text += "\n" + std::string(kCommandLineMarker);
         for (std::string const& o : ctx.options.overrides)
             text += "\n# --set " + o;
         if (ctx.options.steps)
@@ -50,26 +56,28 @@ std::string describe(core::AABB const& box, std::array<bool, 3> const& periodic)
                        fmt::join(periodic, ", "));
 }
 
-/// The scene a run's text stands for: the file with the command-line overrides that
-/// sceneTextForCheckpoint appended as trailing comment lines ("# --set a.b=c") applied.
+/// The scene a run's text stands for: the file, with the command-line overrides that
+/// sceneText wrote after kCommandLineMarker ("# --set a.b=c" lines) applied; one that does
+/// not apply (a value with a line break) is left out rather than losing the comparison. A
+/// text without the marker (checkpoints before 2026-11-26) is the file alone.
 core::ConfigTable effectiveScene(std::string const& text, std::string const& name) {
-    std::vector<std::string_view> lines;
-    std::string_view rest = text;
+    std::size_t const marker = text.rfind("\n" + std::string(kCommandLineMarker));
+    std::string const file = marker == std::string::npos ? text : text.substr(0, marker);
+    auto table = core::ConfigTable::fromString(file, name);
+    if (marker == std::string::npos)
+        return table;
+    std::string_view rest = std::string_view(text).substr(marker + 1);
     while (!rest.empty()) {
         std::size_t const end = rest.find('\n');
-        lines.push_back(rest.substr(0, end));
+        std::string_view const line = rest.substr(0, end);
         rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+        if (!line.starts_with("# --set "))
+            continue;
+        try {
+            table.applyOverride(line.substr(8));
+        } catch (core::InputError const&) {
+        }
     }
-    std::size_t first = lines.size();
-    auto const appended = [](std::string_view l) {
-        return l.starts_with("# --set ") || l.starts_with("# --steps ");
-    };
-    while (first > 0 && appended(lines[first - 1]))
-        --first;
-    auto table = core::ConfigTable::fromString(text, name);
-    for (std::size_t k = first; k < lines.size(); ++k)
-        if (lines[k].starts_with("# --set "))
-            table.applyOverride(lines[k].substr(8));
     return table;
 }
 

@@ -81,10 +81,12 @@ inline core::Vec3 rollingTorque(ContactState const& s, double rollingFriction, d
 struct RollingSpring {
     bool enabled = false;
     /// k_r [force/length] on the rolling displacement; 0: Ai et al.'s 2.25 mu_r^2 k_n (their
-    /// eq. 18 written for a displacement, k_n the normal stiffness of the contact).
+    /// eq. 18 written for a displacement, k_n the normal stiffness of the contact), at most
+    /// k_n (MaterialCheck::rollingSpring).
     double stiffness = 0.0;
-    /// eta_r: c_r = 2 eta_r sqrt(k_r m_r), m_r = 1 / (R_eff^2 ΣI⁻¹) the inertia of the
-    /// relative rolling (Ai et al. recommend 0.3).
+    /// eta_r: c_r = 2 eta_r sqrt(k_r m_r), m_r = 1 / (R_eff^2 Σ 1/(I + m r^2)) the inertia
+    /// of the relative rolling about the contact point, as Ai et al. take it (they recommend
+    /// 0.3); for solid spheres I + m r^2 = 3.5 I.
     double dampingRatio = 0.3;
 };
 
@@ -102,9 +104,10 @@ struct RollingSpring {
 inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling,
                                       double rollingFriction, RollingSpring const& law,
                                       double normalStiffness, double normalForce, double dt) {
-    double const kr = law.stiffness > 0.0
-                          ? law.stiffness
-                          : 2.25 * rollingFriction * rollingFriction * normalStiffness;
+    double const kr =
+        law.stiffness > 0.0
+            ? law.stiffness
+            : std::min(2.25 * rollingFriction * rollingFriction, 1.0) * normalStiffness;
     double const limit = rollingFriction * std::max(normalForce, 0.0);
     if (!(kr > 0.0) || !(limit > 0.0)) {
         rolling.setZero();
@@ -112,9 +115,11 @@ inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling
     }
     double const reff = s.effectiveRadius;
     core::Vec3 const vr = reff * s.relativeAngularVelocity.cross(s.normal);
+    // Grains are solid spheres (ParticleStorage: I = 2/5 m r^2): about the contact point each
+    // inverse inertia is 1/3.5 of the one about the centre.
     double const cr =
         s.inverseInertiaSum > 0.0
-            ? 2.0 * law.dampingRatio * std::sqrt(kr / (reff * reff * s.inverseInertiaSum))
+            ? 2.0 * law.dampingRatio * std::sqrt(3.5 * kr / (reff * reff * s.inverseInertiaSum))
             : 0.0;
     projectSpring(rolling, s.normal);
     rolling += vr * dt;

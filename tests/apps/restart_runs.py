@@ -270,7 +270,8 @@ def main():
     other = runner.path("other.toml")
     with open(other, "w", encoding="utf-8") as f:
         f.write(text.replace('name = "restart"', 'name = "other"')
-                    .replace("friction = 0.5", "friction = 0.4") + "\n[output]\nvtk_every = 0\n")
+                    .replace("friction = 0.5", "friction = 0.4") + "\n[output]\nvtk_every = 0\n"
+                + "# --set (a user's comment: not an override; it once silenced the comparison)\n")
     def loud(scene, args):  # without --quiet, which silences warnings
         command = [runner.mpiexec, "-n", "2", "--oversubscribe", runner.app, scene, *args]
         return command, subprocess.run(command, capture_output=True, text=True, timeout=60,
