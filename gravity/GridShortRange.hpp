@@ -15,6 +15,7 @@
 /// Pairs are the caller's: the particle side finds them with its contact detector's cell
 /// structure (gravity/ knows no particles). Point-like grains are assumed (radius <~ h/2).
 #include "gravity/GridGravity.hpp"
+#include "gravity/MeshPotentialTable.hpp"
 
 #include <cstdint>
 #include <vector>
@@ -53,37 +54,27 @@ public:
     /// vanishes at the cut-off; 0 from the cut-off on. Local, pure.
     [[nodiscard]] double pairPotential(core::Vec3 const& xi, core::Vec3 const& xj,
                                        double softening) const;
-    /// The mesh potential at xi due to a grain at xj per unit mass of it (the deposit of xj
-    /// read with the weights of xi from the unit-cell table) [length² / (mass time²)].
-    /// Local, pure.
-    [[nodiscard]] double meshPotential(core::Vec3 const& xi, core::Vec3 const& xj) const;
-    /// What a point grain at x feels from its own deposit, per unit mass of it, less the
-    /// table's regular part: ½ Σ m φ includes it and P3M subtracts it, so that in free space
-    /// the energy is the pairs' alone, as for the direct sum, and on a periodic domain each
-    /// grain keeps its images' share. Local, pure.
-    [[nodiscard]] double selfPotential(core::Vec3 const& x) const;
+    /// The mesh potential at xi due to a grain at xj per unit mass of it
+    /// (MeshPotentialTable::meshPotential). Local, pure.
+    [[nodiscard]] double meshPotential(core::Vec3 const& xi, core::Vec3 const& xj) const {
+        return m_table.meshPotential(xi, xj);
+    }
+    /// What a point grain at x feels from its own deposit, less the table's regular part at
+    /// the cut-off (MeshPotentialTable::selfPotential): P3M subtracts it. Local, pure.
+    [[nodiscard]] double selfPotential(core::Vec3 const& x) const {
+        return m_table.selfPotential(x);
+    }
 
 private:
-    /// Fills m_cell: the potential at cell offsets up to m_reach of a unit G m in one cell at
-    /// `source`, averaged over the lattice symmetries; offsets the domain does not hold take
-    /// the Newtonian value (the mesh follows it to ~1 % from 4 cells on). COLLECTIVE.
-    void measureCellPotential(core::Comm const& comm, GridGravity& gravity,
-                              core::Vec3 const& source);
-    /// m_cell at offset (i, j, k), each in [-m_reach, m_reach].
-    [[nodiscard]] double cellPotential(std::int64_t i, std::int64_t j, std::int64_t k) const;
     /// Fills m_vector from the raw offset-averaged table (3 doubles per node).
     void symmetrise(std::vector<double> const& raw, core::Vec3 const& spacing);
 
-    CellLayout const* m_layout = nullptr;
-    Assignment m_assignment = Assignment::Tsc;
     double m_G = 0.0;
     double m_cutoff = 0.0;
+    MeshPotentialTable m_table;       ///< the energies (pairs within the cut-off, self)
     double m_dv = 0.0;                ///< vector table spacing [length]
     int m_half = 0;                   ///< vector table: displacements (i, j, k) m_dv, |i| <= m_half
     std::vector<core::Vec3> m_vector; ///< meshPairVector at the lattice nodes, x fastest
-    std::int64_t m_reach = 0;         ///< unit-cell table: offsets |i| <= m_reach
-    std::vector<double> m_cell;       ///< unit-cell table, x fastest
-    double m_regular = 0.0;           ///< the table's regular part at the cut-off (see above)
 };
 
 } // namespace regolith::gravity

@@ -2,6 +2,7 @@
 
 #include "coupling/gravity/P3mGravity.hpp"
 #include "gravity/GridGravity.hpp"
+#include "gravity/MeshPotentialTable.hpp"
 #include "gravity/baselines/GridMethods.hpp"
 #include "gravity/common/PointMasses.hpp"
 #include "gravity/direct/DirectSum.hpp"
@@ -19,13 +20,16 @@ namespace regolith::coupling {
 namespace {
 
 /// The particle-mesh method with the PETSc session it needs (nested: an app that opened one
-/// keeps it).
+/// keeps it). Its energy leaves out each grain's mesh self-energy, as P3M's does (measured
+/// with the same table, out to P3M's default cut-off of 4 cells for the regular part).
 class MeshGravity {
 public:
     MeshGravity(core::Comm const& comm, domain::BlockForest const& forest,
                 SelfGravityConfig const& c)
         : m_session(m_argc, m_argv)
-        , m_grid(comm, forest, c.cellsPerBlock, gridGravityOptions(c)) {}
+        , m_comm(comm.duplicate())
+        , m_grid(comm, forest, c.cellsPerBlock, gridGravityOptions(c))
+        , m_self(comm, m_grid, 4.0 * m_grid.layout().spacing().minCoeff()) {}
 
     double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) {
         m_position.resize(grains.size());
@@ -40,7 +44,12 @@ public:
             out.ay[k] = m_acceleration[k].y();
             out.az[k] = m_acceleration[k].z();
         }
-        return m_grid.potentialEnergy(g);
+        double self = 0.0;
+        for (std::size_t k = 0; k < grains.size(); ++k)
+            self += 0.5 * grains.m[k] * grains.m[k] *
+                    (grains.r.empty() ? m_self.selfPotential(m_position[k])
+                                      : m_self.selfPotential(m_position[k], grains.r[k]));
+        return m_grid.potentialEnergy(g) - m_comm.allReduce(self, core::ReduceOp::Sum);
     }
 
     [[nodiscard]] gravity::GridFieldsView fields() const { return m_grid.fields(); }
@@ -49,7 +58,9 @@ private:
     int m_argc = 0;
     char** m_argv = nullptr;
     gravity::PetscSession m_session;
+    core::Comm m_comm;
     gravity::GridGravity m_grid;
+    gravity::MeshPotentialTable m_self;
     std::vector<core::Vec3> m_position, m_acceleration;
 };
 

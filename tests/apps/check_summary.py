@@ -1,9 +1,10 @@
 """Checks a run summary (--json) against the contract in DESIGN.md.
 
-usage: check_summary.py summary.json [key=value | key>number ...]
+usage: check_summary.py summary.json [key=value | key>number | key<number ...]
 Every contract key must be present with the right type; each key=value compares a value, the
 key a top-level one or a dotted path into the objects (neighbour_list.skin), numbers compared
-as numbers, the rest as strings; key>number requires a number above it. Exit code 1 with a
+as numbers, the rest as strings; key>number requires a number above it, key<number one
+below it. Exit code 1 with a
 reason if not.
 """
 import json
@@ -45,15 +46,18 @@ def main():
     if summary["peak_rss_bytes"] <= 0:
         sys.exit("peak_rss_bytes must be positive")
     for expectation in sys.argv[2:]:
-        key, op, expected = re.fullmatch(r"([\w.]+)([=>])(.*)", expectation).groups()
+        key, op, expected = re.fullmatch(r"([\w.]+)([=<>])(.*)", expectation).groups()
         actual = summary
         for part in key.split("."):
             if not isinstance(actual, dict) or part not in actual:
                 sys.exit(f"{key}: not in the summary")
             actual = actual[part]
-        if op == ">":
-            if not isinstance(actual, NUMBER) or not actual > float(expected):
-                sys.exit(f"{key}: expected above {expected}, got {actual!r}")
+        if op in "<>":
+            above = op == ">"
+            if not isinstance(actual, NUMBER) or not (
+                    actual > float(expected) if above else actual < float(expected)):
+                sys.exit(f"{key}: expected {'above' if above else 'below'} {expected}, "
+                         f"got {actual!r}")
             continue
         if isinstance(actual, NUMBER):
             same = actual == float(expected)
