@@ -108,11 +108,6 @@ inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling
         law.stiffness > 0.0
             ? law.stiffness
             : std::min(2.25 * rollingFriction * rollingFriction, 1.0) * normalStiffness;
-    double const limit = rollingFriction * std::max(normalForce, 0.0);
-    if (!(kr > 0.0) || !(limit > 0.0)) {
-        rolling.setZero();
-        return core::Vec3::Zero();
-    }
     double const reff = s.effectiveRadius;
     core::Vec3 const vr = reff * s.relativeAngularVelocity.cross(s.normal);
     // Grains are solid spheres (ParticleStorage: I = 2/5 m r^2): about the contact point each
@@ -121,14 +116,9 @@ inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling
         s.inverseInertiaSum > 0.0
             ? 2.0 * law.dampingRatio * std::sqrt(3.5 * kr / (reff * reff * s.inverseInertiaSum))
             : 0.0;
-    projectSpring(rolling, s.normal);
-    rolling += vr * dt;
-    core::Vec3 f = -kr * rolling - cr * vr;
-    double const f2 = f.squaredNorm();
-    if (f2 > limit * limit) {
-        f *= limit / std::sqrt(f2);
-        rolling = -(f + cr * vr) / kr;
-    }
+    // The same spring-dashpot-slider as the tangential one, on the rolling displacement.
+    core::Vec3 const f = tangentialForce(rolling, s.normal, vr, kr, cr,
+                                         rollingFriction * std::max(normalForce, 0.0), dt);
     return reff * s.normal.cross(f);
 }
 
