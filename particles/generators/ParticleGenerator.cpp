@@ -1,6 +1,7 @@
 #include "particles/generators/ParticleGenerator.hpp"
 
 #include "core/Error.hpp"
+#include "core/memory/MemoryBudget.hpp"
 #include "particles/generators/AgglomeratePacker.hpp"
 #include "particles/generators/EntrySource.hpp"
 #include "particles/generators/OverlapIndex.hpp"
@@ -44,6 +45,28 @@ std::vector<double> sourceMargins(std::vector<double> const& maxRadius, std::siz
     return margin;
 }
 
+/// A lattice entry's grains in this rank's boxes, estimated from its site density, must fit
+/// in the node's memory at kBytesPerGrain each (a lower bound: a grain's storage columns
+/// alone; docs/results.md measures 273-290 B with everything): a region of 10^9 sites per
+/// rank is an input error naming the entry, not a machine filling for minutes.
+void requireLatticeFits(EntrySource const& entry, LatticeSpec const& lattice,
+                        std::span<core::AABB const> boxes) {
+    constexpr double kBytesPerGrain = 200.0;
+    core::AABB const& region = lattice.region;
+    double const volume = region.extent().prod();
+    if (!(volume > 0.0))
+        return;
+    double local = 0.0;
+    for (core::AABB const& b : boxes) {
+        core::Vec3 const lo = b.min.cwiseMax(region.min), hi = b.max.cwiseMin(region.max);
+        if ((hi.array() > lo.array()).all())
+            local += (hi - lo).prod();
+    }
+    double const grains = static_cast<double>(entry.capacity()) * local / volume;
+    core::requireMemory(grains * kBytesPerGrain, entry.key(),
+                        fmt::format("a lattice of about {:.3g} grains on this rank", grains));
+}
+
 bool inAnyBox(core::Vec3 const& p, std::span<core::AABB const> boxes) {
     return std::any_of(boxes.begin(), boxes.end(),
                        [&](core::AABB const& b) { return b.contains(p); });
@@ -73,6 +96,8 @@ std::vector<std::uint64_t> generateGrains(std::span<ParticleSpec const> specs,
                 fmt::format("{}: the entries up to this one need more than 2^{} - 1 grain uids",
                             entries.back().key(), kUidCounterBits));
         entryUidBegin.push_back(begin + entries.back().capacity());
+        if (auto const* lattice = std::get_if<LatticeSpec>(&specs[k].kind))
+            requireLatticeFits(entries.back(), *lattice, boxes);
     }
     if (entries.empty())
         return entryUidBegin;

@@ -99,22 +99,29 @@ struct RollingSpring {
 /// the cap implies (the slider), and the couple is R_eff n x f, so at most mu_r R_eff F_n as in
 /// model A. Unlike model A it holds a grain at rest against a driving torque below that cap
 /// (tests/particles/InclineTest.cpp). With mu_r = 0, k_r = 0 or F_n <= 0 the spring is reset
-/// and there is no couple.
+/// and there is no couple. k_r is at most k_n, and c_r at most what stops the relative
+/// rolling within one step (the explicit step's stability).
 /// Units: normalStiffness k_n [force/length] (for the default k_r), normalForce [force].
 inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling,
                                       double rollingFriction, RollingSpring const& law,
                                       double normalStiffness, double normalForce, double dt) {
+    // At most the contact's normal stiffness (a given k_r too, for Hertz, whose normal
+    // stiffness the scene cannot bound): stiffer, the explicit step would not hold it.
     double const kr =
-        law.stiffness > 0.0
-            ? law.stiffness
-            : std::min(2.25 * rollingFriction * rollingFriction, 1.0) * normalStiffness;
+        std::min(law.stiffness > 0.0 ? law.stiffness
+                                     : 2.25 * rollingFriction * rollingFriction * normalStiffness,
+                 normalStiffness);
     double const reff = s.effectiveRadius;
     core::Vec3 const vr = reff * s.relativeAngularVelocity.cross(s.normal);
     // Grains are solid spheres (ParticleStorage: I = 2/5 m r^2): about the contact point each
-    // inverse inertia is 1/3.5 of the one about the centre.
+    // inverse inertia is 1/3.5 of the one about the centre. The dashpot acts on the spins,
+    // explicitly: capped where it would stop the relative rolling within one step (beyond,
+    // it reversed it every step and the couple averaged out: a large damping ratio let a
+    // grain roll freely).
+    double const rr = reff * reff * s.inverseInertiaSum;
     double const cr =
         s.inverseInertiaSum > 0.0
-            ? 2.0 * law.dampingRatio * std::sqrt(3.5 * kr / (reff * reff * s.inverseInertiaSum))
+            ? std::min(2.0 * law.dampingRatio * std::sqrt(3.5 * kr / rr), 1.0 / (rr * dt))
             : 0.0;
     // The same spring-dashpot-slider as the tangential one, on the rolling displacement.
     core::Vec3 const f = tangentialForce(rolling, s.normal, vr, kr, cr,

@@ -195,6 +195,17 @@ TEST(RollingResistance, SpringHoldsAGrainAtRestWhereTheConstantCoupleCreeps) {
     EXPECT_LT(speedFine, 1e-7);
     EXPECT_NEAR(movedByFine, movedBy, 1e-5);
 
+    // However large the damping ratio: the dashpot is capped where it would stop the relative
+    // rolling within a step (uncapped, eta_r = 100 reversed it every step and the grain rolled
+    // freely, 1.2 length/time after 2 s). Overdamped, it settles with the time constant
+    // c_r / k_r = 0.44 s here.
+    RollingSpring overdamped = modelC();
+    overdamped.dampingRatio = 100.0;
+    auto const [speedDamped, movedByDamped] =
+        restOnSlope(linearModel(0.5, 0.2, overdamped), delta, 2.0, 1e-4);
+    EXPECT_LT(speedDamped, 1e-5);
+    EXPECT_LT(std::abs(movedByDamped), 3e-4);
+
     // Hertz-Mindlin, k_r from the contact's normal stiffness 2 E* a.
     auto p = HertzMindlinParams::fromMaterials(1e7, 0.3, 1e7, 0.3, 0.5, 0.5, 0.2);
     p.rollingSpring = modelC();
