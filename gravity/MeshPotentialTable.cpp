@@ -44,7 +44,7 @@ MeshPotentialTable::MeshPotentialTable(core::Comm const& comm, GridGravity& grav
 }
 
 void MeshPotentialTable::measureCellPotential(core::Comm const& comm, GridGravity& gravity,
-                                          core::Vec3 const& source) {
+                                              core::Vec3 const& source) {
     CellLayout const& layout = gravity.layout();
     // Offsets a pair within m_radius reaches: the cells between the two grains plus each
     // kernel's width (TSC: 3 cells, so the weights' offsets differ by up to 2 more).
@@ -152,6 +152,10 @@ double MeshPotentialTable::selfPotential(core::Vec3 const& x) const {
 }
 
 double MeshPotentialTable::selfPotential(core::Vec3 const& x, double radius) const {
+    // Beyond the table's reach (and already for a few cells: n^2 pairs of samples), the mesh
+    // resolves the grain: a uniform ball's -6/5 G m / r, to O(h / r).
+    if (2.0 * radius > m_radius)
+        return -1.2 * m_G / radius - m_regular;
     std::vector<core::Vec3> samples;
     ballSamples(radius, m_layout->spacing(), samples);
     if (samples.size() == 1)

@@ -37,7 +37,10 @@ public:
     /// domain. Local, pure.
     [[nodiscard]] double selfPotential(core::Vec3 const& x) const;
     /// The same for a grain of `radius` deposited as the equal-weight points of ballSamples
-    /// (one point up to half a cell): the mean over pairs of its points. Local, pure.
+    /// (one point up to half a cell): the mean over pairs of its points while its diameter is
+    /// within the table (`radius` of the constructor), beyond that a uniform ball's
+    /// -6/5 G / r (the mesh resolves it; a boulder 100 cells wide has ~10^6 samples). Local,
+    /// pure.
     [[nodiscard]] double selfPotential(core::Vec3 const& x, double radius) const;
     /// The regular part at `radius` [length² / (mass time²)].
     [[nodiscard]] double regular() const { return m_regular; }
