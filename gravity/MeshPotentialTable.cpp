@@ -156,10 +156,10 @@ double MeshPotentialTable::selfPotential(core::Vec3 const& x, double radius) con
     // resolves the grain: a uniform ball's -6/5 G m / r, to O(h / r).
     if (2.0 * radius > m_radius)
         return -1.2 * m_G / radius - m_regular;
+    if (!(radius > 0.5 * m_layout->spacing().minCoeff()))
+        return selfPotential(x); // one sample, the centre (ballSamples): no list to build
     std::vector<core::Vec3> samples;
     ballSamples(radius, m_layout->spacing(), samples);
-    if (samples.size() == 1)
-        return selfPotential(x);
     double sum = 0.0;
     for (core::Vec3 const& p : samples)
         for (core::Vec3 const& q : samples)

@@ -6,6 +6,7 @@
 #include <mpi.h>
 
 #include <limits>
+#include <optional>
 #include <unistd.h>
 
 namespace regolith::core {
@@ -19,14 +20,13 @@ std::uint64_t localPhysicalMemoryBytes() {
     return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(size);
 }
 
-/// The smallest node's memory once agreed (0: not agreed, or unknown on every node).
-std::uint64_t g_agreedBytes = 0;
-bool g_agreed = false;
+/// The smallest node's memory once agreed (0: unknown on every node).
+std::optional<std::uint64_t> g_agreedBytes;
 
 } // namespace
 
 std::uint64_t physicalMemoryBytes() {
-    return g_agreed ? g_agreedBytes : localPhysicalMemoryBytes();
+    return g_agreedBytes ? *g_agreedBytes : localPhysicalMemoryBytes();
 }
 
 void agreeOnPhysicalMemory() {
@@ -37,7 +37,6 @@ void agreeOnPhysicalMemory() {
     if (MPI_Allreduce(&mine, &least, 1, MPI_UINT64_T, MPI_MIN, MPI_COMM_WORLD) != MPI_SUCCESS)
         return; // keep each node's own figure
     g_agreedBytes = least == std::numeric_limits<std::uint64_t>::max() ? 0 : least;
-    g_agreed = true;
 }
 
 void requireMemory(double bytesPerRank, std::string_view key, std::string_view what) {
