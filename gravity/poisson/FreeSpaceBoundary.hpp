@@ -16,14 +16,34 @@
 ///    error O((a/d)^3) for an aggregate of size a seen from distance d; exact for a sphere.
 /// The multipole moments and the occupied-cell count take one all-reduce; the tree adds one
 /// all-gather of the occupied cells.
+///
+/// Kernel. Newton's -G m / r suits a solve that convolves with it (FftFreeSpace). A solve of
+/// the 7-point Laplacian (PoissonSolver) follows the lattice's own Green's function instead,
+/// which differs from 1/r by ~h² / (4 r³) (LatticeGreensFunction.hpp): with Newton's values a
+/// grain 2 cells from a face felt 0.008 G m / h² from its own field, and a pair with one grain
+/// there was 24 % off. With BoundaryKernel::Lattice the occupied cells within
+/// kLatticeRadius cells of a ghost (per axis) contribute the lattice kernel's value, so the
+/// solve reproduces the infinite lattice's solution up to the far cells' ~h² / (4 r³) (r >
+/// kLatticeRadius cells) and the tree's error. Those cells (all ranks') take one more
+/// all-gather, usually of nothing.
 #include "gravity/field/CellLayout.hpp"
+#include "gravity/poisson/LatticeGreensFunction.hpp"
 #include "gravity/poisson/Multipole.hpp"
 #include "gravity/tree/Octree.hpp"
 
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 namespace regolith::gravity {
+
+/// The field the boundary values are those of (see the class comment).
+enum class BoundaryKernel {
+    Newton,  ///< -G m / r: the continuous field (FFT convolution)
+    Lattice, ///< the 7-point Laplacian's own field near the mass, Newton's beyond
+};
 
 class FreeSpaceBoundary {
 public:
@@ -33,13 +53,20 @@ public:
     static constexpr double kTheta = 0.2;
     /// Most targets sharing one tree walk.
     static constexpr std::size_t kGroupSize = 32;
+    /// Cells per axis within which BoundaryKernel::Lattice takes the lattice's kernel; beyond,
+    /// Newton's is off by < 1.2e-4 / h per unit mass (2e-3 of it).
+    static constexpr int kLatticeRadius = 12;
+
+    explicit FreeSpaceBoundary(BoundaryKernel kernel = BoundaryKernel::Newton)
+        : m_kernel(kernel) {}
 
     /// Computes what evaluate() needs from density component 0. COLLECTIVE over `comm`.
     void update(core::Comm const& comm, CellField const& density, double G);
 
     /// Potentials [length^2 / time^2] at `points` into `phi` (same size). Consecutive points
     /// share a walk in groups of kGroupSize: pass them in a coherent order (coherentOrder).
-    /// Points must lie outside the occupied cells (ghost cells beyond the faces do). Local.
+    /// Points must lie outside the occupied cells (ghost cells beyond the faces do); with
+    /// BoundaryKernel::Lattice they must be centres of cells of the density's layout. Local.
     void evaluate(std::span<core::Vec3 const> points, std::span<double> phi) const;
 
     [[nodiscard]] bool usesTree() const { return m_useTree; }
@@ -50,10 +77,29 @@ public:
     [[nodiscard]] static std::vector<std::size_t> coherentOrder(std::span<GlobalCell const> cells);
 
 private:
+    /// A global cell index and its mass, for the lattice kernel.
+    struct NearCell {
+        std::array<std::int64_t, 3> cell;
+        double mass;
+    };
+    /// Lists the occupied cells (all ranks) within kLatticeRadius of a free-space face, by
+    /// bucket (bucketKey), and tabulates the lattice kernel. COLLECTIVE.
+    void gatherNearCells(core::Comm const& comm, CellLayout const& layout,
+                         std::span<double const> mine);
+    void evaluateTree(std::span<core::Vec3 const> points, std::span<double> phi) const;
+    /// phi[i] += -G Σ m (K - 1/r) over the near cells within kLatticeRadius of points[i].
+    void addLatticeCorrections(std::span<core::Vec3 const> points, std::span<double> phi) const;
+    [[nodiscard]] std::array<std::int64_t, 3> cellOf(core::Vec3 const& x) const;
+
+    BoundaryKernel m_kernel;
     MassMoments m_moments;
     double m_G = 0.0;
     bool m_useTree = false;
     tree::Octree m_tree;
+    std::optional<LatticeGreensFunction> m_lattice; ///< for the last layout's spacing
+    core::Vec3 m_firstCentre = core::Vec3::Zero();  ///< centre of global cell (0, 0, 0)
+    std::vector<NearCell> m_near;                   ///< sorted by bucket
+    std::vector<std::uint64_t> m_nearBucket;        ///< m_near's buckets (sorted)
 };
 
 } // namespace regolith::gravity

@@ -81,7 +81,7 @@ private:
     CellLayout const* m_layout;
     PoissonOptions m_options;
     bool m_periodic = false;
-    FreeSpaceBoundary m_boundary;
+    FreeSpaceBoundary m_boundary{BoundaryKernel::Lattice}; ///< the 7-point stencil's own field
     std::string m_solverName;
     std::unique_ptr<Petsc> m_petsc;
 };
