@@ -53,8 +53,8 @@ public:
     [[nodiscard]] double dampingRatio(std::uint32_t a, std::uint32_t b) const {
         return m_dampingRatio(a, b);
     }
-    /// Whether some pair of materials has model C's rolling spring (SpringDashpotBatch does
-    /// not evaluate it).
+    /// Whether some pair of materials has model C's rolling spring (then every contact keeps a
+    /// rolling entry in its history).
     [[nodiscard]] bool hasRollingSpring() const { return m_rollingSpring; }
     /// Duration of a free normal collision: pi / sqrt(k/m_eff - gamma^2) [time].
     static double contactTime(LinearContactParams const& p, double effectiveMass);

@@ -11,7 +11,8 @@
 
 namespace regolith::particles {
 
-void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint) {
+void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint,
+                             HistoryEntry* rolling) {
     std::size_t const k = m_size++;
     std::size_t const i = p.i, j = p.j;
     m_i[k] = static_cast<std::uint32_t>(i);
@@ -24,6 +25,12 @@ void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uin
     m_s[0][k] = entry.spring.x();
     m_s[1][k] = entry.spring.y();
     m_s[2][k] = entry.spring.z();
+    m_rollingEntry[k] = rolling;
+    if (rolling) { // model C: every pair has one (only Rolling::Spring reads the lanes)
+        m_r[0][k] = rolling->spring.x();
+        m_r[1][k] = rolling->spring.y();
+        m_r[2][k] = rolling->spring.z();
+    }
 }
 
 namespace {
@@ -67,38 +74,96 @@ using Vector8 = double __attribute__((vector_size(64)));
 inline double cross(int c, double ax, double ay, double az, double bx, double by, double bz) {
     return c == 0 ? ay * bz - az * by : (c == 1 ? az * bx - ax * bz : ax * by - ay * bx);
 }
+
+/// tangentialForce (with projectSpring) in one lane, branch-free: rotates the spring s into the
+/// plane normal to n keeping its length, grows it by v dt, and returns the force -k s - c v
+/// capped at `limit` (the spring truncated to match), all zero unless k > 0 and limit > 0.
+/// The same operations in the same order as the scalar code: the tangential spring and model
+/// C's rolling spring both go through it.
+[[gnu::always_inline]] inline void springSlider(double& sx, double& sy, double& sz, double nx,
+                                                double ny, double nz, double vx, double vy,
+                                                double vz, double k, double c, double limit,
+                                                double dt, double& fx, double& fy, double& fz) {
+    double const before = sx * sx + sy * sy + sz * sz;
+    double const along = sx * nx + sy * ny + sz * nz;
+    double const px = sx - along * nx, py = sy - along * ny, pz = sz - along * nz;
+    double const after = px * px + py * py + pz * pz;
+    bool const keepLength = after > 1e-24 * before;
+    double const scale = std::sqrt(before / after); // used where keepLength only
+    bool const projected = before != 0.0;
+    double ux = projected ? (keepLength ? px * scale : 0.0) : sx;
+    double uy = projected ? (keepLength ? py * scale : 0.0) : sy;
+    double uz = projected ? (keepLength ? pz * scale : 0.0) : sz;
+    ux += vx * dt;
+    uy += vy * dt;
+    uz += vz * dt;
+    double tx = -k * ux - c * vx, ty = -k * uy - c * vy, tz = -k * uz - c * vz;
+    double const f2 = tx * tx + ty * ty + tz * tz;
+    bool const slides = f2 > limit * limit;
+    double const cut = limit / std::sqrt(f2); // used where slides only
+    double const cx = tx * cut, cy = ty * cut, cz = tz * cut;
+    double const wx = -(cx + c * vx) / k, wy = -(cy + c * vy) / k, wz = -(cz + c * vz) / k;
+    ux = slides ? wx : ux;
+    uy = slides ? wy : uy;
+    uz = slides ? wz : uz;
+    tx = slides ? cx : tx;
+    ty = slides ? cy : ty;
+    tz = slides ? cz : tz;
+    bool const active = k > 0.0 && limit > 0.0;
+    fx = active ? tx : 0.0;
+    fy = active ? ty : 0.0;
+    fz = active ? tz : 0.0;
+    sx = active ? ux : 0.0;
+    sy = active ? uy : 0.0;
+    sz = active ? uz : 0.0;
+}
 } // namespace
 
 void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const& model,
                                   double dt) {
-    if (model.hasRollingSpring())
-        throw core::Error("SpringDashpotBatch: model C's rolling spring is evaluated pair by pair");
     std::size_t const n = m_size;
     auto const& materials = model.materials();
     // One material (most scenes): the parameters are the same in every lane, so the lanes
     // read them as constants; several: gathered per contact from the tables.
     bool const uniform = materials.numTypes() == 1;
     LinearContactParams const& one = materials(0, 0);
-    Parameters const uniformParameters{
-        one.stiffness, one.tangentialStiffness,    model.dampingRatio(0, 0),
-        one.friction,  one.tangentialDampingRatio, one.rollingFriction};
+    auto const parameters = [&model](LinearContactParams const& p, std::uint32_t a,
+                                     std::uint32_t b) {
+        return Parameters{p.stiffness,
+                          p.tangentialStiffness,
+                          model.dampingRatio(a, b),
+                          p.friction,
+                          p.tangentialDampingRatio,
+                          p.rollingFriction,
+                          p.rollingSpring.enabled ? 1.0 : 0.0,
+                          p.rollingSpring.stiffness,
+                          p.rollingSpring.dampingRatio};
+    };
+    Parameters const uniformParameters = parameters(one, 0, 0);
     if (!uniform) {
         for (std::size_t k = 0; k < n; ++k) {
             std::uint32_t const a = ps.type(m_i[k]), b = ps.type(m_j[k]);
-            LinearContactParams const& p = materials(a, b);
-            m_k[k] = p.stiffness;
-            m_kt[k] = p.tangentialStiffness;
-            m_ratio[k] = model.dampingRatio(a, b);
-            m_mu[k] = p.friction;
-            m_ctRatio[k] = p.tangentialDampingRatio;
-            m_muRoll[k] = p.rollingFriction;
+            Parameters const p = parameters(materials(a, b), a, b);
+            m_k[k] = p.k;
+            m_kt[k] = p.kt;
+            m_ratio[k] = p.ratio;
+            m_mu[k] = p.mu;
+            m_ctRatio[k] = p.ctRatio;
+            m_muRoll[k] = p.muRoll;
+            m_spring[k] = p.spring;
+            m_kr[k] = p.kr;
+            m_etaR[k] = p.etaR;
         }
     }
-    // Rolling resistance costs a root and two divisions per lane; a batch without it (most
-    // scenes: rolling friction 0) skips them, with the same bits (its torque is then + 0.0).
+    // Rolling resistance costs a root and two divisions per lane (model C three of each and
+    // the spring's projection); a batch without it (most scenes: rolling friction 0) skips
+    // them, with the same bits (its torque is then + 0.0).
     bool rolling = uniform && one.rollingFriction > 0.0;
     for (std::size_t k = 0; !uniform && k < n; ++k)
         rolling = rolling || m_muRoll[k] > 0.0;
+    Rolling const law = model.hasRollingSpring() ? Rolling::Spring
+                        : rolling                ? Rolling::Constant
+                                                 : Rolling::None;
     // The centres, velocities and spins, eight contacts at a time (the lanes beyond n repeat
     // contact 0's copies: computed, never read).
     for (std::size_t k = n; k % 8 != 0; ++k) {
@@ -117,20 +182,26 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
         loadTransposed(w, &m_j[b], &m_wj[0][b], &m_wj[1][b], &m_wj[2][b]);
     }
     GrainScalars const g = GrainScalars::of(ps);
-    if (uniform) {
-        if (rolling)
-            evaluateLanes<true, true>(g, uniformParameters, dt);
+    auto const run = [&]<Rolling kLaw>() {
+        if (uniform)
+            evaluateLanes<kLaw, true>(g, uniformParameters, dt);
         else
-            evaluateLanes<false, true>(g, uniformParameters, dt);
-    } else {
-        if (rolling)
-            evaluateLanes<true, false>(g, uniformParameters, dt);
-        else
-            evaluateLanes<false, false>(g, uniformParameters, dt);
+            evaluateLanes<kLaw, false>(g, uniformParameters, dt);
+    };
+    switch (law) {
+    case Rolling::None:
+        run.template operator()<Rolling::None>();
+        break;
+    case Rolling::Constant:
+        run.template operator()<Rolling::Constant>();
+        break;
+    case Rolling::Spring:
+        run.template operator()<Rolling::Spring>();
+        break;
     }
 }
 
-template <bool kRolling, bool kUniform>
+template <SpringDashpotBatch::Rolling kRolling, bool kUniform>
 void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const uniform, double dt) {
     std::size_t const n = m_size;
     double const* __restrict const invM = g.invM;
@@ -185,44 +256,17 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const uniform,
         double const limit = mu * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)
         // tangentialForce: projectSpring, grow, trial force, Coulomb limit.
         double sx = m_s[0][k], sy = m_s[1][k], sz = m_s[2][k];
-        double const before = sx * sx + sy * sy + sz * sz;
-        double const along = sx * nx + sy * ny + sz * nz;
-        double const px = sx - along * nx, py = sy - along * ny, pz = sz - along * nz;
-        double const after = px * px + py * py + pz * pz;
-        bool const keepLength = after > 1e-24 * before;
-        double const scale = std::sqrt(before / after); // used where keepLength only
-        bool const projected = before != 0.0;
-        sx = projected ? (keepLength ? px * scale : 0.0) : sx;
-        sy = projected ? (keepLength ? py * scale : 0.0) : sy;
-        sz = projected ? (keepLength ? pz * scale : 0.0) : sz;
-        sx += vtx * dt;
-        sy += vty * dt;
-        sz += vtz * dt;
-        double tx = -kt * sx - ct * vtx, ty = -kt * sy - ct * vty, tz = -kt * sz - ct * vtz;
-        double const f2 = tx * tx + ty * ty + tz * tz;
-        bool const slides = f2 > limit * limit;
-        double const cut = limit / std::sqrt(f2); // used where slides only
-        double const cx = tx * cut, cy = ty * cut, cz = tz * cut;
-        double const ux2 = -(cx + ct * vtx) / kt, uy2 = -(cy + ct * vty) / kt,
-                     uz2 = -(cz + ct * vtz) / kt;
-        sx = slides ? ux2 : sx;
-        sy = slides ? uy2 : sy;
-        sz = slides ? uz2 : sz;
-        tx = slides ? cx : tx;
-        ty = slides ? cy : ty;
-        tz = slides ? cz : tz;
-        bool const tangential = kt > 0.0 && limit > 0.0;
-        tx = tangential ? tx : 0.0;
-        ty = tangential ? ty : 0.0;
-        tz = tangential ? tz : 0.0;
-        m_s[0][k] = tangential ? sx : 0.0;
-        m_s[1][k] = tangential ? sy : 0.0;
-        m_s[2][k] = tangential ? sz : 0.0;
+        double tx, ty, tz;
+        springSlider(sx, sy, sz, nx, ny, nz, vtx, vty, vtz, kt, ct, limit, dt, tx, ty, tz);
+        m_s[0][k] = sx;
+        m_s[1][k] = sy;
+        m_s[2][k] = sz;
         double const fx = fn * nx + tx, fy = fn * ny + ty, fz = fn * nz + tz;
-        // rollingTorque (+0.0 where it does not roll, as the scalar code adds).
+        // rollingResistance (+0.0 where it does not roll, as the scalar code adds).
         double mx = 0.0, my = 0.0, mz = 0.0;
-        if constexpr (kRolling) {
+        if constexpr (kRolling != Rolling::None) {
             double const muRoll = kUniform ? uniform.muRoll : m_muRoll[k];
+            // rollingTorque (model A).
             double const spin = ox * nx + oy * ny + oz * nz;
             double const qx = ox - spin * nx, qy = oy - spin * ny, qz = oz - spin * nz;
             double const qNorm = std::sqrt(qx * qx + qy * qy + qz * qz);
@@ -234,6 +278,37 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const uniform,
             mx = rolls ? rolling * qx : 0.0;
             my = rolls ? rolling * qy : 0.0;
             mz = rolls ? rolling * qz : 0.0;
+            if constexpr (kRolling == Rolling::Spring) {
+                // rollingSpringTorque (model C) where the pair has it.
+                bool const spring = (kUniform ? uniform.spring : m_spring[k]) != 0.0;
+                double const krLaw = kUniform ? uniform.kr : m_kr[k];
+                double const etaR = kUniform ? uniform.etaR : m_etaR[k];
+                double const krTrial = krLaw > 0.0 ? krLaw : 2.25 * muRoll * muRoll * kn;
+                double const kr = kn < krTrial ? kn : krTrial; // std::min(krTrial, kn)
+                double const vrx = reff * cross(0, ox, oy, oz, nx, ny, nz);
+                double const vry = reff * cross(1, ox, oy, oz, nx, ny, nz);
+                double const vrz = reff * cross(2, ox, oy, oz, nx, ny, nz);
+                double const rr = reff * reff * invIsum;
+                double const damped = 2.0 * etaR * std::sqrt(3.5 * kr / rr);
+                double const stopRolling = 1.0 / (rr * dt);
+                double const cr = invIsum > 0.0
+                                      ? (stopRolling < damped ? stopRolling : damped) // std::min
+                                      : 0.0;
+                double const limitRolling = muRoll * (fn < 0.0 ? 0.0 : fn); // std::max(fn, 0.0)
+                double const r0x = m_r[0][k], r0y = m_r[1][k], r0z = m_r[2][k];
+                double rx = r0x, ry = r0y, rz = r0z;
+                double gx, gy, gz;
+                springSlider(rx, ry, rz, nx, ny, nz, vrx, vry, vrz, kr, cr, limitRolling, dt, gx,
+                             gy, gz);
+                mx = spring ? reff * cross(0, nx, ny, nz, gx, gy, gz) : mx;
+                my = spring ? reff * cross(1, nx, ny, nz, gx, gy, gz) : my;
+                mz = spring ? reff * cross(2, nx, ny, nz, gx, gy, gz) : mz;
+                // (Into a lane of its own: a select stored back into m_r stopped GCC 12 from
+                // vectorising the loop.)
+                m_rOut[0][k] = spring ? rx : r0x;
+                m_rOut[1][k] = spring ? ry : r0y;
+                m_rOut[2][k] = spring ? rz : r0z;
+            }
         }
         // evaluatePair: the torques about each centre.
         m_f[0][k] = fx;

@@ -17,9 +17,10 @@
 ///
 /// Same bits as overlapGeometry followed by evaluatePair with SpringDashpot: every lane computes
 /// the same IEEE operations in the same order as overlapGeometry (normal, penetration, point),
-/// pairState, SpringDashpot::operator(), tangentialForce, projectSpring and rollingTorque (branches
-/// become selects of values computed either way), so results do not depend on the path or the
-/// vector width (tests/particles/SpringDashpotBatchTest.cpp).
+/// pairState, SpringDashpot::operator(), tangentialForce, projectSpring and rollingResistance
+/// (model A's couple or model C's spring; branches become selects of values computed either way),
+/// so results do not depend on the path or the vector width
+/// (tests/particles/SpringDashpotBatchTest.cpp).
 #include "core/math/Vec3.hpp"
 #include "particles/detection/Contact.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
@@ -43,9 +44,11 @@ public:
 
     /// Adds the overlapping pair `p` (canonical order, copies of the storage evaluate will
     /// read) with `entry`, its history entry (the tangential spring, written back after
-    /// evaluate), and `hint` (the entry's slot in i's ContactHistory, to find it again if the
-    /// history moved). Pre: !full().
-    void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint);
+    /// evaluate), `hint` (the entry's slot in i's ContactHistory, to find it again if the
+    /// history moved) and, for a model with model C's rolling spring, `rolling`, the entry
+    /// keyed rollingKey(uid(j)) (else nullptr). Pre: !full().
+    void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint,
+             HistoryEntry* rolling = nullptr);
 
     /// Evaluates every added contact of `ps` (the storage whose copies were added, its
     /// positions, motion, radii, masses and types unchanged since) with
@@ -71,6 +74,12 @@ public:
     [[nodiscard]] core::Vec3 spring(std::size_t k) const {
         return {m_s[0][k], m_s[1][k], m_s[2][k]};
     }
+    /// The rolling history entry gathered with pair k (nullptr without model C; dangling as
+    /// entry(k)) and its updated spring.
+    [[nodiscard]] HistoryEntry* rollingEntry(std::size_t k) const { return m_rollingEntry[k]; }
+    [[nodiscard]] core::Vec3 rollingSpring(std::size_t k) const {
+        return {m_rOut[0][k], m_rOut[1][k], m_rOut[2][k]};
+    }
 
 private:
     /// The storage's scalars the lane loop reads by index; restrict, so that GCC may gather
@@ -83,13 +92,17 @@ private:
             return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
-    /// A pair's material parameters as the lanes read them.
+    /// A pair's material parameters as the lanes read them; model C's are read only by
+    /// Rolling::Spring (`spring` 1 where the pair has it, else 0: model A).
     struct Parameters {
-        double k, kt, ratio, mu, ctRatio, muRoll;
+        double k, kt, ratio, mu, ctRatio, muRoll, spring, kr, etaR;
     };
-    /// evaluate's loop over the lanes, with or without rolling resistance, with `uniform`'s
-    /// parameters in every lane or each lane's own (m_k ...).
-    template <bool kRolling, bool kUniform>
+    /// Which rolling resistance the lanes compute: none (every mu_r = 0), model A's couple, or
+    /// model C's spring where a pair has it and model A's elsewhere.
+    enum class Rolling { None, Constant, Spring };
+    /// evaluate's loop over the lanes, with `uniform`'s parameters in every lane or each
+    /// lane's own (m_k ...).
+    template <Rolling kRolling, bool kUniform>
     void evaluateLanes(GrainScalars g, Parameters uniform, double dt);
 
     using Lane = std::array<double, kCapacity>;
@@ -100,15 +113,16 @@ private:
     std::array<std::uint32_t, kCapacity> m_j{};
     std::array<std::uint8_t, kCapacity> m_hint{};
     std::array<HistoryEntry*, kCapacity> m_entry{};
+    std::array<HistoryEntry*, kCapacity> m_rollingEntry{};
     // Inputs: centres x_i and x_j (j's periodic shift apart), velocities and spins (filled by
-    // evaluate), the spring (updated in place).
+    // evaluate), the springs, tangential (updated in place) and rolling (model C).
     alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
-    alignas(64) Lane3 m_s;
+    alignas(64) Lane3 m_s, m_r;
     // The pair's material parameters, from the tables (several materials only: with one, the
     // lanes read Parameters and these are neither filled nor read).
-    alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll;
-    // Outputs.
-    alignas(64) Lane3 m_f, m_ti, m_tj;
+    alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll, m_spring, m_kr, m_etaR;
+    // Outputs (the rolling spring's with model C only).
+    alignas(64) Lane3 m_f, m_ti, m_tj, m_rOut;
 };
 
 /// overlapGeometry and evaluatePair with SpringDashpot for a stream of overlapping pairs, in
@@ -128,23 +142,27 @@ public:
         , m_dt(dt)
         , m_stamp(stamp)
         , m_batch(batch)
-        , m_sink(sink) {
+        , m_sink(sink)
+        , m_rolling(model.hasRollingSpring()) {
         m_batch.clear();
     }
 
     [[gnu::always_inline]] void operator()(PairOverlap const& p, std::uint8_t& hint) {
         ContactHistory& history = m_ps.history(p.i);
         std::size_t const before = history.size();
+        Uid const partner = m_ps.uid(p.j);
         bool again = false;
-        HistoryEntry* e = &history.touch(m_ps.uid(p.j), m_stamp, hint, again);
+        HistoryEntry* e = &history.touch(partner, m_stamp, hint, again);
+        HistoryEntry* r = touchRolling(history, partner, e, hint);
         // An insertion moves the entries of p.i that earlier pairs of the batch may hold (none
         // if the history was empty: entries are not removed during a pass).
         m_moved = m_moved || (before != 0 && history.size() != before);
         if (again || m_batch.full()) {
             finish();
-            e = &history.touch(m_ps.uid(p.j), m_stamp, hint);
+            e = &history.touch(partner, m_stamp, hint);
+            r = m_rolling ? history.find(rollingKey(partner)) : nullptr;
         }
-        m_batch.add(p, *e, hint);
+        m_batch.add(p, *e, hint, r);
     }
     void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
 
@@ -155,11 +173,15 @@ public:
         for (std::size_t k = 0; k < batch.size(); ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
             HistoryEntry* e = batch.entry(k);
+            HistoryEntry* r = batch.rollingEntry(k);
             if (m_moved) { // found again through the hint, or by search
                 std::uint8_t hint = batch.hint(k);
                 e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
+                r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
             }
             e->spring = batch.spring(k);
+            if (r)
+                r->spring = batch.rollingSpring(k);
             core::Vec3 const f = batch.force(k);
             m_sink(j, m_ps.uid(i), f, batch.torqueJ(k));
             m_sink(i, m_ps.uid(j), core::Vec3(-f), core::Vec3(-batch.torqueI(k)));
@@ -169,12 +191,29 @@ public:
     }
 
 private:
+    /// With model C, touches the pair's rolling entry (evaluatePair's withSprings: stamped,
+    /// restarted from zero if the previous pass did not touch it); its insertion may move `e`,
+    /// found again through the hint. nullptr without model C.
+    [[gnu::always_inline]] HistoryEntry* touchRolling(ContactHistory& history, Uid partner,
+                                                      HistoryEntry*& e, std::uint8_t& hint) {
+        if (!m_rolling)
+            return nullptr;
+        std::size_t const size = history.size();
+        HistoryEntry* r = &history.touch(rollingKey(partner), m_stamp);
+        if (history.size() != size) {
+            e = &history.touch(partner, m_stamp, hint);
+            r = history.find(rollingKey(partner));
+        }
+        return r;
+    }
+
     ParticleStorage& m_ps;
     SpringDashpot const& m_model;
     double m_dt;
     std::uint32_t m_stamp;
     SpringDashpotBatch& m_batch;
     Sink& m_sink;
+    bool m_rolling;       ///< model C somewhere: every pair's rolling entry is touched
     bool m_moved = false; ///< some history of the batch's pairs got an entry since it started
 };
 

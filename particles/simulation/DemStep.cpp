@@ -215,24 +215,19 @@ void DemStep::evaluateBlock(std::size_t b, Model const& model, std::uint32_t sta
     core::AABB const& box = m_local->blocks()[b].block->aabb;
     double const dt = m_config.dt;
     // Detection and evaluation in one loop over the Verlet list: each contact is evaluated as
-    // soon as the loop finds it (spring-dashpot: in batches, SpringDashpotBatch, unless a
-    // material has model C's rolling spring, which the batch does not evaluate), its history
+    // soon as the loop finds it (spring-dashpot: in batches, SpringDashpotBatch), its history
     // slot hint kept beside the pair. Same contacts, same order, same arithmetic as detecting
     // first: same bits.
-    auto onePair = [&](Contact const& c, std::uint8_t& hint) {
-        evaluatePair(ps, c, model, dt, stamp, hint, sink);
-    };
     if constexpr (std::is_same_v<Model, SpringDashpot>) {
-        if (model.hasRollingSpring()) {
-            m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], onePair, keepPairs);
-        } else {
-            if (!m_batch)
-                m_batch = std::make_unique<SpringDashpotBatch>();
-            BatchedSpringDashpot pairs(ps, model, dt, stamp, *m_batch, sink);
-            m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], pairs, keepPairs);
-            pairs.finish();
-        }
+        if (!m_batch)
+            m_batch = std::make_unique<SpringDashpotBatch>();
+        BatchedSpringDashpot pairs(ps, model, dt, stamp, *m_batch, sink);
+        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], pairs, keepPairs);
+        pairs.finish();
     } else {
+        auto onePair = [&](Contact const& c, std::uint8_t& hint) {
+            evaluatePair(ps, c, model, dt, stamp, hint, sink);
+        };
         m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], onePair, keepPairs);
     }
     evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);

@@ -22,8 +22,10 @@ using namespace regolith::particles::test;
 namespace {
 
 /// Types 0 and 1: (0, 0) frictional with rolling resistance, (0, 1) without a tangential
-/// spring (k_t = 0), (1, 1) nearly frictionless (slides at once).
-SpringDashpot twoMaterials() {
+/// spring (k_t = 0), (1, 1) nearly frictionless (slides at once). With `modelC`, (0, 0) has
+/// model C's rolling spring (default k_r and damping), (0, 1) one with a given k_r and a damping
+/// ratio beyond the dashpot's cap, and (1, 1) model A (mu_r = 0).
+SpringDashpot twoMaterials(bool modelC = false) {
     MaterialTable<LinearContactParams> table(2);
     LinearContactParams p;
     p.stiffness = 2000.0;
@@ -31,15 +33,20 @@ SpringDashpot twoMaterials() {
     p.restitution = 0.7;
     p.friction = 0.5;
     p.rollingFriction = 0.05;
+    p.rollingSpring.enabled = modelC;
     table.set(0, 0, p);
     LinearContactParams q = p;
     q.tangentialStiffness = 0.0;
     q.restitution = 0.4;
+    q.rollingFriction = 0.3;
+    q.rollingSpring.stiffness = 400.0;
+    q.rollingSpring.dampingRatio = 50.0;
     table.set(0, 1, q);
     LinearContactParams s = p;
     s.stiffness = 5000.0;
     s.friction = 0.01;
     s.rollingFriction = 0.0;
+    s.rollingSpring = RollingSpring{};
     s.tangentialDampingRatio = 0.3;
     table.set(1, 1, s);
     return SpringDashpot{table};
@@ -67,14 +74,16 @@ struct Share {
     Vec3 torque;
 };
 
-/// Springs of every kind the scalar code branches on, on the first contacts' histories.
-void seedSprings(ParticleStorage& ps, std::vector<Contact> const& pairs) {
+/// Springs of every kind the scalar code branches on, on the first contacts' histories (with
+/// `rolling`, model C's rolling springs too, in another order).
+void seedSprings(ParticleStorage& ps, std::vector<Contact> const& pairs, bool rolling = false) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-        Contact const& c = pairs[k];
-        Vec3& s = ps.history(c.i).touch(ps.uid(c.j), 0).spring;
-        switch (k % 5) {
+    for (std::size_t k = 0; k < (rolling ? 2 : 1) * pairs.size(); ++k) {
+        Contact const& c = pairs[k % pairs.size()];
+        bool const second = k >= pairs.size();
+        Vec3& s = ps.history(c.i).touch(second ? rollingKey(ps.uid(c.j)) : ps.uid(c.j), 0).spring;
+        switch ((k + (second ? 2 : 0)) % 5) {
         case 0:
             s = Vec3(u(rng), u(rng), u(rng)) * 1e-3;
             break; // sticks
@@ -119,6 +128,7 @@ SpringDashpot oneMaterial(bool rolling) {
 
 /// Four passes over a dense random pack, evaluated with evaluatePair and in batches.
 void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
+    SCOPED_TRACE(model.hasRollingSpring() ? "model C" : "model A");
     double const dt = 2e-3;
     ParticleStorage one = randomPack(3, 600, 7.0);
     for (std::size_t k = 0; k < one.size(); ++k) // every grain of a known material
@@ -128,7 +138,7 @@ void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
     ContactList contacts;
     detector.detect(one, walls, everywhere(), contacts);
     ASSERT_GT(contacts.pairs.size(), 2 * SpringDashpotBatch::kCapacity);
-    seedSprings(one, contacts.pairs);
+    seedSprings(one, contacts.pairs, model.hasRollingSpring());
     ParticleStorage batched = one;
 
     SpringDashpotBatch batch;
@@ -191,11 +201,24 @@ TEST(SpringDashpotBatch, SameSharesAndSpringsWithOneMaterial) {
     expectSameSharesAndSpringsAsEvaluatePair(oneMaterial(false));
 }
 
-TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation) {
+TEST(SpringDashpotBatch, SameSharesAndSpringsWithModelC) {
+    // Rolling springs stored beside the tangential ones, models A and C in one batch, the
+    // damping cap, k_r given and by default; one material (constants in the lanes) too.
+    SpringDashpot const mixed = twoMaterials(true);
+    ASSERT_TRUE(mixed.hasRollingSpring());
+    expectSameSharesAndSpringsAsEvaluatePair(mixed);
+    LinearContactParams p = mixed.materials()(0, 0);
+    expectSameSharesAndSpringsAsEvaluatePair(
+        SpringDashpot{MaterialTable<LinearContactParams>(1, p)});
+}
+
+class SpringDashpotBatchModels : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SpringDashpotBatchModels, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation) {
     // The same contact handed over twice (as a pair touching through two periodic images is),
-    // with batch-mates before and between: the second evaluation must start from the spring
-    // the first one left, as with evaluatePair.
-    SpringDashpot const model = twoMaterials();
+    // with batch-mates before and between: the second evaluation must start from the springs
+    // the first one left, as with evaluatePair (model A; model C with its rolling spring).
+    SpringDashpot const model = twoMaterials(GetParam());
     ParticleStorage one = randomPack(5, 300, 5.0);
     WallList walls;
     ContactDetector detector;
@@ -214,8 +237,14 @@ TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation
     ParticleStorage batched = one;
 
     std::vector<Vec3> expected, got;
-    auto scalarSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const&) { expected.push_back(f); };
-    auto batchSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const&) { got.push_back(f); };
+    auto scalarSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const& t) {
+        expected.push_back(f);
+        expected.push_back(t);
+    };
+    auto batchSink = [&](std::size_t, Uid, Vec3 const& f, Vec3 const& t) {
+        got.push_back(f);
+        got.push_back(t);
+    };
     SpringDashpotBatch batch;
     BatchedSpringDashpot pairs(batched, model, 1e-2, 1, batch, batchSink);
     for (Contact const& c : stream) {
@@ -227,27 +256,38 @@ TEST(SpringDashpotBatch, APairMetTwiceInOnePassSeesTheSpringOfItsFirstEvaluation
     ASSERT_EQ(got.size(), expected.size());
     for (std::size_t k = 0; k < got.size(); ++k)
         EXPECT_TRUE(sameBits(got[k], expected[k])) << "share " << k;
-    // The repeats changed the force: the test would see a stale spring.
-    EXPECT_FALSE(sameBits(expected[2 * rep], expected[2 * 12]));
+    // The repeats changed the force (and model C's couple): the test would see a stale spring.
+    EXPECT_FALSE(sameBits(expected[4 * rep], expected[4 * 12]));
+    EXPECT_FALSE(sameBits(expected[4 * rep + 1], expected[4 * 12 + 1]));
     Contact const& c = contacts.pairs[rep];
-    EXPECT_TRUE(sameBits(one.history(c.i).find(one.uid(c.j))->spring,
-                         batched.history(c.i).find(batched.uid(c.j))->spring));
+    for (Uid const key : {one.uid(c.j), rollingKey(one.uid(c.j))}) {
+        HistoryEntry const* a = one.history(c.i).find(key);
+        HistoryEntry const* b = batched.history(c.i).find(key);
+        ASSERT_EQ(a == nullptr, !GetParam() && key != one.uid(c.j));
+        ASSERT_EQ(b == nullptr, a == nullptr);
+        if (a) {
+            EXPECT_TRUE(sameBits(a->spring, b->spring));
+        }
+    }
 }
 
-TEST(SpringDashpotBatch, FreshSpringsOfOneGrainSurviveTheGrowthOfItsHistory) {
+TEST_P(SpringDashpotBatchModels, FreshSpringsOfOneGrainSurviveTheGrowthOfItsHistory) {
     // One grain (the lowest uid, so every contact's history lives on it) touching twelve new
     // partners in one batch: each first touch inserts an entry and may move the block the
     // earlier contacts' entries sit in. Every spring must still land in the history, with the
-    // bits evaluatePair leaves (a spring written through a stale pointer would be lost).
-    SpringDashpot const model = twoMaterials();
+    // bits evaluatePair leaves (a spring written through a stale pointer would be lost); with
+    // model C two entries per contact.
+    SpringDashpot const model = twoMaterials(GetParam());
     ParticleStorage one;
     one.add(sphere(makeUid(0, 1), Vec3::Zero(), 0.5, 1.0, Vec3(0.3, -0.2, 0.1)));
     for (std::size_t k = 0; k < 12; ++k) {
         double const phi = 0.5 * static_cast<double>(k), z = -0.8 + 0.15 * static_cast<double>(k);
         double const rho = std::sqrt(1.0 - z * z);
         Vec3 const dir(rho * std::cos(phi), rho * std::sin(phi), z);
-        one.add(sphere(makeUid(0, 10 + k), 0.95 * dir, 0.5, 1.0,
-                       Vec3(0.1 * static_cast<double>(k), 0.2, -0.3)));
+        ParticleInit partner = sphere(makeUid(0, 10 + k), 0.95 * dir, 0.5, 1.0,
+                                      Vec3(0.1 * static_cast<double>(k), 0.2, -0.3));
+        partner.angularVelocity = Vec3(0.5, -0.2 * static_cast<double>(k), 1.0); // rolls
+        one.add(partner);
     }
     WallList walls;
     ContactDetector detector;
@@ -267,11 +307,15 @@ TEST(SpringDashpotBatch, FreshSpringsOfOneGrainSurviveTheGrowthOfItsHistory) {
     pairs.finish();
     auto const& expected = one.history(0).entries();
     auto const& got = batched.history(0).entries();
-    ASSERT_EQ(got.size(), 12U);
-    ASSERT_EQ(expected.size(), 12U);
-    for (std::size_t e = 0; e < 12; ++e) {
+    std::size_t const entries = GetParam() ? 24U : 12U;
+    ASSERT_EQ(got.size(), entries);
+    ASSERT_EQ(expected.size(), entries);
+    for (std::size_t e = 0; e < entries; ++e) {
         EXPECT_EQ(got[e].partner, expected[e].partner);
         EXPECT_NE(expected[e].spring.squaredNorm(), 0.0); // the test needs moving springs
         EXPECT_TRUE(sameBits(got[e].spring, expected[e].spring)) << "entry " << e;
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(SpringDashpotBatch, SpringDashpotBatchModels, ::testing::Bool(),
+                         [](auto const& p) { return p.param ? "ModelC" : "ModelA"; });
