@@ -31,9 +31,18 @@ Slab slabOf(core::Comm const& comm, std::uint64_t local) {
     return s;
 }
 
-bool abortRequestedAt(std::int64_t step) {
-    char const* v = std::getenv("REGOLITH_TEST_ABORT_IN_CHECKPOINT");
-    return v != nullptr && std::string(v) == std::to_string(step);
+/// The failures the checkpoint tests ask for at `step`: REGOLITH_TEST_ABORT_IN_CHECKPOINT=<step>
+/// (a crash mid-write), REGOLITH_TEST_FAIL_IN_CHECKPOINT=<step>:<rank> (that rank's write
+/// fails, as on a full disk).
+detail::CheckpointFaults faultsRequestedAt(std::int64_t step) {
+    detail::CheckpointFaults faults;
+    char const* abort = std::getenv("REGOLITH_TEST_ABORT_IN_CHECKPOINT");
+    faults.abortMidway = abort != nullptr && std::string(abort) == std::to_string(step);
+    char const* fail = std::getenv("REGOLITH_TEST_FAIL_IN_CHECKPOINT");
+    std::string const prefix = std::to_string(step) + ":";
+    if (fail != nullptr && std::string(fail).starts_with(prefix))
+        faults.failingRank = std::atoi(fail + prefix.size());
+    return faults;
 }
 
 /// Makes the closed temporary file durable before it replaces the old one.
@@ -66,8 +75,25 @@ std::uint64_t writeCheckpoint(core::Comm const& comm, std::string const& path, C
 
     std::string const tmp = path + ".tmp";
     std::vector<detail::ColumnView> const views = detail::columnViews(columns);
-    detail::hdf5().write(comm.raw(), tmp, {&info, checksum, &views, grainSlab, entrySlab}, context,
-                         abortRequestedAt(info.step));
+    try {
+        detail::hdf5().write(comm.raw(), tmp, {&info, checksum, &views, grainSlab, entrySlab},
+                             context, faultsRequestedAt(info.step));
+    } catch (core::InputError const& e) { // on every rank: no stale temporary left behind
+        // HDF5 does not pass the operating system's reason on: name the space left, the
+        // usual cause.
+        std::string space;
+        if (comm.rank() == 0) {
+            std::error_code ec;
+            auto const dir = std::filesystem::absolute(path, ec).parent_path();
+            auto const free = std::filesystem::space(dir, ec);
+            if (!ec)
+                space = fmt::format("; {} bytes were free on the file system of '{}'",
+                                    free.available, dir.string());
+            std::filesystem::remove(tmp, ec);
+        }
+        comm.broadcast(space, 0);
+        throw core::InputError(e.what() + space);
+    }
     comm.barrier(); // every rank's data is in the closed file
     std::string failure;
     std::uint64_t bytes = 0;

@@ -49,7 +49,8 @@ private:
 /// Turns off HDF5's printing of its error stack: Regolith reports errors itself, once.
 void silenceHdf5Errors();
 
-/// Throws core::InputError("<context>: <what> failed") if `status` < 0.
+/// Throws core::InputError("<context>: <what> failed (<HDF5's innermost reason>[: strerror
+/// (errno)])") if `status` < 0; clear errno before the HDF5 call that `status` comes from.
 void h5check(herr_t status, std::string const& context, char const* what);
 /// As h5check for a returned identifier; returns it wrapped in a handle closed by `closer`.
 H5Handle h5own(hid_t id, H5Handle::Closer closer, std::string const& context, char const* what);

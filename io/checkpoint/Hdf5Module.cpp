@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdlib>
 
 namespace regolith::io::detail {
@@ -55,6 +56,25 @@ bool allTrue(MPI_Comm comm, bool mine) {
     return all != 0;
 }
 
+/// The message of the lowest rank whose `mine` is not empty, on every rank ("" if none).
+/// COLLECTIVE.
+std::string agreeOnFailure(MPI_Comm comm, std::string const& mine) {
+    int rank = 0, size = 0;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &size);
+    int first = mine.empty() ? size : rank;
+    if (MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm) != MPI_SUCCESS)
+        throw core::Error("MPI_Allreduce failed");
+    if (first == size)
+        return {};
+    std::string message = rank == first ? mine : std::string();
+    unsigned long length = message.size();
+    MPI_Bcast(&length, 1, MPI_UNSIGNED_LONG, first, comm);
+    message.resize(length);
+    MPI_Bcast(message.data(), static_cast<int>(length), MPI_CHAR, first, comm);
+    return message;
+}
+
 class Hdf5File final : public CheckpointFile {
 public:
     Hdf5File(H5Handle file, std::string context)
@@ -69,6 +89,7 @@ public:
 
     void readColumn(ColumnView const& col, std::uint64_t globalRows, std::uint64_t first,
                     std::uint64_t rows) override {
+        errno = 0;
         std::string const what = std::string("dataset '") + col.name + "'";
         hid_t const file = m_file.get();
         if (H5Lexists(file, col.name, H5P_DEFAULT) <= 0)
@@ -106,7 +127,7 @@ private:
 class Hdf5ModuleImpl final : public Hdf5Module {
 public:
     void write(MPI_Comm comm, std::string const& path, CheckpointContent const& content,
-               std::string const& context, bool abortMidway) override {
+               std::string const& context, CheckpointFaults faults) override {
         H5Handle const fapl = h5own(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, context, "H5Pcreate");
         h5check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), context, "H5Pset_fapl_mpio");
         // The root's attributes in dense storage (file format 1.8 on): the scene text is one,
@@ -125,29 +146,54 @@ public:
                             context, path));
         }
         H5Handle file(created, H5Fclose);
-        // From here on a failure is unexpected (I/O error, disk full) and may hit one rank
-        // only: core::Error aborts the job rather than leaving ranks in a collective.
-        try {
-            H5Handle const dxpl =
-                h5own(H5Pcreate(H5P_DATASET_XFER), H5Pclose, context, "H5Pcreate");
+        int rank = 0;
+        MPI_Comm_rank(comm, &rank);
+        // Each step may fail on some ranks only (an I/O error, a full disk): the ranks agree
+        // after it, so that none goes on into the next collective call alone.
+        auto agreed = [&](auto&& step) {
+            std::string failure;
+            errno = 0; // fail() (Hdf5Handle.cpp) reports it
+            try {
+                step();
+            } catch (core::Error const& e) {
+                failure = e.what();
+            }
+            failure = agreeOnFailure(comm, failure);
+            if (failure.empty())
+                return;
+            (void)file.reset(); // collective, on every rank alike
+            throw core::InputError(failure);
+        };
+        H5Handle dxpl;
+        agreed([&] {
+            dxpl = h5own(H5Pcreate(H5P_DATASET_XFER), H5Pclose, context, "H5Pcreate");
             h5check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), context,
                     "H5Pset_dxpl_mpio");
-            std::vector<ColumnView> const& views = *content.columns;
-            for (std::size_t k = 0; k < views.size(); ++k) {
+        });
+        std::vector<ColumnView> const& views = *content.columns;
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            agreed([&] {
                 writeColumn(file.get(), dxpl.get(), views[k],
                             views[k].history ? content.entries : content.grains, context);
-                if (k == views.size() / 2 && abortMidway) {
-                    H5Fflush(file.get(), H5F_SCOPE_GLOBAL);
-                    std::_Exit(86);
-                }
+                if (k == views.size() / 2 && rank == faults.failingRank)
+                    throw core::Error(
+                        fmt::format("{}: {} failed (REGOLITH_TEST_FAIL_IN_CHECKPOINT)", context,
+                                    views[k].name));
+            });
+            if (k == views.size() / 2 && faults.abortMidway) {
+                H5Fflush(file.get(), H5F_SCOPE_GLOBAL);
+                std::_Exit(86);
             }
+        }
+        agreed([&] {
             writeInfoAttributes(file.get(), *content.info, content.checksum, context);
             h5check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), context, "H5Fflush");
-            if (!file.reset())
-                throw core::InputError(context + ": closing '" + path + "' failed");
-        } catch (core::InputError const& e) {
-            throw core::Error(e.what());
-        }
+        });
+        bool const closed = file.reset();
+        std::string const failure =
+            agreeOnFailure(comm, closed ? "" : context + ": closing '" + path + "' failed");
+        if (!failure.empty())
+            throw core::InputError(failure);
     }
 
     std::unique_ptr<CheckpointFile> open(std::string const& path,

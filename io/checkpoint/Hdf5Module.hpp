@@ -64,16 +64,27 @@ public:
                             std::uint64_t rows) = 0;
 };
 
+/// Failures the checkpoint tests provoke (REGOLITH_TEST_* variables, CheckpointWriter.cpp).
+struct CheckpointFaults {
+    /// Exit with code 86 after half the datasets (a crash mid-write).
+    bool abortMidway = false;
+    /// This rank reports its part of the dataset after half of them as failed (-1: none),
+    /// after the collective write returned on every rank, as a full disk does on one rank.
+    int failingRank = -1;
+};
+
 class Hdf5Module {
 public:
     virtual ~Hdf5Module() = default;
     /// Creates `path` with the MPI-IO driver and writes `content` collectively: every rank its
-    /// rows. Throws core::InputError on every rank if some rank cannot create the file, and
-    /// core::Error after that (an I/O failure may hit one rank only). With `abortMidway` the
-    /// process exits with code 86 after half the columns (the checkpoint tests' crash).
-    /// Messages start with `context`. COLLECTIVE over `comm`.
+    /// rows. An I/O failure (disk full, a quota) may hit one rank's part only: the ranks agree
+    /// after every dataset, so that all stop together, close the file and throw
+    /// core::InputError with the first failing rank's message (HDF5's innermost reason
+    /// included) on every rank, rather than some waiting in the next collective write. The
+    /// same if some rank cannot create the file. Messages start with `context`. COLLECTIVE
+    /// over `comm`.
     virtual void write(MPI_Comm comm, std::string const& path, CheckpointContent const& content,
-                       std::string const& context, bool abortMidway) = 0;
+                       std::string const& context, CheckpointFaults faults) = 0;
     /// Opens `path` read-only. Throws core::InputError (prefixed with `context`) if it is not
     /// an HDF5 file or cannot be opened. Not collective.
     [[nodiscard]] virtual std::unique_ptr<CheckpointFile> open(std::string const& path,

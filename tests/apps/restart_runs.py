@@ -15,11 +15,14 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     the restart from step 20 on 3 ranks with a sync skin;
  4. a writer killed on purpose mid-write (REGOLITH_TEST_ABORT_IN_CHECKPOINT=20) exits
     non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
- 5. a truncated file, a flipped byte, a scene with another domain, a step beyond
+ 5. one rank's part of the step-20 checkpoint failing (REGOLITH_TEST_FAIL_IN_CHECKPOINT=20:1,
+    as a full disk): exit code 2 with the message once, no hang, the checkpoint of step 10 and
+    nothing else left, which restarts to the reference;
+ 6. a truncated file, a flipped byte, a scene with another domain, a step beyond
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
     byte-identical before and after;
- 6. another scene file (name and friction changed, an [output] added) restarts with one
+ 7. another scene file (name and friction changed, an [output] added) restarts with one
     warning naming the sections that differ (name, contact); so does the same file with a
     --set change of the friction; a checkpoint written with that --set and restarted with
     it does not warn.
@@ -230,6 +233,27 @@ def main():
                                          "--output", runner.path("after_kill")])
     if s["checksum"] != reference:
         fail(f"restart from the checkpoint before the killed one: checksum {s['checksum']}, "
+             f"expected {reference}")
+
+    # One rank's part of a dataset fails (as on a full disk): every rank stops with the
+    # message (exit 2, no hang in the next collective write), the checkpoint of step 10 stays
+    # and restarts, no temporary is left.
+    full = runner.path("full")
+    command, done = runner.run(2, ["--output", full, "--set", "output.checkpoint_every=10"],
+                               {"REGOLITH_TEST_FAIL_IN_CHECKPOINT": "20:1"})
+    line = f"{' '.join(command)}\n--- stderr:\n{done.stderr}"
+    message = (f"cannot write checkpoint '{os.path.join(full, 'checkpoint_00000020.h5')}'")
+    if done.returncode != 2 or done.stderr.count(message) != 1 or "REGOLITH_TEST_FAIL" not in \
+            done.stderr or any(sign in done.stderr for sign in CRASH_SIGNS):
+        fail(f"a failed checkpoint write: expected exit code 2 and {message!r} once: {line}")
+    left = sorted(f for f in os.listdir(full) if f.startswith("checkpoint"))
+    if left != [expected[0]]:
+        fail(f"after the failed write {full} holds {left}: expected the checkpoint of step 10 "
+             "only (no step 20, no temporary)")
+    s = runner.summary(2, "after_full", ["--restart", os.path.join(full, expected[0]),
+                                         "--output", runner.path("after_full")])
+    if s["checksum"] != reference:
+        fail(f"restart from the checkpoint before the failed one: checksum {s['checksum']}, "
              f"expected {reference}")
 
     truncated = runner.path("truncated.h5")
