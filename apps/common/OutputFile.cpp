@@ -44,8 +44,48 @@ std::string directoryOf(std::string const& path) {
 
 } // namespace
 
+namespace {
+
+/// Whether `path` exists and is neither a regular file nor a directory (through symlinks):
+/// a FIFO, a device such as /dev/null or /dev/stdout, a socket.
+bool isSpecialFile(std::string const& path) {
+    std::error_code ec;
+    auto const st = std::filesystem::status(path, ec);
+    return std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
+           !std::filesystem::is_directory(st);
+}
+
+/// Writes `text` through `path` as it is (no temporary: a FIFO's reader or a device gets it).
+void writeInPlace(std::string const& path, std::string_view text) {
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f)
+        throw core::InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+    bool const written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    int const writeErrno = errno;
+    if (std::fclose(f) != 0 || !written)
+        throw core::InputError(fmt::format("cannot write '{}': {}", path,
+                                           std::strerror(written ? errno : writeErrno)));
+}
+
+/// The file a write to `path` replaces: through a symbolic link the file it names (the link
+/// stays), else `path`.
+std::string replacedFile(std::string const& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(path, ec)))
+        return path;
+    auto const resolved = std::filesystem::weakly_canonical(path, ec);
+    return ec ? path : resolved.string();
+}
+
+} // namespace
+
 void writeFileAtomically(std::string const& path, std::string_view text) {
-    std::string const tmp = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
+    if (isSpecialFile(path)) {
+        writeInPlace(path, text);
+        return;
+    }
+    std::string const target = replacedFile(path);
+    std::string const tmp = fmt::format("{}.tmp{}", target, static_cast<long>(getpid()));
     auto const fail = [&](std::string_view why) { failWrite(tmp, path, why); };
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f)
@@ -54,7 +94,7 @@ void writeFileAtomically(std::string const& path, std::string_view text) {
     int const writeErrno = errno;
     if (std::fclose(f) != 0 || !written)
         fail(std::strerror(written ? errno : writeErrno));
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    if (std::rename(tmp.c_str(), target.c_str()) != 0)
         fail(std::strerror(errno));
 }
 
@@ -64,7 +104,7 @@ void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::strin
 
 void checkWritable(core::Comm const& comm, std::string const& path, std::string_view option) {
     onRootForAll(comm, [&] {
-        std::string const dir = directoryOf(path);
+        std::string const dir = directoryOf(replacedFile(path));
         std::error_code ec;
         if (std::filesystem::is_directory(path, ec))
             throw core::InputError(fmt::format("{} {}: is a directory", option, path));
@@ -78,9 +118,17 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
                     fmt::format("{} {}: cannot create the directory '{}': {}", option, path, dir,
                                 made ? made.message() : (ec ? ec.message() : "not a directory")));
         }
+        // A FIFO or a device is written in place (writeFileAtomically): it must be writable.
+        if (isSpecialFile(path)) {
+            if (::access(path.c_str(), W_OK) != 0)
+                throw core::InputError(
+                    fmt::format("{} {}: not writable: {}", option, path, std::strerror(errno)));
+            return;
+        }
         // A file created and removed there, as the write will (access() says yes to root
         // even where nothing can be created, e.g. in /proc, and the run's end is too late).
-        std::string const probe = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
+        std::string const probe =
+            fmt::format("{}.tmp{}", replacedFile(path), static_cast<long>(getpid()));
         std::FILE* f = std::fopen(probe.c_str(), "wb");
         if (f == nullptr)
             throw core::InputError(fmt::format("{} {}: cannot create a file in '{}': {}", option,
