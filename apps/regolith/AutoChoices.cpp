@@ -130,8 +130,10 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                 reason += fmt::format("; p3m would meet it on this grid ({:.2g}) but costs {:.0f}x "
                                       "the tree per grain (measured)",
                                       *p3m, kP3mSecondsPerGrain / kTreeSecondsPerGrain);
-            out.push_back(
-                {"gravity.self", fmt::format("tree, theta = {:g}", point->theta), reason});
+            // Two keys, each a value --set takes (a restart reuses them: Checkpointing.hpp).
+            out.push_back({"gravity.self", "tree", reason});
+            out.push_back({"gravity.theta", fmt::format("{}", point->theta),
+                           "the opening angle that meets gravity.accuracy (above)"});
         }
     }
     if (g.thresholdAuto) {

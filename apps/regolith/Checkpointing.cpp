@@ -15,6 +15,7 @@
 #include <fmt/ranges.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -25,6 +26,26 @@ namespace regolith::apps {
 namespace {
 /// The line between the scene file and its command-line overrides in sceneText.
 constexpr std::string_view kCommandLineMarker = "# regolith command line:";
+/// After it, a value "auto" chose (withAutoChoices): "# auto: key=value".
+constexpr std::string_view kAutoPrefix = "# auto: ";
+constexpr std::string_view kSetPrefix = "# --set ";
+
+/// The lines after kCommandLineMarker that start with `prefix`, without it.
+std::vector<std::string> linesAfterMarker(std::string const& text, std::string_view prefix) {
+    std::vector<std::string> out;
+    std::size_t const marker = text.rfind(fmt::format("\n{}", kCommandLineMarker));
+    if (marker == std::string::npos)
+        return out;
+    std::string_view rest = std::string_view(text).substr(marker + 1);
+    while (!rest.empty()) {
+        std::size_t const end = rest.find('\n');
+        std::string_view const line = rest.substr(0, end);
+        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+        if (line.starts_with(prefix))
+            out.emplace_back(line.substr(prefix.size()));
+    }
+    return out;
+}
 } // namespace
 
 std::string sceneText(core::AppContext const& ctx) {
@@ -38,9 +59,9 @@ std::string sceneText(core::AppContext const& ctx) {
             s << in.rdbuf();
             text = s.str(); // the scene was read moments ago; an empty text only loses provenance
         }
-        text += "\n" + std::string(kCommandLineMarker);
+        text += fmt::format("\n{}", kCommandLineMarker);
         for (std::string const& o : ctx.options.overrides)
-            text += "\n# --set " + o;
+            text += fmt::format("\n{}{}", kSetPrefix, o);
         if (ctx.options.steps)
             text += fmt::format("\n# --steps {}", *ctx.options.steps);
     }
@@ -57,27 +78,21 @@ std::string describe(core::AABB const& box, std::array<bool, 3> const& periodic)
 }
 
 /// The scene a run's text stands for: the file, with the command-line overrides that
-/// sceneText wrote after kCommandLineMarker ("# --set a.b=c" lines) applied; one that does
-/// not apply (a value with a line break) is left out rather than losing the comparison. A
-/// text without the marker (checkpoints before 2026-11-26) is the file alone.
+/// sceneText wrote after kCommandLineMarker ("# --set a.b=c" lines) and the values "auto"
+/// chose ("# auto: a.b=c", withAutoChoices) applied; one that does not apply (a value with a
+/// line break) is left out rather than losing the comparison. A text without the marker
+/// (checkpoints before 2026-11-26) is the file alone.
 core::ConfigTable effectiveScene(std::string const& text, std::string const& name) {
-    std::size_t const marker = text.rfind("\n" + std::string(kCommandLineMarker));
+    std::size_t const marker = text.rfind(fmt::format("\n{}", kCommandLineMarker));
     std::string const file = marker == std::string::npos ? text : text.substr(0, marker);
     auto table = core::ConfigTable::fromString(file, name);
-    if (marker == std::string::npos)
-        return table;
-    std::string_view rest = std::string_view(text).substr(marker + 1);
-    while (!rest.empty()) {
-        std::size_t const end = rest.find('\n');
-        std::string_view const line = rest.substr(0, end);
-        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
-        if (!line.starts_with("# --set "))
-            continue;
-        try {
-            table.applyOverride(line.substr(8));
-        } catch (core::InputError const&) {
+    for (std::string_view prefix : {kSetPrefix, kAutoPrefix})
+        for (std::string const& assignment : linesAfterMarker(text, prefix)) {
+            try {
+                table.applyOverride(assignment);
+            } catch (core::InputError const&) {
+            }
         }
-    }
     return table;
 }
 
@@ -101,9 +116,50 @@ std::vector<std::string> differingSections(std::string const& stored, std::strin
 
 } // namespace
 
-io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
-                                SceneDescription const& scene, std::string const& sceneText) {
-    io::CheckpointSlice slice = io::readCheckpoint(comm, path);
+std::string withAutoChoices(std::string text, std::vector<AutoChoice> const& choices) {
+    for (AutoChoice const& c : choices)
+        text += fmt::format("\n{}{}={}", kAutoPrefix, c.key, c.value);
+    return text;
+}
+
+std::vector<AutoChoice> reuseAutoChoices(core::AppContext& ctx, SceneDescription& scene,
+                                         std::string const& storedText) {
+    // The keys each "auto" of this scene stands for (gravity.self = "auto" chose theta too
+    // when it chose the tree).
+    std::vector<std::string> keys;
+    if (scene.time.dtAuto)
+        keys.emplace_back("time.dt");
+    if (scene.gravity.self == SelfGravity::Auto)
+        keys.insert(keys.end(), {"gravity.self", "gravity.theta"});
+    if (scene.gravity.thresholdAuto)
+        keys.emplace_back("gravity.update_threshold");
+    std::vector<AutoChoice> out;
+    if (keys.empty())
+        return out;
+    for (std::string const& assignment : linesAfterMarker(storedText, kAutoPrefix)) {
+        std::string const key = assignment.substr(0, assignment.find('='));
+        if (std::find(keys.begin(), keys.end(), key) != keys.end())
+            out.push_back({key, assignment.substr(key.size() + 1), "from the checkpoint"});
+    }
+    std::string missing;
+    for (std::string const& key : keys)
+        if (key != "gravity.theta" &&
+            std::none_of(out.begin(), out.end(), [&](auto const& c) { return c.key == key; }))
+            missing += " " + key;
+    if (!missing.empty())
+        throw core::InputError(fmt::format(
+            "--restart {}: the checkpoint does not say what \"auto\" chose for{} (it was "
+            "written before 2026-11-27, or by a run that set them); set the values the original "
+            "run chose (its run summary lists them under \"auto\") with --set",
+            ctx.options.restartPath, missing));
+    for (AutoChoice const& c : out)
+        ctx.scene.applyOverride(c.key + "=" + c.value, c.key + " (\"auto\" in the checkpoint)");
+    scene = parseScene(ctx.scene, ctx.options.scenePath);
+    return out;
+}
+
+void checkRestart(core::Comm const& comm, std::string const& path, io::CheckpointSlice const& slice,
+                  SceneDescription const& scene, std::string const& sceneText) {
     io::CheckpointInfo const& info = slice.info;
     std::string const context = "--restart " + path;
     bool const sameDomain = info.domain.min == scene.forest.domain.min &&
@@ -137,7 +193,6 @@ io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
                     "scene)",
                     context, g.uid, g.type, types - 1));
     });
-    return slice;
 }
 
 void restoreSelfGravity(io::CheckpointSlice const& slice,

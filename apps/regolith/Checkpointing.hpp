@@ -1,6 +1,7 @@
 #pragma once
 /// Checkpoints of a `regolith` run (output.checkpoint_every, output.checkpoint_keep) and the
 /// restart from one (--restart FILE), on top of io/checkpoint.
+#include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "core/app/RunApp.hpp"
 #include "core/mpi/Comm.hpp"
@@ -20,15 +21,27 @@ namespace regolith::apps {
 /// line. Rank 0 reads, every rank gets the same text. COLLECTIVE over ctx.world.
 [[nodiscard]] std::string sceneText(core::AppContext const& ctx);
 
-/// Reads the checkpoint `path` (io::readCheckpoint: every rank its slice) and checks that it
-/// belongs to `scene`: the same domain box and periodicity, and a step not beyond
-/// time.steps. A different time step, or a scene file (`sceneText`, as sceneText() gives it)
-/// that differs from the checkpoint's in other sections than [output] and [time], is allowed
-/// with a warning naming them. Throws the same core::InputError on every rank naming the
-/// file and what differs. COLLECTIVE over `comm`.
-[[nodiscard]] io::CheckpointSlice readRestart(core::Comm const& comm, std::string const& path,
-                                              SceneDescription const& scene,
-                                              std::string const& sceneText);
+/// `text` (sceneText's) with the values "auto" chose appended as "# auto: key=value" lines:
+/// a restart reuses them (reuseAutoChoices), and compares scenes with them applied.
+[[nodiscard]] std::string withAutoChoices(std::string text, std::vector<AutoChoice> const& choices);
+
+/// For a restart of a scene with "auto" keys: the values the checkpoint's run chose (the
+/// "# auto:" lines of `storedText`, the checkpoint's scene), applied to ctx.scene as overrides
+/// for the keys that are "auto" here, and `scene` parsed again; returns them (reason "from the
+/// checkpoint"). Re-deriving them from the restored grains could change them, and with them
+/// the trajectory. Throws core::InputError on every rank naming the keys if the checkpoint
+/// lacks one (written before 2026-11-27, or by a run that set them). COLLECTIVE.
+[[nodiscard]] std::vector<AutoChoice>
+reuseAutoChoices(core::AppContext& ctx, SceneDescription& scene, std::string const& storedText);
+
+/// Checks that the checkpoint `slice` (read from `path`) belongs to `scene`: the same domain
+/// box and periodicity, and a step not beyond time.steps. A different time step, or a scene
+/// (`sceneText`, as sceneText() and withAutoChoices give it) that differs from the
+/// checkpoint's in other sections than [output] and [time], is allowed with a warning naming
+/// them. Throws the same core::InputError on every rank naming the file and what differs.
+/// COLLECTIVE over `comm`.
+void checkRestart(core::Comm const& comm, std::string const& path, io::CheckpointSlice const& slice,
+                  SceneDescription const& scene, std::string const& sceneText);
 
 /// Hands the self-gravity state of a checkpoint (this rank's slice of the per-grain records,
 /// and the run-wide state) to `selfGravity`, which brings each record to its grain's rank at

@@ -58,23 +58,6 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
     return choices;
 }
 
-/// A restart continues with the original run's settings, which "auto" would re-derive from
-/// the restored grains (and could change): refused, naming the keys to set.
-void refuseAutoOnRestart(SceneDescription const& scene) {
-    std::string keys;
-    if (scene.time.dtAuto)
-        keys += " time.dt";
-    if (scene.gravity.self == SelfGravity::Auto)
-        keys += " gravity.self";
-    if (scene.gravity.thresholdAuto)
-        keys += " gravity.update_threshold";
-    if (!keys.empty())
-        throw core::InputError(fmt::format(
-            "--restart: \"auto\" is not resolved again on a restart ({}); set the values the "
-            "original run chose (its run summary lists them under \"auto\") with --set",
-            keys.substr(1)));
-}
-
 /// contact.neighbour_skin, if given, below the smallest block edge: a sanity bound, as a skin
 /// of a block edge already lists pairs across most of a block (memory growing with the square
 /// of its grains) and one of its diagonal every pair. InputError on every rank otherwise.
@@ -106,20 +89,21 @@ struct RunStart {
     std::optional<io::CheckpointSlice> checkpoint;
 };
 
-/// The masters of a restarted run, from --restart FILE (any rank count), checked against
-/// the state checksum the writer stored. Returns the checkpoint's step and time. COLLECTIVE.
+/// The masters of a restarted run, from the checkpoint `slice` of --restart FILE (any rank
+/// count), checked against the state checksum the writer stored. Returns the checkpoint's
+/// step and time. COLLECTIVE.
 RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
-                      std::string const& text, particles::LocalParticles& local) {
+                      std::string const& text, io::CheckpointSlice slice, double started,
+                      particles::LocalParticles& local) {
     std::string const& path = ctx.options.restartPath;
-    double const start = MPI_Wtime();
-    io::CheckpointSlice slice = readRestart(ctx.world, path, scene, text);
+    checkRestart(ctx.world, path, slice, scene, text);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
     if (restored != slice.info.stateChecksum)
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
                                            path, restored, slice.info.stateChecksum));
-    double const seconds = ctx.world.allReduce(MPI_Wtime() - start, core::ReduceOp::Max);
+    double const seconds = ctx.world.allReduce(MPI_Wtime() - started, core::ReduceOp::Max);
     core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
                     "entries, read and distributed in {:.3g} s",
                     path, slice.info.step, slice.info.time, slice.info.grainCount,
@@ -145,14 +129,21 @@ int runScene(core::AppContext& ctx) {
     BlockPlacement placement = uniformPlacement(world, scene);
     // Before any grain is made: the blocks' geometry is final here (balancing moves owners).
     requireSkinBelowBlockEdges(world, *placement.forest, scene.contact.neighbourSkin);
-    if (restart) // before the checkpoint is read: its dt would be compared with an unresolved one
-        refuseAutoOnRestart(scene);
-    std::string const text = sceneText(ctx); // stored in checkpoints, compared on a restart
-    RunStart start = restart ? restoreState(ctx, scene, text, *placement.local) : RunStart{};
+    std::string text = sceneText(ctx); // stored in checkpoints, compared on a restart
+    std::vector<AutoChoice> choices;
+    RunStart start;
+    if (restart) {
+        // "auto" takes what the checkpoint's run chose, before the checkpoint's dt is compared.
+        double const started = MPI_Wtime();
+        io::CheckpointSlice slice = io::readCheckpoint(world, ctx.options.restartPath);
+        choices = reuseAutoChoices(ctx, scene, slice.info.scene);
+        text = withAutoChoices(std::move(text), choices);
+        start = restoreState(ctx, scene, text, std::move(slice), started, *placement.local);
+    } else {
+        choices = generateInitialState(ctx, scene, *placement.forest, *placement.local);
+        text = withAutoChoices(std::move(text), choices);
+    }
     std::int64_t const startStep = start.step;
-    std::vector<AutoChoice> const choices =
-        restart ? std::vector<AutoChoice>{}
-                : generateInitialState(ctx, scene, *placement.forest, *placement.local);
     balanceByLoad(world, scene, placement);
     domain::BlockForest const& forest = *placement.forest;
     particles::LocalParticles& local = *placement.local;

@@ -42,6 +42,14 @@ updates):
     restart);
  4. with gravity.self = "pm" (the PETSc Poisson solve): 20 + 20 steps give the 40-step
     run's checksum, on 2 and on 4 ranks.
+
+Case "auto", on scenes/default.toml (time.dt, gravity.self and gravity.update_threshold
+"auto"; 16 steps, a checkpoint at step 8):
+ 1. the restart from step 8 with the same scene reuses what "auto" chose (printed "from the
+    checkpoint"), without a warning, and ends with the uninterrupted run's checksum;
+ 2. so does the restart that sets those values with --set, as the run summary lists them;
+ 3. a checkpoint written by a run that set them itself (no "auto" lines) is refused for the
+    scene with "auto", naming the keys: exit code 2.
 """
 import argparse
 import hashlib
@@ -126,6 +134,40 @@ def expect_refused(runner, np, args, message, files):
         fail(f"a checkpoint file changed: {line}")
 
 
+def auto_case(runner):
+    steps = ["--steps", "16", "--set", "output.vtk_every=0"]
+    reference = runner.summary(2, "reference", steps)
+    first = runner.path("first")
+    runner.summary(2, "first", [*steps, "--output", first, "--set", "output.checkpoint_every=8"])
+    step8 = os.path.join(first, "checkpoint_00000008.h5")
+    chosen = {c["key"]: c["value"] for c in reference["auto"]} if isinstance(
+        reference["auto"], list) else {k: v["value"] for k, v in reference["auto"].items()}
+    for key in ("time.dt", "gravity.self", "gravity.theta", "gravity.update_threshold"):
+        if key not in chosen:
+            fail(f"the run summary's auto lists {sorted(chosen)}: expected {key} among them")
+    explicit = [arg for key, value in chosen.items() for arg in ("--set", f"{key}={value}")]
+    for name, extra in (("same scene", []), ("--set as the summary lists", explicit)):
+        command, done = runner.run(2, [*steps, "--restart", step8, "--output",
+                                       runner.path("r" + str(len(extra))), *extra, "--json",
+                                       runner.path(f"r{len(extra)}.json")])
+        line = f"{' '.join(command)}\n--- output:\n{done.stdout}{done.stderr}"
+        if done.returncode != 0 or "[warn]" in done.stdout + done.stderr:
+            fail(f"restart ({name}): exit code {done.returncode}, expected 0 without a warning: "
+                 f"{line}")
+        with open(runner.path(f"r{len(extra)}.json"), encoding="utf-8") as f:
+            checksum = json.load(f)["checksum"]
+        if checksum != reference["checksum"]:
+            fail(f"restart ({name}): checksum {checksum}, the uninterrupted run "
+                 f"{reference['checksum']}")
+    set_dir = runner.path("set")
+    runner.summary(2, "set", [*steps, *explicit, "--output", set_dir,
+                              "--set", "output.checkpoint_every=8"])
+    expect_refused(runner, 2, [*steps, "--restart", os.path.join(set_dir, "checkpoint_00000008.h5"),
+                               "--output", runner.path("refused")],
+                   'the checkpoint does not say what "auto" chose for time.dt gravity.self '
+                   'gravity.update_threshold', [])
+
+
 def gravity_case(runner):
     plain = runner.summary(2, "plain", ["--set", "gravity.self=none"])["checksum"]
     ref = runner.summary(2, "reference", [])
@@ -180,14 +222,14 @@ def main():
     parser = argparse.ArgumentParser()
     for option in ("--mpiexec", "--app", "--scene", "--out"):
         parser.add_argument(option, required=True)
-    parser.add_argument("--case", choices=("plain", "gravity"), default="plain")
+    parser.add_argument("--case", choices=("plain", "gravity", "auto"), default="plain")
     a = parser.parse_args()
-    out = os.path.join(a.out, "restart" if a.case == "plain" else "restart_gravity")
+    out = os.path.join(a.out, "restart" if a.case == "plain" else "restart_" + a.case)
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     runner = Runner(a.mpiexec, a.app, a.scene, out)
-    if a.case == "gravity":
-        gravity_case(runner)
+    if a.case != "plain":
+        (gravity_case if a.case == "gravity" else auto_case)(runner)
         return
 
     reference = runner.summary(2, "reference", [])["checksum"]
