@@ -155,9 +155,12 @@ int runScene(core::AppContext& ctx) {
         for (AutoChoice const& c : choices)
             fmt::print("  auto: {} = {} ({})\n", c.key, c.value, c.reason);
     auto const selfGravity = makeSelfGravity(world, forest, scene);
-    if (selfGravity && start.checkpoint)
+    if (selfGravity && start.checkpoint) {
         restoreSelfGravity(*start.checkpoint, *selfGravity); // cached field, update policy
-    start.checkpoint.reset();                                // the grains are in `local` now
+        if (scene.output.vtkEvery > 0) // the restart step's grid output, like every other's
+            selfGravity->refreshGridFields(local);
+    }
+    start.checkpoint.reset(); // the grains are in `local` now
     auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
     if (ctx.isRoot() && !ctx.options.quiet)
         printSceneReport(ctx, scene, forest, counts);

@@ -43,6 +43,8 @@ public:
     double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out);
 
     [[nodiscard]] gravity::GridGravity const& grid() const { return m_grid; }
+    /// The next solve starts from zero (GridGravity::resetInitialGuess). Not collective.
+    void resetInitialGuess() { m_grid.resetInitialGuess(); }
     [[nodiscard]] gravity::GridShortRange const& shortRange() const { return m_shortRange; }
     [[nodiscard]] ShortRangeHalo const& halo() const { return m_halo; }
     /// Pairs corrected in the last evaluate() on this rank (a pair of two local grains

@@ -53,6 +53,7 @@ public:
     }
 
     [[nodiscard]] gravity::GridFieldsView fields() const { return m_grid.fields(); }
+    void resetInitialGuess() { m_grid.resetInitialGuess(); }
 
 private:
     int m_argc = 0;
@@ -126,6 +127,14 @@ public:
                     return e->evaluate(grains, out);
             },
             m_eval);
+    }
+
+    /// A grid method's next solve starts from zero (nothing for the others). Not collective.
+    void resetInitialGuess() {
+        if (auto const* mesh = std::get_if<std::unique_ptr<MeshGravity>>(&m_eval))
+            (*mesh)->resetInitialGuess();
+        if (auto const* p3m = std::get_if<std::unique_ptr<P3mGravity>>(&m_eval))
+            (*p3m)->resetInitialGuess();
     }
 
     /// The grid fields of a grid method, else nullopt.
@@ -255,9 +264,24 @@ void SelfGravityForces::restore(SelfGravityState const& state, std::span<particl
 }
 
 std::optional<gravity::GridFieldsView> SelfGravityForces::gridFields() const {
-    if (m_stats.evaluations == 0)
+    if (m_stats.evaluations == 0 && !m_gridRefreshed)
         return std::nullopt; // zeros: nothing worth writing
     return m_method->gridFields();
+}
+
+void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local) {
+    if (m_stats.evaluations > 0 || m_gridRefreshed || !m_method->gridFields())
+        return;
+    gather(local);
+    std::size_t const n = m_uid.size();
+    m_ax.assign(n, 0.0);
+    m_ay.assign(n, 0.0);
+    m_az.assign(n, 0.0);
+    (void)m_method->evaluate(*m_comm, {m_x, m_y, m_z, m_m, m_r}, {m_ax, m_ay, m_az});
+    // The next update solves as it would have without this one (from zero, as after any
+    // restart); the forces, the records and the statistics are untouched.
+    m_method->resetInitialGuess();
+    m_gridRefreshed = true;
 }
 
 } // namespace regolith::coupling

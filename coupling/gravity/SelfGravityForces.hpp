@@ -104,9 +104,14 @@ public:
 
     /// The cell fields of a grid method (density, potential, acceleration of the last update)
     /// for output, or nullopt for a method without a grid or before the first update of this
-    /// process (a restart with update_threshold > 0 computes them at its next update). Not
-    /// collective; the same answer on every rank.
+    /// process (or refreshGridFields). Not collective; the same answer on every rank.
     [[nodiscard]] std::optional<gravity::GridFieldsView> gridFields() const;
+    /// For the output of a restart, which has no grid fields until its next update: computes
+    /// them from the grains of `local` now, leaving the forces, the per-grain records, the
+    /// statistics and the next update's solve as they were (nothing if a field exists or the
+    /// method has no grid). Until the next update the output then shows the field of the
+    /// restored positions. COLLECTIVE.
+    void refreshGridFields(particles::LocalParticles const& local);
 
 private:
     class Method;
@@ -116,7 +121,8 @@ private:
     std::unique_ptr<Method> m_method;
     gravity::UpdatePolicy m_policy;
     SelfGravityStats m_stats;
-    bool m_uidOrder; ///< SelfGravityConfig::reproducible
+    bool m_uidOrder;              ///< SelfGravityConfig::reproducible
+    bool m_gridRefreshed = false; ///< refreshGridFields computed the grid fields
     // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;

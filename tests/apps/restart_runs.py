@@ -41,7 +41,8 @@ updates):
     makes exactly the updates the reference made after step 20 (no update forced by the
     restart);
  4. with gravity.self = "pm" (the PETSc Poisson solve): 20 + 20 steps give the 40-step
-    run's checksum, on 2 and on 4 ranks.
+    run's checksum, on 2 and on 4 ranks, the restart writing VTK output with the grid fields
+    at steps 20, 30 and 40.
 
 Case "auto", on scenes/default.toml (time.dt, gravity.self and gravity.update_threshold
 "auto"; 16 steps, a checkpoint at step 8):
@@ -208,11 +209,21 @@ def gravity_case(runner):
         runner.summary(np, f"pm_first_np{np}", [*pm, "--steps", "20", "--output", pm_dir,
                                                 "--set", "output.checkpoint_every=20"])
         start = os.path.join(pm_dir, "checkpoint_00000020.h5")
+        # With VTK output: the restart writes the grid fields from its first step on (it has
+        # no update before the next due one, so it computes them for the output alone), and
+        # that changes nothing else.
+        restart_dir = runner.path(f"pm_restart_np{np}")
         s = runner.summary(np, f"pm_restart_np{np}", [*pm, "--restart", start, "--output",
-                                                      runner.path(f"pm_restart_np{np}")])
+                                                      restart_dir, "--set", "output.vtk_every=10"])
         if s["checksum"] != pm_ref:
             fail(f"pm on {np} ranks: restart from {start}: checksum {s['checksum']}, the run "
                  f"gave {pm_ref}")
+        grid_pvd = os.path.join(restart_dir, "grid.pvd")
+        outputs = len(list(ET.parse(grid_pvd).getroot().iter("DataSet"))) \
+            if os.path.exists(grid_pvd) else 0
+        if outputs != 3:
+            fail(f"pm on {np} ranks, restart with VTK output every 10 steps from step 20 to 40: "
+                 f"{grid_pvd} lists {outputs} grid outputs, expected 3 (steps 20, 30, 40)")
         pm_refs.append(pm_ref)
     print(f"restart_runs: gravity checks passed (reference checksum {ref['checksum']}, "
           f"{updates} updates in 40 steps; pm {pm_refs})")
