@@ -245,6 +245,18 @@ void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
         write(stepsDone);
 }
 
+void CheckpointSchedule::warnReplaced(std::int64_t firstStep, std::int64_t lastStep) const {
+    if (m_output.checkpointEvery <= 0 || m_comm->rank() != 0)
+        return;
+    auto const names =
+        io::checkpointsToReplace(m_output.dir, m_output.checkpointEvery, firstStep, lastStep);
+    if (!names.empty())
+        core::log::warn("output.dir = \"{}\" holds {} checkpoint(s) of the steps this run "
+                        "writes ({}{}), an earlier run's: they will be replaced",
+                        m_output.dir, names.size(), names.front(),
+                        names.size() > 1 ? fmt::format(" ... {}", names.back()) : "");
+}
+
 std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     io::CheckpointInfo info;
     info.step = stepsDone;

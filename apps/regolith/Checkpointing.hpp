@@ -60,6 +60,9 @@ public:
     CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene, std::string text,
                        particles::LocalParticles const& local, TimeAt timeAt);
 
+    /// Warns (rank 0) if output.dir holds checkpoints of the steps this run will write after
+    /// `firstStep` up to `lastStep`, an earlier run's: they will be replaced. Not collective.
+    void warnReplaced(std::int64_t firstStep, std::int64_t lastStep) const;
     /// Whether afterStep(stepsDone) writes a checkpoint. Not collective.
     [[nodiscard]] bool due(std::int64_t stepsDone) const {
         return m_output.checkpointEvery > 0 && stepsDone % m_output.checkpointEvery == 0;

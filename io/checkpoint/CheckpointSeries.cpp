@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string_view>
 #include <system_error>
@@ -18,6 +19,30 @@ constexpr std::string_view kSuffix = ".h5";
 std::string checkpointPath(std::string const& dir, std::int64_t step) {
     return (std::filesystem::path(dir) / fmt::format("{}{:08d}{}", kPrefix, step, kSuffix))
         .string();
+}
+
+std::vector<std::string> checkpointsToReplace(std::string const& dir, std::int64_t every,
+                                              std::int64_t firstStep, std::int64_t lastStep) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    if (every <= 0 || !std::filesystem::is_directory(dir, ec))
+        return out;
+    for (auto const& entry : std::filesystem::directory_iterator(dir, ec)) {
+        std::string const name = entry.path().filename().string();
+        if (!name.starts_with(kPrefix) || !name.ends_with(kSuffix))
+            continue;
+        std::string const digits =
+            name.substr(kPrefix.size(), name.size() - kPrefix.size() - kSuffix.size());
+        if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos ||
+            digits.size() > 18)
+            continue;
+        std::int64_t const step = std::stoll(digits);
+        if (step > firstStep && step <= lastStep && step % every == 0 &&
+            entry.path().string() == checkpointPath(dir, step))
+            out.push_back(name);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 std::vector<std::string> rotateCheckpoints(std::vector<std::string>& written, std::int64_t keep) {

@@ -10,6 +10,13 @@ namespace regolith::io {
 /// by step. Not collective.
 [[nodiscard]] std::string checkpointPath(std::string const& dir, std::int64_t step);
 
+/// The checkpoints in `dir` that a run writing every `every` steps after `firstStep` up to
+/// `lastStep` would replace (an earlier run's of the same steps), by name. Not collective.
+[[nodiscard]] std::vector<std::string> checkpointsToReplace(std::string const& dir,
+                                                            std::int64_t every,
+                                                            std::int64_t firstStep,
+                                                            std::int64_t lastStep);
+
 /// Deletes the checkpoints of `written` (the ones this run wrote, oldest first) except the
 /// newest `keep` (keep <= 0: deletes none), drops them from the list and returns them. Files
 /// this run did not write -- an earlier run's in the same directory, the checkpoint it

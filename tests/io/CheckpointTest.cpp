@@ -396,35 +396,3 @@ TEST(Checkpoint, GrainOutsideTheDomainIsRefused) {
             << e.what();
     }
 }
-
-TEST(Checkpoint, RotationKeepsTheNewestThisRunWrote) {
-    core::Comm const world;
-    if (world.rank() != 0)
-        return;
-    fs::path const dir = fmt::format("checkpoint_rotation_np{}", world.size());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    // An earlier run's checkpoints, one of them beyond this run's steps: never touched.
-    for (int step : {5, 100})
-        std::ofstream(io::checkpointPath(dir.string(), step)) << "x";
-    std::ofstream(dir / "notes.txt") << "x";
-    EXPECT_EQ(io::checkpointPath("d", 20), (fs::path("d") / "checkpoint_00000020.h5").string());
-    std::vector<std::string> written;
-    std::vector<std::string> removed;
-    for (int step : {10, 20, 30, 40}) {
-        written.push_back(io::checkpointPath(dir.string(), step));
-        std::ofstream(written.back()) << "x";
-        auto const gone = io::rotateCheckpoints(written, 2);
-        removed.insert(removed.end(), gone.begin(), gone.end());
-        EXPECT_TRUE(fs::exists(io::checkpointPath(dir.string(), step))) << "the newest, " << step;
-    }
-    EXPECT_EQ(removed, (std::vector<std::string>{io::checkpointPath(dir.string(), 10),
-                                                 io::checkpointPath(dir.string(), 20)}));
-    EXPECT_EQ(written, (std::vector<std::string>{io::checkpointPath(dir.string(), 30),
-                                                 io::checkpointPath(dir.string(), 40)}));
-    for (int step : {5, 100})
-        EXPECT_TRUE(fs::exists(io::checkpointPath(dir.string(), step)));
-    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
-    EXPECT_TRUE(io::rotateCheckpoints(written, 0).empty());
-    EXPECT_EQ(written.size(), 2U);
-}
