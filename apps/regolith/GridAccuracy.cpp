@@ -106,4 +106,24 @@ void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const&
         expected, meets->cellsAcrossBody, needed[0], needed[1], needed[2]));
 }
 
+void checkMeasuredGridAccuracy(coupling::SelfGravityForces const& gravity,
+                               SceneDescription const& scene) {
+    GravitySection const& g = scene.gravity;
+    auto const& periodic = scene.forest.periodic;
+    if (gridErrorPoints(g.self).empty() || !g.accuracyGiven || periodic[0] || periodic[1] ||
+        periodic[2])
+        return;
+    auto const measured = gravity.sampledMedianError(kAccuracySample);
+    if (!measured || *measured <= g.accuracy)
+        return;
+    throw core::InputError(fmt::format(
+        "gravity.accuracy = {:g}: gravity.self = \"{}\" has a median force error of {:.2g} on "
+        "this scene's grains at the start (about {} of them against the direct sum); {}, ask "
+        "for a larger gravity.accuracy, or use \"tree\" or \"direct\"",
+        g.accuracy, toString(g.self), *measured, kAccuracySample,
+        // P3M's error need not fall with finer cells (GridAccuracy.hpp's kP3mErrors).
+        g.self == SelfGravity::P3m ? "raise gravity.p3m_cutoff or change domain.cells_per_block"
+                                   : "refine domain.cells_per_block"));
+}
+
 } // namespace regolith::apps

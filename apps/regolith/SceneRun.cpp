@@ -198,6 +198,8 @@ int runScene(core::AppContext& ctx) {
     } else {
         dem.setUp();
         checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
+        if (selfGravity) // the first field's error, on this scene's grains
+            checkMeasuredGridAccuracy(*selfGravity, scene);
     }
 
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.

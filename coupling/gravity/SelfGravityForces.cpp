@@ -1,6 +1,7 @@
 #include "coupling/gravity/SelfGravityForces.hpp"
 
 #include "coupling/gravity/P3mGravity.hpp"
+#include "coupling/gravity/SampledForceError.hpp"
 #include "gravity/GridGravity.hpp"
 #include "gravity/MeshPotentialTable.hpp"
 #include "gravity/baselines/GridMethods.hpp"
@@ -175,7 +176,9 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
     : m_comm(&comm)
     , m_method(std::make_unique<Method>(comm, forest, config))
     , m_policy(config.updateThreshold)
-    , m_uidOrder(config.reproducible) {}
+    , m_uidOrder(config.reproducible)
+    , m_G(config.G)
+    , m_softening(config.softening) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
 
@@ -224,6 +227,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     gather(local);
     std::size_t const n = m_uid.size();
     bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
+    m_lastUpdated = updated;
     if (updated) {
         m_ax.assign(n, 0.0);
         m_ay.assign(n, 0.0);
@@ -267,6 +271,13 @@ std::optional<gravity::GridFieldsView> SelfGravityForces::gridFields() const {
     if (m_stats.evaluations == 0 && !m_gridRefreshed)
         return std::nullopt; // zeros: nothing worth writing
     return m_method->gridFields();
+}
+
+std::optional<double> SelfGravityForces::sampledMedianError(std::size_t sample) const {
+    if (!m_lastUpdated)
+        return std::nullopt;
+    return coupling::sampledMedianError(*m_comm, {m_x, m_y, m_z, m_m, m_r}, m_uid,
+                                        {m_ax, m_ay, m_az}, m_G, m_softening, sample);
 }
 
 void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local) {

@@ -112,6 +112,10 @@ public:
     /// method has no grid). Until the next update the output then shows the field of the
     /// restored positions. COLLECTIVE.
     void refreshGridFields(particles::LocalParticles const& local);
+    /// The median relative error of the last update's field against the direct sum, over a
+    /// sample of about `sample` grains (SampledForceError.hpp), or nullopt if the last
+    /// addForces() did not update the field (the grains have moved since). COLLECTIVE.
+    [[nodiscard]] std::optional<double> sampledMedianError(std::size_t sample) const;
 
 private:
     class Method;
@@ -123,6 +127,9 @@ private:
     SelfGravityStats m_stats;
     bool m_uidOrder;              ///< SelfGravityConfig::reproducible
     bool m_gridRefreshed = false; ///< refreshGridFields computed the grid fields
+    double m_G;
+    double m_softening;
+    bool m_lastUpdated = false; ///< the last addForces() updated the field (m_ax... hold it)
     // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
