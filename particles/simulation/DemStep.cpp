@@ -112,6 +112,26 @@ double largestOverBlocks(AnyIntegrator const& any, LocalParticles& local,
         any);
 }
 
+/// The largest step of the masters of `ps` that are still in the domain, dt |v| (the drift of
+/// both integrators' position update, which leaves v at the velocity it moved with), over
+/// `edge`. Asked of a block whose bound says a grain moved a block edge or more: one that
+/// left through an open face is removed by the sync wherever it went, and only the others
+/// must stay within the neighbour blocks.
+double stayingShare(ParticleStorage const& ps, domain::ForestGeometry const& geometry, double dt,
+                    double edge) {
+    core::AABB const& box = geometry.domain();
+    double largest = 0.0;
+    ps.forEachMaster([&](std::size_t i) {
+        core::Vec3 const& x = ps.position(i);
+        for (int a = 0; a < 3; ++a)
+            if (!geometry.periodic()[static_cast<std::size_t>(a)] &&
+                !(x[a] >= box.min[a] && x[a] < box.max[a]))
+                return; // leaves the domain
+        largest = std::max(largest, dt * ps.velocity(i).norm() / edge);
+    });
+    return largest;
+}
+
 } // namespace
 
 void DemStep::step(StepEnd end) {
@@ -174,6 +194,11 @@ void DemStep::syncParticles() {
         // (the reach as a negative, so that one Max reduction finds the largest share and,
         // among equal shares, the smallest edge).
         std::array<double, 3> motion{m_moved, 0.0, -std::numeric_limits<double>::infinity()};
+        auto const blocks = m_local->blocks();
+        for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
+            if (m_movedSinceSync[b] >= 1.0 && std::isfinite(m_movedSinceSync[b]))
+                m_movedSinceSync[b] = stayingShare(
+                    blocks[b].particles, m_local->forest().geometry(), m_config.dt, m_reachEdge[b]);
         for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
             if (m_movedSinceSync[b] > motion[1] || !(m_movedSinceSync[b] <= motion[1])) {
                 motion[1] = m_movedSinceSync[b];
