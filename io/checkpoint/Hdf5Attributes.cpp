@@ -59,12 +59,16 @@ void writeText(hid_t file, char const* name, std::string const& text, std::strin
     h5check(H5Awrite(attr.get(), type.get(), text.c_str()), context, name);
 }
 
+/// Why a required attribute may be absent: the file is an HDF5 file, but another program's,
+/// or its metadata is damaged (one flipped byte there hides attributes).
+constexpr char const* kNotACheckpoint = " (not a Regolith checkpoint, or a damaged one)";
+
 /// Reads `n` values of attribute `name`, which must hold exactly `n`.
 void readAttr(hid_t file, char const* name, hid_t memT, hsize_t n, void* data,
               std::string const& context) {
     std::string const what = std::string("attribute '") + name + "'";
     if (H5Aexists(file, name) <= 0)
-        throw core::InputError(context + ": " + what + " is missing");
+        throw core::InputError(context + ": " + what + " is missing" + kNotACheckpoint);
     H5Handle const attr = h5own(H5Aopen(file, name, H5P_DEFAULT), H5Aclose, context, what.c_str());
     H5Handle const space = h5own(H5Aget_space(attr.get()), H5Sclose, context, what.c_str());
     if (H5Sget_simple_extent_npoints(space.get()) != static_cast<hssize_t>(n))
@@ -75,7 +79,7 @@ void readAttr(hid_t file, char const* name, hid_t memT, hsize_t n, void* data,
 std::string readText(hid_t file, char const* name, std::string const& context) {
     std::string const what = std::string("attribute '") + name + "'";
     if (H5Aexists(file, name) <= 0)
-        throw core::InputError(context + ": " + what + " is missing");
+        throw core::InputError(context + ": " + what + " is missing" + kNotACheckpoint);
     H5Handle const attr = h5own(H5Aopen(file, name, H5P_DEFAULT), H5Aclose, context, what.c_str());
     H5Handle const type = h5own(H5Aget_type(attr.get()), H5Tclose, context, what.c_str());
     if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0)

@@ -357,7 +357,7 @@ TEST(Checkpoint, ImpossibleGrainCountIsRefusedBeforeAllocating) {
     EXPECT_NE(message.find("cannot fit in its"), std::string::npos) << message;
 }
 
-TEST(Checkpoint, OtherFormatVersionIsRefused) {
+TEST(Checkpoint, OtherFormatVersionOrNoneIsRefused) {
     core::Comm const world;
     std::string const path = fileName(world, "version");
     writeSample(world, path);
@@ -369,6 +369,17 @@ TEST(Checkpoint, OtherFormatVersionIsRefused) {
                                        io::kCheckpointFormatVersion)),
               std::string::npos)
         << message;
+    // Without the attribute: another program's HDF5 file, or damaged metadata.
+    if (world.rank() == 0) {
+        hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        H5Adelete(file, "format_version");
+        H5Fclose(file);
+    }
+    world.barrier();
+    EXPECT_NE(readError(world, path)
+                  .find("'format_version' is missing (not a Regolith "
+                        "checkpoint, or a damaged one)"),
+              std::string::npos);
 }
 
 TEST(Checkpoint, MissingFileIsRefused) {
