@@ -80,4 +80,28 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage 
         core::log::warn("{}", warning);
 }
 
+void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& masters,
+                      SceneDescription const& scene) {
+    if (scene.gravity.self == SelfGravity::None ||
+        scene.contact.model != ContactModel::SpringDashpot)
+        return;
+    double worst = 0.0; // m² / r³
+    masters.forEachMaster([&](std::size_t i) {
+        double const m = masters.mass(i), r = masters.radius(i);
+        if (r > 0.0 && std::isfinite(m))
+            worst = std::max(worst, m * m / (r * r * r));
+    });
+    worst = comm.allReduce(worst, core::ReduceOp::Max);
+    double const overlap = scene.gravity.G * worst / (4.0 * scene.contact.stiffness);
+    if (overlap > kSoftContactOverlap)
+        core::log::warn(
+            "contact.stiffness = {:g} is soft for the grains' own gravity: two touching "
+            "grains overlap by {:.3g} of their radius at rest under their attraction "
+            "alone (G m² / (2r)² / k, for the grains of largest m² / r³), a pile or an "
+            "impact more; self-gravity treats overlapping grains as points, so deep "
+            "overlaps are not resisted as they should be: raise contact.stiffness "
+            "(and lower time.dt with it)",
+            scene.contact.stiffness, overlap);
+}
+
 } // namespace regolith::apps

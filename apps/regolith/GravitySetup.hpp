@@ -23,4 +23,16 @@ makeSelfGravity(core::Comm const& comm, domain::BlockForest const& forest,
 void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage const& masters,
                              SceneDescription const& scene);
 
+/// Warns (rank 0, once) when the linear contacts are too soft for the grains' own gravity: two
+/// touching grains overlap at rest by G m² / (2r)² / k under their mutual attraction alone;
+/// above kSoftContactOverlap of the radius for the grain with the largest m² / r³ (a pile's
+/// weight adds to it, impacts more). Found by a review: grains of cold-collapse sank 1.5 radii
+/// into each other, and a pair with G 10⁴ times larger passed through each other and was
+/// ejected (point-mass gravity inside an overlap). COLLECTIVE when self-gravity is on.
+void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& masters,
+                      SceneDescription const& scene);
+
+/// The static pair overlap, over the radius, above which warnSoftContacts warns.
+inline constexpr double kSoftContactOverlap = 0.1;
+
 } // namespace regolith::apps

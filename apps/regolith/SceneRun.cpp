@@ -53,6 +53,7 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
     std::vector<AutoChoice> const choices = resolveAutoChoices(ctx.world, masters, scene);
     checkInitialState(ctx.world, masters, scene);
     warnLazyUpdateThreshold(ctx.world, masters, scene);
+    warnSoftContacts(ctx.world, masters, scene);
     checkGridAccuracy(ctx.world, masters, scene);
     local.adoptMasters(std::move(masters));
     return choices;
