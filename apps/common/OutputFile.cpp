@@ -50,14 +50,22 @@ namespace {
 /// a FIFO, a device such as /dev/null or /dev/stdout, a socket.
 bool isSpecialFile(std::string const& path) {
     std::error_code ec;
+    // /dev/stdout redirected to a file resolves to that regular file (through /proc/self/fd):
+    // replacing it would cut the run's own log; anything under /dev or /proc is written in
+    // place.
     auto const st = std::filesystem::status(path, ec);
+    std::string const absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
+    if (std::filesystem::exists(st) &&
+        (absolute.starts_with("/dev/") || absolute.starts_with("/proc/")))
+        return true;
     return std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
            !std::filesystem::is_directory(st);
 }
 
-/// Writes `text` through `path` as it is (no temporary: a FIFO's reader or a device gets it).
+/// Writes `text` through `path` as it is (no temporary: a FIFO's reader or a device gets it),
+/// appending: /dev/stdout redirected to a log file continues the log.
 void writeInPlace(std::string const& path, std::string_view text) {
-    std::FILE* f = std::fopen(path.c_str(), "wb");
+    std::FILE* f = std::fopen(path.c_str(), "ab");
     if (!f)
         throw core::InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
     bool const written = std::fwrite(text.data(), 1, text.size(), f) == text.size();

@@ -10,8 +10,9 @@ namespace regolith::apps {
 
 /// Writes `text` to "<path>.tmp<pid>" in the same directory, then renames it to `path`, so a
 /// reader never sees a partial file. Through a symbolic link, the file it names is replaced
-/// (the link stays); a FIFO or a device (/dev/null, /dev/stdout) is written in place, never
-/// replaced. Throws core::InputError "cannot write '<path>': <why>". Not collective.
+/// (the link stays); a FIFO, a device or anything under /dev or /proc (/dev/null,
+/// /dev/stdout, also when that is redirected to a file) is written in place, never replaced. Throws
+/// core::InputError "cannot write '<path>': <why>". Not collective.
 void writeFileAtomically(std::string const& path, std::string_view text);
 
 /// Rank 0 writes `text` (ignored on other ranks) with writeFileAtomically; every rank learns

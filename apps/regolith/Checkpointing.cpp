@@ -116,6 +116,19 @@ std::vector<std::string> differingSections(std::string const& stored, std::strin
 
 } // namespace
 
+void requireSameDomain(std::string const& path, io::CheckpointInfo const& info,
+                       SceneDescription const& scene) {
+    bool const sameDomain = info.domain.min == scene.forest.domain.min &&
+                            info.domain.max == scene.forest.domain.max &&
+                            info.periodic == scene.forest.periodic;
+    if (!sameDomain)
+        throw core::InputError(
+            fmt::format("--restart {}: the checkpoint was written for the domain {}, the scene "
+                        "has {}",
+                        path, describe(info.domain, info.periodic),
+                        describe(scene.forest.domain, scene.forest.periodic)));
+}
+
 std::string withAutoChoices(std::string text, std::vector<AutoChoice> const& choices) {
     for (AutoChoice const& c : choices)
         text += fmt::format("\n{}{}={}", kAutoPrefix, c.key, c.value);
@@ -162,14 +175,7 @@ void checkRestart(core::Comm const& comm, std::string const& path, io::Checkpoin
                   SceneDescription const& scene, std::string const& sceneText) {
     io::CheckpointInfo const& info = slice.info;
     std::string const context = "--restart " + path;
-    bool const sameDomain = info.domain.min == scene.forest.domain.min &&
-                            info.domain.max == scene.forest.domain.max &&
-                            info.periodic == scene.forest.periodic;
-    if (!sameDomain)
-        throw core::InputError(
-            fmt::format("{}: the checkpoint was written for the domain {}, the scene has {}",
-                        context, describe(info.domain, info.periodic),
-                        describe(scene.forest.domain, scene.forest.periodic)));
+    requireSameDomain(path, info, scene);
     if (info.step > scene.time.steps)
         throw core::InputError(fmt::format("{}: the checkpoint is at step {}, beyond the scene's "
                                            "time.steps = {} (a total, not a remainder)",

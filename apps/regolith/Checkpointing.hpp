@@ -21,6 +21,11 @@ namespace regolith::apps {
 /// line. Rank 0 reads, every rank gets the same text. COLLECTIVE over ctx.world.
 [[nodiscard]] std::string sceneText(core::AppContext const& ctx);
 
+/// Throws core::InputError (the same on every rank) naming `path` and both domains unless the
+/// checkpoint was written for the scene's domain box and periodicity. Not collective.
+void requireSameDomain(std::string const& path, io::CheckpointInfo const& info,
+                       SceneDescription const& scene);
+
 /// `text` (sceneText's) with the values "auto" chose appended as "# auto: key=value" lines:
 /// a restart reuses them (reuseAutoChoices), and compares scenes with them applied.
 [[nodiscard]] std::string withAutoChoices(std::string text, std::vector<AutoChoice> const& choices);
@@ -35,7 +40,7 @@ namespace regolith::apps {
 reuseAutoChoices(core::AppContext& ctx, SceneDescription& scene, std::string const& storedText);
 
 /// Checks that the checkpoint `slice` (read from `path`) belongs to `scene`: the same domain
-/// box and periodicity, and a step not beyond time.steps. A different time step, or a scene
+/// (requireSameDomain) and a step not beyond time.steps. A different time step, or a scene
 /// (`sceneText`, as sceneText() and withAutoChoices give it) that differs from the
 /// checkpoint's in other sections than [output] and [time], is allowed with a warning naming
 /// them. Throws the same core::InputError on every rank naming the file and what differs.

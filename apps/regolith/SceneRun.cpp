@@ -137,6 +137,7 @@ int runScene(core::AppContext& ctx) {
         // "auto" takes what the checkpoint's run chose, before the checkpoint's dt is compared.
         double const started = MPI_Wtime();
         io::CheckpointSlice slice = io::readCheckpoint(world, ctx.options.restartPath);
+        requireSameDomain(ctx.options.restartPath, slice.info, scene); // the first question
         choices = reuseAutoChoices(ctx, scene, slice.info.scene);
         text = withAutoChoices(std::move(text), choices);
         start = restoreState(ctx, scene, text, std::move(slice), started, *placement.local);

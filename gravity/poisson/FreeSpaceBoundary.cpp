@@ -14,8 +14,8 @@ void FreeSpaceBoundary::update(core::Comm const& comm, CellField const& density,
     std::vector<double> const mine = occupiedCells(density);
     m_moments = massMoments(comm, mine, density.layout().forest().domain().center());
     m_useTree = m_moments.mass > 0.0 && m_moments.occupiedCells <= kGatherCells;
-    m_near.clear();
-    m_nearBucket.clear();
+    for (auto& slab : m_slab)
+        slab.clear();
     if (m_kernel == BoundaryKernel::Lattice && m_moments.mass > 0.0)
         gatherNearCells(comm, density.layout(), mine);
     m_tree = tree::Octree();
@@ -46,7 +46,8 @@ void FreeSpaceBoundary::evaluate(std::span<core::Vec3 const> points, std::span<d
     } else {
         evaluateTree(points, phi);
     }
-    if (!m_near.empty())
+    if (m_lattice &&
+        std::any_of(m_slab.begin(), m_slab.end(), [](auto const& s) { return !s.empty(); }))
         addLatticeCorrections(points, phi);
 }
 
@@ -78,23 +79,6 @@ void FreeSpaceBoundary::evaluateTree(std::span<core::Vec3 const> points,
     }
 }
 
-namespace {
-
-constexpr std::int64_t kBucket = 2 * FreeSpaceBoundary::kLatticeRadius + 1;
-
-/// Floor of a / kBucket.
-std::int64_t bucketOf(std::int64_t a) {
-    return a >= 0 ? a / kBucket : -((-a + kBucket - 1) / kBucket);
-}
-
-std::uint64_t bucketKey(std::int64_t bx, std::int64_t by, std::int64_t bz) {
-    constexpr std::int64_t kBias = std::int64_t{1} << 20;
-    auto const field = [](std::int64_t b) { return static_cast<std::uint64_t>(b + kBias); };
-    return field(bx) | field(by) << 21U | field(bz) << 42U;
-}
-
-} // namespace
-
 std::array<std::int64_t, 3> FreeSpaceBoundary::cellOf(core::Vec3 const& x) const {
     core::Vec3 const c = (x - m_firstCentre).cwiseQuotient(m_lattice->spacing());
     return {std::llround(c[0]), std::llround(c[1]), std::llround(c[2])};
@@ -105,31 +89,36 @@ void FreeSpaceBoundary::gatherNearCells(core::Comm const& comm, CellLayout const
     if (!m_lattice || m_lattice->spacing() != layout.spacing())
         m_lattice.emplace(layout.spacing(), kLatticeRadius);
     m_firstCentre = layout.centre({0, 0, 0});
-    auto const& N = layout.globalCells();
+    m_cells = layout.globalCells();
+    auto const depth = [&](std::array<std::int64_t, 3> const& cell, std::size_t f) {
+        std::size_t const a = f / 2;
+        return f % 2 == 0 ? cell[a] : m_cells[a] - 1 - cell[a];
+    };
     std::vector<double> near;
     for (std::size_t c = 0; c + 3 < mine.size(); c += 4) {
         auto const cell = cellOf({mine[c], mine[c + 1], mine[c + 2]});
-        bool close = false;
-        for (std::size_t a = 0; a < 3; ++a)
-            close = close || cell[a] < kLatticeRadius || cell[a] >= N[a] - kLatticeRadius;
-        if (close)
-            near.insert(near.end(), mine.begin() + static_cast<std::ptrdiff_t>(c),
-                        mine.begin() + static_cast<std::ptrdiff_t>(c + 4));
+        for (std::size_t f = 0; f < 6; ++f)
+            if (depth(cell, f) < kLatticeRadius) {
+                near.insert(near.end(), mine.begin() + static_cast<std::ptrdiff_t>(c),
+                            mine.begin() + static_cast<std::ptrdiff_t>(c + 4));
+                break;
+            }
     }
     std::vector<double> const all = comm.allGatherVarying<double>(near);
-    std::vector<std::pair<std::uint64_t, NearCell>> keyed;
-    keyed.reserve(all.size() / 4);
     for (std::size_t c = 0; c + 3 < all.size(); c += 4) {
         auto const cell = cellOf({all[c], all[c + 1], all[c + 2]});
-        keyed.push_back({bucketKey(bucketOf(cell[0]), bucketOf(cell[1]), bucketOf(cell[2])),
-                         NearCell{cell, all[c + 3]}});
-    }
-    // Stable: the same order on every rank, whatever the sort's implementation.
-    std::stable_sort(keyed.begin(), keyed.end(),
-                     [](auto const& a, auto const& b) { return a.first < b.first; });
-    for (auto const& [key, cell] : keyed) {
-        m_nearBucket.push_back(key);
-        m_near.push_back(cell);
+        for (std::size_t f = 0; f < 6; ++f) {
+            std::int64_t const d = depth(cell, f);
+            if (d >= kLatticeRadius)
+                continue;
+            std::size_t const a = f / 2, b = (a + 1) % 3, e = (a + 2) % 3;
+            std::vector<double>& slab = m_slab[f];
+            if (slab.empty())
+                slab.assign(static_cast<std::size_t>(kLatticeRadius * m_cells[b] * m_cells[e]),
+                            0.0);
+            slab[static_cast<std::size_t>((d * m_cells[b] + cell[b]) * m_cells[e] + cell[e])] +=
+                all[c + 3];
+        }
     }
 }
 
@@ -139,22 +128,42 @@ void FreeSpaceBoundary::addLatticeCorrections(std::span<core::Vec3 const> points
     LatticeGreensFunction const& lattice = *m_lattice;
     for (std::size_t i = 0; i < points.size(); ++i) {
         auto const p = cellOf(points[i]);
+        // The face beyond which p lies (the first axis it is outside on): its slab holds
+        // every occupied cell within kR of p on every axis.
+        std::size_t f = 6;
+        std::int64_t beyond = 0; // cells from p to the face's first layer (>= 1)
+        for (std::size_t a = 0; a < 3 && f == 6; ++a) {
+            if (p[a] < 0) {
+                f = 2 * a;
+                beyond = -p[a];
+            } else if (p[a] >= m_cells[a]) {
+                f = 2 * a + 1;
+                beyond = p[a] - m_cells[a] + 1;
+            }
+        }
+        if (f == 6 || m_slab[f].empty())
+            continue;
+        std::size_t const a = f / 2, b = (a + 1) % 3, e = (a + 2) % 3;
+        std::vector<double> const& slab = m_slab[f];
+        std::int64_t const b0 = std::max<std::int64_t>(0, p[b] - kR);
+        std::int64_t const b1 = std::min(m_cells[b] - 1, p[b] + kR);
+        std::int64_t const e0 = std::max<std::int64_t>(0, p[e] - kR);
+        std::int64_t const e1 = std::min(m_cells[e] - 1, p[e] + kR);
         double sum = 0.0;
-        // The buckets of edge 2R + 1 that the box p ± R meets: at most two per axis.
-        for (std::int64_t bz = bucketOf(p[2] - kR); bz <= bucketOf(p[2] + kR); ++bz)
-            for (std::int64_t by = bucketOf(p[1] - kR); by <= bucketOf(p[1] + kR); ++by)
-                for (std::int64_t bx = bucketOf(p[0] - kR); bx <= bucketOf(p[0] + kR); ++bx) {
-                    auto const [first, last] = std::equal_range(
-                        m_nearBucket.begin(), m_nearBucket.end(), bucketKey(bx, by, bz));
-                    for (auto k = first; k != last; ++k) {
-                        NearCell const& c =
-                            m_near[static_cast<std::size_t>(k - m_nearBucket.begin())];
-                        std::array<std::int64_t, 3> const n{p[0] - c.cell[0], p[1] - c.cell[1],
-                                                            p[2] - c.cell[2]};
-                        if (std::abs(n[0]) <= kR && std::abs(n[1]) <= kR && std::abs(n[2]) <= kR)
-                            sum += c.mass * lattice.correction(n);
+        std::array<std::int64_t, 3> n{};
+        for (std::int64_t d = 0; d + beyond <= kR; ++d) {
+            n[a] = d + beyond;
+            for (std::int64_t cb = b0; cb <= b1; ++cb) {
+                n[b] = p[b] - cb;
+                double const* row =
+                    &slab[static_cast<std::size_t>((d * m_cells[b] + cb) * m_cells[e])];
+                for (std::int64_t ce = e0; ce <= e1; ++ce)
+                    if (row[ce] != 0.0) {
+                        n[e] = p[e] - ce;
+                        sum += row[ce] * lattice.correction(n);
                     }
-                }
+            }
+        }
         phi[i] -= m_G * sum;
     }
 }

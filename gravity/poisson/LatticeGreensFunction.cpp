@@ -15,8 +15,8 @@ namespace {
 /// overflows near x = 710).
 constexpr double kAsymptoticFrom = 600.0;
 
-/// e^{-x} I_n(x) for x >= 0 (Abramowitz & Stegun 9.7.1 for large x: terms fall by at least
-/// (4n² - 1) / (8x) < 0.25 each for n <= kMaxRadius).
+/// e^{-x} I_n(x) for x >= 0 (Abramowitz & Stegun 9.7.1 for large x: the first terms fall by
+/// about (4n² - 1) / (8x) each, < 0.5 for n <= kMaxRadius at x >= 600).
 double scaledBesselI(int n, double x) {
     if (x == 0.0)
         return n == 0 ? 1.0 : 0.0;

@@ -4,11 +4,11 @@
 /// cell mass m at lattice offset n is -G m K(n), K = 4π g, where Newton's is -G m / |r|.
 ///
 /// Why: the PETSc solve takes its free-space Dirichlet values from Newton's kernel, but its
-/// interior follows the discrete one, which differs from 1/r by O(h² / r³) (2 % of it one cell
-/// out, 0.1 % at four). Mass a few cells from an open face then sees a boundary that does not
-/// match its own field and is pushed away from the face (FreeSpaceBoundary). With K instead of
-/// 1/r for the cells near a ghost the solve reproduces the infinite lattice's solution, as
-/// Hockney & Eastwood's doubled-grid method does for the continuous kernel.
+/// interior follows the discrete one, which differs from 1/r by O(h² / r³) (8 % of it one cell
+/// out, 1.6 % four cells out along an axis). Mass a few cells from an open face then sees a
+/// boundary that does not match its own field and is pushed away from the face (FreeSpaceBoundary).
+/// With K instead of 1/r for the cells near a ghost the solve reproduces the infinite lattice's
+/// solution, as Hockney & Eastwood's doubled-grid method does for the continuous kernel.
 ///
 /// How: the heat-kernel representation (continuous-time random walk on the lattice; e.g.
 /// Economou, "Green's Functions in Quantum Physics", 3rd ed., sec. 5.3, and Watson's integral

@@ -81,9 +81,14 @@ public:
         : m_file(std::move(file))
         , m_context(std::move(context)) {}
 
-    std::int64_t formatVersion() override { return readFormatVersion(m_file.get(), m_context); }
+    // errno cleared before HDF5 calls whose failure reports it (Hdf5Handle.cpp's fail()).
+    std::int64_t formatVersion() override {
+        errno = 0;
+        return readFormatVersion(m_file.get(), m_context);
+    }
 
     CheckpointInfo info(std::uint64_t& checksum) override {
+        errno = 0;
         return readInfoAttributes(m_file.get(), checksum, m_context);
     }
 
@@ -198,6 +203,7 @@ public:
 
     std::unique_ptr<CheckpointFile> open(std::string const& path,
                                          std::string const& context) override {
+        errno = 0;
         if (H5Fis_hdf5(path.c_str()) <= 0)
             throw core::InputError(context + ": not an HDF5 file (truncated or damaged?)");
         hid_t const opened = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

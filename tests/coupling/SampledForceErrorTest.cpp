@@ -1,6 +1,6 @@
 // The self-gravity error measured on a run's own grains (SampledForceError.hpp): zero for the
-// direct sum's own field, the imposed relative error for a field scaled by 1 + e, the same
-// grains sampled whatever the ranks hold, and a sample of about the size asked for.
+// direct sum's own field (softened as given), the imposed relative error for a field scaled by
+// 1 + e, whatever the ranks hold and whether the sample is part or all of the grains.
 #include "coupling/gravity/SampledForceError.hpp"
 
 #include <gtest/gtest.h>
