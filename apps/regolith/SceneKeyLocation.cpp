@@ -1,6 +1,7 @@
 #include "apps/regolith/SceneKeyLocation.hpp"
 
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cstddef>
 #include <optional>
@@ -66,6 +67,26 @@ std::string locateSceneKey(core::ConfigTable const& root, std::string_view messa
         return std::string(message);
     std::string where = locatePath(entries[ref->index], ref->path);
     return where + ": " + std::string(message);
+}
+
+std::string locateSectionKey(core::ConfigTable const& root, std::string_view message) {
+    // "section.key" up to the first character that cannot be in a dotted key.
+    std::size_t end = 0;
+    while (end < message.size() && (std::isalnum(static_cast<unsigned char>(message[end])) != 0 ||
+                                    message[end] == '_' || message[end] == '.'))
+        ++end;
+    std::string_view const key = message.substr(0, end);
+    std::string_view const rest = message.substr(end);
+    auto const dot = key.find('.');
+    if (dot == std::string_view::npos || dot == 0 || dot + 1 == key.size() ||
+        key.find('.', dot + 1) != std::string_view::npos ||
+        !(rest.starts_with(" = ") || rest.starts_with(": ")))
+        return std::string(message);
+    auto const section = root.findTable(key.substr(0, dot));
+    std::string_view const name = key.substr(dot + 1);
+    if (!section || !section->has(name))
+        return std::string(message);
+    return section->location(name) + ": " + std::string(message);
 }
 
 } // namespace regolith::apps

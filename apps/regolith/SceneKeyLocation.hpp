@@ -20,4 +20,10 @@ namespace regolith::apps {
 /// so, or names an entry the scene does not have, is returned unchanged. Not collective.
 [[nodiscard]] std::string locateSceneKey(core::ConfigTable const& root, std::string_view message);
 
+/// The same for a message that starts with a key of a section, "<section>.<key> = value: ..."
+/// or "<section>.<key>: ..." (the checks that compare several values, e.g. "time.dt = 0.5
+/// exceeds t_c/10"), when the scene (or a --set) gave that key; otherwise `message`
+/// unchanged. Not collective.
+[[nodiscard]] std::string locateSectionKey(core::ConfigTable const& root, std::string_view message);
+
 } // namespace regolith::apps

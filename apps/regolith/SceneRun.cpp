@@ -17,6 +17,7 @@
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/ProgressLine.hpp"
+#include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/TimeLoop.hpp"
@@ -114,7 +115,9 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
 
 } // namespace
 
-int runScene(core::AppContext& ctx) {
+namespace {
+
+int runSceneUnlocated(core::AppContext& ctx) {
     core::Comm const& world = ctx.world;
     expandScenarios(ctx.scene, world.size());
     SceneDescription scene = parseScene(ctx.scene, ctx.options.scenePath);
@@ -268,6 +271,18 @@ int runScene(core::AppContext& ctx) {
     if (!ctx.options.jsonPath.empty())
         writeFileOnRoot(world, ctx.options.jsonPath, toJson(summary));
     return 0;
+}
+
+} // namespace
+
+int runScene(core::AppContext& ctx) {
+    try {
+        return runSceneUnlocated(ctx);
+    } catch (core::InputError const& e) {
+        // A check that compares several values names its key; say where the scene set it, as
+        // the scene reader's own errors do (the same on every rank: so is the message).
+        throw core::InputError(locateSectionKey(ctx.scene, e.what()));
+    }
 }
 
 } // namespace regolith::apps
