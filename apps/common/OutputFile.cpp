@@ -42,12 +42,9 @@ std::string directoryOf(std::string const& path) {
     return dir.empty() ? std::string(".") : dir.string();
 }
 
-} // namespace
-
-namespace {
-
-/// Whether `path` exists and is neither a regular file nor a directory (through symlinks):
-/// a FIFO, a device such as /dev/null or /dev/stdout, a socket.
+/// Whether `path` exists and is written in place: neither a regular file nor a directory
+/// (through symlinks: a FIFO, a device such as /dev/null, a socket), or anything under /dev
+/// or /proc.
 bool isSpecialFile(std::string const& path) {
     std::error_code ec;
     // /dev/stdout redirected to a file resolves to that regular file (through /proc/self/fd):
