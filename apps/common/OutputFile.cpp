@@ -59,17 +59,16 @@ bool isSpecialFile(std::string const& path) {
            !std::filesystem::is_directory(st);
 }
 
-/// Writes `text` through `path` as it is (no temporary: a FIFO's reader or a device gets it),
-/// appending: /dev/stdout redirected to a log file continues the log.
-void writeInPlace(std::string const& path, std::string_view text) {
-    std::FILE* f = std::fopen(path.c_str(), "ab");
+/// Writes `text` to `path` opened with `mode`; the reason it failed, or "".
+std::string writeAll(std::string const& path, char const* mode, std::string_view text) {
+    std::FILE* f = std::fopen(path.c_str(), mode);
     if (!f)
-        throw core::InputError(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
+        return std::strerror(errno);
     bool const written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
     int const writeErrno = errno;
     if (std::fclose(f) != 0 || !written)
-        throw core::InputError(fmt::format("cannot write '{}': {}", path,
-                                           std::strerror(written ? errno : writeErrno)));
+        return std::strerror(written ? errno : writeErrno);
+    return {};
 }
 
 /// The file a write to `path` replaces: through a symbolic link the file it names (the link
@@ -85,22 +84,18 @@ std::string replacedFile(std::string const& path) {
 } // namespace
 
 void writeFileAtomically(std::string const& path, std::string_view text) {
+    // A FIFO's reader, a device, /dev/stdout redirected to a log: written in place, appending.
     if (isSpecialFile(path)) {
-        writeInPlace(path, text);
+        if (std::string const why = writeAll(path, "ab", text); !why.empty())
+            throw core::InputError(fmt::format("cannot write '{}': {}", path, why));
         return;
     }
     std::string const target = replacedFile(path);
     std::string const tmp = fmt::format("{}.tmp{}", target, static_cast<long>(getpid()));
-    auto const fail = [&](std::string_view why) { failWrite(tmp, path, why); };
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f)
-        failWrite(tmp, path, std::strerror(errno));
-    bool const written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    int const writeErrno = errno;
-    if (std::fclose(f) != 0 || !written)
-        fail(std::strerror(written ? errno : writeErrno));
+    if (std::string const why = writeAll(tmp, "wb", text); !why.empty())
+        failWrite(tmp, path, why);
     if (std::rename(tmp.c_str(), target.c_str()) != 0)
-        fail(std::strerror(errno));
+        failWrite(tmp, path, std::strerror(errno));
 }
 
 void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::string_view text) {

@@ -175,7 +175,6 @@ void checkRestart(core::Comm const& comm, std::string const& path, io::Checkpoin
                   SceneDescription const& scene, std::string const& sceneText) {
     io::CheckpointInfo const& info = slice.info;
     std::string const context = "--restart " + path;
-    requireSameDomain(path, info, scene);
     if (info.step > scene.time.steps)
         throw core::InputError(fmt::format("{}: the checkpoint is at step {}, beyond the scene's "
                                            "time.steps = {} (a total, not a remainder)",

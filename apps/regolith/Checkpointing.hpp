@@ -39,8 +39,9 @@ void requireSameDomain(std::string const& path, io::CheckpointInfo const& info,
 [[nodiscard]] std::vector<AutoChoice>
 reuseAutoChoices(core::AppContext& ctx, SceneDescription& scene, std::string const& storedText);
 
-/// Checks that the checkpoint `slice` (read from `path`) belongs to `scene`: the same domain
-/// (requireSameDomain) and a step not beyond time.steps. A different time step, or a scene
+/// Checks that the checkpoint `slice` (read from `path`, its domain already checked with
+/// requireSameDomain) belongs to `scene`: a step not beyond time.steps. A different time step, or a
+/// scene
 /// (`sceneText`, as sceneText() and withAutoChoices give it) that differs from the
 /// checkpoint's in other sections than [output] and [time], is allowed with a warning naming
 /// them. Throws the same core::InputError on every rank naming the file and what differs.
