@@ -12,7 +12,19 @@
 //
 //   particles_bench --benchmark_filter=scalarPairLoop
 // Argument: 0 = grains at rest (as the comparison), 1 = small random velocities and spins.
+//
+// batchedPairLoop: the same list through the project's own batched kernel
+// (SpringDashpotBatch, 64 contacts per batch, the shares scattered as DemStep's sink does),
+// with the tangential springs either in a flat array in list order beside the list
+// (argument 0, LAMMPS's `fix neigh/history` layout) or in the grains' ContactHistory, found
+// through the one-byte hint kept per listed pair (argument 1, BatchedSpringDashpot as DemStep
+// runs it). No detection or overlap test (every listed pair overlaps), synchronisation or
+// integration: what the kernel and the springs' place cost per pair.
+//
+//   particles_bench --benchmark_filter=batchedPairLoop
 #include "particles/kernels/SpringDashpot.hpp"
+#include "particles/kernels/SpringDashpotBatch.hpp"
+#include "particles/storage/ParticleStorage.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -128,5 +140,68 @@ void scalarPairLoop(benchmark::State& state) {
     state.counters["pairs"] = static_cast<double>(l.neighbour.size());
 }
 BENCHMARK(scalarPairLoop)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void batchedPairLoop(benchmark::State& state) {
+    bool const springsInGrains = state.range(0) != 0;
+    Lattice const l = lattice(30, 0.6, false);
+    ParticleStorage ps;
+    for (std::size_t i = 0; i < l.x.size(); ++i) {
+        ParticleInit p;
+        p.uid = static_cast<Uid>(i + 1);
+        p.position = l.x[i];
+        p.radius = l.radius[i];
+        p.mass = 1.0 / l.invMass[i];
+        ps.add(p);
+    }
+    std::size_t const pairs = l.neighbour.size();
+    std::vector<std::uint32_t> first(pairs); // i of each listed pair
+    for (std::size_t i = 0; i + 1 < l.rowStart.size(); ++i)
+        for (std::uint32_t q = l.rowStart[i]; q < l.rowStart[i + 1]; ++q)
+            first[q] = static_cast<std::uint32_t>(i);
+    auto pairAt = [&](std::size_t q) { return PairOverlap{first[q], l.neighbour[q], l.shift[q]}; };
+    SpringDashpot const model = regolith::bench::oneMaterialSpringDashpot(50.0, 0.9, 0.5);
+    double const dt = 0.01;
+    auto sink = [&ps](std::size_t k, Uid, Vec3 const& f, Vec3 const& t) {
+        ps.force(k) += f;
+        ps.torque(k) += t;
+    };
+    SpringDashpotBatch batch;
+    std::vector<HistoryEntry> beside(pairs);
+    std::vector<std::uint8_t> hints(pairs, 0);
+    std::uint32_t stamp = 0;
+    for (auto _ : state) {
+        ps.resetForces();
+        ++stamp;
+        if (springsInGrains) {
+            BatchedSpringDashpot loop(ps, model, dt, stamp, batch, sink);
+            for (std::size_t q = 0; q < pairs; ++q)
+                loop(pairAt(q), hints[q]);
+            loop.finish();
+            continue;
+        }
+        auto flush = [&] {
+            batch.evaluate(ps, model, dt);
+            for (std::size_t k = 0; k < batch.size(); ++k) {
+                batch.entry(k)->spring = batch.spring(k);
+                Vec3 const f = batch.force(k);
+                sink(batch.j(k), 0, f, batch.torqueJ(k));
+                sink(batch.i(k), 0, Vec3(-f), Vec3(-batch.torqueI(k)));
+            }
+            batch.clear();
+        };
+        batch.clear();
+        for (std::size_t q = 0; q < pairs; ++q) {
+            if (batch.full())
+                flush();
+            batch.add(pairAt(q), beside[q], 0);
+        }
+        flush();
+    }
+    benchmark::DoNotOptimize(ps.force(0));
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
+                            static_cast<std::int64_t>(pairs));
+    state.counters["pairs"] = static_cast<double>(pairs);
+}
+BENCHMARK(batchedPairLoop)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 } // namespace
