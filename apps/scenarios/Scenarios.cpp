@@ -2,6 +2,7 @@
 
 #include "apps/scenarios/RankGrid.hpp"
 #include "core/Error.hpp"
+#include "core/log/Log.hpp"
 #include "domain/BlockId.hpp"
 
 #include <fmt/format.h>
@@ -92,6 +93,11 @@ Vec layOut(core::ConfigTable& scene, std::string_view section, int ranks, int ax
         if (!s.has("box"))
             s.fail("box", "is required with scaling = \"strong\" (the fixed domain extent)");
         extent = positiveExtent(s, "box", extent);
+        // The scene files give per_rank for their weak default; only an explicit --set of it
+        // with strong scaling is a request that goes unheard.
+        if (s.location("per_rank").starts_with("--set"))
+            core::log::warn("{}: {}: is ignored with scaling = \"strong\" ({} sets the extent)",
+                            s.location("per_rank"), s.keyPath("per_rank"), s.keyPath("box"));
     }
     Counts const perRankBlocks = positiveCounts(s, "blocks_per_rank", {1, 1, 1});
     Counts blocks{};
