@@ -63,8 +63,13 @@ void requireLatticeFits(EntrySource const& entry, LatticeSpec const& lattice,
             local += (hi - lo).prod();
     }
     double const grains = static_cast<double>(entry.capacity()) * local / volume;
+    // The region named too: with a scenario or a domain-filling lattice, its extent comes
+    // from other keys than the entry's own.
     core::requireMemory(grains * kBytesPerGrain, entry.key(),
-                        fmt::format("a lattice of about {:.3g} grains on this rank", grains));
+                        fmt::format("a lattice of about {:.3g} grains in [{:g}, {:g}, {:g}] - "
+                                    "[{:g}, {:g}, {:g}] on this rank",
+                                    grains, region.min.x(), region.min.y(), region.min.z(),
+                                    region.max.x(), region.max.y(), region.max.z()));
 }
 
 bool inAnyBox(core::Vec3 const& p, std::span<core::AABB const> boxes) {
