@@ -10,8 +10,10 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -50,6 +52,31 @@ void requireDomainUnset(core::ConfigTable const& scene, std::string_view section
         if (domain && domain->has(key))
             domain->fail(key, fmt::format("is set by the [{}] scenario; change {} instead", section,
                                           instead));
+}
+
+/// A key the expansion overwrites (in `table`, the scene's or an array element's) must not be
+/// set by the user: by --set ever, in the file unless `fileMayHold` (a scene file's placeholder
+/// the expansion moves, as dense-ramp.toml's upper wall). `instead` names the scenario's keys
+/// that decide it.
+void requireNotSetByUser(std::optional<core::ConfigTable> const& table, std::string_view key,
+                         std::string_view section, std::string_view instead, bool fileMayHold) {
+    if (!table || !table->has(key))
+        return;
+    if (fileMayHold && !table->location(key).starts_with("--set"))
+        return;
+    table->fail(key,
+                fmt::format("is set by the [{}] scenario; change {} instead", section, instead));
+}
+
+/// Element `index` of the scene's array of tables `key`, if there is one.
+std::optional<core::ConfigTable> element(core::ConfigTable const& scene, std::string_view key,
+                                         std::size_t index) {
+    if (scene.kindOf(key) == core::ConfigKind::Missing)
+        return std::nullopt;
+    std::vector<core::ConfigTable> all = scene.tableArray(key);
+    if (index >= all.size())
+        return std::nullopt;
+    return all[index];
 }
 
 Counts positiveCounts(core::ConfigTable const& s, std::string_view key, Counts fallback) {
@@ -133,6 +160,10 @@ void expandDenseRamp(core::ConfigTable& scene, int ranks) {
         "inclination", 30.0, [](double v) { return v >= 0.0 && v < 90.0; },
         "an angle in [0, 90) degrees");
     double const angle = degrees * std::numbers::pi / 180.0;
+    requireNotSetByUser(scene.findTable("gravity"), "external", "dense_ramp",
+                        "dense_ramp.gravity or dense_ramp.inclination", false);
+    requireNotSetByUser(element(scene, "walls", 1), "point", "dense_ramp",
+                        "dense_ramp.per_rank or dense_ramp.box", true);
     set(scene, "gravity.external", list(Vec{g * std::sin(angle), 0.0, -g * std::cos(angle)}),
         "dense_ramp.inclination");
     double const zMin = scene.table("domain").getOr<Vec>("min", Vec{0.0, 0.0, 0.0})[2];
@@ -174,6 +205,17 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
         blocks[a] = count[a] * split[a];
     }
     std::string const why = "bidisperse.building_blocks";
+    std::optional<core::ConfigTable> const large = element(scene, "particles", 0);
+    if (!large || !large->has("kind") || large->getString("kind") != "list")
+        throw core::InputError(fmt::format(
+            "{}: particles[0]: the [bidisperse] scenario places its large spheres in the first "
+            "[[particles]] entry, which must be kind = \"list\"",
+            large ? large->location() : scene.location()));
+    for (std::string_view key : {"position", "radius"})
+        requireNotSetByUser(element(scene, "particles", 0), key, "bidisperse",
+                            key == "radius" ? "bidisperse.large_radius"
+                                            : "bidisperse.building_blocks or bidisperse.edge",
+                            true);
     set(scene, "domain.max", list(max), why);
     set(scene, "domain.blocks", list(blocks), "bidisperse.blocks_per_building_block");
     std::string positions;
