@@ -391,6 +391,14 @@ void ParticleSync::requireNnsApplicable(LocalParticles const& local) const {
         return;
     auto const at = static_cast<std::size_t>(first - uids.begin());
     std::ostringstream msg;
+    if (m_config.skin > 0.0 && radii[at] < edges[at]) { // the skin alone takes it over
+        msg << "sync.skin = " << m_config.skin << ": with sync.method = \"nns\", particle uid "
+            << *first << "'s radius " << radii[at] << " plus the skin is not below the smallest "
+            << "edge " << edges[at] << " of the blocks it may touch (NNS only reaches next "
+            << "neighbours); reduce sync.skin below " << edges[at] - radii[at]
+            << ", or use sync.method = \"sos\" or \"hybrid\"";
+        throw core::InputError(msg.str());
+    }
     msg << "sync.method = \"nns\" cannot simulate this scene: particle uid " << *first
         << " has radius " << radii[at] << (m_config.skin > 0.0 ? " plus sync.skin" : "")
         << ", not below the smallest edge " << edges[at]
