@@ -114,11 +114,12 @@ double largestOverBlocks(AnyIntegrator const& any, LocalParticles& local,
 
 /// The largest step of the masters of `ps` that are still in the domain, dt |v| (the drift of
 /// both integrators' position update, which leaves v at the velocity it moved with), over
-/// `edge`. Asked of a block whose bound says a grain moved a block edge or more: one that
-/// left through an open face is removed by the sync wherever it went, and only the others
-/// must stay within the neighbour blocks.
+/// `edge`, and in `fastest` the uid of the grain that took it (unchanged if none). Asked of a
+/// block whose bound says a grain moved a block edge or more: one that left through an open
+/// face is removed by the sync wherever it went, and only the others must stay within the
+/// neighbour blocks.
 double stayingShare(ParticleStorage const& ps, domain::ForestGeometry const& geometry, double dt,
-                    double edge) {
+                    double edge, Uid& fastest) {
     core::AABB const& box = geometry.domain();
     double largest = 0.0;
     ps.forEachMaster([&](std::size_t i) {
@@ -127,7 +128,11 @@ double stayingShare(ParticleStorage const& ps, domain::ForestGeometry const& geo
             if (!geometry.periodic()[static_cast<std::size_t>(a)] &&
                 !(x[a] >= box.min[a] && x[a] < box.max[a]))
                 return; // leaves the domain
-        largest = std::max(largest, dt * ps.velocity(i).norm() / edge);
+        double const share = dt * ps.velocity(i).norm() / edge;
+        if (share > largest || !(share <= largest)) {
+            largest = share;
+            fastest = ps.uid(i);
+        }
     });
     return largest;
 }
@@ -195,15 +200,20 @@ void DemStep::syncParticles() {
         // among equal shares, the smallest edge).
         std::array<double, 3> motion{m_moved, 0.0, -std::numeric_limits<double>::infinity()};
         auto const blocks = m_local->blocks();
+        std::vector<Uid> fastest(m_movedSinceSync.size(), kInvalidUid);
         for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
             if (m_movedSinceSync[b] >= 1.0 && std::isfinite(m_movedSinceSync[b]))
-                m_movedSinceSync[b] = stayingShare(
-                    blocks[b].particles, m_local->forest().geometry(), m_config.dt, m_reachEdge[b]);
+                m_movedSinceSync[b] =
+                    stayingShare(blocks[b].particles, m_local->forest().geometry(), m_config.dt,
+                                 m_reachEdge[b], fastest[b]);
+        Uid mine = kInvalidUid; // the grain behind this rank's largest share, if measured
         for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
             if (m_movedSinceSync[b] > motion[1] || !(m_movedSinceSync[b] <= motion[1])) {
                 motion[1] = m_movedSinceSync[b];
                 motion[2] = -m_reachEdge[b];
+                mine = fastest[b];
             }
+        double const myShare = motion[1];
         if (m_comm->size() > 1)
             m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
         if (!std::isfinite(motion[1])) // LargestMove: +inf for a non-finite displacement
@@ -211,14 +221,25 @@ void DemStep::syncParticles() {
                 "step {}: a grain's position became non-finite: the motion is unstable; reduce "
                 "time.dt or the contact stiffness",
                 m_steps + 1));
-        if (!(motion[1] < 1.0))
+        if (!(motion[1] < 1.0)) {
+            // Every rank is here (the shares are reduced): the uid from those that hold it.
+            auto const uids = m_comm->allGather<std::uint64_t>(
+                myShare == motion[1] ? std::uint64_t{mine} : std::uint64_t{kInvalidUid});
+            Uid const uid = *std::min_element(uids.begin(), uids.end());
             throw core::InputError(fmt::format(
-                "step {}: a grain moved {:.6g} block edges in one step, beyond the neighbour "
+                "step {}: {} moved {:.6g} block edges in one step, beyond the neighbour "
                 "blocks the synchronisation reaches (the smallest edge around it is {:.6g}): "
                 "the motion is unstable or far too fast for time.dt; reduce time.dt (or the "
                 "velocities, forces and stiffness that drive the grains)",
-                m_steps + 1, motion[1], -motion[2]));
-        m_sync->sync(*m_local, m_moved);
+                m_steps + 1,
+                uid == kInvalidUid ? std::string("a grain") : "particle uid " + std::to_string(uid),
+                motion[1], -motion[2]));
+        }
+        try {
+            m_sync->sync(*m_local, m_moved);
+        } catch (core::RankInputError const& e) { // found mid-sync by one rank: name the step
+            throw core::RankInputError(fmt::format("step {}: {}", m_steps + 1, e.what()));
+        }
         m_leftDomain += m_sync->lastStats().leftDomain;
         // The detectors' bound covers the copies of other ranks' masters too.
         m_moved = motion[0];
