@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -233,18 +234,37 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
     set(scene, "particles[0].radius", "[" + radii + "]", "bidisperse.large_radius");
 }
 
+namespace {
+
+/// Where a scenario section was given: the --set of one of its keys if a --set made it (its
+/// table then has no place of its own), else the table's place in the file.
+std::string sectionLocation(core::ConfigTable const& section) {
+    for (std::string_view key :
+         {"scaling", "per_rank", "box", "blocks_per_rank", "gravity", "inclination",
+          "building_blocks", "blocks_per_building_block", "edge", "large_radius"})
+        if (section.has(key) && section.location(key).starts_with("--set"))
+            return section.location(key);
+    return section.location();
+}
+
+} // namespace
+
 void expandScenarios(core::ConfigTable& scene, int ranks) {
-    // Each lays out the whole domain: two would overwrite each other's.
-    std::string first;
-    for (char const* section : {"granular_gas", "dense_ramp", "bidisperse"}) {
-        if (!scene.findTable(section))
-            continue;
-        if (!first.empty())
-            throw core::InputError(
-                fmt::format("{}: [{}]: a scene takes one scenario section, and [{}] is one "
-                            "already",
-                            scene.table(section).location(), section, first));
-        first = section;
+    // Each lays out the whole domain: two would overwrite each other's. The one named is the
+    // one a --set added, if any.
+    std::vector<std::string_view> present;
+    for (std::string_view section : {"granular_gas", "dense_ramp", "bidisperse"})
+        if (scene.findTable(section))
+            present.push_back(section);
+    if (present.size() > 1) {
+        auto const added = std::find_if(present.begin(), present.end(), [&](std::string_view s) {
+            return sectionLocation(scene.table(s)).starts_with("--set");
+        });
+        std::string_view const extra = added != present.end() ? *added : present[1];
+        std::string_view const other = extra == present[0] ? present[1] : present[0];
+        throw core::InputError(
+            fmt::format("{}: [{}]: a scene takes one scenario section, and [{}] is one already",
+                        sectionLocation(scene.table(extra)), extra, other));
     }
     expandGranularGas(scene, ranks);
     expandDenseRamp(scene, ranks);
