@@ -20,6 +20,9 @@ struct RunSummary {
     /// Masters removed during the run because they left a non-periodic domain, over all
     /// ranks (JSON key "left_domain", beyond the contract's keys).
     std::int64_t leftDomain = 0;
+    /// Of those, the masters that passed through a wall, over all ranks (JSON key
+    /// "left_through_walls", beyond the contract's keys).
+    std::int64_t leftThroughWalls = 0;
     std::int64_t steps = 0;
     double wallSeconds = 0.0; ///< the time-step loop only (set-up and output excluded)
     std::uint64_t peakRssBytes = 0;

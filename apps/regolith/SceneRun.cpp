@@ -240,6 +240,10 @@ int runSceneUnlocated(core::AppContext& ctx) {
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);
     progress.finish();
+    if (loop.leftThroughWalls > 0)
+        core::log::warn("{} grain(s) passed through a wall and left the domain (the first, {}): "
+                        "a grain moved farther than its radius in one step; reduce time.dt",
+                        loop.leftThroughWalls, loop.firstWallCrossing);
 
     dem.releaseWorkspace(); // the detectors' memory, before the summary below
     // The summary reads the masters from the storages (no record list of every grain: that

@@ -1,8 +1,11 @@
 #include "apps/regolith/TimeLoop.hpp"
 
+#include <fmt/format.h>
 #include <mpi.h>
 
 #include <array>
+#include <cstdint>
+#include <limits>
 #include <span>
 #include <string_view>
 
@@ -14,6 +17,7 @@ LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
     timers.reset();
     sync.resetCounters();
     std::uint64_t const leftBefore = dem.leftDomain();
+    std::uint64_t const crossedBefore = dem.wallCrossings().count;
     std::uint64_t const rebuildsBefore = dem.listRebuilds();
     comm.barrier(); // every rank starts the clock together
     double const start = MPI_Wtime();
@@ -31,11 +35,27 @@ LoopOutcome runTimeLoop(core::Comm const& comm, particles::DemStep& dem,
     out.wallSeconds = comm.allReduce(elapsed, core::ReduceOp::Max);
     out.timers = timers.reduce(comm);
     out.comm = sync.counters().reduce(comm);
-    std::array<long long, 2> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
-                                    static_cast<long long>(dem.listRebuilds() - rebuildsBefore)};
+    auto const& crossings = dem.wallCrossings();
+    std::array<long long, 3> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
+                                    static_cast<long long>(dem.listRebuilds() - rebuildsBefore),
+                                    static_cast<long long>(crossings.count - crossedBefore)};
     comm.allReduceInPlace(std::span<long long>(counts), core::ReduceOp::Sum);
     out.leftDomain = counts[0];
     out.listRebuilds = counts[1];
+    out.leftThroughWalls = counts[2];
+    if (out.leftThroughWalls > 0) { // the earliest step's, lowest uid's (every rank is here)
+        bool const mine = crossings.count > crossedBefore;
+        auto const when = comm.allGather<std::uint64_t>(
+            mine ? crossings.firstStep : std::numeric_limits<std::uint64_t>::max());
+        auto const uids = comm.allGather<std::uint64_t>(crossings.firstUid);
+        auto const walls = comm.allGather<std::uint64_t>(crossings.firstWall);
+        std::size_t first = 0;
+        for (std::size_t r = 1; r < when.size(); ++r)
+            if (when[r] < when[first] || (when[r] == when[first] && uids[r] < uids[first]))
+                first = r;
+        out.firstWallCrossing = fmt::format("particle uid {} at step {} through walls[{}]",
+                                            uids[first], when[first], walls[first]);
+    }
     out.listSkin = comm.allReduce(dem.listSkin(), core::ReduceOp::Max);
     return out;
 }
@@ -84,6 +104,7 @@ void fillLoopSummary(core::Comm const& comm, LoopOutcome const& loop,
     summary.steps = loop.steps;
     summary.wallSeconds = loop.wallSeconds;
     summary.leftDomain = loop.leftDomain;
+    summary.leftThroughWalls = loop.leftThroughWalls;
     summary.timing.sync = averageSeconds(loop.timers, particles::DemStep::kSyncTimer);
     summary.timing.contact = averageSeconds(loop.timers, particles::DemStep::kContactTimer);
     summary.timing.gravity = averageSeconds(loop.timers, particles::DemStep::kBodyForceTimer);

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace regolith::apps {
@@ -22,9 +23,13 @@ struct LoopOutcome {
     /// The loop alone, from a barrier before the first step to the end of the slowest
     /// rank's last step [s] (set-up and output excluded, like LAMMPS's "Loop time").
     double wallSeconds = 0.0;
-    core::TimerReport timers;      ///< the step's phases (sync, contact, integrate), over ranks
-    core::CommTotals comm;         ///< the synchronisation's traffic during the loop
-    std::int64_t leftDomain = 0;   ///< masters that left an open domain, over all ranks
+    core::TimerReport timers;    ///< the step's phases (sync, contact, integrate), over ranks
+    core::CommTotals comm;       ///< the synchronisation's traffic during the loop
+    std::int64_t leftDomain = 0; ///< masters that left an open domain, over all ranks
+    /// Of those, the masters that passed through a wall (DemStep::wallCrossings), over all
+    /// ranks, and the first of them ("particle uid 7 at step 12 through walls[0]").
+    std::int64_t leftThroughWalls = 0;
+    std::string firstWallCrossing;
     std::int64_t listRebuilds = 0; ///< Verlet-list rebuilds, over all blocks and ranks
     double listSkin = 0.0;         ///< the largest skin of the blocks' last rebuilds
 };

@@ -241,6 +241,13 @@ void DemStep::syncParticles() {
             throw core::RankInputError(fmt::format("step {}: {}", m_steps + 1, e.what()));
         }
         m_leftDomain += m_sync->lastStats().leftDomain;
+        for (auto const& [uid, x] : m_sync->lastStats().departed)
+            for (std::size_t w = 0; w < m_walls.size(); ++w)
+                if (m_walls[w].distance(x) < 0.0) {
+                    if (m_wallCrossings.count++ == 0)
+                        m_wallCrossings = {1, uid, m_steps + 1, w};
+                    break;
+                }
         // The detectors' bound covers the copies of other ranks' masters too.
         m_moved = motion[0];
         for (ContactDetector& d : m_detectors)

@@ -165,6 +165,15 @@ public:
     /// removes none: every master starts in the block containing it). Local: sum over ranks
     /// for the run's total.
     [[nodiscard]] std::uint64_t leftDomain() const { return m_leftDomain; }
+    /// Of those, the masters found behind a wall when they left: they passed through it in
+    /// one step (dt |v| beyond their radius), which no open face explains. Local.
+    struct WallCrossings {
+        std::uint64_t count = 0;
+        Uid firstUid = kInvalidUid;  ///< the first one this rank found
+        std::uint64_t firstStep = 0; ///< at this step
+        std::size_t firstWall = 0;   ///< through walls[firstWall]
+    };
+    [[nodiscard]] WallCrossings const& wallCrossings() const { return m_wallCrossings; }
     /// Verlet-list rebuilds of the local blocks' detectors over all force computations (a
     /// block's rebuild counts once; a block without copies counts none). Local: sum over
     /// ranks for the run's total.
@@ -217,6 +226,7 @@ private:
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_leftDomain = 0;
+    WallCrossings m_wallCrossings;
     std::uint64_t m_listRebuilds = 0;
 };
 

@@ -153,6 +153,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
                 engine.out(h.rank) << uid << h.image;
             }
             ++stats.leftDomain;
+            stats.departed.emplace_back(uid, x);
             return true;
         }
         kN = imageThroughLink(kNoImage, loc->image);

@@ -16,6 +16,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace regolith::particles {
@@ -29,8 +30,11 @@ struct SyncStats {
     std::uint64_t removed = 0;     ///< shadows removed here
     std::uint64_t transferred = 0; ///< masters that moved to another block (received here)
     std::uint64_t leftDomain = 0;  ///< masters removed from this rank: they left an open domain
-    std::uint64_t duplicates = 0;  ///< creation orders discarded as duplicates (SOS)
-    core::CommStats comm;          ///< messages, bytes and peers of this call's exchanges
+    /// Those masters, each with its position outside the domain (the caller tells a grain that
+    /// passed through a wall from one that left through an open face).
+    std::vector<std::pair<Uid, core::Vec3>> departed;
+    std::uint64_t duplicates = 0; ///< creation orders discarded as duplicates (SOS)
+    core::CommStats comm;         ///< messages, bytes and peers of this call's exchanges
     /// The call only copied masters to their shadows along the list of the last refresh
     /// (SyncConfig::skin, UpdateList.hpp): no decision, no message.
     bool alongList = false;
