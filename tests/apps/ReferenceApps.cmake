@@ -58,7 +58,7 @@ regolith_reference_app_test(granular_gas_strong APP granular_gas NP 1 2 4 SAME
 # Dense ramp: strong scaling on the 2-D rank grid (8 hcp rows of 8: the y period 4 sqrt(3);
 # 4 layers between the walls).
 regolith_reference_app_test(dense_ramp_strong APP dense_ramp NP 1 2 4 SAME
-  EXPECT particles=256 steps=40 left_domain=0
+  EXPECT particles=256 steps=40 left_domain=0 left_through_walls=0
   ARGS --steps 40 --set sync.reproducible=true --set dense_ramp.scaling=strong
        --set dense_ramp.box=[8,6.928203230275509,4])
 

@@ -14,7 +14,8 @@ import sys
 NUMBER = (int, float)
 SCHEMA = {
     "scene": str, "ranks": int, "blocks": int, "sync": str, "particles": int, "shadows": int,
-    "left_domain": int, "steps": int, "wall_s": NUMBER, "pupcs": NUMBER, "peak_rss_bytes": int,
+    "left_domain": int, "left_through_walls": int, "steps": int, "wall_s": NUMBER, "pupcs": NUMBER,
+    "peak_rss_bytes": int,
     "timing_s": {"sync": NUMBER, "contact": NUMBER, "gravity": NUMBER, "integrate": NUMBER},
     "comm": {"messages_per_step": NUMBER, "bytes_per_step": NUMBER, "max_peers": int},
     "neighbour_list": {"skin": NUMBER, "rebuilds": int},
