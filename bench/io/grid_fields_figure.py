@@ -46,6 +46,10 @@ def main():
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     subprocess.run(["mpiexec", "-n", str(a.np), "--oversubscribe", a.app, a.scene, "--quiet",
                     "--steps", str(a.steps), "--output", a.out, "--set", "gravity.self=pm",
+                    # pm's measured error on this scene is 0.049 (scenes/default.toml): the
+                    # default accuracy 0.003 refuses it, and a figure of the fields needs no
+                    # finer grid
+                    "--set", "gravity.accuracy=0.06",
                     "--set", "gravity.update_threshold=0", "--set",
                     f"output.vtk_every={a.steps}"], check=True, env=env)
 
