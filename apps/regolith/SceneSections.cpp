@@ -126,6 +126,15 @@ GravitySection parseGravity(core::ConfigTable const& t) {
         "a relative force error in (0, 1)");
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
+    // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening
+    // given with them would be silently ignored (and the measured-accuracy check compares
+    // with a softened direct sum).
+    if (s.softening > 0.0 && (s.self == SelfGravity::Pm || s.self == SelfGravity::OccupiedCells ||
+                              s.self == SelfGravity::TreeNodes))
+        t.fail("softening", fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
+                                        "applies to \"direct\", \"tree\", \"mutual-tree\" "
+                                        "and \"p3m\" (its near pairs); use one of those, or 0",
+                                        toString(s.self)));
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
     s.gradientOrder = t.getOrIf<int>(
         "gradient_order", 2, [](int o) { return o == 2 || o == 4; }, "2 or 4");
