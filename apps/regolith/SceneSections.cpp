@@ -111,6 +111,13 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.self = static_cast<SelfGravity>(t.getChoiceOr("self", kSelfNames, 0));
     s.G = t.getOrIf<double>("G", s.G, isPositiveFinite, "a positive finite number");
     s.theta = t.getOrIf<double>("theta", s.theta, isPositiveFinite, "a positive finite number");
+    // With "auto", a theta is replaced without a word: refused, unless it is the file's (for
+    // its tree) and the --set of "auto" supersedes it.
+    if (s.self == SelfGravity::Auto && t.has("theta") &&
+        (t.location("theta").starts_with("--set") || !t.location("self").starts_with("--set")))
+        t.fail("theta", "is chosen by gravity.self = \"auto\" (the largest opening angle that "
+                        "meets gravity.accuracy); set gravity.self = \"tree\" to use this one, "
+                        "or leave it out");
     if (t.has("update_threshold") && t.kindOf("update_threshold") == core::ConfigKind::String) {
         if (t.getString("update_threshold") != "auto")
             t.failExpected("update_threshold", "a non-negative finite number or \"auto\"");
