@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -123,13 +124,27 @@ std::string checkGrain(Grains const& g, std::size_t i, domain::BlockForest const
     return {};
 }
 
-std::string outside(Grains const& g, std::size_t i, domain::BlockForest const& forest) {
-    return fmt::format("grid gravity: a grain at {}{} puts mass outside the domain {} - {} (its "
-                       "deposit reaches past a non-periodic face; enlarge the domain)",
-                       str(g.position[i]),
+/// Why grain i's deposit (or interpolation) left the grid: its stencil of cells of edge h
+/// reaches past an open face. Names how far inside the grain is, in cells, so that the cell size
+/// shows as a cause as much as the domain (a grain far inside a grid of few, large cells).
+std::string outside(Grains const& g, std::size_t i, domain::BlockForest const& forest,
+                    core::Vec3 const& h) {
+    core::Vec3 const& p = g.position[i];
+    core::AABB const& box = forest.domain();
+    double inside = std::numeric_limits<double>::infinity(); // in cells, to the nearest open face
+    for (int a = 0; a < 3; ++a)
+        if (!forest.periodic()[static_cast<std::size_t>(a)])
+            inside = std::min(inside, std::min(p[a] - box.min[a], box.max[a] - p[a]) / h[a]);
+    return fmt::format("grid gravity: a grain at {}{} puts mass outside the domain {} - {}: it "
+                       "is {:.3g} cells (of edge {}) inside the nearest open face, and its "
+                       "deposit stencil reaches past it; the grid methods need the grains about "
+                       "two cells inside an open face: enlarge the domain, use more cells "
+                       "(domain.cells_per_block), a periodic domain, or a particle method "
+                       "(\"tree\", \"direct\"), which drops grains that leave",
+                       str(p),
                        g.radius.empty() ? std::string(" (deposited as a point)")
                                         : fmt::format(" with radius {}", g.radius[i]),
-                       str(forest.domain().min), str(forest.domain().max));
+                       str(box.min), str(box.max), inside, str(h));
 }
 
 } // namespace
@@ -154,7 +169,7 @@ void MeshTransfer::deposit(Grains const& grains, CellField& density) {
                 remote[o.rank][o.row] += w * rho;
         });
         if (!inside)
-            error = outside(grains, i, forest);
+            error = outside(grains, i, forest, m_layout->spacing());
     }
     agree(error); // before any message: no rank may be left waiting in the exchange
 
@@ -206,7 +221,7 @@ void MeshTransfer::interpolate(Grains const& grains, CellField const& field,
             }
         });
         if (!inside)
-            error = outside(grains, i, forest);
+            error = outside(grains, i, forest, m_layout->spacing());
     }
     agree(error);
 
