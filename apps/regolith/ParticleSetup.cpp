@@ -166,9 +166,7 @@ void checkOverlapsAcrossBlocks(core::Comm const& comm, particles::LocalParticles
             worst = key;
             // The wording of particles::validateParticles, which finds the same pairs when
             // both grains are on one rank.
-            message = fmt::format("particles uid {} and uid {} overlap by {:.6g} (more than {:g} "
-                                  "of the smaller radius {:.6g}); initial grains must not overlap",
-                                  key.first, key.second, c.penetration, overlapTolerance, rMin);
+            message = particles::initialOverlapMessage(ps, c, overlapTolerance);
         }
     }
     auto const firsts = comm.allGather<std::uint64_t>(worst.first);

@@ -79,13 +79,26 @@ std::optional<ValidationIssue> findInvalidParticle(ParticleStorage const& ps,
     for (Contact const& c : contacts.pairs) {
         double const rMin = std::min(ps.radius(c.i), ps.radius(c.j));
         if (c.penetration > options.overlapTolerance * rMin)
-            consider(ps.uid(c.i),
-                     fmt::format("particles uid {} and uid {} overlap by {:.6g} (more than {:g} "
-                                 "of the smaller radius {:.6g}); initial grains must not overlap",
-                                 ps.uid(c.i), ps.uid(c.j), c.penetration, options.overlapTolerance,
-                                 rMin));
+            consider(ps.uid(c.i), initialOverlapMessage(ps, c, options.overlapTolerance));
     }
     return best;
+}
+
+std::string initialOverlapMessage(ParticleStorage const& ps, Contact const& c, double tolerance) {
+    double const rMin = std::min(ps.radius(c.i), ps.radius(c.j));
+    std::string across;
+    for (int a = 0; a < 3; ++a)
+        if (c.shiftJ[a] != 0.0)
+            across += std::string(across.empty() ? "" : ", ") + "xyz"[a];
+    if (!across.empty())
+        across = fmt::format(", across the periodic face of {} (a lattice whose period does not "
+                             "fit the domain's extent there overlaps its own sites on the other "
+                             "side: make the extent a multiple of the lattice period)",
+                             across);
+    return fmt::format("particles uid {} and uid {} overlap by {:.6g} (more than {:g} of the "
+                       "smaller radius {:.6g}){}; initial grains must not overlap (or raise "
+                       "contact.initial_overlap)",
+                       ps.uid(c.i), ps.uid(c.j), c.penetration, tolerance, rMin, across);
 }
 
 void validateParticles(core::Comm const& comm, ParticleStorage const& ps,

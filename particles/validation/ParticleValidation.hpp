@@ -2,6 +2,7 @@
 /// Checks of the initial particle state, reported as core::InputError naming the uid.
 #include "core/math/AABB.hpp"
 #include "core/mpi/Comm.hpp"
+#include "particles/detection/Contact.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <array>
@@ -36,6 +37,12 @@ struct ValidationIssue {
 /// excepted), found with ContactDetector (O(N)). Not collective.
 std::optional<ValidationIssue> findInvalidParticle(ParticleStorage const& ps,
                                                    ValidationOptions const& options);
+
+/// The message for the initial overlap of contact `c` (copies of `ps`) beyond `tolerance` of
+/// the smaller radius; one that meets across a periodic face (a lattice whose period does not
+/// fit the domain's extent, most often) says so.
+[[nodiscard]] std::string initialOverlapMessage(ParticleStorage const& ps, Contact const& c,
+                                                double tolerance);
 
 /// Runs findInvalidParticle on every rank and, if any rank found a problem, throws on every
 /// rank the same core::InputError: the problem with the smallest uid. Overlaps across blocks
