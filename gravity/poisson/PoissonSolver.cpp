@@ -186,6 +186,12 @@ SolveStats PoissonSolver::solve(CellField const& density, CellField& potential) 
             "grid gravity: the Poisson solve ({}) did not converge: {} after {} iterations, "
             "residual norm {:.3e} (gravity.petsc.options = \"{}\")",
             m_solverName, r.reason, stats.iterations, stats.residual, m_options.petscOptions));
+    if (r.stoppedAtZero)
+        throw core::InputError(fmt::format(
+            "grid gravity: the Poisson solve ({}) stopped before its first iteration ({}) from a "
+            "zero initial guess, which would make the field zero: gravity.petsc.options = "
+            "\"{}\" sets tolerances that stop it at once",
+            m_solverName, r.reason, m_options.petscOptions));
     for (std::size_t blk = 0; blk < layout.localBlockCount(); ++blk) {
         auto phi = potential.block(blk);
         for (std::size_t c = 0; c < cells; ++c)
