@@ -20,6 +20,9 @@ void validate(domain::BlockForest const& forest, std::array<int, 3> const& n, in
             forest.maxLevel()));
     if (ghost < 1 || ghost > 2)
         throw core::Error(fmt::format("grid gravity: ghost width must be 1 or 2, got {}", ghost));
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) // the scene's default: no grid
+        throw core::InputError("domain.cells_per_block: required with grid gravity (pm, p3m): "
+                               "the cells of every block per axis, e.g. [16, 16, 16]");
     for (int a = 0; a < 3; ++a)
         if (n[a] < 1 || n[a] < ghost)
             throw core::InputError(fmt::format(
