@@ -7,7 +7,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 
 namespace regolith::apps {
@@ -102,6 +104,30 @@ void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& 
             "overlaps are not resisted as they should be: raise contact.stiffness "
             "(and lower time.dt with it)",
             scene.contact.stiffness, overlap);
+}
+
+void warnCoarseOrbitStep(core::Comm const& comm, particles::ParticleStorage const& masters,
+                         SceneDescription const& scene) {
+    if (scene.gravity.self == SelfGravity::None)
+        return;
+    double density = 0.0;
+    masters.forEachMaster([&](std::size_t i) {
+        double const r = masters.radius(i);
+        if (r > 0.0)
+            density =
+                std::max(density, masters.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
+    });
+    density = comm.allReduce(density, core::ReduceOp::Max);
+    if (!(density > 0.0))
+        return;
+    double const orbit =
+        2.0 * std::numbers::pi * std::sqrt(3.0 / (std::numbers::pi * scene.gravity.G * density));
+    if (scene.time.dt > orbit / kOrbitSteps)
+        core::log::warn("time.dt = {:g} exceeds the orbital period of two touching grains {:.6g} "
+                        "(at the largest density, {:.6g}) / {:g}: a close orbit takes fewer "
+                        "steps than that and its energy is not kept; reduce time.dt (\"auto\" "
+                        "takes the period / 200)",
+                        scene.time.dt, orbit, density, kOrbitSteps);
 }
 
 } // namespace regolith::apps

@@ -35,4 +35,14 @@ void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& 
 /// The static pair overlap, over the radius, above which warnSoftContacts warns.
 inline constexpr double kSoftContactOverlap = 0.1;
 
+/// With self-gravity, warns if time.dt exceeds the orbital period of two touching grains of
+/// the largest density, 2 pi sqrt(3 / (pi G rho)), over kOrbitSteps: a close orbit then takes
+/// fewer steps than that and its energy is not kept (time.dt = "auto" takes the period / 200).
+/// The contact guard (t_c / 10) does not see it when contacts are soft. Found by a review: a
+/// Kepler pair at dt = T / 2.2 was ejected without a word. COLLECTIVE when self-gravity is on.
+void warnCoarseOrbitStep(core::Comm const& comm, particles::ParticleStorage const& masters,
+                         SceneDescription const& scene);
+
+inline constexpr double kOrbitSteps = 20.0;
+
 } // namespace regolith::apps

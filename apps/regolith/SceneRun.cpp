@@ -55,6 +55,7 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
     checkInitialState(ctx.world, masters, scene);
     warnLazyUpdateThreshold(ctx.world, masters, scene);
     warnSoftContacts(ctx.world, masters, scene);
+    warnCoarseOrbitStep(ctx.world, masters, scene);
     checkGridAccuracy(ctx.world, masters, scene);
     local.adoptMasters(std::move(masters));
     return choices;
