@@ -3,6 +3,8 @@
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "core/Error.hpp"
 #include "core/config/ValueChecks.hpp"
+#include "core/log/Log.hpp"
+#include "core/log/Log.hpp"
 #include "domain/ForestConfig.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 
@@ -134,14 +136,23 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening
-    // given with them would be silently ignored (and the measured-accuracy check compares
-    // with a softened direct sum).
+    // with them is refused, unless it is the file's (for its own method) and a --set of the
+    // method supersedes it: then it is dropped with a warning (the measured-accuracy check
+    // must not compare with a softened sum either).
     if (s.softening > 0.0 && (s.self == SelfGravity::Pm || s.self == SelfGravity::OccupiedCells ||
-                              s.self == SelfGravity::TreeNodes))
-        t.fail("softening", fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
-                                        "applies to \"direct\", \"tree\", \"mutual-tree\" "
-                                        "and \"p3m\" (its near pairs); use one of those, or 0",
-                                        toString(s.self)));
+                              s.self == SelfGravity::TreeNodes)) {
+        if (t.location("softening").starts_with("--set") ||
+            !t.location("self").starts_with("--set"))
+            t.fail("softening",
+                   fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
+                               "applies to \"direct\", \"tree\", \"mutual-tree\" and "
+                               "\"p3m\" (its near pairs); use one of those, or 0",
+                               toString(s.self)));
+        core::log::warn("{}: gravity.softening = {:g} does not apply to gravity.self = \"{}\" "
+                        "({}), which does not soften: ignored",
+                        t.location("softening"), s.softening, toString(s.self), t.location("self"));
+        s.softening = 0.0;
+    }
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
     s.gradientOrder = t.getOrIf<int>(
         "gradient_order", 2, [](int o) { return o == 2 || o == 4; }, "2 or 4");
