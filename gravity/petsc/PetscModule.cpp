@@ -147,10 +147,7 @@ public:
               "KSPSetTolerances");
     }
 
-    void zeroSolution() override {
-        check(VecSet(m_x, 0.0), "VecSet");
-        m_zeroGuess = true;
-    }
+    void zeroSolution() override { check(VecSet(m_x, 0.0), "VecSet"); }
 
     SolveResult solve(double const* b, double* x) override {
         Quiet quiet;
@@ -203,12 +200,14 @@ public:
         r.residual = static_cast<double>(rnorm);
         r.converged = reason > 0;
         r.reason = KSPConvergedReasons[reason];
-        if (r.converged && its == 0 && m_zeroGuess) { // the same on every rank (collective)
-            PetscReal bnorm = 0.0;
+        // What the solve returned, not what it started from (PETSc may replace the initial
+        // guess, -ksp_guess_type): reason and its are the same on every rank (collective).
+        if (r.converged && its == 0) {
+            PetscReal xnorm = 0.0, bnorm = 0.0;
+            check(VecNorm(m_x, NORM_2, &xnorm), "VecNorm");
             check(VecNorm(m_b, NORM_2, &bnorm), "VecNorm");
-            r.stoppedAtZero = bnorm > 0.0;
+            r.stoppedAtZero = xnorm == 0.0 && bnorm > 0.0;
         }
-        m_zeroGuess = m_zeroGuess && its == 0;
         if (!r.converged)
             zeroSolution(); // do not warm-start from a diverged iterate
         PetscScalar const* xp = nullptr;
@@ -228,7 +227,6 @@ private:
     MatNullSpace m_nullSpace = nullptr;
     bool m_setUp = false;
     bool m_checkedUse = false; ///< unusedOptions reported (first solve)
-    bool m_zeroGuess = true;   ///< m_x is zero (PETSc's vectors start so)
     std::string m_prefix;
     std::vector<std::string> m_optionNames;
 };

@@ -29,8 +29,8 @@ struct SolveResult {
     double setupSeconds = 0.0; ///< KSPSetUp of this call (the first solve only)
     double solveSeconds = 0.0;
     bool converged = false;
-    /// Converged before its first iteration from a zero initial guess with a non-zero right-hand
-    /// side: x is zero (tolerances that stop the solve at once, e.g. -ksp_rtol 2).
+    /// Converged before its first iteration with x zero and a non-zero right-hand side
+    /// (tolerances that stop the solve at once, e.g. -ksp_rtol 2, from a zero guess).
     bool stoppedAtZero = false;
     std::string reason; ///< KSPConvergedReasons[reason]
     /// The first solve only: the options of finish() that PETSc had not read by then

@@ -244,8 +244,12 @@ void DemStep::syncParticles() {
         for (auto const& [uid, x] : m_sync->lastStats().departed)
             for (std::size_t w = 0; w < m_walls.size(); ++w)
                 if (m_walls[w].distance(x) < 0.0) {
-                    if (m_wallCrossings.count++ == 0)
-                        m_wallCrossings = {1, uid, m_steps + 1, w};
+                    // The first step's lowest uid: the same grain on any layout.
+                    std::uint64_t const count = m_wallCrossings.count + 1;
+                    if (count == 1 || (m_wallCrossings.firstStep == m_steps + 1 &&
+                                       uid < m_wallCrossings.firstUid))
+                        m_wallCrossings = {count, uid, m_steps + 1, w};
+                    m_wallCrossings.count = count;
                     break;
                 }
         // The detectors' bound covers the copies of other ranks' masters too.

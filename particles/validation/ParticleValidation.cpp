@@ -91,9 +91,9 @@ std::string initialOverlapMessage(ParticleStorage const& ps, Contact const& c, d
         if (c.shiftJ[a] != 0.0)
             across += std::string(across.empty() ? "" : ", ") + "xyz"[a];
     if (!across.empty())
-        across = fmt::format(", across the periodic face of {} (a lattice whose period does not "
-                             "fit the domain's extent there overlaps its own sites on the other "
-                             "side: make the extent a multiple of the lattice period)",
+        across = fmt::format(", across the periodic face of {} (grains placed up to the face "
+                             "meet those on the other side: e.g. a lattice whose period does not "
+                             "fit the domain's extent there; make the extent a multiple of it)",
                              across);
     return fmt::format("particles uid {} and uid {} overlap by {:.6g} (more than {:g} of the "
                        "smaller radius {:.6g}){}; initial grains must not overlap (or raise "
