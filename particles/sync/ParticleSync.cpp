@@ -372,8 +372,15 @@ std::optional<NnsViolation> ParticleSync::findNnsViolation(LocalParticles const&
         double const edge = m_impl->edgeAround(bp.block->id.raw());
         ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
-            if (ps.radius(i) + m_config.skin >= edge && (!worst || ps.uid(i) < worst->uid))
-                worst = NnsViolation{ps.uid(i), ps.radius(i), edge};
+            double const r = ps.radius(i);
+            if (!(r + m_config.skin >= edge))
+                return;
+            bool const alone = worst && worst->radiusAlone;
+            double const bound = worst ? worst->skinBound : edge - r;
+            if (!worst || ps.uid(i) < worst->uid)
+                worst = NnsViolation{ps.uid(i), r, edge};
+            worst->radiusAlone = alone || r >= edge;
+            worst->skinBound = std::min(bound, edge - r);
         });
     }
     return worst;
@@ -391,12 +398,17 @@ void ParticleSync::requireNnsApplicable(LocalParticles const& local) const {
     if (*first == kInvalidUid)
         return;
     auto const at = static_cast<std::size_t>(first - uids.begin());
+    // Every violator over all ranks: the skin is the cause only if each would pass without it,
+    // and the bound is the smallest of their margins.
+    bool const radiusAlone = comm.allReduce(v && v->radiusAlone ? 1 : 0, core::ReduceOp::Max) != 0;
+    double const skinBound = comm.allReduce(
+        v ? v->skinBound : std::numeric_limits<double>::infinity(), core::ReduceOp::Min);
     std::ostringstream msg;
-    if (m_config.skin > 0.0 && radii[at] < edges[at]) { // the skin alone takes it over
+    if (m_config.skin > 0.0 && !radiusAlone) {
         msg << "sync.skin = " << m_config.skin << ": with sync.method = \"nns\", particle uid "
             << *first << "'s radius " << radii[at] << " plus the skin is not below the smallest "
             << "edge " << edges[at] << " of the blocks it may touch (NNS only reaches next "
-            << "neighbours); reduce sync.skin below " << edges[at] - radii[at]
+            << "neighbours); reduce sync.skin below " << skinBound
             << ", or use sync.method = \"sos\" or \"hybrid\"";
         throw core::InputError(msg.str());
     }

@@ -51,6 +51,10 @@ struct NnsViolation {
     Uid uid = kInvalidUid;
     double radius = 0.0;
     double blockEdge = 0.0; ///< the smallest edge of the blocks the grain may touch
+    /// Over every violating master of this rank: whether one is too large even without the
+    /// skin, and the smallest edge - radius (below it a skin would let all of them through).
+    bool radiusAlone = false;
+    double skinBound = std::numeric_limits<double>::infinity();
 };
 
 /// One object per run (it keeps the exchanges and counters). Every member function that
