@@ -4,7 +4,6 @@
 #include "core/Error.hpp"
 #include "core/config/ValueChecks.hpp"
 #include "core/log/Log.hpp"
-#include "core/log/Log.hpp"
 #include "domain/ForestConfig.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 
