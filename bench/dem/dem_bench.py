@@ -19,7 +19,7 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
 
 usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build/default]
                     [--out bench/out] [--repeats 3] [--ranks 1 2] [--scenes ...] [--edge 40]
-                    [--radii 4 8 12 16 20 24] [--skin 0.1]
+                    [--radii 4 8 12 16 20 24] [--skin 0.1] [--no-docs]
 """
 import argparse
 import os
@@ -222,7 +222,7 @@ def chart_radius(a, rows):
     axes[0].set_ylim(bottom=0.0)
     axes[1].legend(fontsize=8)
     fig.tight_layout()
-    save_chart(fig, a.out, "dem-radius")
+    save_chart(fig, a.out, "dem-radius", not a.no_docs)
 
 
 def radius_chart(a):
@@ -253,7 +253,11 @@ def memory(a):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory", "skin"])
+    parts = {"methods": methods, "radius": radius, "radius-chart": radius_chart,
+             "memory": memory, "skin": skin}
+    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory", "skin"],
+                   choices=list(parts), metavar="part",
+                   help=f"any of {', '.join(parts)} (default: all but radius-chart)")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
     p.add_argument("--repeats", type=int, default=3)
@@ -266,11 +270,11 @@ def main():
     p.add_argument("--radius-ranks", type=int, default=2)
     p.add_argument("--memory-boxes", type=int, nargs="*", default=[100, 159])
     p.add_argument("--skin", type=float, default=0.1)
+    p.add_argument("--no-docs", action="store_true", help="do not copy PNGs to docs/images")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     for part in a.parts:
-        {"methods": methods, "radius": radius, "radius-chart": radius_chart,
-         "memory": memory, "skin": skin}[part](a)
+        parts[part](a)
 
 
 if __name__ == "__main__":
