@@ -255,8 +255,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parts = {"methods": methods, "radius": radius, "radius-chart": radius_chart,
              "memory": memory, "skin": skin}
-    p.add_argument("parts", nargs="*", default=["methods", "radius", "memory", "skin"],
-                   choices=list(parts), metavar="part",
+    p.add_argument("parts", nargs="*", metavar="part",
                    help=f"any of {', '.join(parts)} (default: all but radius-chart)")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
@@ -272,6 +271,10 @@ def main():
     p.add_argument("--skin", type=float, default=0.1)
     p.add_argument("--no-docs", action="store_true", help="do not copy PNGs to docs/images")
     a = p.parse_args()
+    for part in a.parts: # (argparse's choices refuse a list default with nargs="*")
+        if part not in parts:
+            p.error(f"unknown part {part!r} (choose from {', '.join(parts)})")
+    a.parts = a.parts or ["methods", "radius", "memory", "skin"]
     os.makedirs(a.out, exist_ok=True)
     for part in a.parts:
         parts[part](a)

@@ -233,8 +233,7 @@ def stability_map(a, plt):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("parts", nargs="*", default=["sweep", "map"], choices=["sweep", "map"],
-                   metavar="part", help="sweep, map (default: both)")
+    p.add_argument("parts", nargs="*", metavar="part", help="sweep, map (default: both)")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
     p.add_argument("--fractions", type=float, nargs="*", default=[80, 40, 20, 10, 5, 3],
