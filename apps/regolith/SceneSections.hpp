@@ -50,7 +50,7 @@ using SyncSection = particles::SyncConfig;
 enum class ContactModel { SpringDashpot, Hertz };
 
 /// [contact] model ("spring-dashpot" | "hertz"), stiffness (> 0; N/m for spring-dashpot,
-/// the effective modulus in Pa for Hertz), restitution in [0, 1], friction >= 0 (Coulomb
+/// the effective modulus in Pa for Hertz), restitution in (0, 1], friction >= 0 (Coulomb
 /// coefficient), rolling_friction >= 0 (mu_r: the rolling couple is at most mu_r R_eff F_n),
 /// rolling_model ("constant": model A, a constant couple that cannot hold a grain at rest;
 /// "spring": model C, a spring-dashpot-slider that can, with rolling_stiffness >= 0, default

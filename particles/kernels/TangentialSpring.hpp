@@ -27,18 +27,32 @@ inline void projectSpring(core::Vec3& spring, core::Vec3 const& normal) {
         spring.setZero();
 }
 
+/// What a sliding contact's spring is truncated to (tangentialForce).
+enum class SlipTruncation {
+    /// spring = -(F + c_t v_t) / k_t: the spring and the dashpot together give the capped
+    /// force F (LAMMPS pair gran/hooke/history). Right where k_t and c_t are constant.
+    SpringAndDashpot,
+    /// spring = -F / k_t: the spring alone gives F, the dashpot is dropped while sliding
+    /// (LIGGGHTS). Needed where k_t grows with the overlap faster than c_t (Hertz: k_t ~ a,
+    /// c_t ~ sqrt(a)): the dashpot's share kept in the spring would turn into an elastic force
+    /// along the slip as the contact loads (a review measured friction pushing a sliding sphere
+    /// forward, and model C's rolling couple adding spin).
+    SpringOnly,
+};
+
 /// The tangential force of a spring-dashpot with Coulomb limit (Cundall & Strack,
 /// Geotechnique 29 (1979) 47), acting on j; updates `spring` in place.
 ///
 /// The spring is first rotated into the current tangent plane (projectSpring), then grows by
 /// `tangentialVelocity * dt`; the trial force is -kt * spring - ct * tangentialVelocity. If its
 /// magnitude exceeds `limit` (mu |F_n|), the force is scaled down to `limit` and the spring is
-/// truncated to what that force implies, spring = -(F + ct v_t) / kt (sliding). With
-/// kt = 0 or limit = 0 the spring is reset.
+/// truncated to what that force implies (sliding; `truncation`). With kt = 0 or limit = 0 the
+/// spring is reset.
 /// Units: kt [force/length], ct [force time/length], limit [force], dt [time].
 inline core::Vec3 tangentialForce(core::Vec3& spring, core::Vec3 const& normal,
                                   core::Vec3 const& tangentialVelocity, double kt, double ct,
-                                  double limit, double dt) {
+                                  double limit, double dt,
+                                  SlipTruncation truncation = SlipTruncation::SpringAndDashpot) {
     if (!(kt > 0.0) || !(limit > 0.0)) {
         spring.setZero();
         return core::Vec3::Zero();
@@ -49,7 +63,9 @@ inline core::Vec3 tangentialForce(core::Vec3& spring, core::Vec3 const& normal,
     double const f2 = force.squaredNorm();
     if (f2 > limit * limit) {
         force *= limit / std::sqrt(f2);
-        spring = -(force + ct * tangentialVelocity) / kt;
+        spring = truncation == SlipTruncation::SpringAndDashpot
+                     ? core::Vec3(-(force + ct * tangentialVelocity) / kt)
+                     : core::Vec3(-force / kt);
     }
     return force;
 }
@@ -104,7 +120,8 @@ struct RollingSpring {
 /// Units: normalStiffness k_n [force/length] (for the default k_r), normalForce [force].
 inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling,
                                       double rollingFriction, RollingSpring const& law,
-                                      double normalStiffness, double normalForce, double dt) {
+                                      double normalStiffness, double normalForce, double dt,
+                                      SlipTruncation truncation) {
     // At most the contact's normal stiffness (a given k_r too, for Hertz, whose normal
     // stiffness the scene cannot bound): stiffer, the explicit step would not hold it.
     double const kr =
@@ -124,19 +141,22 @@ inline core::Vec3 rollingSpringTorque(ContactState const& s, core::Vec3& rolling
             ? std::min(2.0 * law.dampingRatio * std::sqrt(3.5 * kr / rr), 1.0 / (rr * dt))
             : 0.0;
     // The same spring-dashpot-slider as the tangential one, on the rolling displacement.
-    core::Vec3 const f = tangentialForce(rolling, s.normal, vr, kr, cr,
-                                         rollingFriction * std::max(normalForce, 0.0), dt);
+    core::Vec3 const f =
+        tangentialForce(rolling, s.normal, vr, kr, cr, rollingFriction * std::max(normalForce, 0.0),
+                        dt, truncation);
     return reff * s.normal.cross(f);
 }
 
-/// The couple on j of the pair's rolling resistance: model C (rollingSpringTorque) if `law`
-/// is enabled, else model A (rollingTorque), which leaves `rolling` alone.
+/// The couple on j of the pair's rolling resistance: model C (rollingSpringTorque, its slider
+/// truncated as `truncation` says) if `law` is enabled, else model A (rollingTorque), which
+/// leaves `rolling` alone.
 inline core::Vec3 rollingResistance(ContactState const& s, core::Vec3& rolling,
                                     double rollingFriction, RollingSpring const& law,
-                                    double normalStiffness, double normalForce, double dt) {
+                                    double normalStiffness, double normalForce, double dt,
+                                    SlipTruncation truncation = SlipTruncation::SpringAndDashpot) {
     if (law.enabled)
         return rollingSpringTorque(s, rolling, rollingFriction, law, normalStiffness, normalForce,
-                                   dt);
+                                   dt, truncation);
     return rollingTorque(s, rollingFriction, normalForce, dt);
 }
 

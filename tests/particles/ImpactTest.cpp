@@ -210,3 +210,62 @@ TEST(TimeStepFailure, RestitutionErrorGrowsWithDtAndTheGuardRefuses) {
     EXPECT_NO_THROW(checkTimeStep(est.contactTime / 10.0, est, false));
     EXPECT_THROW(checkTimeStep(est.contactTime / 10.0 * (1 + 1e-9), est, false), InputError);
 }
+
+TEST(HertzImpact, SlidingFrictionOpposesTheSlipThroughTheContact) {
+    // A sphere hits a wall obliquely, its tangential speed far above full sliding (4 against
+    // 3.5 mu (1 + e) v_n = 1.26), low restitution: the friction must slow the slip at every
+    // step and take at least mu (1 + e) v_n of it (the impulse mu J_n; a little more where F_n
+    // turns attractive: max(F_n, 0) then caps nothing). A sliding spring that kept the
+    // dashpot's share (c_t v_t / k_t, with k_t ~ a but c_t ~ sqrt(a)) turned into a force
+    // along the slip while the contact loaded (a review measured 0.63 of the impulse, the
+    // sphere sliding faster than it came).
+    double const e = 0.2, mu = 0.3, r = 0.5, m = 1.0;
+    auto const p = HertzMindlinParams::fromMaterials(1e5, 0.3, 1e5, 0.3, e, mu);
+    HertzMindlin const model{MaterialTable<HertzMindlinParams>(1, p)};
+    ParticleStorage ps;
+    WallList walls;
+    walls.add(Vec3::Zero(), Vec3::UnitZ());
+    ps.add(sphere(1, Vec3(0, 0, r + 0.001), r, m, Vec3(4.0, 0, -1.0)));
+    BlockStepper stepper(ps, walls, model, VelocityVerlet{},
+                         HertzMindlin::contactTime(p, m, r, 1.0) / 2000);
+    double last = ps.velocity(0).x();
+    bool slowing = true;
+    for (int n = 0; n < 20000; ++n) {
+        stepper.step();
+        slowing = slowing && ps.velocity(0).x() <= last + 1e-12;
+        last = ps.velocity(0).x();
+    }
+    double const taken = 4.0 - ps.velocity(0).x();
+    EXPECT_TRUE(slowing);
+    EXPECT_GT(taken, mu * (1.0 + e) * 0.99);
+    EXPECT_LT(taken, mu * (1.0 + e) * 1.25);
+    EXPECT_GT(ps.velocity(0).z(), 0.0); // it bounced
+}
+
+TEST(HertzImpact, ModelCRollingCoupleOnlySlowsTheSpin) {
+    // A spinning sphere dropped on a wall without friction: the only torque is model C's
+    // rolling couple, which must slow the spin (by at most mu_r r J_n / I, a little more where
+    // F_n turns attractive) and never add energy. Its slider kept the dashpot's share, which
+    // grew into a couple along the rolling as the Hertz contact loaded (k_r ~ a): a review
+    // measured the spin rising from 20 to 20.24.
+    double const e = 0.2, muRoll = 0.1, r = 0.5, m = 1.0, spin = 20.0;
+    auto p = HertzMindlinParams::fromMaterials(1e5, 0.3, 1e5, 0.3, e, 0.0, muRoll);
+    p.rollingSpring.enabled = true; // default damping ratio 0.3
+    HertzMindlin const model{MaterialTable<HertzMindlinParams>(1, p)};
+    ParticleStorage ps;
+    WallList walls;
+    walls.add(Vec3::Zero(), Vec3::UnitZ());
+    ParticleInit grain = sphere(1, Vec3(0, 0, r + 0.001), r, m, Vec3(0, 0, -1.0));
+    grain.angularVelocity = Vec3(0, spin, 0);
+    ps.add(grain);
+    BlockStepper stepper(ps, walls, model, VelocityVerlet{},
+                         HertzMindlin::contactTime(p, m, r, 1.0) / 2000);
+    for (int n = 0; n < 20000; ++n)
+        stepper.step();
+    double const inertia = 0.4 * m * r * r;
+    double const jn = m * (1.0 + e) * 1.0;
+    double const slowed = spin - ps.angularVelocity(0).y();
+    EXPECT_GT(slowed, 0.99 * muRoll * r * jn / inertia);
+    EXPECT_LT(slowed, 1.25 * muRoll * r * jn / inertia);
+    EXPECT_GT(ps.velocity(0).z(), 0.0); // it bounced
+}
