@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/BenchOptions.hpp"
 #include "bench/gravity/MeshEvaluation.hpp"
 #include "bench/gravity/StaleFieldStudy.hpp"
 
@@ -154,9 +155,15 @@ int main(int argc, char** argv) {
     std::string thresholds = "0.01,0.1,1,6";
     double stepDisplacement = 0.001;
     double staleTheta = 0.5;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string const key = argv[i];
-        std::string const value = argv[i + 1];
+    bench::BenchOptions const cli = bench::parseBenchOptions(
+        argc, argv, "gravity_bench",
+        {"--instances", "--methods", "--thetas", "--samples", "--repeat", "--csv", "--opening",
+         "--leaf", "--group", "--spacings", "--node-spacings", "--pm-gradient", "--pm-rtol",
+         "--thresholds", "--step-displacement", "--stale-theta"},
+        world.rank() == 0);
+    if (cli.exitCode >= 0)
+        return cli.exitCode;
+    for (auto const& [key, value] : cli.pairs) {
         if (key == "--instances")
             instances = value;
         else if (key == "--methods")

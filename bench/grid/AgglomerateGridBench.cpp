@@ -36,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/BenchOptions.hpp"
+
 using namespace regolith;
 namespace gs = regolith::gravity::samples;
 
@@ -98,9 +100,13 @@ int main(int argc, char** argv) {
     int order = 4;
     int repeat = 3;
     std::string csvPath = "bench/out/grid_agglomerate.csv";
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string const key = argv[i];
-        std::string const value = argv[i + 1];
+    bench::BenchOptions const cli = bench::parseBenchOptions(
+        argc, argv, "grid_agglomerate_bench",
+        {"--grains", "--cells", "--cutoffs", "--thetas", "--rtol", "--order", "--repeat", "--csv"},
+        world.rank() == 0);
+    if (cli.exitCode >= 0)
+        return cli.exitCode;
+    for (auto const& [key, value] : cli.pairs) {
         if (key == "--grains")
             grains = std::stoul(value);
         else if (key == "--cells")
@@ -117,11 +123,6 @@ int main(int argc, char** argv) {
             repeat = std::stoi(value);
         else if (key == "--csv")
             csvPath = value;
-        else {
-            if (world.rank() == 0)
-                std::fprintf(stderr, "grid_agglomerate_bench: unknown option %s\n", key.c_str());
-            return 2;
-        }
     }
     gs::Body const body =
         gs::packedAgglomerate(grains, 20.0, 60.0, 3000.0, 0.3, core::Vec3::Zero(), 1);

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/BenchOptions.hpp"
+
 using namespace regolith;
 using namespace regolith::gravity;
 
@@ -31,20 +33,17 @@ struct Args {
     std::string csv = "bench/out/grid_bench.csv";
 };
 
-Args parse(int argc, char** argv) {
+Args parse(bench::BenchOptions const& cli) {
     Args a;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string const key = argv[i];
+    for (auto const& [key, value] : cli.pairs) {
         if (key == "--max-cells")
-            a.maxCells = std::atoi(argv[i + 1]);
+            a.maxCells = std::atoi(value.c_str());
         else if (key == "--min-cells")
-            a.minCells = std::atoi(argv[i + 1]);
+            a.minCells = std::atoi(value.c_str());
         else if (key == "--rtol")
-            a.rtol = std::atof(argv[i + 1]);
+            a.rtol = std::atof(value.c_str());
         else if (key == "--csv")
-            a.csv = argv[i + 1];
-        else
-            throw core::InputError("grid_bench: unknown option " + key);
+            a.csv = value;
     }
     return a;
 }
@@ -85,7 +84,12 @@ int main(int argc, char** argv) {
     char** noArgv = nullptr;
     PetscSession petsc(noArgs, noArgv);
     core::Comm world;
-    Args const args = parse(argc, argv);
+    bench::BenchOptions const cli = bench::parseBenchOptions(
+        argc, argv, "grid_bench", {"--max-cells", "--min-cells", "--rtol", "--csv"},
+        world.rank() == 0);
+    if (cli.exitCode >= 0)
+        return cli.exitCode;
+    Args const args = parse(cli);
     std::vector<std::pair<std::string, std::string>> const solvers{
         {"cg+gamg", "-ksp_type cg -pc_type gamg"},
         {"cg+hypre", "-ksp_type cg -pc_type hypre -pc_hypre_type boomeramg"},

@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/common/BenchOptions.hpp"
+
 using namespace regolith;
 using namespace regolith::gravity;
 
@@ -128,18 +130,22 @@ int main(int argc, char** argv) {
     std::string csvPath = "bench/out/grid_matched.csv";
     std::string solverList = "gamg,hypre,gamg-tuned";
     std::string rtolList = "1e-2,1e-3,1e-4,1e-5,1e-6,1e-8,1e-10"; // ascending tightness
-    for (int i = 1; i + 1 < argc; i += 2) {
-        std::string const key = argv[i];
+    bench::BenchOptions const cli = bench::parseBenchOptions(
+        argc, argv, "grid_matched_bench",
+        {"--min-cells", "--max-cells", "--csv", "--solvers", "--rtols"}, world.rank() == 0);
+    if (cli.exitCode >= 0)
+        return cli.exitCode;
+    for (auto const& [key, value] : cli.pairs) {
         if (key == "--min-cells")
-            minCells = std::atoi(argv[i + 1]);
+            minCells = std::atoi(value.c_str());
         else if (key == "--max-cells")
-            maxCells = std::atoi(argv[i + 1]);
+            maxCells = std::atoi(value.c_str());
         else if (key == "--csv")
-            csvPath = argv[i + 1];
+            csvPath = value;
         else if (key == "--solvers")
-            solverList = argv[i + 1];
+            solverList = value;
         else if (key == "--rtols")
-            rtolList = argv[i + 1];
+            rtolList = value;
     }
     std::vector<std::pair<std::string, std::string>> solvers;
     auto want = [&](char const* s) { return solverList.find(s) != std::string::npos; };
