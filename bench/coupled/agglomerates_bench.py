@@ -22,7 +22,10 @@ import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from run_summary import run_app  # noqa: E402
 
-SCENE = "scenes/two-agglomerates.toml"
+# The repository (this file is bench/<part>/<script>.py): defaults that work from any directory.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+SCENE = os.path.join(ROOT, "scenes", "two-agglomerates.toml")
 # count per agglomerate, grain radii, agglomerate radius, update threshold (2 r_max), and the
 # paper's Barnes-Hut run with 1 process and 1 gravity thread: total seconds for 100,000 steps,
 # gravity updates, seconds per update (Tables 1-3).
@@ -120,8 +123,8 @@ def write_csv(path, rows):
 
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("--build", default="build/default")
-    p.add_argument("--out", default="bench/out")
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
     p.add_argument("--steps", type=int, default=1000)
     p.add_argument("--instances", nargs="+", default=list(INSTANCES))
     p.add_argument("--ranks", type=int, nargs="+", default=[1, 2])

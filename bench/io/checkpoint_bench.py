@@ -17,6 +17,10 @@ import re
 import shutil
 import statistics
 import subprocess
+import sys
+
+# The repository (this file is bench/<part>/<script>.py): defaults that work from any directory.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 WRITE = re.compile(r"checkpoint (\S+): (\d+) grains, (\d+) history entries, ([\d.e+-]+) MB in "
                    r"([\d.e+-]+) s")
@@ -25,14 +29,17 @@ READ = re.compile(r"read and distributed in ([\d.e+-]+) s")
 
 def run(command):
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    done = subprocess.run(command, capture_output=True, text=True, check=True, env=env)
+    done = subprocess.run(command, capture_output=True, text=True, check=False, env=env)
+    if done.returncode != 0: # the run's own message, not a traceback
+        sys.exit(f"checkpoint_bench: {' '.join(command)} exited with {done.returncode}\n"
+                 f"{done.stdout[-2000:]}{done.stderr[-2000:]}")
     return done.stdout
 
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("--app", default="build/default/bin/regolith")
-    parser.add_argument("--scene", default="scenes/checkpoint-bench.toml")
+    parser.add_argument("--app", default=os.path.join(ROOT, "build", "default", "bin", "regolith"))
+    parser.add_argument("--scene", default=os.path.join(ROOT, "scenes", "checkpoint-bench.toml"))
     parser.add_argument("--np", type=int, nargs="+", default=[1, 2, 4])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--out", default="out/ckpt-bench")

@@ -27,6 +27,9 @@ from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkIOXML import (vtkXMLMultiBlockDataReader,  # noqa: E402
                                  vtkXMLPUnstructuredGridReader)
 
+# The repository (this file is bench/<part>/<script>.py): defaults that work from any directory.
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
 
 def last_entry(pvd):
     sets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
@@ -35,12 +38,12 @@ def last_entry(pvd):
 
 def main():
     p = argparse.ArgumentParser()
-    p.add_argument("--app", default="build/default/bin/regolith")
-    p.add_argument("--scene", default="scenes/default.toml")
+    p.add_argument("--app", default=os.path.join(ROOT, "build", "default", "bin", "regolith"))
+    p.add_argument("--scene", default=os.path.join(ROOT, "scenes", "default.toml"))
     p.add_argument("--np", type=int, default=2)
     p.add_argument("--steps", type=int, default=20)
     p.add_argument("--out", default="out/grid-figure")
-    p.add_argument("--png", default="docs/images/grid-fields.png")
+    p.add_argument("--png", default=os.path.join(ROOT, "docs", "images", "grid-fields.png"))
     a = p.parse_args()
     shutil.rmtree(a.out, ignore_errors=True)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
