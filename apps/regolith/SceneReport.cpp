@@ -32,7 +32,8 @@ ParticleCounts countParticles(core::Comm const& comm, std::int64_t local) {
 }
 
 void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene,
-                      domain::BlockForest const& forest, ParticleCounts const& particles) {
+                      domain::BlockForest const& forest, ParticleCounts const& particles,
+                      std::int64_t startStep) {
     auto const& d = forest.domain();
     auto const& n = forest.rootBlocks();
     std::string text = fmt::format("{}: scene '{}' ({})\n", ctx.appName, scene.name, ctx.sceneName);
@@ -42,15 +43,23 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
     text += fmt::format("  {} blocks ({} x {} x {} root, deepest level {}) on {} ranks, {} idle\n",
                         forest.globalBlockCount(), n[0], n[1], n[2], forest.maxLevel(),
                         ctx.world.size(), forest.idleRankCount());
+    // A restart runs the steps from the checkpoint's on (time.steps is a total).
+    std::string const steps =
+        startStep > 0 ? fmt::format("{} steps (from step {} to {})", scene.time.steps - startStep,
+                                    startStep, scene.time.steps)
+                      : fmt::format("{} steps", scene.time.steps);
     text +=
-        fmt::format("  {} steps of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
+        fmt::format("  {} of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
                     "{} walls\n",
-                    scene.time.steps, scene.time.dt, toString(scene.sync.method),
+                    steps, scene.time.dt, toString(scene.sync.method),
                     scene.sync.reproducible ? " (reproducible)" : "", toString(scene.contact.model),
                     toString(scene.gravity.self), poissonNote(scene.gravity), scene.walls.size());
-    text += fmt::format("  {} particles from {} [[particles]] entries ({} to {} per rank)\n",
-                        particles.total, scene.particles.size(), particles.minPerRank,
-                        particles.maxPerRank);
+    text += startStep > 0
+                ? fmt::format("  {} particles from the checkpoint ({} to {} per rank)\n",
+                              particles.total, particles.minPerRank, particles.maxPerRank)
+                : fmt::format("  {} particles from {} [[particles]] entries ({} to {} per rank)\n",
+                              particles.total, scene.particles.size(), particles.minPerRank,
+                              particles.maxPerRank);
     std::fputs(text.c_str(), stdout);
     std::fflush(stdout);
 }

@@ -23,7 +23,8 @@ struct ParticleCounts {
 /// Prints the scene, domain, blocks, time/sync/contact/gravity settings and the particle
 /// counts to stdout. Call on one rank (rank 0). Not collective.
 void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene,
-                      domain::BlockForest const& forest, ParticleCounts const& particles);
+                      domain::BlockForest const& forest, ParticleCounts const& particles,
+                      std::int64_t startStep = 0);
 
 /// Prints what the time loop did: steps, loop time and PUpCS, final particle and shadow
 /// counts, masters that left the domain, traffic per step, and the phase timers reduced over

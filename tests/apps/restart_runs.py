@@ -359,6 +359,12 @@ def main():
     if done.returncode != 0 or done.stdout.count(warning) != 1:
         fail(f"{' '.join(command)}: exit {done.returncode}, expected 0 and the warning "
              f"{warning!r} once\n--- stdout:\n{done.stdout}")
+    # The banner of a restart: the steps still to run and the grains of the checkpoint (it
+    # said "40 steps" and "from 1 [[particles]] entries"; a review).
+    for expected in ("  20 steps (from step 20 to 40) of dt", "1000 particles from the checkpoint"):
+        if expected not in done.stdout:
+            fail(f"{' '.join(command)}: expected {expected!r} in the banner\n--- stdout:\n"
+                 f"{done.stdout}")
     # The scenes compared are the files with their --set overrides: the same file with a
     # --set change of the physics warns (it did not: only the files were compared) ...
     command, done = loud(runner.scene, ["--restart", step20, "--output", runner.path("same"),
