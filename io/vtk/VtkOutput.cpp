@@ -83,9 +83,10 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
         std::error_code ec;
         fs::create_directories(fs::path(m_options.dir) / "vtk", ec);
         if (ec)
-            throw core::InputError(fmt::format("output.dir = \"{}\": cannot create the directory "
-                                               "for VTK output: {}",
-                                               m_options.dir, ec.message()));
+            throw core::InputError(fmt::format(
+                "output.dir = \"{}\": cannot create '{}' for "
+                "the VTK output: {}",
+                m_options.dir, (fs::path(m_options.dir) / "vtk").string(), ec.message()));
         m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
         m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
         // A restart writes no grid at its first step (the field is restored per grain, not
