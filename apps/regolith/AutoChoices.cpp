@@ -1,5 +1,6 @@
 #include "apps/regolith/AutoChoices.hpp"
 
+#include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 
@@ -147,8 +148,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
         double dt = tc / 20.0;
         std::string reason = fmt::format("contact time {:.6g} / 20", tc);
         if (g.self != SelfGravity::None && e.maxDensity > 0.0) {
-            double const orbit =
-                2.0 * std::numbers::pi * std::sqrt(3.0 / (std::numbers::pi * g.G * e.maxDensity));
+            double const orbit = touchingOrbitPeriod(g.G, e.maxDensity);
             if (orbit / 200.0 < dt) {
                 dt = orbit / 200.0;
                 reason = fmt::format("orbital period of two touching grains {:.6g} / 200 (below "

@@ -120,8 +120,7 @@ void warnCoarseOrbitStep(core::Comm const& comm, particles::ParticleStorage cons
     density = comm.allReduce(density, core::ReduceOp::Max);
     if (!(density > 0.0))
         return;
-    double const orbit =
-        2.0 * std::numbers::pi * std::sqrt(3.0 / (std::numbers::pi * scene.gravity.G * density));
+    double const orbit = touchingOrbitPeriod(scene.gravity.G, density);
     if (scene.time.dt > orbit / kOrbitSteps)
         core::log::warn("time.dt = {:g} exceeds the orbital period of two touching grains {:.6g} "
                         "(at the largest density, {:.6g}) / {:g}: a close orbit takes fewer "

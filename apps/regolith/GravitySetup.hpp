@@ -6,7 +6,9 @@
 #include "domain/BlockForest.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
+#include <cmath>
 #include <memory>
+#include <numbers>
 
 namespace regolith::apps {
 
@@ -44,5 +46,11 @@ void warnCoarseOrbitStep(core::Comm const& comm, particles::ParticleStorage cons
                          SceneDescription const& scene);
 
 inline constexpr double kOrbitSteps = 20.0;
+
+/// The orbital period of two touching spheres of density `density` under G:
+/// 2 pi sqrt((2r)^3 / (G 2m)) = 2 pi sqrt(3 / (pi G rho)) [time].
+[[nodiscard]] inline double touchingOrbitPeriod(double G, double density) {
+    return 2.0 * std::numbers::pi * std::sqrt(3.0 / (std::numbers::pi * G * density));
+}
 
 } // namespace regolith::apps

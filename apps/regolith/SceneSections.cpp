@@ -105,6 +105,17 @@ ContactSection parseContact(core::ConfigTable const& t) {
     return s;
 }
 
+namespace {
+
+/// Whether `key` of [gravity] may stand although the method ignores it: the file gave it (for
+/// the file's own method) and a --set of gravity.self supersedes that method. A --set of the
+/// key itself, or a file giving both, is a request that would go unheard.
+bool supersededBySetMethod(core::ConfigTable const& t, std::string_view key) {
+    return !t.location(key).starts_with("--set") && t.location("self").starts_with("--set");
+}
+
+} // namespace
+
 GravitySection parseGravity(core::ConfigTable const& t) {
     GravitySection s;
     s.external =
@@ -112,10 +123,8 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.self = static_cast<SelfGravity>(t.getChoiceOr("self", kSelfNames, 0));
     s.G = t.getOrIf<double>("G", s.G, isPositiveFinite, "a positive finite number");
     s.theta = t.getOrIf<double>("theta", s.theta, isPositiveFinite, "a positive finite number");
-    // With "auto", a theta is replaced without a word: refused, unless it is the file's (for
-    // its tree) and the --set of "auto" supersedes it.
-    if (s.self == SelfGravity::Auto && t.has("theta") &&
-        (t.location("theta").starts_with("--set") || !t.location("self").starts_with("--set")))
+    // With "auto", a theta would be replaced without a word.
+    if (s.self == SelfGravity::Auto && t.has("theta") && !supersededBySetMethod(t, "theta"))
         t.fail("theta", "is chosen by gravity.self = \"auto\" (the largest opening angle that "
                         "meets gravity.accuracy); set gravity.self = \"tree\" to use this one, "
                         "or leave it out");
@@ -135,13 +144,11 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening
-    // with them is refused, unless it is the file's (for its own method) and a --set of the
-    // method supersedes it: then it is dropped with a warning (the measured-accuracy check
-    // must not compare with a softened sum either).
+    // with them is refused, or dropped with a warning where a --set of the method supersedes
+    // the file's (the measured-accuracy check must not compare with a softened sum either).
     if (s.softening > 0.0 && (s.self == SelfGravity::Pm || s.self == SelfGravity::OccupiedCells ||
                               s.self == SelfGravity::TreeNodes)) {
-        if (t.location("softening").starts_with("--set") ||
-            !t.location("self").starts_with("--set"))
+        if (!supersededBySetMethod(t, "softening"))
             t.fail("softening",
                    fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
                                "applies to \"direct\", \"tree\", \"mutual-tree\" and "

@@ -213,7 +213,7 @@ void expandBidisperse(core::ConfigTable& scene, int /*ranks*/) {
             "[[particles]] entry, which must be kind = \"list\"",
             large ? large->location() : scene.location()));
     for (std::string_view key : {"position", "radius"})
-        requireNotSetByUser(element(scene, "particles", 0), key, "bidisperse",
+        requireNotSetByUser(large, key, "bidisperse",
                             key == "radius" ? "bidisperse.large_radius"
                                             : "bidisperse.building_blocks or bidisperse.edge",
                             true);

@@ -107,7 +107,9 @@ public:
                       std::uint32_t stamp);
 
     /// The first grain on this rank (lowest uid) too large for NNS in its block, if any:
-    /// radius >= the smallest edge of its block and of the neighbour blocks it overlaps. Local.
+    /// radius + sync skin >= the smallest edge of its block and of the neighbour blocks it
+    /// overlaps, with what all such grains of this rank share (NnsViolation). Local.
+    /// (NnsApplicability.cpp, as requireNnsApplicable.)
     [[nodiscard]] std::optional<NnsViolation> findNnsViolation(LocalParticles const& local) const;
     /// Throws core::InputError on every rank, naming the uid, its radius, the block edge and
     /// the remedy, if the configured method is NNS and any rank holds such a grain. COLLECTIVE.
