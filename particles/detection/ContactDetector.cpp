@@ -116,6 +116,9 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
                              core::AABB const& region, PeriodicFrame const& frame,
                              ContactList& out) {
     out.clear();
+    if (m_springsLive)
+        throw core::Error("contact detection: a detect without the list while it kept springs "
+                          "that were not written back");
     m_list.invalidate(); // the cells are rebuilt without the skin
     if (ps.empty()) {
         m_stats = DetectorStats{};
@@ -158,16 +161,26 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
                            frame.domain.max == m_listFrame.domain.max &&
                            frame.periodic == m_listFrame.periodic;
     double const moved = std::exchange(m_movedAtMost, std::numeric_limits<double>::infinity());
-    bool rebuild = !sameFrame || !m_list.follow(ps, m_fresh) ||
+    bool const follows = m_list.follow(ps, m_fresh);
+    if (!follows && m_springsLive)
+        throw core::Error("contact detection: the storage changed beyond the Verlet list's "
+                          "trace while it kept springs that were not written back");
+    std::size_t const listedBefore = m_list.numPairs();
+    bool rebuild = !sameFrame || !follows ||
                    m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
                    m_list.movedTooFar(ps, moved) || !addArrivals(ps, region, frame);
-    if (rebuild)
+    if (rebuild) {
+        writeBackSprings(ps); // while the list still follows the storage
         rebuildList(ps, region, frame);
+    }
+    if (m_config.keepSprings)
+        fillKeptSprings(ps, m_springsLive && !rebuild ? listedBefore : 0);
     m_stats.rebuilt = rebuild;
     m_stats.arrivals = rebuild ? 0 : m_fresh.size();
     m_stats.overlapsFound = 0;
     m_stats.listedPairs = m_list.numPairs();
     m_stats.settledPairs = m_list.numOwned();
+    m_stats.keptPairs = m_list.numKept();
 }
 
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
@@ -196,7 +209,9 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
         case Settled::Never:
             return VerletList::kDrop;
         case Settled::Always:
-            return static_cast<int>(PairMode::Owned);
+            return static_cast<int>(keepsSpring(ps, ka, kb, a, b, region, frame, rounding)
+                                        ? PairMode::Kept
+                                        : PairMode::Owned);
         case Settled::Open:
             break;
         }
@@ -356,6 +371,9 @@ std::vector<std::size_t> ContactDetector::spatialOrder() const {
 }
 
 void ContactDetector::release() {
+    if (m_springsLive)
+        throw core::Error("contact detection: released while it kept springs that were not "
+                          "written back");
     *this = ContactDetector(m_config);
 }
 

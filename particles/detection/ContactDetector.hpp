@@ -31,11 +31,26 @@ core::AABB everywhere();
 /// itself) rather than Contact.
 template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
+/// A pair callback that also takes a kept pair's spring (HistoryEntry&, beside the list:
+/// DetectorConfig::keepSprings) in place of the history hint.
+template <class OnPair>
+concept TakesKeptSprings = std::invocable<OnPair&, PairOverlap const&, HistoryEntry&> ||
+    std::invocable<OnPair&, Contact const&, HistoryEntry&>;
 
 namespace detection_detail {
-/// Hands contact `c` to onPair in the form it takes.
+/// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
+/// (non-null) and onPair takes it, else with its history hint.
 template <class OnPair>
-void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint) {
+void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, HistoryEntry* kept = nullptr) {
+    if constexpr (TakesKeptSprings<OnPair>) {
+        if (kept != nullptr) {
+            if constexpr (TakesPairOverlaps<OnPair>)
+                onPair(PairOverlap::of(c), *kept);
+            else
+                onPair(c, *kept);
+            return;
+        }
+    }
     if constexpr (TakesPairOverlaps<OnPair>)
         onPair(PairOverlap::of(c), hint);
     else
@@ -112,6 +127,21 @@ void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint) {
 /// history beside each pair does the same in one loop). The contacts are the same set as the
 /// full rule finds (tests/particles/VerletListTest.cpp).
 ///
+/// Springs kept beside the list (DetectorConfig::keepSprings). A settled pair of two masters
+/// (image zero) whose reference centres lie deeper than skin / 2 inside the block, on a domain
+/// whose periods exceed twice the pair's reach (no second image instance of the pair), cannot
+/// migrate, wrap or change hands while the list holds, and nothing else evaluates it: its
+/// tangential spring is then kept beside the pair (PairMode::Kept, VerletList::spring) and
+/// handed to the callback in place of the history hint, as LAMMPS's fix neigh/history keeps
+/// its shear history. Why: touching the grain's history per contact cost a quarter of a
+/// static packing's pair loop (docs/results.md, issue 5, "The kernel with the springs beside
+/// the list"). The grains' histories are stale for those pairs until writeBackSprings(), which
+/// the caller must call before anything reads or changes them or moves a copy out of the
+/// block: before a synchronisation whose motion could reach skin / 2 (beforeSync), a
+/// checkpoint, release(). The next detect fills the springs from the histories again (kept
+/// entry = the history entry, with stamps as ContactHistory's), so every step computes the
+/// same bits as with the histories.
+///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
 /// zero), which exists in exactly one block. (The contact point lies behind the wall, outside
@@ -163,6 +193,22 @@ public:
     /// a note the positions are compared. The bound must hold, or contacts go missing.
     void noteMotion(double distance) { m_movedAtMost = distance; }
 
+    /// Before a synchronisation after which noteMotion(movedAtMost) will be called: writes the
+    /// kept springs back to the histories of `particles` if a copy may then have moved skin / 2
+    /// (it may migrate or wrap in that synchronisation). Not collective.
+    void beforeSync(ParticleStorage& particles, double movedAtMost) {
+        if (m_springsLive && m_list.mayMoveTooFar(movedAtMost))
+            writeBackSprings(particles);
+    }
+    /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
+    /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
+    /// overwritten, one that does not is added unless the pair never touched. The next detect
+    /// fills them again. Not collective.
+    void writeBackSprings(ParticleStorage& particles);
+    /// Whether the kept springs hold values the histories lack (detect filled them since the
+    /// last writeBackSprings).
+    [[nodiscard]] bool springsKept() const { return m_springsLive; }
+
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
     /// then the large ones: a permutation for ParticleStorage::permute that puts neighbours
     /// next to each other in memory. Valid until the storage changes.
@@ -172,7 +218,8 @@ public:
     /// The Verlet skin of the last list rebuild [length]; 0 if none was built (no skin).
     [[nodiscard]] double listSkin() const { return m_listSkin; }
     [[nodiscard]] DetectorConfig const& config() const { return m_config; }
-    /// Frees every work array and the neighbour list (the next detect starts afresh).
+    /// Frees every work array and the neighbour list (the next detect starts afresh). Throws
+    /// core::Error if kept springs were not written back.
     void release();
     /// Heap bytes of the reusable work arrays.
     [[nodiscard]] std::size_t bytes() const;
@@ -204,6 +251,13 @@ private:
                    double reachSlack, F&& f);
     void rebuildList(ParticleStorage& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
+    /// Whether the settled pair of copies ka, kb (canonical order, list ids a, b) keeps its
+    /// spring beside the list (see "Springs kept beside the list").
+    [[nodiscard]] bool keepsSpring(ParticleStorage const& particles, std::size_t ka, std::size_t kb,
+                                   VerletList::Id a, VerletList::Id b, core::AABB const& region,
+                                   PeriodicFrame const& frame, double rounding) const;
+    /// Fills the kept springs of the pairs from the `first`-th on from the histories.
+    void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
     bool addArrivals(ParticleStorage const& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
@@ -222,8 +276,9 @@ private:
     double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect
-    core::AABB m_listRegion;   ///< the region the list's pairs were settled for
-    PeriodicFrame m_listFrame; ///< and the frame
+    core::AABB m_listRegion;    ///< the region the list's pairs were settled for
+    PeriodicFrame m_listFrame;  ///< and the frame
+    bool m_springsLive = false; ///< the kept springs hold what the histories lack
 };
 
 // ---- templates ------------------------------------------------------------------------------
@@ -260,17 +315,19 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     // a time (OverlapScreen); a Check pair first flushes the block, so that every pair still
     // reaches onPair in list order.
     OverlapScreen screen;
-    auto eachPair = [&](std::size_t a, std::size_t b, PairMode mode, std::uint8_t& hint) {
+    auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
+        PairMode const mode = m_list.mode(p);
+        HistoryEntry* const kept = mode == PairMode::Kept ? &m_list.spring(p) : nullptr;
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
-                if (mode == PairMode::Owned) {
-                    overlaps += screen.offer(ps, period, a, b, hint, onPair);
+                if (mode != PairMode::Check) {
+                    overlaps += screen.offer(ps, period, a, b, m_list.hint(p), kept, onPair);
                     return;
                 }
                 overlaps += screen.flush(ps, period, onPair);
             }
         }
-        if (mode == PairMode::Owned) {
+        if (mode != PairMode::Check) {
             if (!detection_detail::overlapGeometry(ps, a, b, period, c))
                 return;
             ++overlaps;
@@ -287,7 +344,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         }
         if (keepPairs)
             out.pairs.push_back(c);
-        detection_detail::handOver(onPair, c, hint);
+        detection_detail::handOver(onPair, c, m_list.hint(p), kept);
     };
     m_list.forEachPair(eachPair);
     if constexpr (TakesPairOverlaps<OnPair>)

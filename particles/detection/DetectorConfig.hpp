@@ -21,6 +21,11 @@ struct DetectorConfig {
     /// are summed in an order independent of storage order (reproducible mode). Costs
     /// O(C log C).
     bool sortByUid = false;
+    /// Keep the tangential springs of the settled pairs deep inside the block beside the
+    /// Verlet list (ContactDetector, "Springs kept beside the list"). Only for a caller whose
+    /// pair callback takes them (TakesKeptSprings) and who writes them back
+    /// (ContactDetector::beforeSync, writeBackSprings); others would read stale histories.
+    bool keepSprings = false;
 };
 
 /// What the last `detect` call did (for tests and benchmarks).
@@ -47,6 +52,9 @@ struct DetectorStats {
     /// Listed pairs whose contact this block evaluates whenever they overlap, decided when
     /// they were listed (no contact-point rule per step; see ContactDetector, "Verlet list").
     std::size_t settledPairs = 0;
+    /// Of those, the pairs whose tangential spring is kept beside the list
+    /// (DetectorConfig::keepSprings).
+    std::size_t keptPairs = 0;
     std::size_t arrivals = 0;
 };
 

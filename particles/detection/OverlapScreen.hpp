@@ -20,6 +20,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 namespace regolith::particles {
 
@@ -28,16 +29,17 @@ public:
     static constexpr std::size_t kCapacity = 64;
 
     /// Hands the owned pair (i, j) (canonical order) with its history hint to
-    /// onPair(PairOverlap, hint) if it overlaps: now, or at the flush that tests its block.
-    /// Returns how many pairs this call handed on.
+    /// onPair(PairOverlap, hint), or with its kept spring to onPair(PairOverlap, *kept) if
+    /// `kept` is not null, if it overlaps: now, or at the flush that tests its block. Returns
+    /// how many pairs this call handed on.
     template <class OnPair>
     std::size_t offer(ParticleStorage const& ps, core::Vec3 const& period, std::size_t i,
-                      std::size_t j, std::uint8_t& hint, OnPair& onPair) {
+                      std::size_t j, std::uint8_t& hint, HistoryEntry* kept, OnPair& onPair) {
         if (m_direct) {
             auto const s = detection_detail::separation(ps, i, j, period);
             bool const hit = detection_detail::overlapping(s);
             if (hit)
-                onPair(PairOverlap{i, j, s.shiftJ}, hint);
+                handOn(onPair, PairOverlap{i, j, s.shiftJ}, &hint, kept);
             m_directHits += hit ? 1 : 0;
             if (++m_directSeen == kCapacity) { // back to blocks unless all of these overlapped
                 m_direct = m_directHits == kCapacity;
@@ -48,6 +50,7 @@ public:
         m_i[m_size] = static_cast<std::uint32_t>(i);
         m_j[m_size] = static_cast<std::uint32_t>(j);
         m_hint[m_size] = &hint;
+        m_kept[m_size] = kept;
         return ++m_size == kCapacity ? flush(ps, period, onPair) : 0;
     }
 
@@ -62,13 +65,25 @@ public:
         m_direct = overlaps == kCapacity;
         for (std::size_t h = 0; h < overlaps; ++h) {
             std::size_t const k = m_hit[h];
-            onPair(PairOverlap{m_i[k], m_j[k], core::Vec3(m_sx[k], m_sy[k], m_sz[k])}, *m_hint[k]);
+            handOn(onPair, PairOverlap{m_i[k], m_j[k], core::Vec3(m_sx[k], m_sy[k], m_sz[k])},
+                   m_hint[k], m_kept[k]);
         }
         m_size = 0;
         return overlaps;
     }
 
 private:
+    template <class OnPair>
+    static void handOn(OnPair& onPair, PairOverlap const& p, std::uint8_t* hint,
+                       HistoryEntry* kept) {
+        if constexpr (std::is_invocable_v<OnPair&, PairOverlap const&, HistoryEntry&>) {
+            if (kept != nullptr) {
+                onPair(p, *kept);
+                return;
+            }
+        }
+        onPair(p, *hint);
+    }
     /// Fills the shifts of the offered pairs and lists the overlapping ones in m_hit,
     /// ascending; returns how many there are.
     std::size_t test(ParticleStorage const& ps, core::Vec3 const& period);
@@ -78,6 +93,7 @@ private:
     std::array<std::uint32_t, kCapacity> m_i{};
     std::array<std::uint32_t, kCapacity> m_j{};
     std::array<std::uint8_t*, kCapacity> m_hint{};
+    std::array<HistoryEntry*, kCapacity> m_kept{}; ///< null for a pair without a kept spring
     alignas(64) Lane m_xi, m_yi, m_zi, m_xj, m_yj, m_zj, m_reach;
     alignas(64) Lane m_sx, m_sy, m_sz; ///< shiftJ
     alignas(64) std::array<bool, kCapacity> m_overlap{};

@@ -18,8 +18,10 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_built = ps.size();
     m_pairs.clear();
     m_owned = 0;
+    m_kept = 0;
     m_mode.clear();
     m_hint.clear();
+    m_springs.clear();
     m_arrivals.clear();
     // Room for the copies that arrive before the next rebuild (follow), so that the first
     // arrival does not reallocate these per-copy arrays: a reallocation holds the old and
@@ -93,16 +95,29 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
     return true;
 }
 
-bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
+namespace {
+/// The bound on every copy's distance from its reference after a move of `movedAtMost`.
+double boundAfter(double moved, double movedAtMost) {
+    return moved + (movedAtMost >= 0.0 ? movedAtMost : std::numeric_limits<double>::infinity());
+}
+} // namespace
+
+bool VerletList::mayMoveTooFar(double movedAtMost) const {
     // Within skin / 2 of the true reference if within skin / 2 - slack of the stored one.
     double const half = 0.5 * m_skin - m_referenceSlack;
-    if (!(half > 0.0))
-        return true;
     // The bound is on the true positions; the slack also covers a shadow's rounding when its
     // master's position is shifted by a period (a few ulps, not growing with the steps), and
     // the relative 1e-9 the rounding of the sum.
-    m_moved += movedAtMost >= 0.0 ? movedAtMost : std::numeric_limits<double>::infinity();
-    if (m_moved * (1.0 + 1e-9) < half)
+    return !(half > 0.0) || !(boundAfter(m_moved, movedAtMost) * (1.0 + 1e-9) < half);
+}
+
+bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
+    double const half = 0.5 * m_skin - m_referenceSlack;
+    if (!(half > 0.0))
+        return true;
+    bool const compare = mayMoveTooFar(movedAtMost);
+    m_moved = boundAfter(m_moved, movedAtMost);
+    if (!compare)
         return false;
     auto const& x = ps.positions();
     double largest = 0.0;
@@ -122,6 +137,7 @@ bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
 
 std::size_t VerletList::bytes() const {
     return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
+           m_springs.capacity() * sizeof(HistoryEntry) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id);
 }

@@ -29,8 +29,10 @@
 /// PairMode, see ContactDetector: whether the contact-point rule must run every step) and a
 /// one-byte hint where the pair's tangential spring sat in its owner's ContactHistory last
 /// time (ContactHistory::touch with a hint), so that the per-step loop neither repeats the
-/// rule nor searches the history.
+/// rule nor searches the history. For the pairs kept (PairMode::Kept) it holds the tangential
+/// spring itself (ContactDetector, "Springs kept beside the list").
 #include "core/math/Vec3.hpp"
+#include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <array>
@@ -49,6 +51,10 @@ enum class PairMode : std::uint8_t {
     /// Stored in canonical order (uid(first) < uid(second)); whenever the two overlap, this
     /// block evaluates them (decided at listing time for the list's life).
     Owned = 1,
+    /// Owned, and the pair's tangential spring lives beside the list (spring()), not in the
+    /// grains' histories, until the list writes it back (ContactDetector, "Springs kept
+    /// beside the list").
+    Kept = 2,
 };
 
 class VerletList {
@@ -72,7 +78,8 @@ public:
     }
     /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
     /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or drops it
-    /// (kDrop), preserving order.
+    /// (kDrop), preserving order. A pair kept (PairMode::Kept) gets a spring slot, spring(p),
+    /// for the caller to fill.
     template <class D>
     void classifyFrom(std::size_t first, D&& decide) {
         std::size_t out = first;
@@ -83,13 +90,16 @@ public:
                 continue;
             m_pairs[out] = pair;
             m_mode[out] = static_cast<PairMode>(mode);
-            m_owned += mode == static_cast<int>(PairMode::Owned) ? 1 : 0;
+            m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
+            m_kept += mode == static_cast<int>(PairMode::Kept) ? 1 : 0;
             m_hint[out] = 0;
             ++out;
         }
         m_pairs.resize(out);
         m_mode.resize(out);
         m_hint.resize(out);
+        if (m_kept != 0) // parallel to the pairs once one is kept (most lists keep none)
+            m_springs.resize(out);
     }
 
     /// Catches up with the storage's changes since the last restart or follow (see the class
@@ -106,6 +116,9 @@ public:
     /// compared, O(N), which resets the sum to the largest displacement found. Pre: follow()
     /// true.
     [[nodiscard]] bool movedTooFar(ParticleStorage const& ps, double movedAtMost);
+    /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
+    /// may then be skin / 2 or more from its reference position.
+    [[nodiscard]] bool mayMoveTooFar(double movedAtMost) const;
 
     [[nodiscard]] static Id idOf(ParticleStorage const& ps, std::size_t index) {
         return ps.traceTag(index);
@@ -127,21 +140,30 @@ public:
     [[nodiscard]] std::size_t builtSize() const { return m_built; }
     [[nodiscard]] double skin() const { return m_skin; }
 
-    /// Calls f(a, b, mode, hint) with the storage indices of every pair whose two copies are
-    /// alive, its mode, and its history hint (a std::uint8_t& the callee may update), in the
-    /// order the pairs were added.
+    /// Calls f(a, b, p) with the storage indices of every pair from the `first`-th on whose
+    /// two copies are alive and its position p in the list (for mode(p), hint(p), spring(p)),
+    /// in the order the pairs were added.
     template <class F>
-    void forEachPair(F&& f) {
+    void forEachPair(F&& f, std::size_t first = 0) const {
         std::size_t const n = m_pairs.size();
-        for (std::size_t p = 0; p < n; ++p) {
+        for (std::size_t p = first; p < n; ++p) {
             std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
             if (a != kDead && b != kDead)
-                f(std::size_t{a}, std::size_t{b}, m_mode[p], m_hint[p]);
+                f(std::size_t{a}, std::size_t{b}, p);
         }
     }
+    [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
+    /// Pair p's history slot hint (ContactHistory::touch).
+    [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
+    /// A kept pair's tangential spring: partner = uid of the pair's second copy, stamp as
+    /// ContactHistory's (kUntouched: none since it was filled from an absent entry).
+    [[nodiscard]] HistoryEntry& spring(std::size_t p) { return m_springs[p]; }
+    static constexpr std::uint32_t kUntouched = std::numeric_limits<std::uint32_t>::max();
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
-    /// Pairs classified PairMode::Owned since the last restart.
+    /// Pairs classified PairMode::Owned or Kept since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
+    /// Pairs classified PairMode::Kept since the last restart.
+    [[nodiscard]] std::size_t numKept() const { return m_kept; }
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const;
 
@@ -152,9 +174,11 @@ private:
     double m_moved = 0.0; ///< bound on every copy's distance from its reference (movedTooFar)
     std::size_t m_built = 0;
     std::size_t m_owned = 0;
+    std::size_t m_kept = 0;
     std::vector<std::array<Id, 2>> m_pairs;
     std::vector<PairMode> m_mode;           ///< per pair
     std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
+    std::vector<HistoryEntry> m_springs;    ///< per pair once one is kept: the kept springs
     std::vector<std::uint32_t> m_indexOf;   ///< per id
     using Reference = std::array<float, 3>; ///< position - m_origin, rounded to nearest
     /// Stores x's reference and widens the slack if x lies farther from the origin.

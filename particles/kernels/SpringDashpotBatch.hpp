@@ -162,9 +162,22 @@ public:
             e = &history.touch(partner, m_stamp, hint);
             r = m_rolling ? history.find(rollingKey(partner)) : nullptr;
         }
+        m_kept[m_batch.size()] = false;
         m_batch.add(p, *e, hint, r);
     }
     void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
+    /// The same for a pair whose spring `kept` lives beside the neighbour list
+    /// (ContactDetector, "Springs kept beside the list"; without model C's rolling spring):
+    /// stamped as the history's entry would be, and written back there by finish().
+    [[gnu::always_inline]] void operator()(PairOverlap const& p, HistoryEntry& kept) {
+        bool again = false; // never: a kept pair has one instance in the pass
+        ContactHistory::renew(kept, m_stamp, again);
+        if (m_batch.full())
+            finish();
+        m_kept[m_batch.size()] = true;
+        m_batch.add(p, kept, 0, nullptr);
+    }
+    void operator()(Contact const& c, HistoryEntry& kept) { (*this)(PairOverlap::of(c), kept); }
 
     /// Evaluates what is gathered and hands it to the sink.
     [[gnu::noinline]] void finish() {
@@ -174,7 +187,7 @@ public:
             std::size_t const i = batch.i(k), j = batch.j(k);
             HistoryEntry* e = batch.entry(k);
             HistoryEntry* r = batch.rollingEntry(k);
-            if (m_moved) { // found again through the hint, or by search
+            if (m_moved && !m_kept[k]) { // found again through the hint, or by search
                 std::uint8_t hint = batch.hint(k);
                 e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
                 r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
@@ -215,6 +228,8 @@ private:
     Sink& m_sink;
     bool m_rolling;       ///< model C somewhere: every pair's rolling entry is touched
     bool m_moved = false; ///< some history of the batch's pairs got an entry since it started
+    /// Per batch slot: the pair's spring is kept beside the list (its entry never moves).
+    std::array<bool, SpringDashpotBatch::kCapacity> m_kept{};
 };
 
 } // namespace regolith::particles

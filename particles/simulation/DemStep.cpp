@@ -41,7 +41,12 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     }
     m_movedSinceSync.assign(m_reachEdge.size(), 0.0);
     std::size_t const blocks = local.blocks().size();
-    m_detectors.assign(blocks, ContactDetector(config.detector));
+    // The spring-dashpot batch takes springs kept beside the lists (without model C's
+    // rolling spring, which stays in the histories).
+    DetectorConfig detector = config.detector;
+    auto const* linear = std::get_if<SpringDashpot>(&m_model);
+    detector.keepSprings = config.keepSprings && linear != nullptr && !linear->hasRollingSpring();
+    m_detectors.assign(blocks, ContactDetector(detector));
     m_contacts.resize(blocks);
     m_records.resize(blocks);
 }
@@ -58,6 +63,7 @@ int DemStep::setUp() {
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
     computeForces(0);
+    writeBackSprings();
     m_moved = 0.0;
     m_kickPending = false;
     return calls;
@@ -162,9 +168,12 @@ void DemStep::step(StepEnd end) {
 }
 
 void DemStep::completeStep() {
-    if (!m_kickPending)
+    if (!m_kickPending) {
+        writeBackSprings();
         return;
+    }
     auto const t = m_timers->scope(kIntegrateTimer);
+    writeBackSprings(); // timed with the kick: the pass that makes the grains' state whole
     double const dt = m_config.dt;
     core::Vec3 const& g = m_config.gravity;
     m_moved += largestOverBlocks(m_integrator, *m_local, m_reachEdge, m_movedSinceSync,
@@ -181,7 +190,21 @@ double DemStep::listSkin() const {
     return skin;
 }
 
+std::size_t DemStep::keptPairs() const {
+    std::size_t kept = 0;
+    for (ContactDetector const& d : m_detectors)
+        kept += d.stats().keptPairs;
+    return kept;
+}
+
+void DemStep::writeBackSprings() {
+    auto const blocks = m_local->blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+        m_detectors[b].writeBackSprings(blocks[b].particles);
+}
+
 void DemStep::releaseWorkspace() {
+    writeBackSprings();
     for (ContactDetector& d : m_detectors)
         d.release();
     for (ContactList& c : m_contacts)
@@ -235,6 +258,10 @@ void DemStep::syncParticles() {
                 uid == kInvalidUid ? std::string("a grain") : "particle uid " + std::to_string(uid),
                 motion[1], -motion[2]));
         }
+        // A grain that may move skin / 2 from its list's reference may migrate or wrap in
+        // this sync: the springs kept beside that block's list go back to the histories first.
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+            m_detectors[b].beforeSync(blocks[b].particles, motion[0]);
         try {
             m_sync->sync(*m_local, m_moved);
         } catch (core::RankInputError const& e) { // found mid-sync by one rank: name the step

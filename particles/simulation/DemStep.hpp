@@ -52,6 +52,11 @@ struct DemStepConfig {
     /// the last force computation and the pair contacts of the set-up's only (stamp 0, what
     /// the driver checks), which saves writing every pair contact (96 bytes) each step.
     bool keepContacts = true;
+    /// Keep the tangential springs of the pairs deep inside a block beside its Verlet list
+    /// between Complete steps (ContactDetector, "Springs kept beside the list"; with the
+    /// spring-dashpot model without model C's rolling spring): the same bits, one history
+    /// look-up fewer per contact and step.
+    bool keepSprings = true;
 };
 
 /// One DEM run's time stepping over the blocks of `LocalParticles`. It holds one contact
@@ -136,8 +141,10 @@ public:
     /// the same pass over the grains as its own first one (the integrator's postThenPreForce,
     /// where it has one: each grain's state read and written once instead of twice; the
     /// trajectory the same bit for bit). After an Open step the velocities and angular
-    /// velocities lag half a kick, so nothing may read the grains' state or change it before
-    /// the next step() or completeStep(): a time loop ends a step Open only when no output,
+    /// velocities lag half a kick, and the tangential springs of the pairs deep inside a block
+    /// may still be kept beside its Verlet list (ContactDetector, "Springs kept beside the
+    /// list"; a Complete step writes them back), so nothing may read the grains' state or change it
+    /// before the next step() or completeStep(): a time loop ends a step Open only when no output,
     /// checkpoint or other observer follows it (apps/regolith/TimeLoop.hpp).
     enum class StepEnd { Complete, Open };
 
@@ -178,6 +185,9 @@ public:
     /// block's rebuild counts once; a block without copies counts none). Local: sum over
     /// ranks for the run's total.
     [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
+    /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
+    /// as of the last force computation. Local.
+    [[nodiscard]] std::size_t keptPairs() const;
     /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
     /// (DemStepConfig::detector without a skin). Local.
     [[nodiscard]] double listSkin() const;
@@ -192,6 +202,10 @@ public:
 
 private:
     void syncParticles();
+    /// Writes the springs the blocks' Verlet lists keep back to the grains' histories
+    /// (ContactDetector, "Springs kept beside the list"): where a step ends Complete, before
+    /// anything may read the grains. Not collective.
+    void writeBackSprings();
     /// Detection, evaluation and reduction with stamp `stamp`. COLLECTIVE.
     void computeForces(std::uint32_t stamp);
     /// Detection and evaluation of block b's contacts with `model`, each participant's share

@@ -93,15 +93,17 @@ public:
         return {m_entries.begin(), m_entries.size()};
     }
 
-private:
     /// Stamps a found entry; one the previous pass did not touch (a broken contact, not
-    /// pruned yet) restarts from a zero spring.
+    /// pruned yet) restarts from a zero spring. `again`: it had been stamped `stamp` already.
+    /// (Public for the springs a neighbour list keeps beside its pairs, ContactDetector.)
     static void renew(HistoryEntry& e, std::uint32_t stamp, bool& again) {
         again = e.stamp == stamp;
         if (!again && e.stamp + 1 != stamp)
             e.spring = core::Vec3::Zero();
         e.stamp = stamp;
     }
+
+private:
     std::size_t keepOnlySlow(std::uint32_t stamp);
     /// touch() by search; `again` as in the hinted touch (left alone for a new entry).
     HistoryEntry& touchAt(Uid partner, std::uint32_t stamp, bool& again);

@@ -102,7 +102,8 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
     OverlapScreen screen;
     std::size_t counted = 0;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
-        counted += screen.offer(ps, period, pairs[p].first, pairs[p].second, hints[p], onPair);
+        counted +=
+            screen.offer(ps, period, pairs[p].first, pairs[p].second, hints[p], nullptr, onPair);
         if (p % 1000 == 999) // a pair that bypasses the screen flushes it first
             counted += screen.flush(ps, period, onPair);
     }

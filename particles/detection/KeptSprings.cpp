@@ -1,0 +1,78 @@
+/// The tangential springs the Verlet list keeps beside its settled pairs deep inside the block
+/// (ContactDetector's class comment, "Springs kept beside the list"): which pairs keep one,
+/// how they are filled from the grains' histories and written back.
+#include "particles/detection/ContactDetector.hpp"
+
+namespace regolith::particles {
+
+bool ContactDetector::keepsSpring(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                  VerletList::Id a, VerletList::Id b, core::AABB const& region,
+                                  PeriodicFrame const& frame, double rounding) const {
+    if (!m_config.keepSprings)
+        return false;
+    // Two masters at image zero: the only copies of their grains that move them, and those
+    // whose histories the kept spring belongs to (the canonical i's).
+    if (!ps.flags(ka).isMaster() || !ps.flags(kb).isMaster() || !isZero(ps.image(ka)) ||
+        !isZero(ps.image(kb)))
+        return false;
+    // Deeper than skin / 2 inside the block, both: while the list holds (no copy moves skin / 2
+    // from its reference) neither leaves the block, so the synchronisation neither migrates
+    // nor wraps them.
+    double const depth = 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
+    for (VerletList::Id id : {a, b}) {
+        core::Vec3 const x = m_list.reference(id);
+        for (int d = 0; d < 3; ++d)
+            if (!(x[d] - depth > region.min[d] && x[d] + depth < region.max[d]))
+                return false;
+    }
+    // No second instance of the pair through another periodic image in this block (which
+    // would share the spring, ContactHistory::touch's `again`): the two instances' reference
+    // separations would both lie below the listing reach r_i + r_j + skin (+ rounding), so
+    // their images would be less than twice that apart.
+    double const twice = 2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
+    core::Vec3 const period = frame.period();
+    for (std::size_t d = 0; d < 3; ++d)
+        if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
+            return false;
+    return true;
+}
+
+void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {
+    if (m_list.numKept() == 0) {
+        m_springsLive = true;
+        return;
+    }
+    m_list.forEachPair(
+        [&](std::size_t i, std::size_t j, std::size_t p) {
+            if (m_list.mode(p) != PairMode::Kept)
+                return;
+            Uid const partner = ps.uid(j);
+            HistoryEntry const* e = ps.history(i).find(partner);
+            m_list.spring(p) =
+                e != nullptr ? *e
+                             : HistoryEntry{partner, core::Vec3::Zero(), VerletList::kUntouched};
+        },
+        first);
+    m_springsLive = true;
+}
+
+void ContactDetector::writeBackSprings(ParticleStorage& ps) {
+    if (!m_springsLive)
+        return;
+    m_springsLive = false;
+    if (m_list.numKept() == 0)
+        return;
+    // Kept pairs join two masters that cannot leave the block while the springs are live:
+    // both are alive.
+    m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
+        if (m_list.mode(p) != PairMode::Kept)
+            return;
+        HistoryEntry const& kept = m_list.spring(p);
+        // Inserted if absent: a contact since the fill, or an entry pruned since (stale then,
+        // as in the history: ContactHistory::touch restarts it, the next prune drops it).
+        if (kept.stamp != VerletList::kUntouched)
+            ps.history(i).set(kept);
+    });
+}
+
+} // namespace regolith::particles
