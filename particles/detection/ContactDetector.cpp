@@ -209,9 +209,7 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
         case Settled::Never:
             return VerletList::kDrop;
         case Settled::Always:
-            return static_cast<int>(keepsSpring(ps, ka, kb, a, b, region, frame, rounding)
-                                        ? PairMode::Kept
-                                        : PairMode::Owned);
+            return static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
         case Settled::Open:
             break;
         }

@@ -32,10 +32,17 @@ core::AABB everywhere();
 template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
 /// A pair callback that also takes a kept pair's spring (HistoryEntry&, beside the list:
-/// DetectorConfig::keepSprings) in place of the history hint.
+/// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
+/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
+/// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image).
 template <class OnPair>
-concept TakesKeptSprings = std::invocable<OnPair&, PairOverlap const&, HistoryEntry&> ||
-    std::invocable<OnPair&, Contact const&, HistoryEntry&>;
+concept TakesKeptSprings =
+    (std::invocable<OnPair&, PairOverlap const&, HistoryEntry&> ||
+     std::invocable<OnPair&, Contact const&, HistoryEntry&>)&&requires(OnPair& f, std::size_t i,
+                                                                       std::size_t j,
+                                                                       HistoryEntry& spring) {
+    f.kept(i, j, spring);
+};
 
 namespace detection_detail {
 /// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
@@ -251,11 +258,13 @@ private:
                    double reachSlack, F&& f);
     void rebuildList(ParticleStorage& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
-    /// Whether the settled pair of copies ka, kb (canonical order, list ids a, b) keeps its
-    /// spring beside the list (see "Springs kept beside the list").
-    [[nodiscard]] bool keepsSpring(ParticleStorage const& particles, std::size_t ka, std::size_t kb,
-                                   VerletList::Id a, VerletList::Id b, core::AABB const& region,
-                                   PeriodicFrame const& frame, double rounding) const;
+    /// The mode of a pair of copies ka, kb (canonical order, list ids a, b) this block
+    /// evaluates whenever they overlap: Owned, or Kept or KeptPressed if it keeps its spring
+    /// beside the list (see "Springs kept beside the list").
+    [[nodiscard]] PairMode settledMode(ParticleStorage const& particles, std::size_t ka,
+                                       std::size_t kb, VerletList::Id a, VerletList::Id b,
+                                       core::AABB const& region, PeriodicFrame const& frame,
+                                       double rounding) const;
     /// Fills the kept springs of the pairs from the `first`-th on from the histories.
     void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
@@ -312,14 +321,22 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     std::size_t overlaps = 0;
     Contact c;
     // A consumer that computes the geometry itself gets the owned pairs screened a block at
-    // a time (OverlapScreen); a Check pair first flushes the block, so that every pair still
-    // reaches onPair in list order.
+    // a time (OverlapScreen), those known to overlap (KeptPressed) untested; a pair that
+    // bypasses the screen first flushes the block, so that every pair still reaches onPair in
+    // list order.
     OverlapScreen screen;
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
         PairMode const mode = m_list.mode(p);
-        HistoryEntry* const kept = mode == PairMode::Kept ? &m_list.spring(p) : nullptr;
+        HistoryEntry* const kept = keepsSpring(mode) ? &m_list.spring(p) : nullptr;
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
+                if constexpr (TakesKeptSprings<OnPair>) {
+                    if (mode == PairMode::KeptPressed) { // overlaps: no test
+                        overlaps += screen.flush(ps, period, onPair) + 1;
+                        onPair.kept(a, b, *kept);
+                        return;
+                    }
+                }
                 if (mode != PairMode::Check) {
                     overlaps += screen.offer(ps, period, a, b, m_list.hint(p), kept, onPair);
                     return;

@@ -5,16 +5,16 @@
 
 namespace regolith::particles {
 
-bool ContactDetector::keepsSpring(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
-                                  VerletList::Id a, VerletList::Id b, core::AABB const& region,
-                                  PeriodicFrame const& frame, double rounding) const {
+PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                      VerletList::Id a, VerletList::Id b, core::AABB const& region,
+                                      PeriodicFrame const& frame, double rounding) const {
     if (!m_config.keepSprings)
-        return false;
+        return PairMode::Owned;
     // Two masters at image zero: the only copies of their grains that move them, and those
     // whose histories the kept spring belongs to (the canonical i's).
     if (!ps.flags(ka).isMaster() || !ps.flags(kb).isMaster() || !isZero(ps.image(ka)) ||
         !isZero(ps.image(kb)))
-        return false;
+        return PairMode::Owned;
     // Deeper than skin / 2 inside the block, both: while the list holds (no copy moves skin / 2
     // from its reference) neither leaves the block, so the synchronisation neither migrates
     // nor wraps them.
@@ -23,18 +23,26 @@ bool ContactDetector::keepsSpring(ParticleStorage const& ps, std::size_t ka, std
         core::Vec3 const x = m_list.reference(id);
         for (int d = 0; d < 3; ++d)
             if (!(x[d] - depth > region.min[d] && x[d] + depth < region.max[d]))
-                return false;
+                return PairMode::Owned;
     }
     // No second instance of the pair through another periodic image in this block (which
     // would share the spring, ContactHistory::touch's `again`): the two instances' reference
     // separations would both lie below the listing reach r_i + r_j + skin (+ rounding), so
     // their images would be less than twice that apart.
-    double const twice = 2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
+    double const reach = ps.radius(ka) + ps.radius(kb);
+    double const twice = 2.0 * (reach + 2.0 * m_listSkin + rounding);
     core::Vec3 const period = frame.period();
     for (std::size_t d = 0; d < 3; ++d)
         if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
-            return false;
-    return true;
+            return PairMode::Owned;
+    // Overlapping while the list holds: each centre stays within skin / 2 of its reference
+    // (and that within the reference slack of the stored one), so the distance stays below the
+    // stored one + skin + 2 slacks; the relative 1e-9 covers the rounding of the test in the
+    // lanes (PairRule.hpp's overlapping, sqrt(d2) < r_a + r_b).
+    double const apart = (m_list.reference(b) - m_list.reference(a)).norm();
+    bool const pressed =
+        apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
+    return pressed ? PairMode::KeptPressed : PairMode::Kept;
 }
 
 void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {
@@ -44,7 +52,7 @@ void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t fir
     }
     m_list.forEachPair(
         [&](std::size_t i, std::size_t j, std::size_t p) {
-            if (m_list.mode(p) != PairMode::Kept)
+            if (!keepsSpring(m_list.mode(p)))
                 return;
             Uid const partner = ps.uid(j);
             HistoryEntry const* e = ps.history(i).find(partner);
@@ -65,7 +73,7 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
     // Kept pairs join two masters that cannot leave the block while the springs are live:
     // both are alive.
     m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
-        if (m_list.mode(p) != PairMode::Kept)
+        if (!keepsSpring(m_list.mode(p)))
             return;
         HistoryEntry const& kept = m_list.spring(p);
         // Inserted if absent: a contact since the fill, or an entry pruned since (stale then,

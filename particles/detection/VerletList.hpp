@@ -55,7 +55,15 @@ enum class PairMode : std::uint8_t {
     /// grains' histories, until the list writes it back (ContactDetector, "Springs kept
     /// beside the list").
     Kept = 2,
+    /// Kept, and overlapping for the list's whole life (it overlapped by more than the skin
+    /// when listed): evaluated without testing it.
+    KeptPressed = 3,
 };
+
+/// Whether a pair of mode `m` keeps its spring beside the list.
+[[nodiscard]] constexpr bool keepsSpring(PairMode m) {
+    return m == PairMode::Kept || m == PairMode::KeptPressed;
+}
 
 class VerletList {
 public:
@@ -78,8 +86,8 @@ public:
     }
     /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
     /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or drops it
-    /// (kDrop), preserving order. A pair kept (PairMode::Kept) gets a spring slot, spring(p),
-    /// for the caller to fill.
+    /// (kDrop), preserving order. A pair that keeps its spring (keepsSpring) gets a slot,
+    /// spring(p), for the caller to fill.
     template <class D>
     void classifyFrom(std::size_t first, D&& decide) {
         std::size_t out = first;
@@ -91,7 +99,7 @@ public:
             m_pairs[out] = pair;
             m_mode[out] = static_cast<PairMode>(mode);
             m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
-            m_kept += mode == static_cast<int>(PairMode::Kept) ? 1 : 0;
+            m_kept += keepsSpring(static_cast<PairMode>(mode)) ? 1 : 0;
             m_hint[out] = 0;
             ++out;
         }
@@ -162,7 +170,7 @@ public:
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned or Kept since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
-    /// Pairs classified PairMode::Kept since the last restart.
+    /// Pairs classified PairMode::Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numKept() const { return m_kept; }
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const;

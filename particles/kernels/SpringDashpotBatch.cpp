@@ -26,11 +26,32 @@ void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uin
     m_s[1][k] = entry.spring.y();
     m_s[2][k] = entry.spring.z();
     m_rollingEntry[k] = rolling;
+    m_kept[k] = false;
     if (rolling) { // model C: every pair has one (only Rolling::Spring reads the lanes)
         m_r[0][k] = rolling->spring.x();
         m_r[1][k] = rolling->spring.y();
         m_r[2][k] = rolling->spring.z();
     }
+}
+
+void SpringDashpotBatch::addKept(std::size_t i, std::size_t j, HistoryEntry& kept,
+                                 std::uint32_t stamp) {
+    std::size_t const k = m_size++;
+    m_i[k] = static_cast<std::uint32_t>(i);
+    m_j[k] = static_cast<std::uint32_t>(j);
+    m_hint[k] = 0;
+    m_entry[k] = &kept;
+    m_rollingEntry[k] = nullptr;
+    m_kept[k] = true;
+    m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
+    m_shift[1][k] = 0.0;
+    m_shift[2][k] = 0.0;
+    // ContactHistory::renew's spring: kept if the previous pass touched it (or this one: never
+    // for a kept pair, which has one instance), else restarted from zero.
+    bool const continued = kept.stamp + 1 == stamp || kept.stamp == stamp;
+    m_s[0][k] = continued ? kept.spring.x() : 0.0;
+    m_s[1][k] = continued ? kept.spring.y() : 0.0;
+    m_s[2][k] = continued ? kept.spring.z() : 0.0;
 }
 
 namespace {
@@ -119,9 +140,23 @@ inline double cross(int c, double ax, double ay, double az, double bx, double by
 }
 } // namespace
 
+void SpringDashpotBatch::loadCentres(ParticleStorage const& ps) {
+    std::size_t const n = m_size;
+    for (std::size_t k = n; k % 8 != 0; ++k) {
+        m_i[k] = m_i[0];
+        m_j[k] = m_j[0];
+    }
+    double const* const x = ps.positions().data()->data();
+    for (std::size_t b = 0; b < n; b += 8) {
+        loadTransposed(x, &m_i[b], &m_xi[0][b], &m_xi[1][b], &m_xi[2][b]);
+        loadTransposed(x, &m_j[b], &m_xj[0][b], &m_xj[1][b], &m_xj[2][b]);
+    }
+}
+
 void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const& model,
                                   double dt) {
     std::size_t const n = m_size;
+    loadCentres(ps);
     auto const& materials = model.materials();
     // One material (most scenes): the parameters are the same in every lane, so the lanes
     // read them as constants; several: gathered per contact from the tables.
@@ -164,18 +199,10 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
     Rolling const law = model.hasRollingSpring() ? Rolling::Spring
                         : rolling                ? Rolling::Constant
                                                  : Rolling::None;
-    // The centres, velocities and spins, eight contacts at a time (the lanes beyond n repeat
-    // contact 0's copies: computed, never read).
-    for (std::size_t k = n; k % 8 != 0; ++k) {
-        m_i[k] = m_i[0];
-        m_j[k] = m_j[0];
-    }
-    double const* const x = ps.positions().data()->data();
+    // The velocities and spins, eight contacts at a time.
     double const* const v = ps.velocities().data()->data();
     double const* const w = ps.angularVelocities().data()->data();
     for (std::size_t b = 0; b < n; b += 8) {
-        loadTransposed(x, &m_i[b], &m_xi[0][b], &m_xi[1][b], &m_xi[2][b]);
-        loadTransposed(x, &m_j[b], &m_xj[0][b], &m_xj[1][b], &m_xj[2][b]);
         loadTransposed(v, &m_i[b], &m_vi[0][b], &m_vi[1][b], &m_vi[2][b]);
         loadTransposed(v, &m_j[b], &m_vj[0][b], &m_vj[1][b], &m_vj[2][b]);
         loadTransposed(w, &m_i[b], &m_wi[0][b], &m_wi[1][b], &m_wi[2][b]);

@@ -49,6 +49,12 @@ public:
     /// keyed rollingKey(uid(j)) (else nullptr). Pre: !full().
     void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint,
              HistoryEntry* rolling = nullptr);
+    /// Adds the overlapping pair (i, j) (canonical order, one image: no shift) whose spring
+    /// `kept` lives beside a neighbour list (ContactDetector, "Springs kept beside the list"),
+    /// with the spring the touch of pass `stamp` would leave it, but not stamped: the caller
+    /// writes the entry (spring and stamp) after evaluate. Without model C's rolling spring.
+    /// Pre: !full().
+    void addKept(std::size_t i, std::size_t j, HistoryEntry& kept, std::uint32_t stamp);
 
     /// Evaluates every added contact of `ps` (the storage whose copies were added, its
     /// positions, motion, radii, masses and types unchanged since) with
@@ -62,6 +68,8 @@ public:
     [[nodiscard]] std::uint8_t hint(std::size_t k) const { return m_hint[k]; }
     /// The history entry gathered with pair k (dangling if its history got an entry since).
     [[nodiscard]] HistoryEntry* entry(std::size_t k) const { return m_entry[k]; }
+    /// Whether pair k came with a kept spring (addKept).
+    [[nodiscard]] bool kept(std::size_t k) const { return m_kept[k]; }
     [[nodiscard]] core::Vec3 force(std::size_t k) const {
         return {m_f[0][k], m_f[1][k], m_f[2][k]};
     }
@@ -104,6 +112,9 @@ private:
     /// lane's own (m_k ...).
     template <Rolling kRolling, bool kUniform>
     void evaluateLanes(GrainScalars g, Parameters uniform, double dt);
+    /// Loads the centres of the contacts, eight at a time (the lanes beyond size() repeat
+    /// contact 0's copies: computed, never read).
+    void loadCentres(ParticleStorage const& ps);
 
     using Lane = std::array<double, kCapacity>;
     using Lane3 = std::array<Lane, 3>;
@@ -114,6 +125,7 @@ private:
     std::array<std::uint8_t, kCapacity> m_hint{};
     std::array<HistoryEntry*, kCapacity> m_entry{};
     std::array<HistoryEntry*, kCapacity> m_rollingEntry{};
+    std::array<bool, kCapacity> m_kept{}; ///< added by addKept
     // Inputs: centres x_i and x_j (j's periodic shift apart), velocities and spins (filled by
     // evaluate), the springs, tangential (updated in place) and rolling (model C).
     alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
@@ -162,22 +174,25 @@ public:
             e = &history.touch(partner, m_stamp, hint);
             r = m_rolling ? history.find(rollingKey(partner)) : nullptr;
         }
-        m_kept[m_batch.size()] = false;
         m_batch.add(p, *e, hint, r);
     }
     void operator()(Contact const& c, std::uint8_t& hint) { (*this)(PairOverlap::of(c), hint); }
-    /// The same for a pair whose spring `kept` lives beside the neighbour list
+    /// The same for an overlapping pair whose spring `kept` lives beside the neighbour list
     /// (ContactDetector, "Springs kept beside the list"; without model C's rolling spring):
-    /// stamped as the history's entry would be, and written back there by finish().
+    /// stamped by finish(), as the history's entry would be.
     [[gnu::always_inline]] void operator()(PairOverlap const& p, HistoryEntry& kept) {
-        bool again = false; // never: a kept pair has one instance in the pass
-        ContactHistory::renew(kept, m_stamp, again);
         if (m_batch.full())
             finish();
-        m_kept[m_batch.size()] = true;
-        m_batch.add(p, kept, 0, nullptr);
+        m_batch.addKept(p.i, p.j, kept, m_stamp);
     }
     void operator()(Contact const& c, HistoryEntry& kept) { (*this)(PairOverlap::of(c), kept); }
+    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
+    /// by its storage indices.
+    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, HistoryEntry& spring) {
+        if (m_batch.full())
+            finish();
+        m_batch.addKept(i, j, spring, m_stamp);
+    }
 
     /// Evaluates what is gathered and hands it to the sink.
     [[gnu::noinline]] void finish() {
@@ -187,7 +202,9 @@ public:
             std::size_t const i = batch.i(k), j = batch.j(k);
             HistoryEntry* e = batch.entry(k);
             HistoryEntry* r = batch.rollingEntry(k);
-            if (m_moved && !m_kept[k]) { // found again through the hint, or by search
+            if (batch.kept(k)) {
+                e->stamp = m_stamp; // touched (the spring is that of the touch, as in the lanes)
+            } else if (m_moved) {   // found again through the hint, or by search
                 std::uint8_t hint = batch.hint(k);
                 e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
                 r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
@@ -228,8 +245,6 @@ private:
     Sink& m_sink;
     bool m_rolling;       ///< model C somewhere: every pair's rolling entry is touched
     bool m_moved = false; ///< some history of the batch's pairs got an entry since it started
-    /// Per batch slot: the pair's spring is kept beside the list (its entry never moves).
-    std::array<bool, SpringDashpotBatch::kCapacity> m_kept{};
 };
 
 } // namespace regolith::particles
