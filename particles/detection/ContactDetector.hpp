@@ -31,24 +31,23 @@ core::AABB everywhere();
 /// itself) rather than Contact.
 template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
-/// A pair callback that also takes a kept pair's spring (HistoryEntry&, beside the list:
+/// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
 /// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
 /// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
 /// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image).
 template <class OnPair>
 concept TakesKeptSprings =
-    (std::invocable<OnPair&, PairOverlap const&, HistoryEntry&> ||
-     std::invocable<OnPair&, Contact const&, HistoryEntry&>)&&requires(OnPair& f, std::size_t i,
-                                                                       std::size_t j,
-                                                                       HistoryEntry& spring) {
-    f.kept(i, j, spring);
+    (std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
+     std::invocable<OnPair&, Contact const&, KeptSpring&>)&&requires(OnPair& f, std::size_t i,
+                                                                     KeptSpring& spring) {
+    f.kept(i, i, spring);
 };
 
 namespace detection_detail {
 /// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
 /// (non-null) and onPair takes it, else with its history hint.
 template <class OnPair>
-void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, HistoryEntry* kept = nullptr) {
+void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, KeptSpring* kept = nullptr) {
     if constexpr (TakesKeptSprings<OnPair>) {
         if (kept != nullptr) {
             if constexpr (TakesPairOverlaps<OnPair>)
@@ -327,7 +326,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     OverlapScreen screen;
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
         PairMode const mode = m_list.mode(p);
-        HistoryEntry* const kept = keepsSpring(mode) ? &m_list.spring(p) : nullptr;
+        KeptSpring* const kept = keepsSpring(mode) ? &m_list.spring(p) : nullptr;
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
                 if constexpr (TakesKeptSprings<OnPair>) {

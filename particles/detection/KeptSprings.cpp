@@ -54,11 +54,8 @@ void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t fir
         [&](std::size_t i, std::size_t j, std::size_t p) {
             if (!keepsSpring(m_list.mode(p)))
                 return;
-            Uid const partner = ps.uid(j);
-            HistoryEntry const* e = ps.history(i).find(partner);
-            m_list.spring(p) =
-                e != nullptr ? *e
-                             : HistoryEntry{partner, core::Vec3::Zero(), VerletList::kUntouched};
+            HistoryEntry const* e = ps.history(i).find(ps.uid(j));
+            m_list.spring(p) = e != nullptr ? KeptSpring{e->spring, e->stamp} : KeptSpring{};
         },
         first);
     m_springsLive = true;
@@ -72,14 +69,14 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         return;
     // Kept pairs join two masters that cannot leave the block while the springs are live:
     // both are alive.
-    m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
+    m_list.forEachPair([&](std::size_t i, std::size_t j, std::size_t p) {
         if (!keepsSpring(m_list.mode(p)))
             return;
-        HistoryEntry const& kept = m_list.spring(p);
+        KeptSpring const& kept = m_list.spring(p);
         // Inserted if absent: a contact since the fill, or an entry pruned since (stale then,
         // as in the history: ContactHistory::touch restarts it, the next prune drops it).
-        if (kept.stamp != VerletList::kUntouched)
-            ps.history(i).set(kept);
+        if (kept.stamp != KeptSpring::kUntouched)
+            ps.history(i).set(HistoryEntry{ps.uid(j), kept.spring, kept.stamp});
     });
 }
 

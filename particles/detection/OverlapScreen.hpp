@@ -34,7 +34,7 @@ public:
     /// how many pairs this call handed on.
     template <class OnPair>
     std::size_t offer(ParticleStorage const& ps, core::Vec3 const& period, std::size_t i,
-                      std::size_t j, std::uint8_t& hint, HistoryEntry* kept, OnPair& onPair) {
+                      std::size_t j, std::uint8_t& hint, KeptSpring* kept, OnPair& onPair) {
         if (m_direct) {
             auto const s = detection_detail::separation(ps, i, j, period);
             bool const hit = detection_detail::overlapping(s);
@@ -74,9 +74,8 @@ public:
 
 private:
     template <class OnPair>
-    static void handOn(OnPair& onPair, PairOverlap const& p, std::uint8_t* hint,
-                       HistoryEntry* kept) {
-        if constexpr (std::is_invocable_v<OnPair&, PairOverlap const&, HistoryEntry&>) {
+    static void handOn(OnPair& onPair, PairOverlap const& p, std::uint8_t* hint, KeptSpring* kept) {
+        if constexpr (std::is_invocable_v<OnPair&, PairOverlap const&, KeptSpring&>) {
             if (kept != nullptr) {
                 onPair(p, *kept);
                 return;
@@ -93,7 +92,7 @@ private:
     std::array<std::uint32_t, kCapacity> m_i{};
     std::array<std::uint32_t, kCapacity> m_j{};
     std::array<std::uint8_t*, kCapacity> m_hint{};
-    std::array<HistoryEntry*, kCapacity> m_kept{}; ///< null for a pair without a kept spring
+    std::array<KeptSpring*, kCapacity> m_kept{}; ///< null for a pair without a kept spring
     alignas(64) Lane m_xi, m_yi, m_zi, m_xj, m_yj, m_zj, m_reach;
     alignas(64) Lane m_sx, m_sy, m_sz; ///< shiftJ
     alignas(64) std::array<bool, kCapacity> m_overlap{};

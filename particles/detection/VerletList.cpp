@@ -137,7 +137,7 @@ bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
 
 std::size_t VerletList::bytes() const {
     return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
-           m_springs.capacity() * sizeof(HistoryEntry) +
+           m_springs.capacity() * sizeof(KeptSpring) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id);
 }

@@ -163,10 +163,8 @@ public:
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
     /// Pair p's history slot hint (ContactHistory::touch).
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
-    /// A kept pair's tangential spring: partner = uid of the pair's second copy, stamp as
-    /// ContactHistory's (kUntouched: none since it was filled from an absent entry).
-    [[nodiscard]] HistoryEntry& spring(std::size_t p) { return m_springs[p]; }
-    static constexpr std::uint32_t kUntouched = std::numeric_limits<std::uint32_t>::max();
+    /// A kept pair's tangential spring, with its stamp as ContactHistory's.
+    [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned or Kept since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
@@ -186,7 +184,7 @@ private:
     std::vector<std::array<Id, 2>> m_pairs;
     std::vector<PairMode> m_mode;           ///< per pair
     std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
-    std::vector<HistoryEntry> m_springs;    ///< per pair once one is kept: the kept springs
+    std::vector<KeptSpring> m_springs;      ///< per pair once one is kept: the kept springs
     std::vector<std::uint32_t> m_indexOf;   ///< per id
     using Reference = std::array<float, 3>; ///< position - m_origin, rounded to nearest
     /// Stores x's reference and widens the slack if x lies farther from the origin.

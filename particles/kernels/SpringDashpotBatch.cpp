@@ -26,32 +26,12 @@ void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uin
     m_s[1][k] = entry.spring.y();
     m_s[2][k] = entry.spring.z();
     m_rollingEntry[k] = rolling;
-    m_kept[k] = false;
+    m_kept[k] = nullptr;
     if (rolling) { // model C: every pair has one (only Rolling::Spring reads the lanes)
         m_r[0][k] = rolling->spring.x();
         m_r[1][k] = rolling->spring.y();
         m_r[2][k] = rolling->spring.z();
     }
-}
-
-void SpringDashpotBatch::addKept(std::size_t i, std::size_t j, HistoryEntry& kept,
-                                 std::uint32_t stamp) {
-    std::size_t const k = m_size++;
-    m_i[k] = static_cast<std::uint32_t>(i);
-    m_j[k] = static_cast<std::uint32_t>(j);
-    m_hint[k] = 0;
-    m_entry[k] = &kept;
-    m_rollingEntry[k] = nullptr;
-    m_kept[k] = true;
-    m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
-    m_shift[1][k] = 0.0;
-    m_shift[2][k] = 0.0;
-    // ContactHistory::renew's spring: kept if the previous pass touched it (or this one: never
-    // for a kept pair, which has one instance), else restarted from zero.
-    bool const continued = kept.stamp + 1 == stamp || kept.stamp == stamp;
-    m_s[0][k] = continued ? kept.spring.x() : 0.0;
-    m_s[1][k] = continued ? kept.spring.y() : 0.0;
-    m_s[2][k] = continued ? kept.spring.z() : 0.0;
 }
 
 namespace {

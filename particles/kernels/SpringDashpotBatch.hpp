@@ -54,7 +54,24 @@ public:
     /// with the spring the touch of pass `stamp` would leave it, but not stamped: the caller
     /// writes the entry (spring and stamp) after evaluate. Without model C's rolling spring.
     /// Pre: !full().
-    void addKept(std::size_t i, std::size_t j, HistoryEntry& kept, std::uint32_t stamp);
+    [[gnu::always_inline]] void addKept(std::size_t i, std::size_t j, KeptSpring& kept,
+                                        std::uint32_t stamp) {
+        std::size_t const k = m_size++;
+        m_i[k] = static_cast<std::uint32_t>(i);
+        m_j[k] = static_cast<std::uint32_t>(j);
+        m_hint[k] = 0;
+        m_kept[k] = &kept;
+        m_rollingEntry[k] = nullptr;
+        m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
+        m_shift[1][k] = 0.0;
+        m_shift[2][k] = 0.0;
+        // ContactHistory::renew's spring: kept if the previous pass touched it (or this one: never
+        // for a kept pair, which has one instance), else restarted from zero.
+        bool const continued = kept.stamp + 1 == stamp || kept.stamp == stamp;
+        m_s[0][k] = continued ? kept.spring.x() : 0.0;
+        m_s[1][k] = continued ? kept.spring.y() : 0.0;
+        m_s[2][k] = continued ? kept.spring.z() : 0.0;
+    }
 
     /// Evaluates every added contact of `ps` (the storage whose copies were added, its
     /// positions, motion, radii, masses and types unchanged since) with
@@ -68,8 +85,8 @@ public:
     [[nodiscard]] std::uint8_t hint(std::size_t k) const { return m_hint[k]; }
     /// The history entry gathered with pair k (dangling if its history got an entry since).
     [[nodiscard]] HistoryEntry* entry(std::size_t k) const { return m_entry[k]; }
-    /// Whether pair k came with a kept spring (addKept).
-    [[nodiscard]] bool kept(std::size_t k) const { return m_kept[k]; }
+    /// The kept spring pair k came with (addKept), or nullptr.
+    [[nodiscard]] KeptSpring* kept(std::size_t k) const { return m_kept[k]; }
     [[nodiscard]] core::Vec3 force(std::size_t k) const {
         return {m_f[0][k], m_f[1][k], m_f[2][k]};
     }
@@ -125,7 +142,7 @@ private:
     std::array<std::uint8_t, kCapacity> m_hint{};
     std::array<HistoryEntry*, kCapacity> m_entry{};
     std::array<HistoryEntry*, kCapacity> m_rollingEntry{};
-    std::array<bool, kCapacity> m_kept{}; ///< added by addKept
+    std::array<KeptSpring*, kCapacity> m_kept{}; ///< with addKept, else nullptr
     // Inputs: centres x_i and x_j (j's periodic shift apart), velocities and spins (filled by
     // evaluate), the springs, tangential (updated in place) and rolling (model C).
     alignas(64) Lane3 m_xi, m_xj, m_shift, m_vi, m_vj, m_wi, m_wj;
@@ -180,15 +197,15 @@ public:
     /// The same for an overlapping pair whose spring `kept` lives beside the neighbour list
     /// (ContactDetector, "Springs kept beside the list"; without model C's rolling spring):
     /// stamped by finish(), as the history's entry would be.
-    [[gnu::always_inline]] void operator()(PairOverlap const& p, HistoryEntry& kept) {
+    [[gnu::always_inline]] void operator()(PairOverlap const& p, KeptSpring& kept) {
         if (m_batch.full())
             finish();
         m_batch.addKept(p.i, p.j, kept, m_stamp);
     }
-    void operator()(Contact const& c, HistoryEntry& kept) { (*this)(PairOverlap::of(c), kept); }
+    void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
     /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
     /// by its storage indices.
-    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, HistoryEntry& spring) {
+    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, KeptSpring& spring) {
         if (m_batch.full())
             finish();
         m_batch.addKept(i, j, spring, m_stamp);
@@ -200,18 +217,21 @@ public:
         batch.evaluate(m_ps, m_model, m_dt);
         for (std::size_t k = 0; k < batch.size(); ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
-            HistoryEntry* e = batch.entry(k);
-            HistoryEntry* r = batch.rollingEntry(k);
-            if (batch.kept(k)) {
-                e->stamp = m_stamp; // touched (the spring is that of the touch, as in the lanes)
-            } else if (m_moved) {   // found again through the hint, or by search
-                std::uint8_t hint = batch.hint(k);
-                e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
-                r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
+            if (KeptSpring* kept = batch.kept(k)) {
+                kept->spring = batch.spring(k);
+                kept->stamp = m_stamp; // touched (its spring entered the lanes as the touch's)
+            } else {
+                HistoryEntry* e = batch.entry(k);
+                HistoryEntry* r = batch.rollingEntry(k);
+                if (m_moved) { // found again through the hint, or by search
+                    std::uint8_t hint = batch.hint(k);
+                    e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
+                    r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
+                }
+                e->spring = batch.spring(k);
+                if (r)
+                    r->spring = batch.rollingSpring(k);
             }
-            e->spring = batch.spring(k);
-            if (r)
-                r->spring = batch.rollingSpring(k);
             core::Vec3 const f = batch.force(k);
             m_sink(j, m_ps.uid(i), f, batch.torqueJ(k));
             m_sink(i, m_ps.uid(j), core::Vec3(-f), core::Vec3(-batch.torqueI(k)));

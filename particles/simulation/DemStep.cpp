@@ -342,12 +342,16 @@ void DemStep::computeForces(std::uint32_t stamp) {
                                           out.push_back(ForceRecord{k, partner, f, tq});
                                       });
                     } else {
-                        evaluateBlock(
-                            b, model, stamp, keepPairs,
-                            [&ps](std::size_t k, Uid, core::Vec3 const& f, core::Vec3 const& tq) {
-                                ps.force(k) += f;
-                                ps.torque(k) += tq;
-                            });
+                        // The arrays' addresses, not the storage's: stable while the block is
+                        // evaluated, and not reloaded after every store.
+                        core::Vec3* const force = ps.empty() ? nullptr : &ps.force(0);
+                        core::Vec3* const torque = ps.empty() ? nullptr : &ps.torque(0);
+                        evaluateBlock(b, model, stamp, keepPairs,
+                                      [force, torque](std::size_t k, Uid, core::Vec3 const& f,
+                                                      core::Vec3 const& tq) {
+                                          force[k] += f;
+                                          torque[k] += tq;
+                                      });
                     }
                 },
                 m_model);
