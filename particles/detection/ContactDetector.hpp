@@ -327,6 +327,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
         PairMode const mode = m_list.mode(p);
         KeptSpring* const kept = keepsSpring(mode) ? &m_list.spring(p) : nullptr;
+        if (kept != nullptr)
+            m_list.prefetchSpring(p + 16); // read in list order: a stream from memory
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
                 if constexpr (TakesKeptSprings<OnPair>) {

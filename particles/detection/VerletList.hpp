@@ -165,6 +165,11 @@ public:
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
+    /// Starts loading spring(p) (if p is a pair) into the cache, for writing.
+    void prefetchSpring(std::size_t p) const {
+        if (p < m_springs.size())
+            __builtin_prefetch(&m_springs[p], 1);
+    }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned or Kept since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
