@@ -59,9 +59,7 @@ public:
         std::size_t const k = m_size++;
         m_i[k] = static_cast<std::uint32_t>(i);
         m_j[k] = static_cast<std::uint32_t>(j);
-        m_hint[k] = 0;
-        m_kept[k] = &kept;
-        m_rollingEntry[k] = nullptr;
+        m_kept[k] = &kept; // (entry, hint and rolling entry are not read for a kept pair)
         m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
         m_shift[1][k] = 0.0;
         m_shift[2][k] = 0.0;
