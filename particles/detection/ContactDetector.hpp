@@ -36,12 +36,13 @@ concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uin
 /// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
 /// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image).
 template <class OnPair>
-concept TakesKeptSprings =
-    (std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
-     std::invocable<OnPair&, Contact const&, KeptSpring&>)&&requires(OnPair& f, std::size_t i,
-                                                                     KeptSpring& spring) {
+concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
     f.kept(i, i, spring);
 };
+template <class OnPair>
+concept TakesKeptSprings = TakesKeptPairs<OnPair> &&
+    (std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
+     std::invocable<OnPair&, Contact const&, KeptSpring&>);
 
 namespace detection_detail {
 /// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
@@ -211,9 +212,6 @@ public:
     /// overwritten, one that does not is added unless the pair never touched. The next detect
     /// fills them again. Not collective.
     void writeBackSprings(ParticleStorage& particles);
-    /// Whether the kept springs hold values the histories lack (detect filled them since the
-    /// last writeBackSprings).
-    [[nodiscard]] bool springsKept() const { return m_springsLive; }
 
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
     /// then the large ones: a permutation for ParticleStorage::permute that puts neighbours

@@ -171,7 +171,7 @@ public:
             __builtin_prefetch(&m_springs[p], 1);
     }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
-    /// Pairs classified PairMode::Owned or Kept since the last restart.
+    /// Pairs classified PairMode::Owned, Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
     /// Pairs classified PairMode::Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numKept() const { return m_kept; }

@@ -59,13 +59,12 @@ public:
         std::size_t const k = m_size++;
         m_i[k] = static_cast<std::uint32_t>(i);
         m_j[k] = static_cast<std::uint32_t>(j);
-        m_kept[k] = &kept; // (entry, hint and rolling entry are not read for a kept pair)
+        m_kept[k] = &kept;   // (entry, hint and rolling entry are not read for a kept pair)
         m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
         m_shift[1][k] = 0.0;
         m_shift[2][k] = 0.0;
-        // ContactHistory::renew's spring: kept if the previous pass touched it (or this one: never
-        // for a kept pair, which has one instance), else restarted from zero.
-        bool const continued = kept.stamp + 1 == stamp || kept.stamp == stamp;
+        // The spring ContactHistory::touch leaves: zero unless the contact continues.
+        bool const continued = ContactHistory::continues(kept.stamp, stamp);
         m_s[0][k] = continued ? kept.spring.x() : 0.0;
         m_s[1][k] = continued ? kept.spring.y() : 0.0;
         m_s[2][k] = continued ? kept.spring.z() : 0.0;

@@ -103,17 +103,21 @@ public:
         return {m_entries.begin(), m_entries.size()};
     }
 
-    /// Stamps a found entry; one the previous pass did not touch (a broken contact, not
-    /// pruned yet) restarts from a zero spring. `again`: it had been stamped `stamp` already.
-    /// (Public for the springs a neighbour list keeps beside its pairs, ContactDetector.)
-    static void renew(HistoryEntry& e, std::uint32_t stamp, bool& again) {
-        again = e.stamp == stamp;
-        if (!again && e.stamp + 1 != stamp)
-            e.spring = core::Vec3::Zero();
-        e.stamp = stamp;
+    /// Whether an entry stamped `last` keeps its spring when touched in pass `stamp`: it was
+    /// touched in this pass or the previous one (else its contact broke since, and the spring
+    /// restarts from zero).
+    [[nodiscard]] static bool continues(std::uint32_t last, std::uint32_t stamp) {
+        return last == stamp || last + 1 == stamp;
     }
 
 private:
+    /// Stamps a found entry (see continues). `again`: it had been stamped `stamp` already.
+    static void renew(HistoryEntry& e, std::uint32_t stamp, bool& again) {
+        again = e.stamp == stamp;
+        if (!continues(e.stamp, stamp))
+            e.spring = core::Vec3::Zero();
+        e.stamp = stamp;
+    }
     std::size_t keepOnlySlow(std::uint32_t stamp);
     /// touch() by search; `again` as in the hinted touch (left alone for a new entry).
     HistoryEntry& touchAt(Uid partner, std::uint32_t stamp, bool& again);
