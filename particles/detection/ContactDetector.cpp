@@ -173,8 +173,7 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
         writeBackSprings(ps); // while the list still follows the storage
         rebuildList(ps, region, frame);
     }
-    if (m_config.keepSprings)
-        fillKeptSprings(ps, m_springsLive && !rebuild ? listedBefore : 0);
+    m_fillFrom = m_springsLive && !rebuild ? listedBefore : 0;
     m_stats.rebuilt = rebuild;
     m_stats.arrivals = rebuild ? 0 : m_fresh.size();
     m_stats.overlapsFound = 0;

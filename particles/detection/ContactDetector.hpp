@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace regolith::particles {
@@ -34,10 +35,12 @@ concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uin
 /// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
 /// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
 /// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
-/// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image).
+/// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image); and
+/// tells the pass (ContactHistory stamp) it evaluates, `pass()`.
 template <class OnPair>
 concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
     f.kept(i, i, spring);
+    { f.pass() } -> std::convertible_to<std::uint32_t>; // the stamp it evaluates with
 };
 template <class OnPair>
 concept TakesKeptSprings = TakesKeptPairs<OnPair> &&
@@ -209,8 +212,9 @@ public:
     }
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
-    /// overwritten, one that does not is added unless the pair never touched. The next detect
-    /// fills them again. Not collective.
+    /// overwritten, one that does not is added if the last pass touched it (an older one is a
+    /// broken contact, which ContactHistory::touch would restart, and which the history may
+    /// have pruned since). The next detect fills them again. Not collective.
     void writeBackSprings(ParticleStorage& particles);
 
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
@@ -285,6 +289,8 @@ private:
     core::AABB m_listRegion;    ///< the region the list's pairs were settled for
     PeriodicFrame m_listFrame;  ///< and the frame
     bool m_springsLive = false; ///< the kept springs hold what the histories lack
+    std::size_t m_fillFrom = 0; ///< the first pair whose kept spring the next pass fills
+    std::uint32_t m_pass = 0;   ///< the pass of the last detect that kept springs
 };
 
 // ---- templates ------------------------------------------------------------------------------
@@ -303,6 +309,12 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
     }
     out.clear();
     updateList(ps, region, frame);
+    if constexpr (TakesKeptSprings<std::remove_cvref_t<OnPair>>) {
+        if (m_config.keepSprings) { // only a callback that takes them: the others see histories
+            fillKeptSprings(ps, m_fillFrom);
+            m_pass = onPair.pass();
+        }
+    }
     listedPass(ps, region, frame, out, onPair, keepPairs);
     wallPass(ps, walls, out);
 }
@@ -324,13 +336,13 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     OverlapScreen screen;
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
         PairMode const mode = m_list.mode(p);
-        KeptSpring* const kept = keepsSpring(mode) ? &m_list.spring(p) : nullptr;
+        KeptSpring* const kept = m_springsLive && keepsSpring(mode) ? &m_list.spring(p) : nullptr;
         if (kept != nullptr)
             m_list.prefetchSpring(p + 16); // read in list order: a stream from memory
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
                 if constexpr (TakesKeptSprings<OnPair>) {
-                    if (mode == PairMode::KeptPressed) { // overlaps: no test
+                    if (mode == PairMode::KeptPressed && kept != nullptr) { // overlaps: no test
                         overlaps += screen.flush(ps, period, onPair) + 1;
                         onPair.kept(a, b, *kept);
                         return;

@@ -27,8 +27,9 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     }
     // No second instance of the pair through another periodic image in this block (which
     // would share the spring, ContactHistory::touch's `again`): the two instances' reference
-    // separations would both lie below the listing reach r_i + r_j + skin (+ rounding), so
-    // their images would be less than twice that apart.
+    // separations would both lie below the listing reach r_i + r_j + skin (+ rounding), and
+    // each centre moves less than skin / 2 meanwhile, so their images would be less than
+    // 2 (r_i + r_j + 2 skin) apart.
     double const reach = ps.radius(ka) + ps.radius(kb);
     double const twice = 2.0 * (reach + 2.0 * m_listSkin + rounding);
     core::Vec3 const period = frame.period();
@@ -73,10 +74,14 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         if (!keepsSpring(m_list.mode(p)))
             return;
         KeptSpring const& kept = m_list.spring(p);
-        // Inserted if absent: a contact since the fill, or an entry pruned since (stale then,
-        // as in the history: ContactHistory::touch restarts it, the next prune drops it).
-        if (kept.stamp != KeptSpring::kUntouched)
-            ps.history(i).set(HistoryEntry{ps.uid(j), kept.spring, kept.stamp});
+        if (kept.stamp == KeptSpring::kUntouched)
+            return; // filled from an absent entry, never touched since
+        ContactHistory& history = ps.history(i);
+        HistoryEntry const entry{ps.uid(j), kept.spring, kept.stamp};
+        if (HistoryEntry* e = history.find(entry.partner))
+            *e = entry;
+        else if (kept.stamp == m_pass) // a contact of the last pass (new since the fill)
+            history.set(entry);
     });
 }
 

@@ -208,6 +208,9 @@ public:
         m_batch.addKept(i, j, spring, m_stamp);
     }
 
+    /// The pass (ContactHistory stamp) this evaluates.
+    [[nodiscard]] std::uint32_t pass() const { return m_stamp; }
+
     /// Evaluates what is gathered and hands it to the sink.
     [[gnu::noinline]] void finish() {
         SpringDashpotBatch& batch = m_batch;

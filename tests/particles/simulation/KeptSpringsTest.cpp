@@ -61,6 +61,8 @@ struct Scene {
     double dt = 0.002;
     double skin = 0.0; ///< the Verlet skin; 0: DemStep's default, a quarter of the radius
     int steps = 300;
+    bool keepContacts = false; ///< DemStepConfig::keepContacts (false: the driver's setting)
+    bool sortByUid = false;    ///< DetectorConfig::sortByUid (no fused list path)
 };
 
 /// 6 x 6 x 4 grains on an sc lattice of spacing 1 in [0, 6]^2 x [0, 8], periodic in x and y,
@@ -106,8 +108,9 @@ Outcome run(core::Comm const& comm, Scene const& scene, SyncConfig config, bool 
     c.dt = scene.dt;
     if (scene.skin > 0.0)
         c.detector = DetectorConfig{.skin = scene.skin};
+    c.detector.sortByUid = scene.sortByUid;
     c.gravity = scene.gravity;
-    c.keepContacts = false; // the driver's setting: the screened path of the list
+    c.keepContacts = scene.keepContacts;
     c.keepSprings = keep;
     DemStep dem(comm, sync, local, SpringDashpot(MaterialTable<LinearContactParams>(1, params)),
                 VelocityVerlet{}, walls, c, timers);
@@ -227,6 +230,21 @@ TEST(KeptSprings, ChangeNoBitOnAnyLayout) {
             // while listed (PairMode::KeptPressed), until the packing flies apart.
             expectSameBits(world, packing(blocks, 0.3, 0.6), config);
         }
+    }
+}
+
+TEST(KeptSprings, ChangeNoBitWithContactsKeptOrSortedByUid) {
+    // Kept contacts: the list hands each contact found, with its kept spring. Sorted by uid:
+    // contacts are handed over after the sort, with the histories (the springs stay there).
+    core::Comm const world;
+    for (double r : {kRadius, 0.6}) {
+        SCOPED_TRACE(::testing::Message() << "radius " << r);
+        Scene kept = packing({2, 2, 1}, 0.3, r);
+        kept.keepContacts = true;
+        expectSameBits(world, kept, SyncConfig{SyncMethod::Hybrid, false});
+        Scene sorted = packing({2, 2, 1}, 0.3, r);
+        sorted.sortByUid = true;
+        expectSameBits(world, sorted, SyncConfig{SyncMethod::Hybrid, false});
     }
 }
 
