@@ -11,13 +11,13 @@
 #include "domain/BlockForest.hpp"
 #include "domain/ForestSpec.hpp"
 #include "particles/simulation/DemStep.hpp"
+#include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -42,16 +42,6 @@ struct Outcome {
     long long rebuilds = 0;
     std::string error;
 };
-
-ParticleInit grain(Uid uid, Vec3 const& x, Vec3 const& v, double r = kRadius) {
-    ParticleInit p;
-    p.uid = uid;
-    p.position = x;
-    p.velocity = v;
-    p.radius = r;
-    p.mass = 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    return p;
-}
 
 struct Scene {
     domain::ForestSpec spec;
@@ -81,8 +71,8 @@ Scene packing(std::array<int, 3> blocks, double speed = 0.3, double r = kRadius)
                     std::uint64_t const h = (uid * 2654435761u + 97u * axis) % 1000u;
                     return speed * (static_cast<double>(h) / 500.0 - 1.0);
                 };
-                s.grains.push_back(grain(uid, Vec3(0.5 + x, 0.5 + y, 0.6 + z),
-                                         Vec3(along(0), along(1), along(2)), r));
+                s.grains.push_back(synctest::grain(uid, Vec3(0.5 + x, 0.5 + y, 0.6 + z), r,
+                                                   Vec3(along(0), along(1), along(2))));
             }
     return s;
 }
@@ -258,8 +248,8 @@ TEST(KeptSprings, ChangeNoBitWhenAStepOutrunsTheSkin) {
     Scene pair;
     pair.spec.domain = core::AABB{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)};
     pair.spec.rootBlocks = {3, 1, 1};
-    pair.grains = {grain(1, Vec3(1.71, 3.0, 3.0), Vec3(4.0, 0.0, 0.0)),
-                   grain(2, Vec3(1.71, 4.03, 3.0), Vec3(4.3, -0.5, 0.0))};
+    pair.grains = {synctest::grain(1, Vec3(1.71, 3.0, 3.0), kRadius, Vec3(4.0, 0.0, 0.0)),
+                   synctest::grain(2, Vec3(1.71, 4.03, 3.0), kRadius, Vec3(4.3, -0.5, 0.0))};
     pair.walls = false;
     pair.gravity = Vec3::Zero();
     pair.dt = 0.005;
