@@ -22,9 +22,9 @@ struct DetectorConfig {
     /// O(C log C).
     bool sortByUid = false;
     /// Keep the tangential springs of the settled pairs deep inside the block beside the
-    /// Verlet list (ContactDetector, "Springs kept beside the list"). Only for a caller whose
-    /// pair callback takes them (TakesKeptSprings) and who writes them back
-    /// (ContactDetector::beforeSync, writeBackSprings); others would read stale histories.
+    /// Verlet list (ContactDetector, "Springs kept beside the list") during the passes whose
+    /// callback takes them (TakesKeptSprings). That caller must write them back
+    /// (ContactDetector::beforeSync, writeBackSprings) before anything reads the histories.
     bool keepSprings = false;
 };
 
