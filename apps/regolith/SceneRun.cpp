@@ -218,6 +218,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         io::VtkOptions options{scene.output.dir, scene.output.vtkShadows, true};
         if (restart)
             options.keepEntriesBefore = start.time;
+        options.writesGrid = gridFieldsOf(selfGravity.get()).has_value();
         vtk.emplace(world, options);
         vtk->write(startStep, start.time, local, gridFieldsOf(selfGravity.get()));
     }

@@ -92,6 +92,18 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
         // A restart writes no grid at its first step (the field is restored per grain, not
         // on the grid): the original run's entry of that step stays.
         m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore, true);
+        bool const fresh = m_options.keepEntriesBefore == -std::numeric_limits<double>::infinity();
+        if (fresh && !m_options.writesGrid && fs::exists(gridSeriesPath())) {
+            fs::remove(gridSeriesPath(), ec);
+            if (ec)
+                core::log::warn("cannot remove '{}', an earlier run's grid series (this run writes "
+                                "no grid): {}",
+                                gridSeriesPath(), ec.message());
+            else
+                core::log::warn("removed '{}', an earlier run's grid series: this run writes no "
+                                "grid (the pieces in '{}' stay)",
+                                gridSeriesPath(), (fs::path(m_options.dir) / "vtk").string());
+        }
     });
 }
 

@@ -38,6 +38,10 @@ struct VtkOptions {
     /// grid series also the entry at this time, replaced if the grid is written again then
     /// (a restart has no grid to write before its first field update).
     double keepEntriesBefore = -std::numeric_limits<double>::infinity();
+    /// Whether this run writes grid fields. A fresh run (keepEntriesBefore at its default)
+    /// that does not removes an earlier run's grid.pvd from `dir`, with a warning: it would
+    /// otherwise sit beside this run's series as if it belonged to it (its pieces stay).
+    bool writesGrid = false;
 };
 
 class VtkOutput {

@@ -180,4 +180,15 @@ TEST(VtkGridOutput, BlocksFieldsAndSeriesReadBack) {
         EXPECT_EQ(pvdFiles(resumed.gridSeriesPath()), continued) << "rewrite " << rewrite;
         world.barrier();
     }
+
+    // A fresh run into the same directory keeps the grid series only if it writes a grid: one
+    // that writes none removes it (else it would pass for this run's).
+    for (bool writesGrid : {true, false}) {
+        io::VtkOptions fresh{dir, false, false};
+        fresh.writesGrid = writesGrid;
+        io::VtkOutput again(world, fresh);
+        world.barrier();
+        EXPECT_EQ(fs::exists(again.gridSeriesPath()), writesGrid);
+        world.barrier();
+    }
 }
