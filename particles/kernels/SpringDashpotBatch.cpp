@@ -136,6 +136,8 @@ void SpringDashpotBatch::loadCentres(ParticleStorage const& ps) {
 void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const& model,
                                   double dt) {
     std::size_t const n = m_size;
+    if (n == 0)
+        return; // (an empty block's storage has no arrays to point into)
     loadCentres(ps);
     auto const& materials = model.materials();
     // One material (most scenes): the parameters are the same in every lane, so the lanes
