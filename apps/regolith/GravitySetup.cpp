@@ -106,17 +106,19 @@ void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& 
             scene.contact.stiffness, overlap);
 }
 
-void warnCoarseOrbitStep(core::Comm const& comm, particles::ParticleStorage const& masters,
+void warnCoarseOrbitStep(core::Comm const& comm,
+                         std::span<particles::ParticleStorage const* const> masters,
                          SceneDescription const& scene) {
     if (scene.gravity.self == SelfGravity::None)
         return;
     double density = 0.0;
-    masters.forEachMaster([&](std::size_t i) {
-        double const r = masters.radius(i);
-        if (r > 0.0)
-            density =
-                std::max(density, masters.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
-    });
+    for (particles::ParticleStorage const* ps : masters)
+        ps->forEachMaster([&](std::size_t i) {
+            double const r = ps->radius(i);
+            if (r > 0.0)
+                density =
+                    std::max(density, ps->mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
+        });
     density = comm.allReduce(density, core::ReduceOp::Max);
     if (!(density > 0.0))
         return;

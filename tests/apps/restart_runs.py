@@ -197,6 +197,18 @@ def gravity_case(runner):
             fail(f"updates: {first['gravity']['updates']} before the checkpoint + "
                  f"{s['gravity']['updates']} after the restart, the reference made {updates} "
                  "(the restart did not continue the update policy)")
+    # A restart with a G that makes a close orbit take fewer than 20 steps of dt = 0.01
+    # (period 2 pi sqrt(3 / (pi G rho)) = 0.137 at G = 2000) warns as a new run does (it did
+    # not: the warning ran for new runs only).
+    start = os.path.join(first_dir, "checkpoint_00000020.h5")
+    command = [runner.mpiexec, "-n", "2", "--oversubscribe", runner.app, runner.scene,
+               "--restart", start, "--output", runner.path("coarse_orbit"), "--steps", "21",
+               "--set", "gravity.G=2000"]  # without --quiet, which silences warnings
+    done = subprocess.run(command, capture_output=True, text=True, timeout=60, check=False)
+    warning = "exceeds the orbital period of two touching grains"
+    if done.returncode != 0 or done.stdout.count(warning) != 1:
+        fail(f"{' '.join(command)}: exit {done.returncode}, expected 0 and one warning "
+             f"containing {warning!r}\n--- stdout:\n{done.stdout}\n--- stderr:\n{done.stderr}")
     # The PETSc Poisson solve (pm): in reproducible mode each solve starts from zero, so the
     # restart, which has no last solution to warm-start from, repeats the run's bits.
     pm = ["--set", "gravity.self=pm", "--set", "domain.cells_per_block=[8,8,8]",
