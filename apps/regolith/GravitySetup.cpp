@@ -106,19 +106,20 @@ void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& 
             scene.contact.stiffness, overlap);
 }
 
-void warnCoarseOrbitStep(core::Comm const& comm,
-                         std::span<particles::ParticleStorage const* const> masters,
+void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,
                          SceneDescription const& scene) {
     if (scene.gravity.self == SelfGravity::None)
         return;
     double density = 0.0;
-    for (particles::ParticleStorage const* ps : masters)
-        ps->forEachMaster([&](std::size_t i) {
-            double const r = ps->radius(i);
+    for (particles::BlockParticles const& bp : local.blocks()) {
+        particles::ParticleStorage const& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) {
+            double const r = ps.radius(i);
             if (r > 0.0)
                 density =
-                    std::max(density, ps->mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
+                    std::max(density, ps.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
         });
+    }
     density = comm.allReduce(density, core::ReduceOp::Max);
     if (!(density > 0.0))
         return;

@@ -5,11 +5,11 @@
 #include "coupling/gravity/SelfGravityForces.hpp"
 #include "domain/BlockForest.hpp"
 #include "particles/storage/ParticleStorage.hpp"
+#include "particles/sync/BlockParticles.hpp"
 
 #include <cmath>
 #include <memory>
 #include <numbers>
-#include <span>
 
 namespace regolith::apps {
 
@@ -42,10 +42,9 @@ inline constexpr double kSoftContactOverlap = 0.1;
 /// the largest density, 2 pi sqrt(3 / (pi G rho)), over kOrbitSteps: a close orbit then takes
 /// fewer steps than that and its energy is not kept (time.dt = "auto" takes the period / 200).
 /// The contact guard (t_c / 10) does not see it when contacts are soft. Found by a review: a
-/// Kepler pair at dt = T / 2.2 was ejected without a word. `masters`: this rank's, of a new
-/// run's or a restart's grains. COLLECTIVE when self-gravity is on.
-void warnCoarseOrbitStep(core::Comm const& comm,
-                         std::span<particles::ParticleStorage const* const> masters,
+/// Kepler pair at dt = T / 2.2 was ejected without a word. `local`: this rank's blocks, with
+/// a new run's or a restart's masters. COLLECTIVE when self-gravity is on.
+void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,
                          SceneDescription const& scene);
 
 inline constexpr double kOrbitSteps = 20.0;

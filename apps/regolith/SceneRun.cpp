@@ -55,10 +55,9 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
     checkInitialState(ctx.world, masters, scene);
     warnLazyUpdateThreshold(ctx.world, masters, scene);
     warnSoftContacts(ctx.world, masters, scene);
-    particles::ParticleStorage const* const all[] = {&masters};
-    warnCoarseOrbitStep(ctx.world, all, scene);
     checkGridAccuracy(ctx.world, masters, scene);
     local.adoptMasters(std::move(masters));
+    warnCoarseOrbitStep(ctx.world, local, scene);
     return choices;
 }
 
@@ -103,15 +102,11 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
     checkRestart(ctx.world, path, slice, scene, text);
     io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
     std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
-    // The restart may run with another time.dt or G than the checkpoint's run.
-    std::vector<particles::ParticleStorage const*> blocks;
-    for (particles::BlockParticles const& bp : local.blocks())
-        blocks.push_back(&bp.particles);
-    warnCoarseOrbitStep(ctx.world, blocks, scene);
     if (restored != slice.info.stateChecksum)
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
                                            path, restored, slice.info.stateChecksum));
+    warnCoarseOrbitStep(ctx.world, local, scene); // a restart may change time.dt or G
     double const seconds = ctx.world.allReduce(MPI_Wtime() - started, core::ReduceOp::Max);
     core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
                     "entries, read and distributed in {:.3g} s",
