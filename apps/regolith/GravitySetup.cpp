@@ -68,13 +68,35 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
 }
 
-void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage const& masters,
+namespace {
+
+/// f(storage, index) for every master of this rank's blocks.
+template <class F>
+void forEachLocalMaster(particles::LocalParticles const& local, F&& f) {
+    for (particles::BlockParticles const& bp : local.blocks()) {
+        particles::ParticleStorage const& ps = bp.particles;
+        ps.forEachMaster([&](std::size_t i) { f(ps, i); });
+    }
+}
+
+} // namespace
+
+void warnSelfGravityParameters(core::Comm const& comm, particles::LocalParticles const& local,
+                               SceneDescription const& scene) {
+    warnLazyUpdateThreshold(comm, local, scene);
+    warnSoftContacts(comm, local, scene);
+    warnCoarseOrbitStep(comm, local, scene);
+}
+
+void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles const& local,
                              SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
     if (g.self == SelfGravity::None || !(g.updateThreshold > 0.0))
         return;
     double smallest = std::numeric_limits<double>::infinity();
-    masters.forEachMaster([&](std::size_t i) { smallest = std::min(smallest, masters.radius(i)); });
+    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
+        smallest = std::min(smallest, ps.radius(i));
+    });
     smallest = comm.allReduce(smallest, core::ReduceOp::Min);
     std::string const warning =
         gravity::UpdatePolicy::thresholdWarning(g.updateThreshold, 2.0 * smallest);
@@ -82,14 +104,14 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage 
         core::log::warn("{}", warning);
 }
 
-void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& masters,
+void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& local,
                       SceneDescription const& scene) {
     if (scene.gravity.self == SelfGravity::None ||
         scene.contact.model != ContactModel::SpringDashpot)
         return;
     double worst = 0.0; // m² / r³
-    masters.forEachMaster([&](std::size_t i) {
-        double const m = masters.mass(i), r = masters.radius(i);
+    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
+        double const m = ps.mass(i), r = ps.radius(i);
         if (r > 0.0 && std::isfinite(m))
             worst = std::max(worst, m * m / (r * r * r));
     });
@@ -111,15 +133,11 @@ void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const
     if (scene.gravity.self == SelfGravity::None)
         return;
     double density = 0.0;
-    for (particles::BlockParticles const& bp : local.blocks()) {
-        particles::ParticleStorage const& ps = bp.particles;
-        ps.forEachMaster([&](std::size_t i) {
-            double const r = ps.radius(i);
-            if (r > 0.0)
-                density =
-                    std::max(density, ps.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
-        });
-    }
+    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
+        double const r = ps.radius(i);
+        if (r > 0.0)
+            density = std::max(density, ps.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
+    });
     density = comm.allReduce(density, core::ReduceOp::Max);
     if (!(density > 0.0))
         return;

@@ -20,10 +20,17 @@ namespace regolith::apps {
 makeSelfGravity(core::Comm const& comm, domain::BlockForest const& forest,
                 SceneDescription const& scene);
 
+/// The warnings below about the self-gravity parameters against the grains, for a new run's
+/// masters and for a restart's (which may change G, contact.stiffness, time.dt or
+/// gravity.update_threshold). `local`: this rank's blocks with their masters. COLLECTIVE when
+/// self-gravity is on.
+void warnSelfGravityParameters(core::Comm const& comm, particles::LocalParticles const& local,
+                               SceneDescription const& scene);
+
 /// Warns (rank 0, once) when gravity.update_threshold exceeds the grain spacing, taken as the
 /// smallest grain diameter over all ranks, stating the force error to expect
 /// (gravity::UpdatePolicy::thresholdWarning). COLLECTIVE when self-gravity is on.
-void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage const& masters,
+void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles const& local,
                              SceneDescription const& scene);
 
 /// Warns (rank 0, once) when the linear contacts are too soft for the grains' own gravity: two
@@ -32,7 +39,7 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::ParticleStorage 
 /// weight adds to it, impacts more). Found by a review: grains of cold-collapse sank 1.5 radii
 /// into each other, and a pair with G 10⁴ times larger passed through each other and was
 /// ejected (point-mass gravity inside an overlap). COLLECTIVE when self-gravity is on.
-void warnSoftContacts(core::Comm const& comm, particles::ParticleStorage const& masters,
+void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& local,
                       SceneDescription const& scene);
 
 /// The static pair overlap, over the radius, above which warnSoftContacts warns.
@@ -42,8 +49,7 @@ inline constexpr double kSoftContactOverlap = 0.1;
 /// the largest density, 2 pi sqrt(3 / (pi G rho)), over kOrbitSteps: a close orbit then takes
 /// fewer steps than that and its energy is not kept (time.dt = "auto" takes the period / 200).
 /// The contact guard (t_c / 10) does not see it when contacts are soft. Found by a review: a
-/// Kepler pair at dt = T / 2.2 was ejected without a word. `local`: this rank's blocks, with
-/// a new run's or a restart's masters. COLLECTIVE when self-gravity is on.
+/// Kepler pair at dt = T / 2.2 was ejected without a word. COLLECTIVE when self-gravity is on.
 void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,
                          SceneDescription const& scene);
 

@@ -53,11 +53,9 @@ std::vector<AutoChoice> generateInitialState(core::AppContext const& ctx, SceneD
     auto masters = generateLocalMasters(ctx.world, ctx.scene, scene, forest);
     std::vector<AutoChoice> const choices = resolveAutoChoices(ctx.world, masters, scene);
     checkInitialState(ctx.world, masters, scene);
-    warnLazyUpdateThreshold(ctx.world, masters, scene);
-    warnSoftContacts(ctx.world, masters, scene);
     checkGridAccuracy(ctx.world, masters, scene);
     local.adoptMasters(std::move(masters));
-    warnCoarseOrbitStep(ctx.world, local, scene);
+    warnSelfGravityParameters(ctx.world, local, scene);
     return choices;
 }
 
@@ -106,7 +104,7 @@ RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene
         throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
                                            "the checkpoint says {}",
                                            path, restored, slice.info.stateChecksum));
-    warnCoarseOrbitStep(ctx.world, local, scene); // a restart may change time.dt or G
+    warnSelfGravityParameters(ctx.world, local, scene); // a restart may change G, dt, k ...
     double const seconds = ctx.world.allReduce(MPI_Wtime() - started, core::ReduceOp::Max);
     core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
                     "entries, read and distributed in {:.3g} s",
