@@ -6,10 +6,11 @@ of scenes/granular-gas.toml:
          (nns, sos, hybrid, nns, ...) so that a change of machine load hits every method alike;
          reported as the median over the repeats and as ratios to NNS.
   comm   messages, bytes and distinct peers per rank per step of the synchronisation for
-         1, 2, 3, 4, 8 (and 27) ranks, one block of 10^3 grains per rank (weak scaling).
+         1, 2, 3, 4, 8 (and 27) ranks, one block of 10^3 grains per rank (weak scaling),
+         --comm-steps steps each (--steps is the pupcs part's).
 
 usage: sync_bench.py --build build/default --out bench/out [--repeats 3] [--steps 200]
-                     [--ranks 2] [--box 40] [--comm-ranks 1 2 3 4 8 27]
+                     [--ranks 2] [--box 40] [--comm-ranks 1 2 3 4 8 27] [--comm-steps 50]
 
 Writes <out>/sync_pupcs.csv, <out>/sync_comm.csv and prints Markdown tables for
 docs/results.md. Not a test: it asserts nothing about time.
@@ -97,7 +98,8 @@ def bench_comm(app, a, out):
         bx, by, bz = layout(ranks)
         edge = 10
         extent = (bx * edge, by * edge, bz * edge)
-        args = ["--steps", "50", "--set", f"granular_gas.per_rank=[{edge},{edge},{edge}]",
+        args = ["--steps", str(a.comm_steps),
+                "--set", f"granular_gas.per_rank=[{edge},{edge},{edge}]",
                 *lattice(a, extent)]
         for method in METHODS:
             s = run(app, ranks, args + ["--set", f"sync.method={method}"])
@@ -112,7 +114,7 @@ def bench_comm(app, a, out):
         w.writerows(rows)
     print(f"\nSynchronisation traffic per rank and step, sparse gas, one block of 10^3 grains "
           f"per rank, periodic, lattice offset {a.offset} (a layer of grains on every block face), "
-          f"50 steps\n")
+          f"{a.comm_steps} steps\n")
     print("| ranks | blocks | method | messages / rank / step | bytes / rank / step | "
           "max peers | shadows |")
     print("|---|---|---|---|---|---|---|")
@@ -130,6 +132,7 @@ def main():
     p.add_argument("--box", type=int, default=40)
     p.add_argument("--blocks", type=int, nargs=3, default=None)
     p.add_argument("--comm-ranks", type=int, nargs="*", default=[1, 2, 3, 4, 8, 27])
+    p.add_argument("--comm-steps", type=int, default=50)
     p.add_argument("--offset", type=float, default=0.3)
     p.add_argument("--only", choices=("pupcs", "comm"), default=None)
     a = p.parse_args()
