@@ -250,16 +250,33 @@ void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
         write(stepsDone);
 }
 
-void CheckpointSchedule::warnReplaced(std::int64_t firstStep, std::int64_t lastStep) const {
-    if (m_output.checkpointEvery <= 0 || m_comm->rank() != 0)
+void CheckpointSchedule::checkReplaced(std::int64_t firstStep, std::int64_t lastStep) const {
+    if (m_output.checkpointEvery <= 0)
         return;
-    auto const names =
-        io::checkpointsToReplace(m_output.dir, m_output.checkpointEvery, firstStep, lastStep);
-    if (!names.empty())
-        core::log::warn("output.dir = \"{}\" holds {} checkpoint(s) of the steps this run "
-                        "writes ({}{}), an earlier run's: they will be replaced",
-                        m_output.dir, names.size(), names.front(),
-                        names.size() > 1 ? fmt::format(" ... {}", names.back()) : "");
+    std::string failure;
+    if (m_comm->rank() == 0) {
+        auto const names =
+            io::checkpointsToReplace(m_output.dir, m_output.checkpointEvery, firstStep, lastStep);
+        for (std::string const& name : names) {
+            std::error_code ec;
+            auto const path = std::filesystem::path(m_output.dir) / name;
+            if (!std::filesystem::is_regular_file(path, ec)) {
+                failure = fmt::format("output.dir = \"{}\" holds '{}', which is not a file: this "
+                                      "run writes its checkpoint there; remove or rename it, or "
+                                      "choose another output.dir",
+                                      m_output.dir, name);
+                break;
+            }
+        }
+        if (failure.empty() && !names.empty())
+            core::log::warn("output.dir = \"{}\" holds {} checkpoint(s) of the steps this run "
+                            "writes ({}{}), an earlier run's: they will be replaced",
+                            m_output.dir, names.size(), names.front(),
+                            names.size() > 1 ? fmt::format(" ... {}", names.back()) : "");
+    }
+    m_comm->broadcast(failure, 0);
+    if (!failure.empty())
+        throw core::InputError(failure);
 }
 
 std::string CheckpointSchedule::write(std::int64_t stepsDone) {

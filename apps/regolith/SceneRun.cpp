@@ -210,7 +210,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.
     CheckpointSchedule checkpoints(world, scene, text, local, timeAt);
     checkpoints.setSelfGravity(selfGravity.get());
-    checkpoints.warnReplaced(startStep, scene.time.steps);
+    checkpoints.checkReplaced(startStep, scene.time.steps);
     std::optional<io::VtkOutput> vtk;
     if (scene.output.vtkEvery > 0) {
         // A restart continues the series of the run it restarts (the entries before it).

@@ -17,7 +17,9 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     non-zero and leaves the checkpoint of step 10 complete, which restarts to the reference;
  5. one rank's part of the step-20 checkpoint failing (REGOLITH_TEST_FAIL_IN_CHECKPOINT=20:1,
     as a full disk): exit code 2 with the message once, no hang, the checkpoint of step 10 and
-    nothing else left, which restarts to the reference;
+    nothing else left, which restarts to the reference; a directory under the name of the
+    step-20 checkpoint is refused before the first step (exit code 2, the message once,
+    nothing written);
  6. a truncated file, a flipped byte, a scene with another domain, a step beyond
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
@@ -325,6 +327,20 @@ def main():
     if s["checksum"] != reference:
         fail(f"restart from the checkpoint before the failed one: checksum {s['checksum']}, "
              f"expected {reference}")
+
+    # A directory under the name of a checkpoint the run will write is refused before the
+    # first step (it was found only by the rename after the whole run, and the run's output
+    # was lost), on every rank: exit code 2, the message once, the earlier run's checkpoint
+    # beside it untouched, nothing written.
+    blocked = runner.path("blocked")
+    os.makedirs(os.path.join(blocked, "checkpoint_00000020.h5"))
+    shutil.copy(step10, os.path.join(blocked, expected[0]))
+    expect_refused(runner, 2, ["--output", blocked, "--set", "output.checkpoint_every=10"],
+                   "holds 'checkpoint_00000020.h5', which is not a file",
+                   [os.path.join(blocked, expected[0])])
+    if sorted(os.listdir(blocked)) != [expected[0], "checkpoint_00000020.h5"]:
+        fail(f"a run refused before its first step wrote into {blocked}: "
+             f"{sorted(os.listdir(blocked))}")
 
     truncated = runner.path("truncated.h5")
     shutil.copy(step20, truncated)
