@@ -5,6 +5,7 @@
 #include "core/config/ValueChecks.hpp"
 #include "core/log/Log.hpp"
 #include "domain/ForestConfig.hpp"
+#include "particles/generators/LatticeSites.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 
 #include <fmt/format.h>
@@ -232,6 +233,32 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
                             toString(self), axes));
 }
 
+/// Warns where a lattice entry fills a periodic axis whose extent is not a multiple of the
+/// lattice's period there (particles::latticePeriod): the sites across the face are then
+/// closer (the overlap check refuses them once they overlap) or farther apart than inside,
+/// so the lattice is not the uniform one asked for. Found by a review: a gas box of 10.5 ran
+/// with a gap of 1.5 across one face.
+void warnLatticeOffPeriod(particles::LatticeSpec const& lattice, core::ConfigTable const& entry,
+                          domain::ForestSpec const& forest) {
+    for (int a = 0; a < 3; ++a) {
+        double const lo = forest.domain.min[a], hi = forest.domain.max[a];
+        if (!forest.periodic[static_cast<std::size_t>(a)] || lattice.region.min[a] != lo ||
+            lattice.region.max[a] != hi)
+            continue;
+        double const period = particles::latticePeriod(lattice.lattice, lattice.spacing, a);
+        double const periods = (hi - lo) / period;
+        double const whole = std::max(std::round(periods), 1.0);
+        if (std::abs(periods - whole) <= 1e-9 * whole)
+            continue;
+        core::log::warn("{}: {}: the lattice repeats every {} along {}, which does not divide "
+                        "the periodic domain's extent {} there ({:.6g} periods): the grains "
+                        "across that face are not spaced as inside; make the extent a multiple "
+                        "of the period, e.g. {}",
+                        entry.location(), entry.keyPath("spacing"), period, "xyz"[a], hi - lo,
+                        periods, whole * period);
+    }
+}
+
 } // namespace
 
 SceneDescription parseScene(core::ConfigTable const& root, std::string const& scenePath) {
@@ -282,6 +309,7 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
                                            lattice->radius, lattice->spacing, overlap,
                                            scene.contact.initialOverlap,
                                            (2.0 - scene.contact.initialOverlap) * lattice->radius));
+            warnLatticeOffPeriod(*lattice, entries[i], scene.forest);
         }
     // The value rules of [[particles]] are the generators' (one place); checked here too so a
     // bad entry fails before anything is built, with the line it was written on.

@@ -15,6 +15,12 @@ double const kRowStep = std::numbers::sqrt3 / 2.0;
 double const kLayerStep = std::sqrt(2.0 / 3.0);
 } // namespace
 
+double latticePeriod(LatticeKind kind, double spacing, int axis) {
+    if (kind == LatticeKind::SimpleCubic || axis == 0)
+        return spacing;
+    return spacing * 2.0 * (axis == 1 ? kRowStep : kLayerStep);
+}
+
 LatticeSites::LatticeSites(LatticeSpec const& spec, GeneratorDomain const& domain,
                            std::string const& entryKey)
     : m_kind(spec.lattice)

@@ -15,6 +15,12 @@
 
 namespace regolith::particles {
 
+/// The lattice's period along `axis` (0, 1, 2) [length]: the spacing for sc; for hcp the
+/// spacing along x, two rows (sqrt(3) spacings) along y and two layers (2 sqrt(2/3) spacings)
+/// along z. A periodic domain whose extent is not a multiple of it leaves the sites across
+/// its face closer or farther apart than inside.
+[[nodiscard]] double latticePeriod(LatticeKind kind, double spacing, int axis);
+
 class LatticeSites {
 public:
     /// Pre: `spec` validated (validateParticleSpecs). Throws core::InputError naming

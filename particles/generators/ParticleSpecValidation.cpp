@@ -68,6 +68,17 @@ void validateLattice(LatticeSpec const& s, std::string const& key, GeneratorDoma
         fail(key + ".region",
              fmt::format("must lie inside the domain (min = {}, max = {}), got min = {}, max = {}",
                          vec(d.box.min), vec(d.box.max), vec(s.region.min), vec(s.region.max)));
+    // On a non-periodic axis a site is used only if the whole grain lies in the region
+    // (LatticeSites::used): a thinner region generates nothing, which is never what was meant.
+    for (int a = 0; a < 3; ++a)
+        if (!d.periodic[static_cast<std::size_t>(a)] &&
+            s.region.max[a] - s.region.min[a] < 2.0 * s.radius)
+            fail(key + ".region",
+                 fmt::format("[{}, {}] along the non-periodic axis {} is thinner than a grain's "
+                             "diameter {}: the lattice would place no grain (a scenario's region "
+                             "is its domain: widen the domain there)",
+                             s.region.min[a], s.region.max[a],
+                             kAxisName[static_cast<std::size_t>(a)], 2.0 * s.radius));
     validateVelocity(s.velocity, key + ".velocity");
 }
 
