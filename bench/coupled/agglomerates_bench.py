@@ -11,6 +11,8 @@
 
 usage: agglomerates_bench.py [--build build/default] [--out bench/out] [--steps 1000]
                              [--instances small medium large] [--ranks 1 2]
+                             [--skip-time] [--skip-conservation]
+                             [--methods direct mutual-tree tree pm]
 Writes <out>/agglomerates_time.csv and <out>/agglomerates_conservation.csv.
 """
 import argparse
@@ -84,14 +86,17 @@ def totals(s):
     return c["momentum"], c["center_of_mass"], c["kinetic_energy"] + c["potential_energy"]
 
 
-def conservation(app, out, steps, ranks):
+METHODS = ("direct", "mutual-tree", "tree", "pm")
+
+
+def conservation(app, out, steps, ranks, methods=METHODS):
     rows = []
     common = ["--set", "gravity.update_threshold=0", "--set", "contact.friction=0",
               "--set", "domain.cells_per_block=[8,8,8]"]
     start = run_app(app, ranks, instance_args("small") + common +
                     ["--set", "gravity.self=direct", "--steps", "0"])
     p0, c0, e0 = totals(start)
-    for method in ("direct", "mutual-tree", "tree", "pm"):
+    for method in methods:
         s = run_app(app, ranks, instance_args("small") + common +
                     ["--set", f"gravity.self={method}", "--steps", str(steps)])
         p1, c1, e1 = totals(s)
@@ -128,13 +133,17 @@ def main():
     p.add_argument("--steps", type=int, default=1000)
     p.add_argument("--instances", nargs="+", default=list(INSTANCES))
     p.add_argument("--ranks", type=int, nargs="+", default=[1, 2])
+    p.add_argument("--skip-time", action="store_true")
     p.add_argument("--skip-conservation", action="store_true")
+    p.add_argument("--methods", nargs="+", choices=METHODS, default=list(METHODS),
+                   help="gravity methods of the conservation part")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     app = os.path.join(a.build, "bin", "regolith")
-    timing(app, a.out, a.steps, a.instances, a.ranks)
+    if not a.skip_time:
+        timing(app, a.out, a.steps, a.instances, a.ranks)
     if not a.skip_conservation:
-        conservation(app, a.out, a.steps, max(a.ranks))
+        conservation(app, a.out, a.steps, max(a.ranks), a.methods)
 
 
 if __name__ == "__main__":
