@@ -69,7 +69,7 @@ ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, SpringDashpot
     auto const l = lightestPerType(ps, table.numTypes());
     auto e = shortestOverTypePairs(l, [&](std::size_t a, std::size_t b) {
         auto const& p = table(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b));
-        return std::pair(SpringDashpot::contactTime(p, pairMass(l[a], l[b])), p.stiffness);
+        return std::pair(SpringDashpot::undampedContactTime(p, pairMass(l[a], l[b])), p.stiffness);
     });
     e.parameter = "contact.stiffness";
     return e;

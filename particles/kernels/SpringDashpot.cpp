@@ -37,4 +37,8 @@ double SpringDashpot::contactTime(LinearContactParams const& p, double effective
     return std::numbers::pi / std::sqrt(w0 * w0 - gamma * gamma);
 }
 
+double SpringDashpot::undampedContactTime(LinearContactParams const& p, double effectiveMass) {
+    return std::numbers::pi * std::sqrt(effectiveMass / p.stiffness);
+}
+
 } // namespace regolith::particles

@@ -58,6 +58,10 @@ public:
     [[nodiscard]] bool hasRollingSpring() const { return m_rollingSpring; }
     /// Duration of a free normal collision: pi / sqrt(k/m_eff - gamma^2) [time].
     static double contactTime(LinearContactParams const& p, double effectiveMass);
+    /// The same without the dashpot, pi sqrt(m_eff / k) [time]: the time scale of the explicit
+    /// step's stability (TimeStepGuard), which the damped duration overstates without bound
+    /// as the restitution goes to 0.
+    static double undampedContactTime(LinearContactParams const& p, double effectiveMass);
 
 private:
     MaterialTable<LinearContactParams> m_materials;

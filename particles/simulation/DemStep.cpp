@@ -239,11 +239,24 @@ void DemStep::syncParticles() {
         double const myShare = motion[1];
         if (m_comm->size() > 1)
             m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
-        if (!std::isfinite(motion[1])) // LargestMove: +inf for a non-finite displacement
+        if (!std::isfinite(motion[1])) { // LargestMove: +inf for a non-finite displacement
+            // Every rank is here: the lowest uid of a master gone non-finite, on any layout.
+            std::uint64_t worst = kInvalidUid;
+            for (BlockParticles const& bp : blocks)
+                bp.particles.forEachMaster([&](std::size_t i) {
+                    ParticleStorage const& ps = bp.particles;
+                    if (!(ps.position(i).allFinite() && ps.velocity(i).allFinite()))
+                        worst = std::min<std::uint64_t>(worst, ps.uid(i));
+                });
+            auto const uids = m_comm->allGather<std::uint64_t>(worst);
+            Uid const uid = *std::min_element(uids.begin(), uids.end());
             throw core::InputError(fmt::format(
-                "step {}: a grain's position became non-finite: the motion is unstable; reduce "
+                "step {}: {} position became non-finite: the motion is unstable; reduce "
                 "time.dt or the contact stiffness",
-                m_steps + 1));
+                m_steps + 1,
+                uid == kInvalidUid ? std::string("a grain's")
+                                   : "particle uid " + std::to_string(uid) + "'s"));
+        }
         if (!(motion[1] < 1.0)) {
             // Every rank is here (the shares are reduced): the uid from those that hold it.
             auto const uids = m_comm->allGather<std::uint64_t>(

@@ -16,7 +16,7 @@ set(png ${OUT}/step10.png)
 execute_process(COMMAND ${XVFB_RUN} -a ${RENDER} ${OUT}/particles.pvd --step 1 --png ${png}
                         --size 400 300
                 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 60)
-if(NOT rc EQUAL 0 OR NOT out MATCHES "particles_00000010.pvtu \\(time 0.00411")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "particles_00000010.pvtu \\(time 0.00401")
   message(FATAL_ERROR "regolith-render failed (${rc}):\n${out}\n${err}")
 endif()
 file(READ ${png} signature LIMIT 8 HEX)

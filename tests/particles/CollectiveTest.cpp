@@ -72,7 +72,7 @@ TEST(CollectiveTimeStep, AllRanksAgreeOnTheShortestContactTime) {
     ContactTimeEstimate const local = estimateContactTime(ps, model);
     ContactTimeEstimate const global = shortestContactTime(world, local);
     double const mMin = 1.0 / (world.size() + 1);
-    EXPECT_NEAR(global.contactTime, SpringDashpot::contactTime(p, mMin / 2), 1e-15);
+    EXPECT_NEAR(global.contactTime, SpringDashpot::undampedContactTime(p, mMin / 2), 1e-15);
     EXPECT_EQ(global.uid, makeUid(world.size() - 1, 3));
     EXPECT_EQ(global.mass, mMin);
     EXPECT_EQ(world.allReduce(global.contactTime, regolith::core::ReduceOp::Max),

@@ -199,7 +199,8 @@ TEST(TimeStepFailure, RestitutionErrorGrowsWithDtAndTheGuardRefuses) {
     ParticleStorage ps;
     addPair(ps, 0.01);
     ContactTimeEstimate const est = estimateContactTime(ps, model);
-    EXPECT_NEAR(est.contactTime, SpringDashpot::contactTime(model.materials()(0, 0), 0.5), 1e-15);
+    EXPECT_NEAR(est.contactTime, SpringDashpot::undampedContactTime(model.materials()(0, 0), 0.5),
+                1e-15);
     EXPECT_EQ(est.uid, 1U);
     EXPECT_EQ(est.mass, kMassA);
     double const tcPair = SpringDashpot::contactTime(model.materials()(0, 0), kEffMass);
@@ -209,6 +210,31 @@ TEST(TimeStepFailure, RestitutionErrorGrowsWithDtAndTheGuardRefuses) {
     }
     EXPECT_NO_THROW(checkTimeStep(est.contactTime / 10.0, est, false));
     EXPECT_THROW(checkTimeStep(est.contactTime / 10.0 * (1 + 1e-9), est, false), InputError);
+}
+
+TEST(TimeStepFailure, TheGuardsLimitIsStableAtAnyRestitution) {
+    // The guard's t_c is the undamped duration: at t_c / 10, omega_0 dt = pi / 10, inside the
+    // explicit step's stability bound 2 (sqrt(1 + zeta^2) - zeta) >= 0.83 for every damping
+    // ratio zeta <= 1. The damped duration it took before is 4.5x longer at e = 1e-6: a review's
+    // pair blew up at a dt the guard accepted, and rebounded faster than it came at 0.7 x it.
+    for (double e : {1e-6, 1e-3, 0.1}) {
+        SCOPED_TRACE(::testing::Message() << "e = " << e);
+        SpringDashpot const model = linearModel(1e4, e);
+        ParticleStorage ps;
+        WallList walls;
+        addPair(ps, 0.01); // relative speed 1
+        ContactTimeEstimate const est = estimateContactTime(ps, model);
+        double const dt = est.contactTime / 10.0;
+        EXPECT_NO_THROW(checkTimeStep(dt, est, false));
+        BlockStepper stepper(ps, walls, model, VelocityVerlet{}, dt);
+        double fastest = 0.0;
+        for (int n = 0; n < 400; ++n) { // the contact lasts ~10 steps at most at e = 0.1
+            stepper.step();
+            fastest = std::max(fastest, (ps.velocity(1) - ps.velocity(0)).norm());
+        }
+        EXPECT_LE(fastest, 1.0 + 1e-12); // no energy from the integrator
+        EXPECT_GE(ps.position(1).x() - ps.position(0).x(), 0.5 * (kRadiusA + kRadiusB));
+    }
 }
 
 TEST(HertzImpact, SlidingFrictionOpposesTheSlipThroughTheContact) {
