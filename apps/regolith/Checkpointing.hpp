@@ -69,7 +69,8 @@ public:
     /// Warns (rank 0) if output.dir holds checkpoints of the steps this run will write after
     /// `firstStep` up to `lastStep`, an earlier run's: they will be replaced. Throws
     /// core::InputError on every rank, before the first step, if one of those names is not a
-    /// regular file (a directory there would only fail the rename after the run). COLLECTIVE.
+    /// file, or not an HDF5 file (a directory there would only fail the rename after the run;
+    /// any other file would be lost). COLLECTIVE.
     void checkReplaced(std::int64_t firstStep, std::int64_t lastStep) const;
     /// Whether afterStep(stepsDone) writes a checkpoint. Not collective.
     [[nodiscard]] bool due(std::int64_t stepsDone) const {

@@ -19,7 +19,7 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     as a full disk): exit code 2 with the message once, no hang, the checkpoint of step 10 and
     nothing else left, which restarts to the reference; a directory under the name of the
     step-20 checkpoint is refused before the first step (exit code 2, the message once,
-    nothing written);
+    nothing written), and so is a file there that is no HDF5 file (kept as it was);
  6. a truncated file, a flipped byte, a scene with another domain, a step beyond
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
@@ -341,6 +341,14 @@ def main():
     if sorted(os.listdir(blocked)) != [expected[0], "checkpoint_00000020.h5"]:
         fail(f"a run refused before its first step wrote into {blocked}: "
              f"{sorted(os.listdir(blocked))}")
+    # So is a file there that is no HDF5 file (it was replaced without a word), kept as it was.
+    notes = runner.path("notes")
+    os.makedirs(notes)
+    with open(os.path.join(notes, "checkpoint_00000020.h5"), "w", encoding="utf-8") as f:
+        f.write("my notes\n")
+    expect_refused(runner, 2, ["--output", notes, "--set", "output.checkpoint_every=10"],
+                   "holds 'checkpoint_00000020.h5', which is not an HDF5 file",
+                   [os.path.join(notes, "checkpoint_00000020.h5")])
 
     truncated = runner.path("truncated.h5")
     shutil.copy(step20, truncated)
