@@ -13,9 +13,9 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
     --benchmark_out_format=json | tee "$out/particles_bench.txt"
 
 # Shadow synchronisation: PUpCS of NNS / SOS / hybrid side by side on 2 ranks, and traffic per
-# rank and step from 1 to 27 ranks (docs/results.md, issue 4).
+# rank and step from 1 to 64 ranks, oversubscribed (docs/results.md, issues 4 and 5).
 /usr/bin/python3 bench/sync/sync_bench.py --build "$build" --out "$out" --repeats 5 \
-    | tee "$out/sync_bench.txt"
+    --comm-ranks 1 2 3 4 8 27 64 | tee "$out/sync_bench.txt"
 
 # DEM suite (issue 5): PUpCS of NNS / SOS / hybrid on the three reference scenes (1 and 2
 # ranks), PUpCS against the large radius (chart), memory per grain; and LAMMPS side by side.

@@ -18,16 +18,17 @@ def mpiexec(ranks):
     return ["mpiexec", "-n", str(ranks), "--oversubscribe", "--bind-to", bind]
 
 
-def run_app(app, ranks, args, allow_refusal=False):
+def run_app(app, ranks, args, refusal=None):
     """Runs `app` (a path) on `ranks` ranks with `args`; returns the summary (--json), or None
-    when the app refused the scene (exit code 2) and `allow_refusal`. Any other failure ends
-    the calling script with the command and its output."""
+    when the app refused the scene with a message containing `refusal` (exit code 2; e.g. NNS
+    refusing a grain too large for it). Any other failure, a refusal for another reason (a typo
+    in a key exits 2 too) included, ends the calling script with the command and its output."""
     with tempfile.TemporaryDirectory() as tmp:
         summary = os.path.join(tmp, "summary.json")
         command = [*mpiexec(ranks), app, *args, "--quiet", "--json", summary]
         done = subprocess.run(command, capture_output=True, text=True, check=False,
                               env={**os.environ, **MPI_ENV})
-        if done.returncode == 2 and allow_refusal:
+        if done.returncode == 2 and refusal is not None and refusal in done.stderr:
             return None
         if done.returncode != 0:
             sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)} exited with "

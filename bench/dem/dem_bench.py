@@ -45,8 +45,13 @@ SCENES = {
 }
 
 
-def run(build, app, ranks, args, allow_refusal=False):
-    return run_app(os.path.join(build, "bin", app), ranks, args, allow_refusal)
+def run(build, app, ranks, args, refusal=None):
+    return run_app(os.path.join(build, "bin", app), ranks, args, refusal)
+
+
+# How NNS refuses a grain too large for the blocks it may touch (ParticleSync); the only
+# refusal the radius sweep expects.
+NNS_REFUSAL = "(NNS only reaches next neighbours)"
 
 
 def median_range(ratios, digits=3):
@@ -160,7 +165,8 @@ def radius(a):
                                 "--set", f"bidisperse.large_radius={r}", "--set",
                                 f"bidisperse.blocks_per_building_block=[{split},{split},{split}]",
                                 "--set", f"sync.method={m}", *extra]
-                        s = run(a.build, "bidisperse", a.radius_ranks, args, allow_refusal=True)
+                        s = run(a.build, "bidisperse", a.radius_ranks, args,
+                                NNS_REFUSAL if m == "nns" else None)
                         rows.append([name, split, a.edge / split, r, m, repeat,
                                      "" if s is None else s["particles"],
                                      "" if s is None else s["pupcs"],

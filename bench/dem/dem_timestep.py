@@ -231,6 +231,9 @@ def stability_map(a, plt):
     save_chart(fig, a.out, "dem-stability", not a.no_docs)
 
 
+PARTS = ("sweep", "map")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("parts", nargs="*", metavar="part", help="sweep, map (default: both)")
@@ -254,9 +257,12 @@ def main():
     p.add_argument("--timeout", type=float, default=600.0)
     p.add_argument("--no-docs", action="store_true", help="do not copy PNGs to docs/images")
     a = p.parse_args()
+    unknown = [part for part in a.parts if part not in PARTS]
+    if unknown:  # (argparse's choices refuse an empty list with nargs="*")
+        p.error(f"unknown part {unknown[0]!r}: expected sweep or map")
     os.makedirs(a.out, exist_ok=True)
     plt = pyplot()
-    for part in a.parts:
+    for part in a.parts or PARTS:  # none named: both (what bench/run-all.sh asks for)
         {"sweep": sweep, "map": stability_map}[part](a, plt)
 
 
