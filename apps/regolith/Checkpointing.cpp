@@ -179,6 +179,10 @@ void checkRestart(core::Comm const& comm, std::string const& path, io::Checkpoin
         throw core::InputError(fmt::format("{}: the checkpoint is at step {}, beyond the scene's "
                                            "time.steps = {} (a total, not a remainder)",
                                            context, info.step, scene.time.steps));
+    if (info.step == scene.time.steps) // (a review read --steps as a remainder)
+        core::log::warn("{}: the checkpoint is at step {}, the scene's time.steps (a total, not "
+                        "a remainder): no step to run",
+                        context, info.step);
     if (info.dt != scene.time.dt)
         core::log::warn("{}: the checkpoint was written with time.dt = {}, the scene has {}",
                         context, info.dt, scene.time.dt);

@@ -24,7 +24,7 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
     byte-identical before and after;
- 7. another scene file (name and friction changed, an [output] added) restarts with one
+ 7. a restart at the scene's last step runs none with a warning; another scene file (name and friction changed, an [output] added) restarts with one
     warning naming the sections that differ (name, contact); so does the same file with a
     --set change of the friction; a checkpoint written with that --set and restarted with
     it does not warn.
@@ -394,6 +394,14 @@ def main():
         command = [runner.mpiexec, "-n", "2", "--oversubscribe", runner.app, scene, *args]
         return command, subprocess.run(command, capture_output=True, text=True, timeout=60,
                                        check=False)
+    # A restart at the scene's last step runs none, and says so (a review read --steps as a
+    # remainder).
+    command, done = loud(runner.scene, ["--restart", step20, "--output", runner.path("none"),
+                                        "--steps", "20"])
+    nothing = f"--restart {step20}: the checkpoint is at step 20, the scene's time.steps"
+    if done.returncode != 0 or done.stdout.count(nothing) != 1:
+        fail(f"{' '.join(command)}: exit {done.returncode}, expected 0 and one warning "
+             f"{nothing!r}\n--- stdout:\n{done.stdout}\n--- stderr:\n{done.stderr}")
     command, done = loud(other, ["--restart", step20, "--output", runner.path("other")])
     warning = (f"--restart {step20}: the checkpoint was written by another scene (it differs in "
                "name, contact)")
