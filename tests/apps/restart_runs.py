@@ -24,7 +24,8 @@ Case "plain" checks, in order (exit 1 with the reason on the first failure):
     time.steps and grains of a material type the scene lacks are refused on 2 ranks: exit
     code 2, the message once on stderr naming the file, no crash, every checkpoint file
     byte-identical before and after;
- 7. a restart at the scene's last step runs none with a warning; another scene file (name and friction changed, an [output] added) restarts with one
+ 7. a restart at the scene's last step runs none with a warning; another scene file (name
+    and friction changed, an [output] added) restarts with one
     warning naming the sections that differ (name, contact); so does the same file with a
     --set change of the friction; a checkpoint written with that --set and restarted with
     it does not warn.
