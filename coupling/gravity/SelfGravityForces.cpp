@@ -13,6 +13,7 @@
 #include "gravity/tree/TreeOptions.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <variant>
 
@@ -171,11 +172,24 @@ private:
     std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
 };
 
+namespace {
+
+/// The forest's extent on its periodic axes, 0 on the others (UpdatePolicy's `period`).
+std::array<double, 3> periodicExtent(domain::BlockForest const& forest) {
+    std::array<double, 3> out{};
+    for (int a = 0; a < 3; ++a)
+        if (forest.periodic()[static_cast<std::size_t>(a)])
+            out[static_cast<std::size_t>(a)] = forest.domain().max[a] - forest.domain().min[a];
+    return out;
+}
+
+} // namespace
+
 SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest const& forest,
                                      SelfGravityConfig const& config)
     : m_comm(&comm)
     , m_method(std::make_unique<Method>(comm, forest, config))
-    , m_policy(config.updateThreshold)
+    , m_policy(config.updateThreshold, periodicExtent(forest))
     , m_uidOrder(config.reproducible)
     , m_G(config.G)
     , m_softening(config.softening) {}

@@ -14,17 +14,25 @@ namespace regolith::gravity {
 
 namespace {
 
-double distance(std::array<double, 3> const& a, double x, double y, double z) {
-    double const dx = x - a[0];
-    double const dy = y - a[1];
-    double const dz = z - a[2];
+/// b - a to the nearest image where `period` > 0.
+double nearest(double b, double a, double period) {
+    double const d = b - a;
+    return period > 0.0 ? d - period * std::round(d / period) : d;
+}
+
+double distance(std::array<double, 3> const& a, double x, double y, double z,
+                std::array<double, 3> const& period) {
+    double const dx = nearest(x, a[0], period[0]);
+    double const dy = nearest(y, a[1], period[1]);
+    double const dz = nearest(z, a[2], period[2]);
     return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 } // namespace
 
-UpdatePolicy::UpdatePolicy(double threshold)
-    : m_threshold(threshold) {
+UpdatePolicy::UpdatePolicy(double threshold, std::array<double, 3> period)
+    : m_threshold(threshold)
+    , m_period(period) {
     if (!(threshold >= 0.0) || !std::isfinite(threshold))
         throw core::InputError(fmt::format(
             "gravity.update_threshold = {}: the displacement threshold must be finite and "
@@ -51,7 +59,7 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
             continue;
         }
         it->second.seen = m_call;
-        local = std::max(local, distance(it->second.record.reference, x[i], y[i], z[i]));
+        local = std::max(local, distance(it->second.record.reference, x[i], y[i], z[i], m_period));
     }
     // One reduction: the largest displacement, and whether any rank misses a record.
     std::array<double, 2> global{local, missing.empty() ? 0.0 : 1.0};
@@ -69,7 +77,8 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
             auto const it = m_records.find(uid[i]);
             local = it == m_records.end()
                         ? std::numeric_limits<double>::infinity() // a grain new since the update
-                        : std::max(local, distance(it->second.record.reference, x[i], y[i], z[i]));
+                        : std::max(local, distance(it->second.record.reference, x[i], y[i], z[i],
+                                                   m_period));
         }
         global[0] = comm.allReduce(local, core::ReduceOp::Max);
     }

@@ -31,8 +31,11 @@ struct GrainRecord {
 class UpdatePolicy {
 public:
     /// `threshold` in m (`gravity.update_threshold`); 0 recomputes every step. Throws
-    /// core::InputError naming the key if negative or not finite.
-    explicit UpdatePolicy(double threshold);
+    /// core::InputError naming the key if negative or not finite. `period`: the domain's
+    /// extent on its periodic axes, 0 on the others; a displacement is measured to the nearest
+    /// image there, so that a grain wrapped across a periodic face has moved only its step
+    /// (a review counted extra updates at every crossing).
+    explicit UpdatePolicy(double threshold, std::array<double, 3> period = {0.0, 0.0, 0.0});
     ~UpdatePolicy();
     UpdatePolicy(UpdatePolicy&&) noexcept;
     UpdatePolicy& operator=(UpdatePolicy&&) noexcept;
@@ -90,6 +93,7 @@ public:
 
 private:
     double m_threshold;
+    std::array<double, 3> m_period; ///< periodic extents, 0 on open axes [m]
     long long m_updates = 0;
     double m_lastMax = 0.0;
     std::uint64_t m_call = 0; ///< due() calls so far (Entry::seen)

@@ -35,6 +35,24 @@ TEST(UpdatePolicy, TriggersOnTheLargestDisplacementOfAnyRank) {
     EXPECT_TRUE(policy.due(world(), uid, x, y, z));
 }
 
+TEST(UpdatePolicy, AWrapAcrossAPeriodicFaceIsOnlyTheStep) {
+    // A grain 0.1 inside the lower x face of a periodic domain of extent 10 steps 0.2 across
+    // it and is wrapped to 9.9: it moved 0.2, not 9.8 (a review counted an update at every
+    // crossing). The open axis y counts the whole displacement.
+    std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(world().rank())};
+    std::vector<double> x{0.1}, y{5.0}, z{5.0};
+    gravity::UpdatePolicy periodic(0.5, {10.0, 0.0, 10.0});
+    gravity::UpdatePolicy open(0.5);
+    for (gravity::UpdatePolicy* p : {&periodic, &open})
+        p->markUpdated(uid, x, y, z);
+    x[0] = 9.9;
+    EXPECT_FALSE(periodic.due(world(), uid, x, y, z));
+    EXPECT_NEAR(periodic.lastMaxDisplacement(), 0.2, 1e-12);
+    EXPECT_TRUE(open.due(world(), uid, x, y, z));
+    y[0] = 5.6; // beyond the threshold on the open axis
+    EXPECT_TRUE(periodic.due(world(), uid, x, y, z));
+}
+
 TEST(UpdatePolicy, GrainsThatChangeRankBringTheirRecord) {
     // Layout independence: a grain that moved to another rank (here every grain moves to the
     // next rank) keeps its reference and field, so no update is forced; its displacement
