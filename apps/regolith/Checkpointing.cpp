@@ -254,24 +254,6 @@ void CheckpointSchedule::afterStep(std::int64_t stepsDone) {
         write(stepsDone);
 }
 
-namespace {
-
-/// Why `path` may not be replaced by a checkpoint ("" if it may): it is not a file, or not an
-/// HDF5 file (whose signature opens the file: our writer uses no user block).
-std::string notACheckpoint(std::filesystem::path const& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec))
-        return "which is not a file";
-    static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
-    char head[8] = {};
-    std::ifstream in(path, std::ios::binary);
-    if (!in.read(head, sizeof head) || !std::equal(head, head + 8, kSignature))
-        return "which is not an HDF5 file";
-    return {};
-}
-
-} // namespace
-
 void CheckpointSchedule::checkReplaced(std::int64_t firstStep, std::int64_t lastStep) const {
     if (m_output.checkpointEvery <= 0)
         return;
@@ -280,7 +262,8 @@ void CheckpointSchedule::checkReplaced(std::int64_t firstStep, std::int64_t last
         auto const names =
             io::checkpointsToReplace(m_output.dir, m_output.checkpointEvery, firstStep, lastStep);
         for (std::string const& name : names) {
-            std::string const why = notACheckpoint(std::filesystem::path(m_output.dir) / name);
+            std::string const why =
+                io::notACheckpointFile((std::filesystem::path(m_output.dir) / name).string());
             if (!why.empty()) {
                 failure = fmt::format("output.dir = \"{}\" holds '{}', {}: this run writes its "
                                       "checkpoint there; remove or rename it, or choose another "

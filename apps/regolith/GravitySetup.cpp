@@ -1,5 +1,6 @@
 #include "apps/regolith/GravitySetup.hpp"
 
+#include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
 #include "gravity/update/UpdatePolicy.hpp"
@@ -68,19 +69,6 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
 }
 
-namespace {
-
-/// f(storage, index) for every master of this rank's blocks.
-template <class F>
-void forEachLocalMaster(particles::LocalParticles const& local, F&& f) {
-    for (particles::BlockParticles const& bp : local.blocks()) {
-        particles::ParticleStorage const& ps = bp.particles;
-        ps.forEachMaster([&](std::size_t i) { f(ps, i); });
-    }
-}
-
-} // namespace
-
 void warnSelfGravityParameters(core::Comm const& comm, particles::LocalParticles const& local,
                                SceneDescription const& scene) {
     warnLazyUpdateThreshold(comm, local, scene);
@@ -94,9 +82,7 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles c
     if (g.self == SelfGravity::None || !(g.updateThreshold > 0.0))
         return;
     double smallest = std::numeric_limits<double>::infinity();
-    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
-        smallest = std::min(smallest, ps.radius(i));
-    });
+    masterSource(local)([&](MasterRecord const& m) { smallest = std::min(smallest, m.radius); });
     smallest = comm.allReduce(smallest, core::ReduceOp::Min);
     std::string const warning =
         gravity::UpdatePolicy::thresholdWarning(g.updateThreshold, 2.0 * smallest);
@@ -110,8 +96,8 @@ void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& l
         scene.contact.model != ContactModel::SpringDashpot)
         return;
     double worst = 0.0; // m² / r³
-    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
-        double const m = ps.mass(i), r = ps.radius(i);
+    masterSource(local)([&](MasterRecord const& g) {
+        double const m = g.mass, r = g.radius;
         if (r > 0.0 && std::isfinite(m))
             worst = std::max(worst, m * m / (r * r * r));
     });
@@ -133,10 +119,10 @@ void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const
     if (scene.gravity.self == SelfGravity::None)
         return;
     double density = 0.0;
-    forEachLocalMaster(local, [&](particles::ParticleStorage const& ps, std::size_t i) {
-        double const r = ps.radius(i);
+    masterSource(local)([&](MasterRecord const& m) {
+        double const r = m.radius;
         if (r > 0.0)
-            density = std::max(density, ps.mass(i) / (4.0 / 3.0 * std::numbers::pi * r * r * r));
+            density = std::max(density, m.mass / (4.0 / 3.0 * std::numbers::pi * r * r * r));
     });
     density = comm.allReduce(density, core::ReduceOp::Max);
     if (!(density > 0.0))

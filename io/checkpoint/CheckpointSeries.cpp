@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string_view>
 #include <system_error>
 
@@ -43,6 +44,18 @@ std::vector<std::string> checkpointsToReplace(std::string const& dir, std::int64
     }
     std::sort(out.begin(), out.end());
     return out;
+}
+
+std::string notACheckpointFile(std::string const& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+        return "which is not a file";
+    static constexpr char kSignature[8] = {'\x89', 'H', 'D', 'F', '\r', '\n', '\x1a', '\n'};
+    char head[8] = {};
+    std::ifstream in(path, std::ios::binary);
+    if (!in.read(head, sizeof head) || !std::equal(head, head + 8, kSignature))
+        return "which is not an HDF5 file";
+    return {};
 }
 
 std::vector<std::string> rotateCheckpoints(std::vector<std::string>& written, std::int64_t keep) {

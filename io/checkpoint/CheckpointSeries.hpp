@@ -17,6 +17,11 @@ namespace regolith::io {
                                                             std::int64_t firstStep,
                                                             std::int64_t lastStep);
 
+/// Why `path` cannot be a checkpoint this library wrote ("" if it may be one): it is not a
+/// regular file, or its first bytes are not HDF5's signature (the writer uses no user block).
+/// For a run about to replace it. Not collective.
+[[nodiscard]] std::string notACheckpointFile(std::string const& path);
+
 /// Deletes the checkpoints of `written` (the ones this run wrote, oldest first) except the
 /// newest `keep` (keep <= 0: deletes none), drops them from the list and returns them. Files
 /// this run did not write -- an earlier run's in the same directory, the checkpoint it

@@ -237,19 +237,23 @@ void DemStep::syncParticles() {
                 mine = fastest[b];
             }
         double const myShare = motion[1];
+        // The lowest of every rank's `candidate` (kInvalidUid: none here). COLLECTIVE.
+        auto const lowestUid = [this](Uid candidate) {
+            auto const uids = m_comm->allGather<Uid>(candidate);
+            return *std::min_element(uids.begin(), uids.end());
+        };
         if (m_comm->size() > 1)
             m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
         if (!std::isfinite(motion[1])) { // LargestMove: +inf for a non-finite displacement
             // Every rank is here: the lowest uid of a master gone non-finite, on any layout.
-            std::uint64_t worst = kInvalidUid;
+            Uid worst = kInvalidUid;
             for (BlockParticles const& bp : blocks)
                 bp.particles.forEachMaster([&](std::size_t i) {
                     ParticleStorage const& ps = bp.particles;
                     if (!(ps.position(i).allFinite() && ps.velocity(i).allFinite()))
-                        worst = std::min<std::uint64_t>(worst, ps.uid(i));
+                        worst = std::min(worst, ps.uid(i));
                 });
-            auto const uids = m_comm->allGather<std::uint64_t>(worst);
-            Uid const uid = *std::min_element(uids.begin(), uids.end());
+            Uid const uid = lowestUid(worst);
             throw core::InputError(fmt::format(
                 "step {}: {} position became non-finite: the motion is unstable; reduce "
                 "time.dt or the contact stiffness",
@@ -259,9 +263,7 @@ void DemStep::syncParticles() {
         }
         if (!(motion[1] < 1.0)) {
             // Every rank is here (the shares are reduced): the uid from those that hold it.
-            auto const uids = m_comm->allGather<std::uint64_t>(
-                myShare == motion[1] ? std::uint64_t{mine} : std::uint64_t{kInvalidUid});
-            Uid const uid = *std::min_element(uids.begin(), uids.end());
+            Uid const uid = lowestUid(myShare == motion[1] ? mine : kInvalidUid);
             throw core::InputError(fmt::format(
                 "step {}: {} moved {:.6g} block edges in one step, beyond the neighbour "
                 "blocks the synchronisation reaches (the smallest edge around it is {:.6g}): "
