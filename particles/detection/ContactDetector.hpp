@@ -143,14 +143,33 @@ void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, KeptSpring* 
 /// migrate, wrap or change hands while the list holds, and nothing else evaluates it: its
 /// tangential spring is then kept beside the pair (PairMode::Kept, VerletList::spring) and
 /// handed to the callback in place of the history hint, as LAMMPS's fix neigh/history keeps
-/// its shear history. Why: touching the grain's history per contact cost a quarter of a
-/// static packing's pair loop (docs/results.md, issue 5, "The kernel with the springs beside
-/// the list"). The grains' histories are stale for those pairs until writeBackSprings(), which
-/// the caller must call before anything reads or changes them or moves a copy out of the
-/// block: before a synchronisation whose motion could reach skin / 2 (beforeSync), a
-/// checkpoint, release(). The next detect fills the springs from the histories again (kept
-/// entry = the history entry, with stamps as ContactHistory's), so every step computes the
-/// same bits as with the histories.
+/// its shear history; so is a settled face pair's (below), whose wraps are handled there. Why:
+/// touching the grain's history per contact cost a quarter of a static packing's pair loop
+/// (docs/results.md, issue 5, "The kernel with the springs beside the list"). The grains' histories
+/// are stale for those pairs until writeBackSprings(), which the caller must call before anything
+/// reads or changes them or moves a copy out of the block: before a synchronisation whose motion
+/// could reach skin / 2 (beforeSync), a checkpoint, release(). The next detect fills the springs
+/// from the histories again (kept entry = the history entry, with stamps as ContactHistory's), so
+/// every step computes the same bits as with the histories.
+///
+/// Pairs across a periodic face of a block that is the whole domain (a run on one block;
+/// DetectorConfig::settleFaceTwins). Such a block holds every image instance of a pair that
+/// touches across a periodic face: i's master with j's image beyond the face, i's image with
+/// j's master, and so on. The contact-point rule picks one of them each step by where the point
+/// wraps, so they stayed in PairMode::Check with their springs travelling through the
+/// histories: in a lattice aligned with the faces (MESA-PD's GranularGas) every face pair, and
+/// a tenth of its step (docs/results.md, issue 5, "Face pairs settled"). Any instance
+/// evaluates the contact with the same bits (the geometry is computed in i's canonical frame),
+/// so at a rebuild the list settles the one whose i is i's master (image zero), like a pair
+/// inside the block (PairMode::Owned or Kept, with j's periodic shift), if its copies are sure
+/// to live as long as the list: j's copy at its image because j's ball there reaches into the
+/// block by more than the half skin (the synchronisation keeps a copy wherever a ball overlaps a
+/// block), and i's master until i wraps. Its twins, the instances with the same uids and image
+/// difference (FaceTwinKey), are dropped, at the rebuild and when they arrive later (as i's
+/// ball starts to cross the face). A wrap replaces every copy of the grain in the block, so the
+/// settled pair and its twins die together; the new copies' instances arrive and keep the rule
+/// until the next rebuild, and the settled pair's kept spring goes back to the histories of
+/// i's copies, found by uid (tests/particles/simulation/KeptSpringsTest.cpp).
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -233,6 +252,14 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
+    /// A settled face pair (see "Pairs across a periodic face"): its twin's key, its ids and
+    /// its place in the list.
+    struct FaceTwin {
+        FaceTwinKey key;
+        VerletList::Id a, b;
+        std::size_t pair;
+    };
+
     [[nodiscard]] bool listed() const { return m_config.skin > 0.0 || m_config.relativeSkin > 0.0; }
     /// Follows the storage's changes, adds the arrivals' pairs or rebuilds the list.
     void updateList(ParticleStorage& particles, core::AABB const& region,
@@ -266,6 +293,30 @@ private:
                                        std::size_t kb, VerletList::Id a, VerletList::Id b,
                                        core::AABB const& region, PeriodicFrame const& frame,
                                        double rounding) const;
+    /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
+    /// order, with their storage indices ka, kb) while the list holds.
+    enum class Listing { Drop, Check, Always, Open };
+    Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
+                         std::size_t& ka, std::size_t& kb, core::AABB const& region,
+                         PeriodicFrame const& frame, double rounding) const;
+    /// Whether the block settles the pairs across its periodic faces (see "Pairs across a
+    /// periodic face"): configured to, and `region` is the whole of `frame`'s domain with a
+    /// periodic axis.
+    [[nodiscard]] bool holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const;
+    /// Lists in m_twins the open pairs from the `first`-th on that the block evaluates in place of
+    /// their twins (canonical ka, kb; i's master and j's copy that is sure to exist).
+    void findFaceTwins(ParticleStorage const& particles, core::AABB const& region,
+                       PeriodicFrame const& frame, std::size_t first, double rounding);
+    [[nodiscard]] bool faceTwinAlive(FaceTwin const& t) const;
+    /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped),
+    /// writing their kept springs back first.
+    void forgetDeadFaceTwins(ParticleStorage& particles);
+    /// Writes settled face pair t's kept spring (if it keeps one) back to the histories of i's
+    /// master and i's other images.
+    void writeBackFaceTwin(ParticleStorage& particles, FaceTwin const& t) const;
+    /// Writes a kept spring back to the history of copy i, for partner `partner`.
+    void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,
+                         KeptSpring const& kept) const;
     /// Fills the kept springs of the pairs from the `first`-th on from the histories.
     void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
@@ -283,6 +334,7 @@ private:
     VerletList m_list;
     std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
+    std::vector<FaceTwin> m_twins;          ///< sorted by key
     double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect

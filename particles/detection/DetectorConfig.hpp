@@ -26,6 +26,11 @@ struct DetectorConfig {
     /// callback takes them (TakesKeptSprings). That caller must write them back
     /// (ContactDetector::beforeSync, writeBackSprings) before anything reads the histories.
     bool keepSprings = false;
+    /// Settle the pairs across a periodic face of a block that is the whole domain
+    /// (ContactDetector, "Pairs across a periodic face"). It relies on the synchronisation's
+    /// copies (one wherever a ball overlaps a block, at every image), which a storage filled
+    /// otherwise need not hold: set by DemStep, whose storages are the synchronisation's.
+    bool settleFaceTwins = false;
 };
 
 /// What the last `detect` call did (for tests and benchmarks).
@@ -55,6 +60,9 @@ struct DetectorStats {
     /// Of those, the pairs whose tangential spring is kept beside the list
     /// (DetectorConfig::keepSprings).
     std::size_t keptPairs = 0;
+    /// Of those, the pairs across a periodic face settled in place of their twins
+    /// (ContactDetector, "Pairs across a periodic face").
+    std::size_t faceTwins = 0;
     std::size_t arrivals = 0;
 };
 

@@ -62,27 +62,32 @@ void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t fir
     m_springsLive = true;
 }
 
+void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid partner,
+                                      KeptSpring const& kept) const {
+    if (kept.stamp == KeptSpring::kUntouched)
+        return; // filled from an absent entry, never touched since
+    ContactHistory& history = ps.history(i);
+    HistoryEntry const entry{partner, kept.spring, kept.stamp};
+    if (HistoryEntry* e = history.find(entry.partner))
+        *e = entry;
+    else if (kept.stamp == m_pass) // a contact of the last pass (new since the fill)
+        history.set(entry);
+}
+
 void ContactDetector::writeBackSprings(ParticleStorage& ps) {
     if (!m_springsLive)
         return;
     m_springsLive = false;
     if (m_list.numKept() == 0)
         return;
-    // Kept pairs join two masters that cannot leave the block while the springs are live:
-    // both are alive.
+    // Kept pairs inside the block join two masters that cannot leave it while the springs are
+    // live: both are alive.
     m_list.forEachPair([&](std::size_t i, std::size_t j, std::size_t p) {
-        if (!keepsSpring(m_list.mode(p)))
-            return;
-        KeptSpring const& kept = m_list.spring(p);
-        if (kept.stamp == KeptSpring::kUntouched)
-            return; // filled from an absent entry, never touched since
-        ContactHistory& history = ps.history(i);
-        HistoryEntry const entry{ps.uid(j), kept.spring, kept.stamp};
-        if (HistoryEntry* e = history.find(entry.partner))
-            *e = entry;
-        else if (kept.stamp == m_pass) // a contact of the last pass (new since the fill)
-            history.set(entry);
+        if (keepsSpring(m_list.mode(p)))
+            writeBackSpring(ps, i, ps.uid(j), m_list.spring(p));
     });
+    for (FaceTwin const& t : m_twins)
+        writeBackFaceTwin(ps, t);
 }
 
 } // namespace regolith::particles

@@ -49,20 +49,20 @@ public:
     /// keyed rollingKey(uid(j)) (else nullptr). Pre: !full().
     void add(PairOverlap const& p, HistoryEntry& entry, std::uint8_t hint,
              HistoryEntry* rolling = nullptr);
-    /// Adds the overlapping pair (i, j) (canonical order, one image: no shift) whose spring
-    /// `kept` lives beside a neighbour list (ContactDetector, "Springs kept beside the list"),
-    /// with the spring the touch of pass `stamp` would leave it, but not stamped: the caller
-    /// writes the entry (spring and stamp) after evaluate. Without model C's rolling spring.
-    /// Pre: !full().
-    [[gnu::always_inline]] void addKept(std::size_t i, std::size_t j, KeptSpring& kept,
-                                        std::uint32_t stamp) {
+    /// Adds the overlapping pair (i, j) (canonical order, j's periodic shift `shiftJ`: +0 for
+    /// one image) whose spring `kept` lives beside a neighbour list (ContactDetector, "Springs
+    /// kept beside the list"), with the spring the touch of pass `stamp` would leave it, but
+    /// not stamped: the caller writes the entry (spring and stamp) after evaluate. Without
+    /// model C's rolling spring. Pre: !full().
+    [[gnu::always_inline]] void addKept(std::size_t i, std::size_t j, core::Vec3 const& shiftJ,
+                                        KeptSpring& kept, std::uint32_t stamp) {
         std::size_t const k = m_size++;
         m_i[k] = static_cast<std::uint32_t>(i);
         m_j[k] = static_cast<std::uint32_t>(j);
-        m_kept[k] = &kept;   // (entry, hint and rolling entry are not read for a kept pair)
-        m_shift[0][k] = 0.0; // imageOffset of a zero image difference: +0
-        m_shift[1][k] = 0.0;
-        m_shift[2][k] = 0.0;
+        m_kept[k] = &kept; // (entry, hint and rolling entry are not read for a kept pair)
+        m_shift[0][k] = shiftJ.x();
+        m_shift[1][k] = shiftJ.y();
+        m_shift[2][k] = shiftJ.z();
         // The spring ContactHistory::touch leaves: zero unless the contact continues.
         bool const continued = ContactHistory::continues(kept.stamp, stamp);
         m_s[0][k] = continued ? kept.spring.x() : 0.0;
@@ -197,7 +197,7 @@ public:
     [[gnu::always_inline]] void operator()(PairOverlap const& p, KeptSpring& kept) {
         if (m_batch.full())
             finish();
-        m_batch.addKept(p.i, p.j, kept, m_stamp);
+        m_batch.addKept(p.i, p.j, p.shiftJ, kept, m_stamp);
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
     /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
@@ -205,7 +205,7 @@ public:
     [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, KeptSpring& spring) {
         if (m_batch.full())
             finish();
-        m_batch.addKept(i, j, spring, m_stamp);
+        m_batch.addKept(i, j, core::Vec3::Zero(), spring, m_stamp); // one image: +0
     }
 
     /// The pass (ContactHistory stamp) this evaluates.

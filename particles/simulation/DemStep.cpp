@@ -46,6 +46,7 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     DetectorConfig detector = config.detector;
     auto const* linear = std::get_if<SpringDashpot>(&m_model);
     detector.keepSprings = config.keepSprings && linear != nullptr && !linear->hasRollingSpring();
+    detector.settleFaceTwins = true; // the storages are the synchronisation's
     m_detectors.assign(blocks, ContactDetector(detector));
     m_contacts.resize(blocks);
     m_records.resize(blocks);
@@ -195,6 +196,13 @@ std::size_t DemStep::keptPairs() const {
     for (ContactDetector const& d : m_detectors)
         kept += d.stats().keptPairs;
     return kept;
+}
+
+std::size_t DemStep::faceTwins() const {
+    std::size_t twins = 0;
+    for (ContactDetector const& d : m_detectors)
+        twins += d.stats().faceTwins;
+    return twins;
 }
 
 void DemStep::writeBackSprings() {

@@ -188,6 +188,10 @@ public:
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
     [[nodiscard]] std::size_t keptPairs() const;
+    /// Pairs across a periodic face that the local blocks' Verlet lists settled in place of
+    /// their twins (ContactDetector, "Pairs across a periodic face"), as of the last force
+    /// computation. Local.
+    [[nodiscard]] std::size_t faceTwins() const;
     /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
     /// (DemStepConfig::detector without a skin). Local.
     [[nodiscard]] double listSkin() const;

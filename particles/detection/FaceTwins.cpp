@@ -1,0 +1,101 @@
+/// Pairs across a periodic face of a block that is the whole domain (ContactDetector's class
+/// comment, "Pairs across a periodic face"): which instance of such a pair the list settles,
+/// and when the settlement breaks.
+#include "particles/detection/ContactDetector.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace regolith::particles {
+
+bool ContactDetector::holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const {
+    bool const periodic = frame.periodic[0] || frame.periodic[1] || frame.periodic[2];
+    return m_config.settleFaceTwins && periodic && region.min == frame.domain.min &&
+           region.max == frame.domain.max;
+}
+
+void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const& region,
+                                    PeriodicFrame const& frame, std::size_t first,
+                                    double rounding) {
+    core::Vec3 const period = frame.period();
+    // A centre moves less than skin / 2 from its reference while the list holds.
+    double const motion = 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
+    m_list.forEachPair(
+        [&](std::size_t ka, std::size_t kb, std::size_t) {
+            VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
+            if (settleListed(ps, a, b, ka, kb, region, frame, rounding) != Listing::Open)
+                return;
+            // i's master: the one copy of i that nothing but a wrap replaces.
+            if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))
+                return;
+            // No second image instance of the pair through another period (which would share
+            // the spring in the histories, as in settledMode).
+            double const twice =
+                2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
+            for (std::size_t d = 0; d < 3; ++d)
+                if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
+                    return;
+            // j's copy at its image exists while the list holds: its ball reaches into the
+            // block by more than the motion (the synchronisation keeps a copy wherever a ball
+            // overlaps a block). j's master always does.
+            if (!ps.flags(kb).isMaster() || !isZero(ps.image(kb))) {
+                core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
+                double outside2 = 0.0;
+                for (int d = 0; d < 3; ++d) {
+                    double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
+                    outside2 += out * out;
+                }
+                if (!(std::sqrt(outside2) + motion < ps.radius(kb)))
+                    return;
+            }
+            m_twins.push_back(
+                {FaceTwinKey{ps.uid(ka), ps.uid(kb),
+                             detection_detail::imageDifference(ps.image(kb), ps.image(ka))},
+                 a, b, 0});
+        },
+        first);
+    std::sort(m_twins.begin(), m_twins.end(),
+              [](FaceTwin const& x, FaceTwin const& y) { return x.key < y.key; });
+}
+
+bool ContactDetector::faceTwinAlive(FaceTwin const& t) const {
+    return m_list.indexOf(t.a) != VerletList::kDead && m_list.indexOf(t.b) != VerletList::kDead;
+}
+
+void ContactDetector::forgetDeadFaceTwins(ParticleStorage& ps) {
+    // A settled face pair dies with a grain that wraps: the synchronisation then replaces every
+    // copy of that grain in the block, so every instance of the pair dies with it (its twins
+    // too), and the instances of the new copies arrive, keeping the rule (PairMode::Check)
+    // until the next rebuild. The spring goes back to the histories now, where they read it.
+    std::erase_if(m_twins, [&](FaceTwin const& t) {
+        if (faceTwinAlive(t))
+            return false;
+        if (m_springsLive)
+            writeBackFaceTwin(ps, t);
+        return true;
+    });
+}
+
+void ContactDetector::writeBackFaceTwin(ParticleStorage& ps, FaceTwin const& t) const {
+    if (!keepsSpring(m_list.mode(t.pair)))
+        return;
+    // i's master, found by uid once a wrap replaced it (the block is the whole domain).
+    std::size_t const i =
+        faceTwinAlive(t) ? std::size_t{m_list.indexOf(t.a)} : ps.find(t.key.i, kNoImage);
+    if (i == ParticleStorage::kNotFound)
+        return; // i left the domain through an open face
+    writeBackSpring(ps, i, t.key.j, m_list.spring(t.pair));
+    // The synchronisation copied i's stale history to i's other images, which an instance of
+    // the pair keeping the rule may read in this very pass (after a wrap, or in the rebuilt
+    // list): they get the master's again, as the next synchronisation would give them. (Those
+    // images lie within one period of the master: the pair's reach is under half of it.)
+    for (std::int8_t x = -1; x <= 1; ++x)
+        for (std::int8_t y = -1; y <= 1; ++y)
+            for (std::int8_t z = -1; z <= 1; ++z) {
+                std::size_t const k = ps.find(t.key.i, CopyImage{x, y, z});
+                if (k != ParticleStorage::kNotFound && k != i)
+                    ps.history(k).assign(ps.history(i).entries());
+            }
+}
+
+} // namespace regolith::particles
