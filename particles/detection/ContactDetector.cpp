@@ -252,7 +252,7 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
                 break;
             if (t->a == a && t->b == b) { // the instance the block evaluates
                 t->pair = place;
-                mode = static_cast<int>(m_config.keepSprings ? PairMode::Kept : PairMode::Owned);
+                mode = static_cast<int>(faceTwinMode(ps, ka, kb, a, b, frame, rounding));
             } else if (m_list.indexOf(t->a) != VerletList::kDead &&
                        m_list.indexOf(t->b) != VerletList::kDead) {
                 return VerletList::kDrop; // its twin, evaluated in its place

@@ -34,12 +34,13 @@ template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
 /// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
 /// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
-/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
-/// as `kept(i, j, spring)` with the pair's storage indices (canonical order, one image); and
+/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed,
+/// KeptPressedAcross), as `kept(i, j, shiftJ, spring)` with the pair's storage indices
+/// (canonical order) and j's periodic shift; and
 /// tells the pass (ContactHistory stamp) it evaluates, `pass()`.
 template <class OnPair>
 concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
-    f.kept(i, i, spring);
+    f.kept(i, i, core::Vec3::Zero(), spring);
     { f.pass() } -> std::convertible_to<std::uint32_t>; // the stamp it evaluates with
 };
 template <class OnPair>
@@ -307,6 +308,11 @@ private:
     /// their twins (canonical ka, kb; i's master and j's copy that is sure to exist).
     void findFaceTwins(ParticleStorage const& particles, core::AABB const& region,
                        PeriodicFrame const& frame, std::size_t first, double rounding);
+    /// The mode of a settled face pair (canonical ka, kb; ids a, b): Owned, or Kept or
+    /// KeptPressedAcross if it keeps its spring beside the list.
+    [[nodiscard]] PairMode faceTwinMode(ParticleStorage const& particles, std::size_t ka,
+                                        std::size_t kb, VerletList::Id a, VerletList::Id b,
+                                        PeriodicFrame const& frame, double rounding) const;
     [[nodiscard]] bool faceTwinAlive(FaceTwin const& t) const;
     /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped),
     /// writing their kept springs back first.
@@ -317,6 +323,9 @@ private:
     /// Writes a kept spring back to the history of copy i, for partner `partner`.
     void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,
                          KeptSpring const& kept) const;
+    /// Whether a listed pair whose reference centres are `apart` overlaps (reach r_a + r_b)
+    /// while the list holds.
+    [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;
     /// Fills the kept springs of the pairs from the `first`-th on from the histories.
     void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
@@ -394,9 +403,16 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         if constexpr (TakesPairOverlaps<OnPair>) {
             if (!keepPairs) {
                 if constexpr (TakesKeptSprings<OnPair>) {
-                    if (mode == PairMode::KeptPressed && kept != nullptr) { // overlaps: no test
+                    if (isPressed(mode) && kept != nullptr) { // overlaps: no test
                         overlaps += screen.flush(ps, period, onPair) + 1;
-                        onPair.kept(a, b, *kept);
+                        // One image (+0), or j's shift as the canonical geometry takes it.
+                        onPair.kept(a, b,
+                                    mode == PairMode::KeptPressed
+                                        ? core::Vec3::Zero()
+                                        : imageOffset(detection_detail::imageDifference(
+                                                          ps.image(b), ps.image(a)),
+                                                      period),
+                                    *kept);
                         return;
                     }
                 }

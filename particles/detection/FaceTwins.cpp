@@ -58,6 +58,20 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
               [](FaceTwin const& x, FaceTwin const& y) { return x.key < y.key; });
 }
 
+PairMode ContactDetector::faceTwinMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                       VerletList::Id a, VerletList::Id b,
+                                       PeriodicFrame const& frame, double rounding) const {
+    if (!m_config.keepSprings)
+        return PairMode::Owned;
+    core::Vec3 const period = frame.period();
+    double const apart = (localPosition(m_list.reference(b), ps.image(kb), period) -
+                          localPosition(m_list.reference(a), ps.image(ka), period))
+                             .norm();
+    return pressedWhileListed(apart, ps.radius(ka) + ps.radius(kb), rounding)
+               ? PairMode::KeptPressedAcross
+               : PairMode::Kept;
+}
+
 bool ContactDetector::faceTwinAlive(FaceTwin const& t) const {
     return m_list.indexOf(t.a) != VerletList::kDead && m_list.indexOf(t.b) != VerletList::kDead;
 }

@@ -36,14 +36,17 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     for (std::size_t d = 0; d < 3; ++d)
         if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
             return PairMode::Owned;
-    // Overlapping while the list holds: each centre stays within skin / 2 of its reference
-    // (and that within the reference slack of the stored one), so the distance stays below the
-    // stored one + skin + 2 slacks; the relative 1e-9 covers the rounding of the test in the
-    // lanes (PairRule.hpp's overlapping, sqrt(d2) < r_a + r_b).
-    double const apart = (m_list.reference(b) - m_list.reference(a)).norm();
     bool const pressed =
-        apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
+        pressedWhileListed((m_list.reference(b) - m_list.reference(a)).norm(), reach, rounding);
     return pressed ? PairMode::KeptPressed : PairMode::Kept;
+}
+
+bool ContactDetector::pressedWhileListed(double apart, double reach, double rounding) const {
+    // Each centre stays within skin / 2 of its reference (and that within the reference slack
+    // of the stored one), so the distance stays below the references' `apart` + skin + 2
+    // slacks; the relative 1e-9 covers the rounding of the test in the lanes (PairRule.hpp's
+    // overlapping, sqrt(d2) < r_a + r_b).
+    return apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
 }
 
 void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {

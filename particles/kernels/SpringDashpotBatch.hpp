@@ -200,12 +200,13 @@ public:
         m_batch.addKept(p.i, p.j, p.shiftJ, kept, m_stamp);
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
-    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
-    /// by its storage indices.
-    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, KeptSpring& spring) {
+    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed,
+    /// KeptPressedAcross), by its storage indices and j's periodic shift.
+    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, core::Vec3 const& shiftJ,
+                                     KeptSpring& spring) {
         if (m_batch.full())
             finish();
-        m_batch.addKept(i, j, core::Vec3::Zero(), spring, m_stamp); // one image: +0
+        m_batch.addKept(i, j, shiftJ, spring, m_stamp);
     }
 
     /// The pass (ContactHistory stamp) this evaluates.
