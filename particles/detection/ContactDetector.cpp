@@ -224,10 +224,8 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     // The list's reference positions are floats: the midpoint is off by at most their slack.
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
     bool const twins = holdsFaceTwins(region, frame);
-    if (first == 0)
-        m_twins.clear();
     if (twins && first == 0) // arrivals are never settled face pairs, only their dropped twins
-        findFaceTwins(ps, region, frame, first, rounding);
+        findFaceTwins(ps, region, frame, rounding);
     std::size_t place = first; // where classifyFrom puts the pair it is deciding
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = 0, kb = 0;

@@ -304,10 +304,10 @@ private:
     /// periodic face"): configured to, and `region` is the whole of `frame`'s domain with a
     /// periodic axis.
     [[nodiscard]] bool holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const;
-    /// Lists in m_twins the open pairs from the `first`-th on that the block evaluates in place of
-    /// their twins (canonical ka, kb; i's master and j's copy that is sure to exist).
+    /// Lists in m_twins the open pairs of a new list that the block evaluates in place of their
+    /// twins (canonical ka, kb; i's master and j's copy that is sure to live as long as the list).
     void findFaceTwins(ParticleStorage const& particles, core::AABB const& region,
-                       PeriodicFrame const& frame, std::size_t first, double rounding);
+                       PeriodicFrame const& frame, double rounding);
     /// The mode of a settled face pair (canonical ka, kb; ids a, b): Owned, or Kept or
     /// KeptPressedAcross if it keeps its spring beside the list.
     [[nodiscard]] PairMode faceTwinMode(ParticleStorage const& particles, std::size_t ka,

@@ -15,45 +15,41 @@ bool ContactDetector::holdsFaceTwins(core::AABB const& region, PeriodicFrame con
 }
 
 void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const& region,
-                                    PeriodicFrame const& frame, std::size_t first,
-                                    double rounding) {
+                                    PeriodicFrame const& frame, double rounding) {
     core::Vec3 const period = frame.period();
     // A centre moves less than skin / 2 from its reference while the list holds.
     double const motion = 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
-    m_list.forEachPair(
-        [&](std::size_t ka, std::size_t kb, std::size_t) {
-            VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
-            if (settleListed(ps, a, b, ka, kb, region, frame, rounding) != Listing::Open)
+    m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t) {
+        VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
+        if (settleListed(ps, a, b, ka, kb, region, frame, rounding) != Listing::Open)
+            return;
+        // i's master: the one copy of i that nothing but a wrap replaces.
+        if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))
+            return;
+        // No second image instance of the pair through another period (which would share
+        // the spring in the histories, as in settledMode).
+        double const twice = 2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
+        for (std::size_t d = 0; d < 3; ++d)
+            if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
                 return;
-            // i's master: the one copy of i that nothing but a wrap replaces.
-            if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))
-                return;
-            // No second image instance of the pair through another period (which would share
-            // the spring in the histories, as in settledMode).
-            double const twice =
-                2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
-            for (std::size_t d = 0; d < 3; ++d)
-                if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
-                    return;
-            // j's copy at its image exists while the list holds: its ball reaches into the
-            // block by more than the motion (the synchronisation keeps a copy wherever a ball
-            // overlaps a block). j's master always does.
-            if (!ps.flags(kb).isMaster() || !isZero(ps.image(kb))) {
-                core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
-                double outside2 = 0.0;
-                for (int d = 0; d < 3; ++d) {
-                    double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
-                    outside2 += out * out;
-                }
-                if (!(std::sqrt(outside2) + motion < ps.radius(kb)))
-                    return;
+        // j's copy at its image exists while the list holds: its ball reaches into the
+        // block by more than the motion (the synchronisation keeps a copy wherever a ball
+        // overlaps a block). j's master always does.
+        if (!ps.flags(kb).isMaster() || !isZero(ps.image(kb))) {
+            core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
+            double outside2 = 0.0;
+            for (int d = 0; d < 3; ++d) {
+                double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
+                outside2 += out * out;
             }
-            m_twins.push_back(
-                {FaceTwinKey{ps.uid(ka), ps.uid(kb),
-                             detection_detail::imageDifference(ps.image(kb), ps.image(ka))},
-                 a, b, 0});
-        },
-        first);
+            if (!(std::sqrt(outside2) + motion < ps.radius(kb)))
+                return;
+        }
+        m_twins.push_back(
+            {FaceTwinKey{ps.uid(ka), ps.uid(kb),
+                         detection_detail::imageDifference(ps.image(kb), ps.image(ka))},
+             a, b, 0});
+    });
     std::sort(m_twins.begin(), m_twins.end(),
               [](FaceTwin const& x, FaceTwin const& y) { return x.key < y.key; });
 }

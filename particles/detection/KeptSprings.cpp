@@ -89,7 +89,7 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         if (keepsSpring(m_list.mode(p)))
             writeBackSpring(ps, i, ps.uid(j), m_list.spring(p));
     });
-    for (FaceTwin const& t : m_twins)
+    for (FaceTwin const& t : m_twins) // (again: their images need the master's history too)
         writeBackFaceTwin(ps, t);
 }
 
