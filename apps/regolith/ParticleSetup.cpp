@@ -1,6 +1,7 @@
 #include "apps/regolith/ParticleSetup.hpp"
 
 #include "core/Error.hpp"
+#include "core/log/Log.hpp"
 #include "particles/integration/TimeStepGuard.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
@@ -134,6 +135,51 @@ particles::WallList makeWalls(SceneDescription const& scene) {
     return walls;
 }
 
+namespace {
+
+/// Warns if a periodic length lies below 2 (r_a + r_b) for the two largest grains while the
+/// contacts carry springs (friction or rolling friction): a pair may then touch through two
+/// periodic images at once, and both contacts share one spring (a grain's contact history is
+/// keyed by its partner's uid; docs/results.md, "A pair touching through two periodic images
+/// shares one tangential spring"). COLLECTIVE.
+void warnTwoImageContacts(core::Comm const& comm, particles::ParticleStorage const& ps,
+                          SceneDescription const& scene) {
+    if (!(scene.contact.friction > 0.0) && !(scene.contact.rollingFriction > 0.0))
+        return;
+    double largest = 0.0;
+    for (std::size_t k = 0; k < ps.size(); ++k)
+        largest = std::max(largest, ps.radius(k));
+    double const r1 = comm.allReduce(largest, core::ReduceOp::Max);
+    // The second largest: r1 again if two grains have it, else the largest of the others.
+    long long atLargest = 0;
+    double second = 0.0;
+    for (std::size_t k = 0; k < ps.size(); ++k) {
+        double const r = ps.radius(k);
+        if (r == r1 && atLargest++ == 0)
+            continue;
+        second = std::max(second, r);
+    }
+    atLargest = comm.allReduce(atLargest, core::ReduceOp::Sum);
+    double const r2 = atLargest >= 2 ? r1 : comm.allReduce(second, core::ReduceOp::Max);
+    core::Vec3 const extent = scene.forest.domain.extent();
+    for (int a = 0; a < 3; ++a) {
+        double const reach = 2.0 * (r1 + r2);
+        if (!scene.forest.periodic[static_cast<std::size_t>(a)] || !(extent[a] < reach))
+            continue;
+        core::log::warn("domain: the periodic length {:g} along {} is below 2 (r_a + r_b) = "
+                        "{:g} for the two largest grains (radii {:g} and {:g}): a pair can "
+                        "touch through two periodic images at once, and then both contacts share "
+                        "one tangential spring (a contact history is keyed by the partner's "
+                        "uid), so friction acts on them only approximately and reproducible "
+                        "mode is not bitwise the same on every block layout; enlarge the domain "
+                        "along {}",
+                        extent[a], "xyz"[a], reach, r1, r2, "xyz"[a]);
+        return;
+    }
+}
+
+} // namespace
+
 void checkInitialState(core::Comm const& comm, particles::ParticleStorage const& ps,
                        SceneDescription const& scene) {
     particles::ValidationOptions options;
@@ -143,6 +189,7 @@ void checkInitialState(core::Comm const& comm, particles::ParticleStorage const&
     options.numTypes = materialTypeCount(scene);
     particles::validateParticles(comm, ps, options);
     particles::checkTimeStep(scene.time.dt, contactTime(comm, ps, scene), scene.time.allowUnstable);
+    warnTwoImageContacts(comm, ps, scene);
 }
 
 void checkOverlapsAcrossBlocks(core::Comm const& comm, particles::LocalParticles const& local,

@@ -46,7 +46,8 @@ void addMasters(particles::LocalParticles& local, std::span<particles::GrainInit
 /// overlapping by more than contact.initial_overlap (both uids named; pairs on this rank),
 /// a grain outside the domain, and a time step above t_c / 10 unless time.allow_unstable (t_c
 /// from the contact stiffness and the smallest mass). Throws the same core::InputError on
-/// every rank. COLLECTIVE over `comm`.
+/// every rank. Warns if a pair can touch through two periodic images at once while contacts
+/// carry springs. COLLECTIVE over `comm`.
 void checkInitialState(core::Comm const& comm, particles::ParticleStorage const& ps,
                        SceneDescription const& scene);
 
