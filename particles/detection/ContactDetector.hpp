@@ -162,15 +162,15 @@ void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, KeptSpring* 
 /// a tenth of its step (docs/results.md, issue 5, "Face pairs settled"). Any instance
 /// evaluates the contact with the same bits (the geometry is computed in i's canonical frame),
 /// so at a rebuild the list settles the one whose i is i's master (image zero), like a pair
-/// inside the block (PairMode::Owned or Kept, with j's periodic shift), if its copies are sure
-/// to live as long as the list: j's copy at its image because j's ball there reaches into the
-/// block by more than the half skin (the synchronisation keeps a copy wherever a ball overlaps a
-/// block), and i's master until i wraps. Its twins, the instances with the same uids and image
-/// difference (FaceTwinKey), are dropped, at the rebuild and when they arrive later (as i's
-/// ball starts to cross the face). A wrap replaces every copy of the grain in the block, so the
-/// settled pair and its twins die together; the new copies' instances arrive and keep the rule
-/// until the next rebuild, and the settled pair's kept spring goes back to the histories of
-/// i's copies, found by uid (tests/particles/simulation/KeptSpringsTest.cpp).
+/// inside the block (PairMode::Owned, Kept or KeptPressedAcross, with j's periodic shift), if
+/// its copies are sure to live as long as the list: j's copy at its image because j's ball
+/// there reaches into the block by more than the half skin (the synchronisation keeps a copy
+/// wherever a ball overlaps a block), and i's master until i wraps. Its twins, the instances with
+/// the same uids and image difference (FaceTwinKey), are dropped, at the rebuild and when they
+/// arrive later (as i's ball starts to cross the face). A wrap replaces every copy of the grain in
+/// the block, so the settled pair and its twins die together; the new copies' instances arrive and
+/// keep the rule until the next rebuild, and the settled pair's kept spring goes back to the
+/// histories of i's copies, found by uid (tests/particles/simulation/KeptSpringsTest.cpp).
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
