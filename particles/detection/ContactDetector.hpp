@@ -7,6 +7,7 @@
 #include "particles/detection/LinkedCells.hpp"
 #include "particles/detection/LocalPositions.hpp"
 #include "particles/detection/OverlapScreen.hpp"
+#include "particles/detection/PairCallbacks.hpp"
 #include "particles/detection/PairOwnership.hpp"
 #include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
@@ -14,7 +15,6 @@
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
-#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -27,47 +27,6 @@ namespace regolith::particles {
 /// A region "this block evaluates contacts whose ownership point lies in [min, max)" that
 /// contains every point: for a single block.
 core::AABB everywhere();
-
-/// A pair callback of the fused detect that takes PairOverlap (and computes the geometry
-/// itself) rather than Contact.
-template <class OnPair>
-concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
-/// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
-/// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
-/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed,
-/// KeptPressedAcross), as `kept(i, j, shiftJ, spring)` with the pair's storage indices
-/// (canonical order) and j's periodic shift; and
-/// tells the pass (ContactHistory stamp) it evaluates, `pass()`.
-template <class OnPair>
-concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
-    f.kept(i, i, core::Vec3::Zero(), spring);
-    { f.pass() } -> std::convertible_to<std::uint32_t>; // the stamp it evaluates with
-};
-template <class OnPair>
-concept TakesKeptSprings = TakesKeptPairs<OnPair> &&
-    (std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
-     std::invocable<OnPair&, Contact const&, KeptSpring&>);
-
-namespace detection_detail {
-/// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
-/// (non-null) and onPair takes it, else with its history hint.
-template <class OnPair>
-void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, KeptSpring* kept = nullptr) {
-    if constexpr (TakesKeptSprings<OnPair>) {
-        if (kept != nullptr) {
-            if constexpr (TakesPairOverlaps<OnPair>)
-                onPair(PairOverlap::of(c), *kept);
-            else
-                onPair(c, *kept);
-            return;
-        }
-    }
-    if constexpr (TakesPairOverlaps<OnPair>)
-        onPair(PairOverlap::of(c), hint);
-    else
-        onPair(c, hint);
-}
-} // namespace detection_detail
 
 /// Finds the overlapping sphere pairs and sphere–wall contacts of a ParticleStorage.
 ///
@@ -154,23 +113,12 @@ void handOver(OnPair& onPair, Contact const& c, std::uint8_t& hint, KeptSpring* 
 /// every step computes the same bits as with the histories.
 ///
 /// Pairs across a periodic face of a block that is the whole domain (a run on one block;
-/// DetectorConfig::settleFaceTwins). Such a block holds every image instance of a pair that
-/// touches across a periodic face: i's master with j's image beyond the face, i's image with
-/// j's master, and so on. The contact-point rule picks one of them each step by where the point
-/// wraps, so they stayed in PairMode::Check with their springs travelling through the
-/// histories: in a lattice aligned with the faces (MESA-PD's GranularGas) every face pair, and
-/// a tenth of its step (docs/results.md, issue 5, "Face pairs settled"). Any instance
-/// evaluates the contact with the same bits (the geometry is computed in i's canonical frame),
-/// so at a rebuild the list settles the one whose i is i's master (image zero), like a pair
-/// inside the block (PairMode::Owned, Kept or KeptPressedAcross, with j's periodic shift), if
-/// its copies are sure to live as long as the list: j's copy at its image because j's ball
-/// there reaches into the block by more than the half skin (the synchronisation keeps a copy
-/// wherever a ball overlaps a block), and i's master until i wraps. Its twins, the instances with
-/// the same uids and image difference (FaceTwinKey), are dropped, at the rebuild and when they
-/// arrive later (as i's ball starts to cross the face). A wrap replaces every copy of the grain in
-/// the block, so the settled pair and its twins die together; the new copies' instances arrive and
-/// keep the rule until the next rebuild, and the settled pair's kept spring goes back to the
-/// histories of i's copies, found by uid (tests/particles/simulation/KeptSpringsTest.cpp).
+/// DetectorConfig::settleFaceTwins): the block holds every image instance of such a pair, and
+/// any instance gives the same bits, so the list settles the one whose i is i's master when its
+/// copies will live as long as the list, and drops its twins (same uids and image difference;
+/// FaceTwins.cpp, docs/sync.md "Pairs across a periodic face of a one-block domain"). On
+/// MESA-PD's lattice the rule per step for them was a tenth of the step (docs/results.md,
+/// issue 5, "Face pairs settled").
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -317,12 +265,19 @@ private:
     /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped),
     /// writing their kept springs back first.
     void forgetDeadFaceTwins(ParticleStorage& particles);
-    /// Writes settled face pair t's kept spring (if it keeps one) back to the histories of i's
-    /// master and i's other images.
+    /// Writes settled face pair t's kept spring (if it keeps one and t died; a live one's goes
+    /// back with the other kept pairs') back to i's master, and the master's history to i's
+    /// other images.
     void writeBackFaceTwin(ParticleStorage& particles, FaceTwin const& t) const;
     /// Writes a kept spring back to the history of copy i, for partner `partner`.
     void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,
                          KeptSpring const& kept) const;
+    /// How far a centre may be from its reference while the list holds (+ `rounding`).
+    [[nodiscard]] double listMotion(double rounding) const;
+    /// Whether a listed pair of reach r_a + r_b cannot meet through a second periodic image
+    /// while the list holds (which would share the spring, ContactHistory::touch's `again`).
+    [[nodiscard]] bool oneImageInstance(double reach, PeriodicFrame const& frame,
+                                        double rounding) const;
     /// Whether a listed pair whose reference centres are `apart` overlaps (reach r_a + r_b)
     /// while the list holds.
     [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;

@@ -17,8 +17,7 @@ bool ContactDetector::holdsFaceTwins(core::AABB const& region, PeriodicFrame con
 void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const& region,
                                     PeriodicFrame const& frame, double rounding) {
     core::Vec3 const period = frame.period();
-    // A centre moves less than skin / 2 from its reference while the list holds.
-    double const motion = 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
+    double const motion = listMotion(rounding);
     m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t) {
         VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
         if (settleListed(ps, a, b, ka, kb, region, frame, rounding) != Listing::Open)
@@ -26,12 +25,8 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
         // i's master: the one copy of i that nothing but a wrap replaces.
         if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))
             return;
-        // No second image instance of the pair through another period (which would share
-        // the spring in the histories, as in settledMode).
-        double const twice = 2.0 * (ps.radius(ka) + ps.radius(kb) + 2.0 * m_listSkin + rounding);
-        for (std::size_t d = 0; d < 3; ++d)
-            if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
-                return;
+        if (!oneImageInstance(ps.radius(ka) + ps.radius(kb), frame, rounding))
+            return;
         // j's copy at its image exists while the list holds: its ball reaches into the
         // block by more than the motion (the synchronisation keeps a copy wherever a ball
         // overlaps a block). j's master always does.
@@ -93,8 +88,9 @@ void ContactDetector::writeBackFaceTwin(ParticleStorage& ps, FaceTwin const& t) 
     std::size_t const i =
         faceTwinAlive(t) ? std::size_t{m_list.indexOf(t.a)} : ps.find(t.key.i, kNoImage);
     if (i == ParticleStorage::kNotFound)
-        return; // i left the domain through an open face
-    writeBackSpring(ps, i, t.key.j, m_list.spring(t.pair));
+        return;            // i left the domain through an open face
+    if (!faceTwinAlive(t)) // (a live one's went back with the other kept pairs')
+        writeBackSpring(ps, i, t.key.j, m_list.spring(t.pair));
     // The synchronisation copied i's stale history to i's other images, which an instance of
     // the pair keeping the rule may read in this very pass (after a wrap, or in the rebuilt
     // list): they get the master's again, as the next synchronisation would give them. (Those

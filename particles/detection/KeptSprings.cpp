@@ -18,27 +18,36 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     // Deeper than skin / 2 inside the block, both: while the list holds (no copy moves skin / 2
     // from its reference) neither leaves the block, so the synchronisation neither migrates
     // nor wraps them.
-    double const depth = 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
+    double const depth = listMotion(rounding);
     for (VerletList::Id id : {a, b}) {
         core::Vec3 const x = m_list.reference(id);
         for (int d = 0; d < 3; ++d)
             if (!(x[d] - depth > region.min[d] && x[d] + depth < region.max[d]))
                 return PairMode::Owned;
     }
-    // No second instance of the pair through another periodic image in this block (which
-    // would share the spring, ContactHistory::touch's `again`): the two instances' reference
-    // separations would both lie below the listing reach r_i + r_j + skin (+ rounding), and
-    // each centre moves less than skin / 2 meanwhile, so their images would be less than
-    // 2 (r_i + r_j + 2 skin) apart.
     double const reach = ps.radius(ka) + ps.radius(kb);
+    if (!oneImageInstance(reach, frame, rounding))
+        return PairMode::Owned;
+    bool const pressed =
+        pressedWhileListed((m_list.reference(b) - m_list.reference(a)).norm(), reach, rounding);
+    return pressed ? PairMode::KeptPressed : PairMode::Kept;
+}
+
+double ContactDetector::listMotion(double rounding) const {
+    return 0.5 * m_listSkin + m_list.referenceSlack() + rounding;
+}
+
+bool ContactDetector::oneImageInstance(double reach, PeriodicFrame const& frame,
+                                       double rounding) const {
+    // Two instances' reference separations would both lie below the listing reach r_i + r_j +
+    // skin (+ rounding), and each centre moves less than skin / 2 meanwhile, so their images
+    // would be less than 2 (r_i + r_j + 2 skin) apart.
     double const twice = 2.0 * (reach + 2.0 * m_listSkin + rounding);
     core::Vec3 const period = frame.period();
     for (std::size_t d = 0; d < 3; ++d)
         if (frame.periodic[d] && !(period[static_cast<int>(d)] > twice))
-            return PairMode::Owned;
-    bool const pressed =
-        pressedWhileListed((m_list.reference(b) - m_list.reference(a)).norm(), reach, rounding);
-    return pressed ? PairMode::KeptPressed : PairMode::Kept;
+            return false;
+    return true;
 }
 
 bool ContactDetector::pressedWhileListed(double apart, double reach, double rounding) const {
@@ -89,7 +98,7 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         if (keepsSpring(m_list.mode(p)))
             writeBackSpring(ps, i, ps.uid(j), m_list.spring(p));
     });
-    for (FaceTwin const& t : m_twins) // (again: their images need the master's history too)
+    for (FaceTwin const& t : m_twins) // their images need the master's history too
         writeBackFaceTwin(ps, t);
 }
 

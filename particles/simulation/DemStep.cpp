@@ -191,18 +191,11 @@ double DemStep::listSkin() const {
     return skin;
 }
 
-std::size_t DemStep::keptPairs() const {
-    std::size_t kept = 0;
+std::size_t DemStep::detectorSum(std::size_t DetectorStats::*count) const {
+    std::size_t sum = 0;
     for (ContactDetector const& d : m_detectors)
-        kept += d.stats().keptPairs;
-    return kept;
-}
-
-std::size_t DemStep::faceTwins() const {
-    std::size_t twins = 0;
-    for (ContactDetector const& d : m_detectors)
-        twins += d.stats().faceTwins;
-    return twins;
+        sum += d.stats().*count;
+    return sum;
 }
 
 void DemStep::writeBackSprings() {

@@ -187,11 +187,11 @@ public:
     [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
-    [[nodiscard]] std::size_t keptPairs() const;
+    [[nodiscard]] std::size_t keptPairs() const { return detectorSum(&DetectorStats::keptPairs); }
     /// Pairs across a periodic face that the local blocks' Verlet lists settled in place of
     /// their twins (ContactDetector, "Pairs across a periodic face"), as of the last force
     /// computation. Local.
-    [[nodiscard]] std::size_t faceTwins() const;
+    [[nodiscard]] std::size_t faceTwins() const { return detectorSum(&DetectorStats::faceTwins); }
     /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
     /// (DemStepConfig::detector without a skin). Local.
     [[nodiscard]] double listSkin() const;
@@ -206,6 +206,8 @@ public:
 
 private:
     void syncParticles();
+    /// A count of the local blocks' last detections, summed (DetectorStats).
+    [[nodiscard]] std::size_t detectorSum(std::size_t DetectorStats::*count) const;
     /// Writes the springs the blocks' Verlet lists keep back to the grains' histories
     /// (ContactDetector, "Springs kept beside the list"): where a step ends Complete, before
     /// anything may read the grains. Not collective.

@@ -1,0 +1,91 @@
+/// Settling the Verlet list's pairs when they are listed (ContactDetector's class comment,
+/// "Settled pairs and the fused loop"): what the contact-point rule will answer for a pair while
+/// the list holds, and the mode each pair gets from it (PairMode; the kept springs' modes in
+/// KeptSprings.cpp, the face pairs' in FaceTwins.cpp).
+#include "particles/detection/ContactDetector.hpp"
+
+#include <algorithm>
+#include <utility>
+
+namespace regolith::particles {
+
+using detection_detail::imageDifference;
+
+ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps, VerletList::Id& a,
+                                                       VerletList::Id& b, std::size_t& ka,
+                                                       std::size_t& kb, core::AABB const& region,
+                                                       PeriodicFrame const& frame,
+                                                       double rounding) const {
+    ka = m_list.indexOf(a);
+    kb = m_list.indexOf(b);
+    if (ps.uid(ka) == ps.uid(kb))
+        return Listing::Drop; // a grain and its own periodic image: never a contact
+    if (ps.uid(kb) < ps.uid(ka)) {
+        std::swap(a, b);
+        std::swap(ka, kb);
+    }
+    if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
+        return Listing::Check; // rare: the rule skips them
+    core::Vec3 const period = frame.period();
+    core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
+                                  localPosition(m_list.reference(b), ps.image(kb), period));
+    double const ri = ps.radius(ka), rj = ps.radius(kb);
+    double const reach =
+        ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
+    switch (settleOwnership(mid, reach, region, frame)) {
+    case Settled::Never:
+        return Listing::Drop;
+    case Settled::Always:
+        return Listing::Always;
+    case Settled::Open:
+        break;
+    }
+    return Listing::Open;
+}
+
+void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
+                                     PeriodicFrame const& frame, std::size_t first) {
+    // 4 x the candidate slack (64 ulps of the coordinate scale) covers the rounding of the
+    // midpoint, the ownership point and the wrap, which are a few ulps of the same numbers.
+    // The list's reference positions are floats: the midpoint is off by at most their slack.
+    double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
+    bool const twins = holdsFaceTwins(region, frame);
+    if (twins && first == 0) // arrivals are never settled face pairs, only their dropped twins
+        findFaceTwins(ps, region, frame, rounding);
+    std::size_t place = first; // where classifyFrom puts the pair it is deciding
+    m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
+        std::size_t ka = 0, kb = 0;
+        int mode = static_cast<int>(PairMode::Check);
+        switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
+        case Listing::Drop:
+            return VerletList::kDrop;
+        case Listing::Check:
+            break;
+        case Listing::Always:
+            mode = static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
+            break;
+        case Listing::Open:
+            if (!twins)
+                break;
+            FaceTwinKey const key{ps.uid(ka), ps.uid(kb),
+                                  imageDifference(ps.image(kb), ps.image(ka))};
+            auto const t =
+                std::lower_bound(m_twins.begin(), m_twins.end(), key,
+                                 [](FaceTwin const& x, FaceTwinKey const& k) { return x.key < k; });
+            if (t == m_twins.end() || t->key != key)
+                break;
+            if (t->a == a && t->b == b) { // the instance the block evaluates
+                t->pair = place;
+                mode = static_cast<int>(faceTwinMode(ps, ka, kb, a, b, frame, rounding));
+            } else if (m_list.indexOf(t->a) != VerletList::kDead &&
+                       m_list.indexOf(t->b) != VerletList::kDead) {
+                return VerletList::kDrop; // its twin, evaluated in its place
+            }
+            break;
+        }
+        ++place;
+        return mode;
+    });
+}
+
+} // namespace regolith::particles
