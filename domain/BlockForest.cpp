@@ -1,9 +1,12 @@
 #include "domain/BlockForest.hpp"
 
+#include "core/Error.hpp"
 #include "domain/ForestBuilder.hpp"
+#include "domain/RankBoxes.hpp"
 #include "domain/SpecValidation.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace regolith::domain {
 
@@ -20,13 +23,17 @@ ForestBuilder buildAndAssign(ForestSpec const& spec, BlockWeight const& weight, 
 
 } // namespace
 
-BlockForest::BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWeight const& weight)
-    : BlockForest(buildAndAssign(spec, weight, comm.size()), comm.rank(), comm.size()) {}
+BlockForest::BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWeight const& weight,
+                         Subdomains subdomains)
+    : BlockForest(buildAndAssign(spec, weight, comm.size()), comm.rank(), comm.size(), subdomains) {
+}
 
-BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount)
+BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount,
+                         Subdomains subdomains)
     : m_geometry(builder.geometry())
     , m_rank(rank)
-    , m_rankCount(rankCount) {
+    , m_rankCount(rankCount)
+    , m_subdomains(subdomains) {
     auto const& leaves = builder.leaves();
     m_globalBlockCount = leaves.size();
 
@@ -35,39 +42,65 @@ BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount)
         busy[static_cast<std::size_t>(leaf.owner)] = 1;
     m_idleRankCount = static_cast<int>(std::count(busy.begin(), busy.end(), 0));
 
-    // Leaves are in curve order and chunks are contiguous: this rank's part is one range.
-    auto const first = std::find_if(leaves.begin(), leaves.end(),
-                                    [rank](ForestLeaf const& l) { return l.owner == rank; });
-    auto const last =
-        std::find_if(first, leaves.end(), [rank](ForestLeaf const& l) { return l.owner != rank; });
-    // Real boxes once per leaf rather than once per link.
-    std::vector<core::AABB> boxes;
-    boxes.reserve(leaves.size());
-    for (ForestLeaf const& leaf : leaves)
-        boxes.push_back(m_geometry.box(leaf.box));
-    m_blocks.reserve(static_cast<std::size_t>(last - first));
-    m_index.reserve(static_cast<std::size_t>(last - first));
-    std::vector<LeafLink> links;
-    for (auto it = first; it != last; ++it) {
-        auto const i = static_cast<std::size_t>(it - leaves.begin());
+    std::vector<RankBox> const boxes =
+        subdomains == Subdomains::RankBoxes ? mergeRankLeaves(leaves) : oneBoxPerLeaf(leaves);
+    m_globalSubdomainCount = boxes.size();
+    // Per leaf, its box; per box, its real box once rather than once per link.
+    std::vector<std::uint32_t> boxOf(leaves.size());
+    std::vector<core::AABB> real;
+    real.reserve(boxes.size());
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        for (std::uint32_t l : boxes[b].leaves)
+            boxOf[l] = static_cast<std::uint32_t>(b);
+        real.push_back(m_geometry.box(boxes[b].lattice));
+    }
+    std::vector<LeafLink> leafLinks;
+    std::vector<LeafLink> links; // (box, image) of the block's links
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+        RankBox const& box = boxes[b];
+        if (box.owner != rank)
+            continue;
+        ForestLeaf const& first = leaves[box.leaves.front()];
         Block block;
-        block.id = it->id;
-        block.aabb = boxes[i];
-        block.level = it->id.level();
-        block.owner = it->owner;
-        block.weight = it->weight;
-        block.curveIndex = i;
-        builder.neighbours(i, links);
+        block.id = first.id;
+        block.aabb = real[b];
+        block.level = first.id.level();
+        block.owner = rank;
+        block.weight = 0.0;
+        block.curveIndex = box.leaves.front();
+        block.lattice = box.lattice;
+        // A box touches another's image iff one of its leaves touches one of the other's.
+        links.clear();
+        for (std::uint32_t l : box.leaves) {
+            ForestLeaf const& leaf = leaves[l];
+            block.leaves.push_back(
+                CoveredLeaf{leaf.id, m_geometry.box(leaf.box), leaf.box, l, leaf.weight});
+            block.weight += leaf.weight;
+            m_index.emplace(leaf.id, std::pair{m_blocks.size(), block.leaves.size() - 1});
+            builder.neighbours(l, leafLinks);
+            for (LeafLink const& n : leafLinks)
+                if (boxOf[n.leaf] != b || n.image != PeriodicImage{0, 0, 0})
+                    links.push_back(LeafLink{boxOf[n.leaf], n.image});
+        }
+        // Boxes are sorted by their first leaf: box order is curve order.
+        std::sort(links.begin(), links.end(), [](LeafLink const& x, LeafLink const& y) {
+            return x.leaf != y.leaf ? x.leaf < y.leaf : x.image < y.image;
+        });
+        links.erase(std::unique(links.begin(), links.end(),
+                                [](LeafLink const& x, LeafLink const& y) {
+                                    return x.leaf == y.leaf && x.image == y.image;
+                                }),
+                    links.end());
         block.neighbours.reserve(links.size());
         for (LeafLink const& l : links) {
-            ForestLeaf const& n = leaves[l.leaf];
-            block.neighbours.push_back(BlockLink{n.id, boxes[l.leaf], n.owner, n.id.level(),
-                                                 m_geometry.shift(l.image), l.image});
+            RankBox const& n = boxes[l.leaf];
+            BlockId const id = leaves[n.leaves.front()].id;
+            block.neighbours.push_back(BlockLink{id, real[l.leaf], n.owner, id.level(),
+                                                 m_geometry.shift(l.image), l.image, n.lattice});
             if (n.owner != rank)
                 m_neighbourRanks.push_back(n.owner);
         }
         m_localLoad += block.weight;
-        m_index.emplace(block.id, m_blocks.size());
         m_blocks.push_back(std::move(block));
     }
     std::sort(m_neighbourRanks.begin(), m_neighbourRanks.end());
@@ -77,7 +110,20 @@ BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount)
 
 Block const* BlockForest::findBlock(BlockId id) const {
     auto const it = m_index.find(id);
-    return it == m_index.end() ? nullptr : &m_blocks[it->second];
+    return it == m_index.end() ? nullptr : &m_blocks[it->second.first];
+}
+
+std::size_t BlockForest::leafContaining(Block const& block, core::Vec3 const& p) const {
+    if (block.leaves.size() == 1)
+        return 0;
+    auto const loc = m_geometry.locate(p);
+    if (loc)
+        for (int level = 0; level <= m_geometry.maxLevel(); ++level) {
+            auto const it = m_index.find(m_geometry.blockAt(loc->cell, level));
+            if (it != m_index.end() && &m_blocks[it->second.first] == &block)
+                return it->second.second;
+        }
+    throw core::Error("BlockForest::leafContaining: the point lies outside the block");
 }
 
 Block const* BlockForest::localBlockContaining(core::Vec3 const& p) const {
@@ -100,10 +146,11 @@ std::optional<BlockLink> BlockForest::blockContaining(Block const& from,
     auto const loc = m_geometry.locate(p);
     if (!loc)
         return std::nullopt;
-    if (loc->image == PeriodicImage{0, 0, 0} && m_geometry.latticeBox(from.id).contains(loc->cell))
-        return BlockLink{from.id, from.aabb, from.owner, from.level, core::Vec3::Zero(), {0, 0, 0}};
+    if (loc->image == PeriodicImage{0, 0, 0} && from.lattice.contains(loc->cell))
+        return BlockLink{from.id,   from.aabb,   from.owner, from.level, core::Vec3::Zero(),
+                         {0, 0, 0}, from.lattice};
     for (BlockLink const& link : from.neighbours)
-        if (link.image == loc->image && m_geometry.latticeBox(link.id).contains(loc->cell))
+        if (link.image == loc->image && link.lattice.contains(loc->cell))
             return link;
     return std::nullopt;
 }

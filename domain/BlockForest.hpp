@@ -26,7 +26,12 @@ public:
     /// assignment from comm.rank() and comm.size() alone, so a rank may construct it alone.
     /// Throws core::InputError (on every rank alike) for an invalid spec or weight.
     /// Cost: O(global blocks) time and transient memory; afterwards O(local blocks + links).
-    BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWeight const& weight = {});
+    /// `subdomains` says what blocks() are: the leaves (the grid fields' blocks), or each
+    /// rank's leaves merged into cuboids (RankBoxes.hpp; the particles' subdomains). Either
+    /// way a block is a box with links to every touching image of the others, and the
+    /// queries below answer for those boxes.
+    BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWeight const& weight = {},
+                Subdomains subdomains = Subdomains::Blocks);
 
     // ---- the forest as a whole (identical on every rank) ----------------------------------
     [[nodiscard]] ForestGeometry const& geometry() const { return m_geometry; }
@@ -35,7 +40,11 @@ public:
     [[nodiscard]] std::array<int, 3> const& rootBlocks() const { return m_geometry.rootBlocks(); }
     /// Deepest refinement level of any block (0 without refinement).
     [[nodiscard]] int maxLevel() const { return m_geometry.maxLevel(); }
+    /// Leaves of the forest (whatever the subdomains).
     [[nodiscard]] std::size_t globalBlockCount() const { return m_globalBlockCount; }
+    /// Subdomains of all ranks: globalBlockCount() for Subdomains::Blocks, fewer if merged.
+    [[nodiscard]] std::size_t globalSubdomainCount() const { return m_globalSubdomainCount; }
+    [[nodiscard]] Subdomains subdomains() const { return m_subdomains; }
     [[nodiscard]] int rank() const { return m_rank; }
     [[nodiscard]] int rankCount() const { return m_rankCount; }
     /// Ranks that own no block (more ranks than blocks, or a few very heavy blocks). The app
@@ -48,8 +57,12 @@ public:
     [[nodiscard]] bool isIdle() const { return m_blocks.empty(); }
     /// Sum of the weights of this rank's blocks.
     [[nodiscard]] double localLoad() const { return m_localLoad; }
-    /// The local block with this id, or nullptr if this rank does not own it.
+    /// The local block with this id, or covering the leaf with this id; nullptr if this rank
+    /// does not own it.
     [[nodiscard]] Block const* findBlock(BlockId id) const;
+    /// The index into block.leaves of the leaf whose half-open box holds p. Pre: p in the
+    /// domain (wrapped) and in block's box.
+    [[nodiscard]] std::size_t leafContaining(Block const& block, core::Vec3 const& p) const;
     /// Ranks other than this one that own a neighbour of a local block, ascending. Symmetric:
     /// q is in rank r's list iff r is in q's.
     [[nodiscard]] std::vector<int> const& neighbourRanks() const { return m_neighbourRanks; }
@@ -92,16 +105,19 @@ public:
 
 private:
     /// Keeps the part of an assigned global forest that `rank` owns.
-    BlockForest(ForestBuilder const& builder, int rank, int rankCount);
+    BlockForest(ForestBuilder const& builder, int rank, int rankCount, Subdomains subdomains);
 
     ForestGeometry m_geometry;
     int m_rank = 0;
     int m_rankCount = 1;
     std::size_t m_globalBlockCount = 0;
+    std::size_t m_globalSubdomainCount = 0;
+    Subdomains m_subdomains = Subdomains::Blocks;
     int m_idleRankCount = 0;
     double m_localLoad = 0.0;
     std::vector<Block> m_blocks;
-    std::unordered_map<BlockId, std::size_t> m_index;
+    /// Every covered leaf's id -> (local block, index into its leaves).
+    std::unordered_map<BlockId, std::pair<std::size_t, std::size_t>> m_index;
     std::vector<int> m_neighbourRanks;
 };
 

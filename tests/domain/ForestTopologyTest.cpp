@@ -39,7 +39,7 @@ PeriodicImage negated(PeriodicImage const& o) {
 TEST_P(ForestTopology, BlocksTileTheDomain) {
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec);
+    BlockForest const forest(world, spec, {}, GetParam().subdomains);
 
     double localVolume = 0.0;
     for (Block const& b : forest.blocks())
@@ -48,10 +48,10 @@ TEST_P(ForestTopology, BlocksTileTheDomain) {
     EXPECT_NEAR(volume, spec.domain.volume(), 1e-12 * spec.domain.volume());
 
     auto const all = gatherBlocks(world, forest);
-    EXPECT_EQ(all.size(), forest.globalBlockCount());
+    EXPECT_EQ(all.size(), forest.globalSubdomainCount());
     auto const count =
         world.allReduce(static_cast<long>(forest.blocks().size()), core::ReduceOp::Sum);
-    EXPECT_EQ(static_cast<std::size_t>(count), forest.globalBlockCount());
+    EXPECT_EQ(static_cast<std::size_t>(count), forest.globalSubdomainCount());
 
     std::set<std::uint64_t> ids;
     int overlaps = 0;
@@ -74,7 +74,7 @@ TEST_P(ForestTopology, BlocksTileTheDomain) {
 TEST_P(ForestTopology, LinksAreSymmetricAndDescribeTheNeighbour) {
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec);
+    BlockForest const forest(world, spec, {}, GetParam().subdomains);
     auto const all = gatherBlocks(world, forest);
     auto const map = byId(all);
     core::Vec3 const tol = 1e-6 * finestEdge(all);
@@ -111,7 +111,7 @@ TEST_P(ForestTopology, LinksAreSymmetricAndDescribeTheNeighbour) {
 TEST_P(ForestTopology, LinksAreExactlyTheTouchingImages) {
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec);
+    BlockForest const forest(world, spec, {}, GetParam().subdomains);
     auto const all = gatherBlocks(world, forest);
     for (Block const& b : forest.blocks()) {
         std::vector<LinkKey> got;
@@ -123,9 +123,11 @@ TEST_P(ForestTopology, LinksAreExactlyTheTouchingImages) {
 }
 
 TEST_P(ForestTopology, TwoToOneBalanceAndRefinementReached) {
+    if (GetParam().subdomains != Subdomains::Blocks)
+        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec);
+    BlockForest const forest(world, spec, {}, GetParam().subdomains);
     auto const all = gatherBlocks(world, forest);
 
     int maxRequested = 0;
@@ -153,7 +155,7 @@ TEST_P(ForestTopology, TwoToOneBalanceAndRefinementReached) {
 
 TEST_P(ForestTopology, NeighbourRanksAreTheLinkOwnersAndSymmetric) {
     core::Comm world;
-    BlockForest const forest(world, GetParam().spec);
+    BlockForest const forest(world, GetParam().spec, {}, GetParam().subdomains);
     std::set<int> owners;
     for (Block const& b : forest.blocks())
         for (BlockLink const& l : b.neighbours)
@@ -172,8 +174,10 @@ TEST_P(ForestTopology, NeighbourRanksAreTheLinkOwnersAndSymmetric) {
 }
 
 TEST_P(ForestTopology, CurveOrderIsHilbertOverRootsThenDepthFirst) {
+    if (GetParam().subdomains != Subdomains::Blocks)
+        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
     core::Comm world;
-    BlockForest const forest(world, GetParam().spec);
+    BlockForest const forest(world, GetParam().spec, {}, GetParam().subdomains);
     auto const all = gatherBlocks(world, forest);
     int const bits = hilbertBitsFor(forest.rootBlocks());
     auto const hilbert = [&](BlockId id) {
@@ -198,17 +202,21 @@ TEST_P(ForestTopology, CurveOrderIsHilbertOverRootsThenDepthFirst) {
 }
 
 TEST_P(ForestTopology, UnitWeightsGiveBlockCountsWithinOneOfTheMean) {
+    if (GetParam().subdomains != Subdomains::Blocks)
+        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
     core::Comm world;
-    BlockForest const forest(world, GetParam().spec);
+    BlockForest const forest(world, GetParam().spec, {}, GetParam().subdomains);
     double const mean = static_cast<double>(forest.globalBlockCount()) / world.size();
     EXPECT_LT(std::abs(static_cast<double>(forest.blocks().size()) - mean), 1.0);
     EXPECT_DOUBLE_EQ(forest.localLoad(), static_cast<double>(forest.blocks().size()));
 }
 
 TEST_P(ForestTopology, WeightedAssignmentIsBalancedContiguousAndRankIndependent) {
+    if (GetParam().subdomains != Subdomains::Blocks)
+        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec, randomWeight);
+    BlockForest const forest(world, spec, randomWeight, GetParam().subdomains);
 
     double localMax = 0.0;
     double sum = 0.0;
@@ -245,5 +253,5 @@ TEST_P(ForestTopology, WeightedAssignmentIsBalancedContiguousAndRankIndependent)
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, ForestTopology, ::testing::ValuesIn(forestCases()),
+INSTANTIATE_TEST_SUITE_P(Cases, ForestTopology, ::testing::ValuesIn(forestCasesBothWays()),
                          [](auto const& c) { return c.param.name; });

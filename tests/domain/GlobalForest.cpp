@@ -166,6 +166,18 @@ std::vector<ForestCase> forestCases() {
     return cases;
 }
 
+std::vector<ForestCase> forestCasesBothWays() {
+    std::vector<ForestCase> cases = forestCases();
+    std::size_t const n = cases.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        ForestCase merged = cases[i];
+        merged.name += "Merged";
+        merged.subdomains = Subdomains::RankBoxes;
+        cases.push_back(merged);
+    }
+    return cases;
+}
+
 double randomWeight(core::AABB const& box, int level) {
     core::Vec3 const c = box.center();
     std::uint64_t z = static_cast<std::uint64_t>(level) * 0x9e3779b97f4a7c15ULL;

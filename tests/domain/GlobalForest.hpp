@@ -52,6 +52,7 @@ std::vector<LinkKey> keysOf(std::vector<BlockLink const*> const& links);
 struct ForestCase {
     std::string name;
     ForestSpec spec;
+    Subdomains subdomains = Subdomains::Blocks; ///< what the forest's blocks() are
 };
 /// gtest prints a case by its name.
 inline void PrintTo(ForestCase const& c, std::ostream* os) {
@@ -60,6 +61,9 @@ inline void PrintTo(ForestCase const& c, std::ostream* os) {
 /// Unrefined, periodic, refined (incl. across periodic boundaries), one and two blocks per
 /// periodic axis, extreme aspect ratios. Each has at most a few hundred blocks.
 std::vector<ForestCase> forestCases();
+/// forestCases() twice: as blocks, and with each rank's blocks merged (Subdomains::RankBoxes,
+/// names ending in "Merged").
+std::vector<ForestCase> forestCasesBothWays();
 
 /// Deterministic pseudo-random weight in [0.1, 10) from the block's box and level.
 double randomWeight(core::AABB const& box, int level);
