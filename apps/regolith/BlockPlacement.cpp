@@ -25,7 +25,9 @@ bool sameBlocks(domain::BlockForest const& a, domain::BlockForest const& b) {
 BlockPlacement uniformPlacement(core::Comm const& comm, SceneDescription const& scene) {
     BlockPlacement p;
     p.forest = std::make_unique<domain::BlockForest>(comm, scene.forest);
-    p.local = std::make_unique<particles::LocalParticles>(*p.forest);
+    p.particleForest = std::make_unique<domain::BlockForest>(
+        comm, scene.forest, domain::BlockWeight{}, scene.sync.subdomains);
+    p.local = std::make_unique<particles::LocalParticles>(*p.particleForest);
     return p;
 }
 
@@ -36,11 +38,13 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     coupling::BlockLoadModel model;
     if (usesGrid(scene.gravity.self))
         model = {scene.forest.cellsPerBlock, scene.forest.cellWeight};
-    auto forest = std::make_unique<domain::BlockForest>(
-        comm, scene.forest, coupling::grainAndCellWeights(comm, *placement.local, model));
+    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, *placement.local, model);
+    auto forest = std::make_unique<domain::BlockForest>(comm, scene.forest, weight);
     if (comm.allTrue(sameBlocks(*forest, *placement.forest)))
         return false;
-    auto local = std::make_unique<particles::LocalParticles>(*forest);
+    auto particleForest =
+        std::make_unique<domain::BlockForest>(comm, scene.forest, weight, scene.sync.subdomains);
+    auto local = std::make_unique<particles::LocalParticles>(*particleForest);
     {
         // The masters travel as a restart's grains do (one sparse exchange, state complete).
         std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);
@@ -48,6 +52,7 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
         io::restoreGrains(comm, *local, grains, "balancing the blocks by load");
     }
     placement.local = std::move(local);
+    placement.particleForest = std::move(particleForest);
     placement.forest = std::move(forest);
     return true;
 }

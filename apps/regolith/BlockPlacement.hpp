@@ -13,10 +13,13 @@
 namespace regolith::apps {
 
 /// The forest of the run and this rank's particles on it (the particles refer to the forest,
-/// so both move together).
+/// so both move together). The particles see the same assignment cut into their own
+/// subdomains (sync.subdomains: by default each rank's blocks merged into cuboids, so that
+/// the blocks of one rank share no face the synchronisation must cross).
 struct BlockPlacement {
-    std::unique_ptr<domain::BlockForest> forest;
-    std::unique_ptr<particles::LocalParticles> local;
+    std::unique_ptr<domain::BlockForest> forest;         ///< one block per leaf: grid, output
+    std::unique_ptr<domain::BlockForest> particleForest; ///< the particles' subdomains
+    std::unique_ptr<particles::LocalParticles> local;    ///< on particleForest
 };
 
 /// The forest of `scene` with equal block weights and no particles. Not collective.

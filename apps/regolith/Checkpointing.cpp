@@ -97,12 +97,16 @@ core::ConfigTable effectiveScene(std::string const& text, std::string const& nam
 }
 
 /// The sections of the checkpoint's scene that differ from this run's, both with their
-/// command-line overrides (output and time are expected to change on a restart). Empty if
-/// either does not parse.
+/// command-line overrides (output and time are expected to change on a restart, the keys of
+/// SpeedChoices.hpp may). Empty if either does not parse.
 std::vector<std::string> differingSections(std::string const& stored, std::string const& text) {
     try {
-        auto const a = effectiveScene(stored, "checkpoint scene");
-        auto const b = effectiveScene(text, "scene");
+        auto a = effectiveScene(stored, "checkpoint scene");
+        auto b = effectiveScene(text, "scene");
+        // Keys that change the speed, not the trajectory (SpeedChoices.hpp): not compared.
+        for (auto* table : {&a, &b})
+            for (char const* same : {"sync.skin=0", "sync.subdomains=\"merged\""})
+                table->applyOverride(same);
         std::vector<std::string> out;
         for (char const* key : {"name", "domain", "particles", "walls", "contact", "gravity",
                                 "sync", "granular_gas", "dense_ramp", "bidisperse"})

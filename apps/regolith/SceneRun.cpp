@@ -20,6 +20,7 @@
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
+#include "apps/regolith/SpeedChoices.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "apps/scenarios/Scenarios.hpp"
 #include "core/Error.hpp"
@@ -145,13 +146,16 @@ int runSceneUnlocated(core::AppContext& ctx) {
         text = withAutoChoices(std::move(text), choices);
         start = restoreState(ctx, scene, text, std::move(slice), started, *placement.local);
     } else {
-        choices = generateInitialState(ctx, scene, *placement.forest, *placement.local);
+        choices = generateInitialState(ctx, scene, *placement.particleForest, *placement.local);
         text = withAutoChoices(std::move(text), choices);
     }
     std::int64_t const startStep = start.step;
     balanceByLoad(world, scene, placement);
     domain::BlockForest const& forest = *placement.forest;
     particles::LocalParticles& local = *placement.local;
+    // Not in the checkpoint's scene text: they change the speed, not the trajectory.
+    for (AutoChoice& c : resolveSpeedChoices(world, local, scene))
+        choices.push_back(std::move(c));
     // Simulated time after a step: continued from the checkpoint's (its dt may differ).
     auto const timeAt = [&](std::int64_t step) {
         return start.time + static_cast<double>(step - startStep) * scene.time.dt;
@@ -182,7 +186,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // The time step (DESIGN.md, "The time step"): NNS refuses a grain too large for it
     // (InputError, exit 2 on every rank), then every shadow is created and, for a new run,
     // the initial forces computed (a restart has them from the checkpoint).
-    particles::ParticleSync sync(world, forest, scene.sync);
+    particles::ParticleSync sync(world, *placement.particleForest, scene.sync);
     core::TimerTree timers([] { return MPI_Wtime(); });
     particles::DemStepConfig stepConfig;
     stepConfig.dt = scene.time.dt;

@@ -28,6 +28,8 @@ using namespace std::string_view_literals;
 /// In the order of particles::SyncMethod (NextNeighbour, ShadowOwner, Hybrid); the names are
 /// particles::syncMethodName's.
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
+/// In the order of domain::Subdomains (Blocks, RankBoxes).
+constexpr std::array kSubdomainNames{"blocks"sv, "merged"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
 constexpr std::array kRollingNames{"constant"sv, "spring"sv};
 constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
@@ -57,7 +59,13 @@ TimeSection parseTime(core::ConfigTable const& t) {
     s.allowUnstable = t.getOr<bool>("allow_unstable", false);
     s.integrator = static_cast<Integrator>(t.getChoiceOr(
         "integrator", kIntegratorNames, static_cast<std::size_t>(Integrator::Verlet)));
-    s.orientation = t.getOr<bool>("orientation", true);
+    if (t.has("orientation") && t.kindOf("orientation") == core::ConfigKind::String) {
+        if (t.getString("orientation") != "auto")
+            t.failExpected("orientation", "true, false or \"auto\"");
+    } else if (t.has("orientation")) {
+        s.orientation = t.getOr<bool>("orientation", true);
+        s.orientationAuto = false;
+    }
     if (!s.orientation && s.integrator != Integrator::Verlet)
         t.failExpected("orientation", "true with integrator = \"euler\" (only velocity Verlet "
                                       "can leave orientations out)");
@@ -69,7 +77,16 @@ SyncSection parseSync(core::ConfigTable const& t) {
     s.method = static_cast<particles::SyncMethod>(t.getChoiceOr(
         "method", kSyncNames, static_cast<std::size_t>(particles::SyncMethod::Hybrid)));
     s.reproducible = t.getOr<bool>("reproducible", false);
-    s.skin = t.getOrIf<double>("skin", 0.0, isNonNegativeFinite, "a non-negative finite length");
+    if (t.has("skin") && t.kindOf("skin") == core::ConfigKind::String) {
+        if (t.getString("skin") != "auto")
+            t.failExpected("skin", "a non-negative finite length or \"auto\"");
+    } else if (t.has("skin")) {
+        s.skin = t.getIf<double>("skin", isNonNegativeFinite,
+                                 "a non-negative finite length or \"auto\"");
+        s.skinAuto = false;
+    }
+    s.subdomains = static_cast<domain::Subdomains>(t.getChoiceOr(
+        "subdomains", kSubdomainNames, static_cast<std::size_t>(domain::Subdomains::RankBoxes)));
     if (s.skin > 0.0 && s.method == particles::SyncMethod::ShadowOwner)
         t.failExpected("skin", "0 with method = \"sos\" (the skin applies to NNS-class grains)");
     return s;

@@ -11,6 +11,7 @@
 /// collective (every rank parses the same scene and gets the same result or error).
 #include "core/config/ConfigTable.hpp"
 #include "core/math/AABB.hpp"
+#include "domain/Block.hpp"
 #include "domain/ForestSpec.hpp"
 #include "particles/generators/GeneratorSpec.hpp"
 #include "particles/kernels/TangentialSpring.hpp"
@@ -31,8 +32,9 @@ enum class Integrator { Euler, Verlet };
 /// [time] dt (> 0, finite, required), steps (>= 0, required), allow_unstable (default false:
 /// a later stability check refuses a dt too large for the contact stiffness), integrator
 /// ("euler": semi-implicit Euler, or "verlet": velocity Verlet, the default), orientation
-/// (default true; false: velocity Verlet leaves the grains' orientation quaternions as they
-/// are, for runs whose output needs none -- see particles::VelocityVerlet::orientation).
+/// (true, false or "auto", the default: integrated where something reads it, AutoChoices.hpp;
+/// false: velocity Verlet leaves the grains' orientation quaternions as they are -- see
+/// particles::VelocityVerlet::orientation).
 struct TimeSection {
     double dt = 0.0;     ///< 0 until resolved when dtAuto
     bool dtAuto = false; ///< time.dt = "auto": from the contact and orbital times (AutoChoices)
@@ -40,12 +42,18 @@ struct TimeSection {
     bool allowUnstable = false;
     Integrator integrator = Integrator::Verlet;
     bool orientation = true;
+    bool orientationAuto = true; ///< time.orientation = "auto" (resolveSpeedChoices)
 };
 
 /// [sync] method ("nns" | "sos" | "hybrid"; default "hybrid", the scenes' default),
-/// reproducible (a boolean, default false): the synchronisation's own settings
-/// (particles/sync/SyncMethod.hpp).
-using SyncSection = particles::SyncConfig;
+/// reproducible (a boolean, default false), skin (a length or "auto", the default:
+/// resolveSpeedChoices): the synchronisation's own settings (particles/sync/SyncMethod.hpp);
+/// subdomains ("merged", the default: each rank's blocks merged into cuboids for the
+/// particles, domain/RankBoxes.hpp; "blocks": one particle subdomain per block).
+struct SyncSection : particles::SyncConfig {
+    bool skinAuto = true; ///< sync.skin = "auto"
+    domain::Subdomains subdomains = domain::Subdomains::RankBoxes;
+};
 
 enum class ContactModel { SpringDashpot, Hertz };
 

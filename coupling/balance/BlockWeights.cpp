@@ -25,12 +25,17 @@ domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
     constexpr std::size_t kFields = 5; // min x, y, z, level, weight
     std::vector<double> mine;
     mine.reserve(local.blocks().size() * kFields);
-    for (particles::BlockParticles const& b : local.blocks()) {
-        double const grains = static_cast<double>(b.particles.countMasters());
-        core::AABB const& box = b.block->aabb;
-        mine.insert(mine.end(),
-                    {box.min.x(), box.min.y(), box.min.z(), static_cast<double>(b.block->level),
-                     1.0 + grains + model.cellWeight * cells});
+    auto const blocks = local.blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        std::vector<std::size_t> const grains = local.countMastersPerLeaf(b);
+        auto const& leaves = blocks[b].block->leaves;
+        for (std::size_t l = 0; l < leaves.size(); ++l) {
+            core::AABB const& box = leaves[l].aabb;
+            mine.insert(mine.end(),
+                        {box.min.x(), box.min.y(), box.min.z(),
+                         static_cast<double>(leaves[l].id.level()),
+                         1.0 + static_cast<double>(grains[l]) + model.cellWeight * cells});
+        }
     }
     std::vector<double> const all = comm.allGatherVarying(std::span<double const>(mine));
     auto table = std::make_shared<std::map<BlockKey, double>>();

@@ -87,13 +87,19 @@ void writeBlockPiece(std::string const& path, particles::LocalParticles const& l
     std::vector<std::uint64_t> id;
     std::vector<std::int32_t> owner, level;
     std::vector<std::int64_t> grains;
-    for (particles::BlockParticles const& bp : local.blocks()) {
-        append(bounds, bp.block->aabb.min);
-        append(bounds, bp.block->aabb.max);
-        id.push_back(bp.block->id.raw());
-        owner.push_back(bp.block->owner);
-        level.push_back(bp.block->level);
-        grains.push_back(static_cast<std::int64_t>(bp.particles.countMasters()));
+    auto const blocks = local.blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        // The forest's blocks, also where the particles' subdomains merge several.
+        std::vector<std::size_t> const count = local.countMastersPerLeaf(b);
+        auto const& leaves = blocks[b].block->leaves;
+        for (std::size_t l = 0; l < leaves.size(); ++l) {
+            append(bounds, leaves[l].aabb.min);
+            append(bounds, leaves[l].aabb.max);
+            id.push_back(leaves[l].id.raw());
+            owner.push_back(blocks[b].block->owner);
+            level.push_back(leaves[l].id.level());
+            grains.push_back(static_cast<std::int64_t>(count[l]));
+        }
     }
     std::vector<ArraySpec> const specs = blockArrays();
     std::vector<vtkxml::Column> const columns{{specs[0], id.data()},

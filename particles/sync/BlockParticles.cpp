@@ -90,6 +90,19 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
     masters.clear();
 }
 
+std::vector<std::size_t> LocalParticles::countMastersPerLeaf(std::size_t b) const {
+    BlockParticles const& bp = m_blocks[b];
+    std::vector<std::size_t> counts(bp.block->leaves.size(), 0);
+    if (counts.size() == 1) {
+        counts[0] = bp.particles.countMasters();
+        return counts;
+    }
+    bp.particles.forEachMaster([&](std::size_t i) {
+        ++counts[m_forest->leafContaining(*bp.block, bp.particles.position(i))];
+    });
+    return counts;
+}
+
 std::size_t LocalParticles::countMasters() const {
     std::size_t n = 0;
     for (BlockParticles const& b : m_blocks)

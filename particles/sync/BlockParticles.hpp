@@ -54,6 +54,10 @@ public:
     /// whole instead of copied: the set-up then holds the grains once, not twice.
     void adoptMasters(ParticleStorage&& masters);
 
+    /// The masters of local block b per leaf it covers (domain::Block::leaves, in that
+    /// order): the grains of each forest block, where the particles' blocks merge several.
+    [[nodiscard]] std::vector<std::size_t> countMastersPerLeaf(std::size_t b) const;
+
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;
     [[nodiscard]] std::size_t countCopies() const;

@@ -1,7 +1,7 @@
 # Runs an app under mpiexec and checks the outcome; used by tests/apps/CMakeLists.txt as
 #   cmake -DMPIEXEC=.. -DNP=.. -DAPP=.. -DARGS="a|b|c" [-DEXPECT_FAIL=1 -DMESSAGE=..
 #         [-DEXIT_CODE=n] [-DENDS_JOB=1]]
-#         [-DSTDOUT_HAS="text|text"] [-DQUIET_STDOUT=1] [-DJSON=file -DJSON_EXPECT="k=v|k=v"
+#         [-DSTDOUT_HAS="text|text"] [-DSTDOUT_LACKS="text|text"] [-DQUIET_STDOUT=1] [-DJSON=file -DJSON_EXPECT="k=v|k=v"
 #         -DPYTHON=python3 -DCHECK_SUMMARY=check_summary.py]
 #         [-DDUMP=file -DDUMP_HEADER=line [-DDUMP_LINES=n]]
 #         -P RunAppCheck.cmake
@@ -80,6 +80,15 @@ if(STDOUT_HAS)
     string(FIND "${out}" "${text}" pos)
     if(pos EQUAL -1)
       fail("expected on stdout: ${text}")
+    endif()
+  endforeach()
+endif()
+if(STDOUT_LACKS)
+  string(REPLACE "|" ";" texts "${STDOUT_LACKS}")
+  foreach(text IN LISTS texts)
+    string(FIND "${out}" "${text}" pos)
+    if(NOT pos EQUAL -1)
+      fail("unexpected on stdout: ${text}")
     endif()
   endforeach()
 endif()

@@ -30,9 +30,17 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(s.time.dt, 0.01);
     EXPECT_EQ(s.time.steps, 10);
     EXPECT_EQ(s.time.integrator, apps::Integrator::Verlet);
-    EXPECT_TRUE(s.time.orientation); // the default
+    EXPECT_TRUE(s.time.orientationAuto); // the default: resolveSpeedChoices decides
     EXPECT_FALSE(parse({"time.orientation=false"}).time.orientation);
+    EXPECT_FALSE(parse({"time.orientation=false"}).time.orientationAuto);
+    EXPECT_TRUE(parse({"time.orientation=\"auto\""}).time.orientationAuto);
     EXPECT_EQ(s.sync.method, particles::SyncMethod::ShadowOwner);
+    EXPECT_TRUE(s.sync.skinAuto);                                // the default
+    EXPECT_EQ(s.sync.subdomains, domain::Subdomains::RankBoxes); // the default
+    EXPECT_EQ(parse({"sync.subdomains=\"blocks\""}).sync.subdomains, domain::Subdomains::Blocks);
+    apps::SyncSection const skin = parse({"sync.method=\"hybrid\"", "sync.skin=0.2"}).sync;
+    EXPECT_FALSE(skin.skinAuto);
+    EXPECT_EQ(skin.skin, 0.2);
     EXPECT_FALSE(s.sync.reproducible); // the default
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);

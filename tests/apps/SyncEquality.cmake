@@ -73,6 +73,9 @@ endfunction()
 # refined forest, and each other method on some rank count (comments: blocks per rank of
 # each case).
 set(one_block "--set domain.blocks=[1,1,1]") # a block that is its own periodic neighbour
+# The particles' subdomains are each rank's blocks merged into cuboids by default; "blocks"
+# keeps one per block, so that the blocks of a rank exchange shadows among themselves.
+set(per_block "--set sync.subdomains=blocks")
 set(refined "--set domain.refine=[{min=[0,0,0],max=[4,4,4],level=1}]")
 
 # a) Sparse gas: grains collide and cross block, rank and periodic boundaries; walls in z.
@@ -83,11 +86,13 @@ set(refined "--set domain.refine=[{min=[0,0,0],max=[4,4,4],level=1}]")
 set(skin "--set sync.skin=0.2")
 regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
   NP1 base ${one_block} ${skin} "${one_block} ${skin} --set sync.method=nns" # 64, 1
-      "--set contact.neighbour_skin=0"                                 # 64, no Verlet list
+      "--set contact.neighbour_skin=0" ${per_block}    # 64, no Verlet list; 64 subdomains
+      "${per_block} --set sync.skin=0"                 # 64 subdomains, no sync skin
   NP2 base "--set domain.blocks=[2,2,1]" ${skin}                       # 32, 2, 32 skin
-      "--set contact.neighbour_skin=0.3"                               # 32, Verlet skin 0.3
+      "--set contact.neighbour_skin=0.3" "${per_block} --set sync.method=nns" # 32
   NP3 base "--set domain.blocks=[4,3,2]"                               # 21-22, 8
       "--set domain.blocks=[4,3,2] ${skin} --set sync.method=nns"      # 8 NNS skin
+      "--set domain.blocks=[4,3,2] ${per_block}"                       # 8 subdomains
   NP4 "--set sync.method=nns" ${refined}                               # 16 NNS, refined
   NP8 base "--set domain.blocks=[2,2,2] --set sync.method=sos"         # 8, 1 SOS
       "${skin} --set sync.method=nns")                                 # 8 NNS skin
@@ -95,7 +100,7 @@ regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
 # b) Dense packing under gravity between z walls: long-lived contacts, whose tangential
 #    springs travel with the grains.
 regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
-  NP1 base ${one_block} "--set sync.skin=0.1"
+  NP1 base ${one_block} "--set sync.skin=0.1" ${per_block}
   NP2 base "--set domain.blocks=[2,2,1]" "--set sync.skin=0.1"
   NP3 base "--set domain.blocks=[4,3,2]"
   NP4 "--set sync.method=sos" ${refined}
@@ -117,14 +122,16 @@ set(bidisperse_refined
     "--set domain.blocks=[4,4,4] --set domain.refine=[{min=[45,15,15],max=[60,45,45],level=1}]")
 regolith_sync_equality(bidisperse_hybrid SCENE sync-bidisperse.toml FINAL "0 x < 5"
   NP1 base ${one_block} ${skin} # 512, 1; skin: grown NNS-class balls, no list (SOS present)
+      ${per_block}                                                     # 512 subdomains
   NP2 base "--set domain.blocks=[2,2,1]"                               # 256, 2
   NP3 base "--set domain.blocks=[4,3,2]" ${skin}                       # 170-171, 8
+      "${per_block} --set domain.blocks=[4,4,2]"                       # 42-43 subdomains
   NP4 base ${bidisperse_refined}                                       # 128, refined
   NP8 base "--set domain.blocks=[2,2,2]")                              # 64, 1
 regolith_sync_equality(bidisperse_sos SCENE sync-bidisperse.toml ARGS --set sync.method=sos
   REFERENCE bidisperse_hybrid FINAL "0 x < 5"
   NP1 base
-  NP2 base
+  NP2 base ${per_block}                                                # 256 subdomains
   NP3 base
   NP4 base ${bidisperse_refined}
   NP8 base "--set domain.blocks=[4,4,4]")                              # 64, 8
