@@ -28,6 +28,14 @@ echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -
 if command -v lmp >/dev/null; then
   /usr/bin/python3 bench/peers/lammps_compare.py --build "$build" --out "$out" --box 30 \
       --steps 300 --repeats 7 | tee "$out/lammps_compare.txt"
+  # Blocks per rank as a user runs them (the first paper's scenes A, B, C with defaults only,
+  # 1 to 512 blocks per rank, LAMMPS in the same invocation; docs/results.md, "Blocks per
+  # rank"): the chart on one rank, the two-rank weak scaling with and without merging.
+  /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out" --repeats 3 \
+      --chart docs/images/dem-blocks-per-rank.png | tee "$out/blocks_per_rank_np1.txt"
+  /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out" --ranks 2 \
+      --scenes a b --blocks 1 8 32 64 --repeats 5 --subdomains merged blocks \
+      | tee "$out/blocks_per_rank_np2.txt"
 else
   echo "lmp not found (apt-get install lammps): LAMMPS comparison skipped"
 fi

@@ -6,6 +6,7 @@
 #include "core/timing/TimerReport.hpp"
 #include "domain/BlockForest.hpp"
 
+#include <cstddef>
 #include <cstdint>
 
 namespace regolith::apps {
@@ -20,11 +21,12 @@ struct ParticleCounts {
 /// The particle counts of all ranks from this rank's `local` count. COLLECTIVE over `comm`.
 [[nodiscard]] ParticleCounts countParticles(core::Comm const& comm, std::int64_t local);
 
-/// Prints the scene, domain, blocks, time/sync/contact/gravity settings and the particle
-/// counts to stdout. Call on one rank (rank 0). Not collective.
+/// Prints the scene, domain, blocks (and how many subdomains the particles run on, over all
+/// ranks), time/sync/contact/gravity settings and the particle counts to stdout. Call on one
+/// rank (rank 0). Not collective.
 void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene,
-                      domain::BlockForest const& forest, ParticleCounts const& particles,
-                      std::int64_t startStep = 0);
+                      domain::BlockForest const& forest, std::size_t particleSubdomains,
+                      ParticleCounts const& particles, std::int64_t startStep = 0);
 
 /// Prints what the time loop did: steps, loop time and PUpCS, final particle and shadow
 /// counts, masters that left the domain, traffic per step, and the phase timers reduced over

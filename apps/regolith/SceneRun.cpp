@@ -172,7 +172,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
     start.checkpoint.reset(); // the grains are in `local` now
     auto const counts = countParticles(world, static_cast<std::int64_t>(local.countMasters()));
     if (ctx.isRoot() && !ctx.options.quiet)
-        printSceneReport(ctx, scene, forest, counts, startStep);
+        printSceneReport(ctx, scene, forest, placement.particleForest->globalSubdomainCount(),
+                         counts, startStep);
     if (forest.idleRankCount() > 0)
         core::log::warn("{} of {} ranks own no block: use more blocks (domain.blocks) or fewer "
                         "ranks",

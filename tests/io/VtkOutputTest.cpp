@@ -21,6 +21,8 @@
 
 #include <array>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -85,19 +87,28 @@ std::vector<std::pair<double, std::string>> readPvd(std::string const& path) {
 
 } // namespace
 
-TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
+/// The particles on one subdomain per block, or on each rank's blocks merged: the same grains,
+/// and blocks.pvd the forest's blocks either way.
+class VtkOutputOn : public ::testing::TestWithParam<domain::Subdomains> {};
+
+TEST_P(VtkOutputOn, ParticlesBlocksAndSeriesReadBack) {
     core::Comm const world;
-    domain::BlockForest const forest(world, spec());
+    domain::BlockForest const forest(world, spec(), {}, GetParam());
     particles::LocalParticles local(forest);
     fill(local);
     particles::ParticleSync sync(world, forest, particles::SyncConfig{});
     sync.syncUntilConverged(local);
     long long const copies =
         world.allReduce(static_cast<long long>(local.countCopies()), core::ReduceOp::Sum);
-    ASSERT_GT(copies, kGrains); // the grains on the faces have shadows
+    if (GetParam() == domain::Subdomains::RankBoxes && world.size() == 1) {
+        EXPECT_EQ(copies, kGrains); // one subdomain, the whole open domain: no shadows
+    } else {
+        ASSERT_GT(copies, kGrains); // the grains on the faces have shadows
+    }
 
     for (bool shadows : {false, true}) {
-        std::string const dir = fmt::format("vtk_test_np{}_{}", world.size(), shadows);
+        std::string const dir =
+            fmt::format("vtk_test_np{}_{}_{}", world.size(), shadows, static_cast<int>(GetParam()));
         if (world.rank() == 0)
             fs::remove_all(dir);
         world.barrier();
@@ -130,7 +141,8 @@ TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
         EXPECT_GE(owners[0], 0.0);
         EXPECT_LE(owners[1], world.size() - 1.0);
         if (shadows) {
-            EXPECT_EQ(range(pd->GetArray("shadow")), (std::array<double, 2>{0.0, 1.0}));
+            EXPECT_EQ(range(pd->GetArray("shadow")),
+                      (std::array<double, 2>{0.0, copies > kGrains ? 1.0 : 0.0}));
         }
 
         auto const blockSeries = readPvd(out.blockSeriesPath());
@@ -140,9 +152,19 @@ TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
         EXPECT_EQ(blocks->GetNumberOfPoints(), 64);
         vtkCellData* cd = blocks->GetCellData();
         double total = 0.0;
-        for (vtkIdType c = 0; c < 8; ++c)
+        std::map<double, double> grainsPerBlock; // by block id
+        for (vtkIdType c = 0; c < 8; ++c) {
             total += cd->GetArray("grains")->GetTuple1(c);
+            grainsPerBlock[cd->GetArray("block_id")->GetTuple1(c)] =
+                cd->GetArray("grains")->GetTuple1(c);
+        }
         EXPECT_EQ(total, kGrains);
+        EXPECT_EQ(grainsPerBlock.size(), 8U); // every block once, merged or not
+        // fill's grains per block: centres 1, 3 below the faces at 5, and 5, 7, 9 above.
+        std::multiset<double> counts;
+        for (auto const& [id, n] : grainsPerBlock)
+            counts.insert(n);
+        EXPECT_EQ(counts, (std::multiset<double>{8, 12, 12, 12, 18, 18, 18, 27}));
         EXPECT_EQ(range(cd->GetArray("level")), (std::array<double, 2>{0.0, 0.0}));
         EXPECT_EQ(range(cd->GetArray("owner_rank"))[1], std::min(world.size(), 8) - 1.0);
         EXPECT_NE(cd->GetArray("block_id"), nullptr);
@@ -152,6 +174,13 @@ TEST(VtkOutput, ParticlesBlocksAndSeriesReadBack) {
         world.barrier(); // nobody removes a directory another rank still reads
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Subdomains, VtkOutputOn,
+                         ::testing::Values(domain::Subdomains::Blocks,
+                                           domain::Subdomains::RankBoxes),
+                         [](auto const& p) {
+                             return p.param == domain::Subdomains::Blocks ? "Blocks" : "Merged";
+                         });
 
 TEST(VtkOutput, UnwritableDirectoryIsRefused) {
     core::Comm const world;

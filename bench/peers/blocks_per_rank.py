@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""Blocks per rank, as a user runs them: the first paper's scenes A, B and C
+(bench/peers/scenes/scene-*.toml, written as a user writes them: contact parameters, grains,
+nothing else) with 1, 8, 64 and 512 blocks per rank and every other key at its default, next
+to LAMMPS (7 Jan 2022 from Debian) on the same grains in the same invocation. Runs alternate
+(every block count, then LAMMPS, then again) so that a change of machine load hits all alike.
+
+Reports PUpCS (particle updates per core-second of the time-step loop: Regolith's wall_s,
+LAMMPS's "Loop time") per scene and block count: the median over the repeats and the range, the
+ratio to one block per rank (median of the per-repeat ratios) and to LAMMPS (median of the
+per-repeat ratios). --ranks 2 runs the weak-scaled scenes (the box doubled along x) on two
+ranks, LAMMPS on two too. --subdomains blocks adds the runs with one particle subdomain per
+block (sync.subdomains = "blocks", the synchronisation crossing every block face), to show what
+merging a rank's blocks saves. --chart draws PUpCS against blocks per rank with LAMMPS's as a
+line (docs/images/dem-blocks-per-rank.png).
+
+LAMMPS: pair_style gran/hooke/history with Regolith's spring-dashpot numbers (k_t = 2/7 k_n,
+gamma_t = gamma_n / 2), neighbor 0.1 (bin for A and B; multi with comm_modify mode multi for C),
+neigh_modify delay 0 every 1 check yes, fix nve/sphere; decks granular.in, ramp.in, boulder.in.
+
+usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
+                          [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
+                          [--subdomains merged [blocks]] [--chart PNG]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+from types import SimpleNamespace
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+from lammps_compare import lammps_params  # noqa: E402  (the same contact numbers)
+
+ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
+MPIEXEC = ["mpiexec", "--oversubscribe"]
+
+# Per scene: the file, its extent per rank, the LAMMPS deck and its extra variables, and the
+# contact numbers (the scene file's; lammps_params needs them).
+SCENES = {
+    "a": dict(file="scene-a.toml", extent=(20.0, 20.0, 20.0), deck="granular.in", vars={},
+              stiffness=33.0734, restitution=0.9, friction=0.5),
+    "b": dict(file="scene-b.toml", extent=(20.0, 10.0 * math.sqrt(3.0), 8.0), deck="ramp.in",
+              vars={"g": 1.0, "gx": 0.5, "gz": -math.sqrt(3.0) / 2.0},
+              stiffness=64.5964, restitution=0.9, friction=0.5),
+    "c": dict(file="scene-c.toml", extent=(80.0, 80.0, 80.0), deck="boulder.in", vars={},
+              stiffness=33.0734, restitution=0.9, friction=0.5),
+}
+LAMMPS_SKIN = 0.1
+
+
+# Blocks per rank as a root grid per rank (x, y, z); the ranks are laid along x.
+LAYOUTS = {1: (1, 1, 1), 2: (2, 1, 1), 4: (2, 2, 1), 8: (2, 2, 2), 16: (4, 2, 2),
+           32: (4, 4, 2), 64: (4, 4, 4), 128: (8, 4, 4), 256: (8, 8, 4), 512: (8, 8, 8)}
+
+
+def blocks_arg(per_rank, ranks):
+    """domain.blocks for `per_rank` blocks on each of `ranks` ranks (LAYOUTS, ranks along x)."""
+    if per_rank not in LAYOUTS:
+        sys.exit(f"blocks_per_rank: no layout for {per_rank} blocks per rank: {sorted(LAYOUTS)}")
+    n = LAYOUTS[per_rank]
+    return f"domain.blocks=[{n[0] * ranks},{n[1]},{n[2]}]"
+
+
+def scene_args(scene, ranks, steps):
+    """The --set arguments that weak-scale `scene` to `ranks` ranks along x, and the steps."""
+    e = SCENES[scene]["extent"]
+    return ["--steps", str(steps), "--set", f"domain.max=[{e[0] * ranks!r},{e[1]!r},{e[2]!r}]"]
+
+
+def regolith(app, scene, ranks, args, json_path):
+    command = [*MPIEXEC, "-n", str(ranks), app, os.path.join(HERE, "scenes",
+                                                             SCENES[scene]["file"]),
+               *args, "--quiet", "--json", json_path]
+    done = subprocess.run(command, capture_output=True, text=True, env=ENV, check=False)
+    if done.returncode != 0:
+        sys.exit(f"blocks_per_rank: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
+    with open(json_path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def write_data(dump_csv, extent, path):
+    """LAMMPS data file (atom_style sphere), type 1 for the smallest radius, 2 for larger."""
+    with open(dump_csv, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    small = min(float(r["radius"]) for r in rows)
+    types = 2 if any(float(r["radius"]) > small for r in rows) else 1
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(f"Regolith initial state\n\n{len(rows)} atoms\n{types} atom types\n\n")
+        for axis, length in zip("xyz", extent):
+            f.write(f"0 {length!r} {axis}lo {axis}hi\n")
+        f.write("\nAtoms # sphere\n\n")
+        for r in rows:
+            radius, mass = float(r["radius"]), float(r["mass"])
+            density = mass / (4.0 / 3.0 * math.pi * radius ** 3)
+            kind = 1 if radius == small else 2
+            f.write(f"{int(r['uid']) + 1} {kind} {2 * radius!r} {density!r} {r['x']} {r['y']} "
+                    f"{r['z']}\n")
+        f.write("\nVelocities\n\n")
+        for r in rows:
+            f.write(f"{int(r['uid']) + 1} {r['vx']} {r['vy']} {r['vz']} {r['wx']} {r['wy']} "
+                    f"{r['wz']}\n")
+    small_mass = next(float(r["mass"]) for r in rows if float(r["radius"]) == small)
+    return len(rows), small_mass
+
+
+def lammps(scene, ranks, data, params, steps, workdir):
+    """Loop seconds and atoms of one LAMMPS run."""
+    log = os.path.join(workdir, "lmp.log")
+    command = [*MPIEXEC, "-n", str(ranks), "lmp", "-in",
+               os.path.join(HERE, SCENES[scene]["deck"]), "-log", log, "-screen", "none",
+               "-var", "data", data, "-var", "dt", "0.01", "-var", "steps", str(steps),
+               "-var", "skin", str(LAMMPS_SKIN)]
+    for k, v in params.items():
+        command += ["-var", k, repr(v)]
+    done = subprocess.run(command, capture_output=True, text=True, cwd=workdir, env=ENV,
+                          check=False)
+    if done.returncode != 0:
+        sys.exit(f"blocks_per_rank: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
+    with open(log, encoding="utf-8") as f:
+        m = re.search(r"Loop time of ([0-9.eE+-]+) on (\d+) procs for (\d+) steps with (\d+) "
+                      r"atoms", f.read())
+    if not m:
+        sys.exit(f"blocks_per_rank: no loop time in {log}")
+    return float(m.group(1)), int(m.group(4))
+
+
+def chart(path, results, lammps_pupcs, ranks):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    colours = {"a": "tab:blue", "b": "tab:orange", "c": "tab:green"}
+    for (scene, subdomains), points in sorted(results.items()):
+        xs = sorted(points)
+        ys = [statistics.median(points[x]) for x in xs]
+        lows = [y - min(points[x]) for x, y in zip(xs, ys)]
+        highs = [max(points[x]) - y for x, y in zip(xs, ys)]
+        style = "-o" if subdomains == "merged" else ":x"
+        label = f"scene {scene.upper()}" + ("" if subdomains == "merged" else
+                                            " (one subdomain per block)")
+        ax.errorbar(xs, ys, yerr=[lows, highs], fmt=style, color=colours[scene], label=label,
+                    capsize=3)
+        if subdomains == "merged":
+            ax.axhline(statistics.median(lammps_pupcs[scene]), color=colours[scene],
+                       linestyle="--", linewidth=1, label=f"LAMMPS, scene {scene.upper()}")
+    ax.set_xscale("log", base=2)
+    ax.set_xlabel("blocks per rank")
+    ax.set_ylabel("PUpCS (particle updates per core-second)")
+    ax.set_title(f"Blocks per rank, defaults only, {ranks} rank(s): median and range")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
+    p.add_argument("--scenes", nargs="*", default=["a", "b", "c"])
+    p.add_argument("--blocks", nargs="*", type=int, default=[1, 8, 64, 512])
+    p.add_argument("--steps", type=int, default=1000)
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--ranks", type=int, default=1)
+    p.add_argument("--subdomains", nargs="*", default=["merged"])
+    p.add_argument("--chart")
+    a = p.parse_args()
+    app = os.path.join(a.build, "bin", "regolith")
+    os.makedirs(a.out, exist_ok=True)
+    results, theirs, rows = {}, {}, []
+    print(f"ranks {a.ranks}, {a.steps} steps, {a.repeats} repeats, defaults only")
+    print("| scene | grains | blocks per rank | subdomains | PUpCS (median) | range | "
+          "vs 1 block | vs LAMMPS |")
+    print("|---|---|---|---|---|---|---|---|")
+    for scene in a.scenes:
+        spec = SCENES[scene]
+        with tempfile.TemporaryDirectory() as tmp:
+            base = scene_args(scene, a.ranks, a.steps)
+            dump = os.path.join(tmp, "init.csv")
+            regolith(app, scene, 1, scene_args(scene, a.ranks, 0) + ["--dump", dump],
+                     os.path.join(tmp, "init.json"))
+            data = os.path.join(tmp, "grains.data")
+            extent = (spec["extent"][0] * a.ranks, *spec["extent"][1:])
+            grains, mass = write_data(dump, extent, data)
+            case = SimpleNamespace(stiffness=spec["stiffness"], restitution=spec["restitution"],
+                                   friction=spec["friction"], extent=extent,
+                                   lammps_vars=spec["vars"])
+            params = lammps_params(case, mass)
+            runs = {}
+            for repeat in range(a.repeats):
+                for subdomains in a.subdomains:
+                    for b in a.blocks:
+                        args = base + ["--set", blocks_arg(b, a.ranks),
+                                       "--set", f'sync.subdomains="{subdomains}"']
+                        s = regolith(app, scene, a.ranks, args, os.path.join(tmp, "run.json"))
+                        if s["particles"] != grains:
+                            sys.exit(f"blocks_per_rank: {s['particles']} grains, the dump "
+                                     f"{grains}")
+                        runs.setdefault((subdomains, b), []).append(s["pupcs"])
+                        rows.append([scene, a.ranks, subdomains, b, repeat, grains, a.steps,
+                                     s["wall_s"], s["pupcs"], s["timing_s"].get("sync", ""),
+                                     s["timing_s"].get("contact", ""),
+                                     s["timing_s"].get("integrate", ""), s["shadows"],
+                                     s["peak_rss_bytes"]])
+                loop, atoms = lammps(scene, a.ranks, data, params, a.steps, tmp)
+                if atoms != grains:
+                    sys.exit(f"blocks_per_rank: LAMMPS ran {atoms} atoms, Regolith {grains}")
+                theirs.setdefault(scene, []).append(a.steps * atoms / (loop * a.ranks))
+                rows.append([scene, a.ranks, "lammps", "", repeat, grains, a.steps, loop,
+                             theirs[scene][-1], "", "", "", "", ""])
+            for (subdomains, b), pupcs in sorted(runs.items()):
+                results.setdefault((scene, subdomains), {})[b] = pupcs
+                one = runs[(subdomains, a.blocks[0])]
+                vs_one = statistics.median(x / y for x, y in zip(pupcs, one))
+                vs_lmp = statistics.median(x / y for x, y in zip(pupcs, theirs[scene]))
+                print(f"| {scene.upper()} | {grains} | {b} | {subdomains} | "
+                      f"{statistics.median(pupcs):.3e} | {min(pupcs):.3e}–{max(pupcs):.3e} | "
+                      f"{vs_one:.2f} | {vs_lmp:.2f} |", flush=True)
+            lmp = theirs[scene]
+            print(f"| {scene.upper()} | {grains} | LAMMPS | | {statistics.median(lmp):.3e} | "
+                  f"{min(lmp):.3e}–{max(lmp):.3e} | | |", flush=True)
+    with open(os.path.join(a.out, f"blocks_per_rank_np{a.ranks}.csv"), "w", newline="",
+              encoding="utf-8") as f:
+        w = csv.writer(f)
+        w.writerow(["scene", "ranks", "subdomains", "blocks_per_rank", "repeat", "grains",
+                    "steps", "loop_s", "pupcs", "sync_s", "contact_s", "integrate_s",
+                    "shadows", "peak_rss_bytes"])
+        w.writerows(rows)
+    if a.chart:
+        chart(a.chart, results, theirs, a.ranks)
+
+
+if __name__ == "__main__":
+    main()
