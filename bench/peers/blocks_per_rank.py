@@ -20,7 +20,7 @@ neigh_modify delay 0 every 1 check yes, fix nve/sphere; decks granular.in, ramp.
 
 usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
-                          [--subdomains merged [blocks]] [--chart PNG]
+                          [--subdomains merged [blocks]] [--chart PNG [--chart-from CSV]]
 """
 import argparse
 import csv
@@ -132,30 +132,43 @@ def lammps(scene, ranks, data, params, steps, workdir):
     return float(m.group(1)), int(m.group(4))
 
 
-def chart(path, results, lammps_pupcs, ranks):
+def chart(path, csv_path):
+    """PUpCS against blocks per rank from a CSV this script wrote: median and range per scene
+    (merged subdomains; one subdomain per block dotted, if measured), LAMMPS's median dashed."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    with open(csv_path, encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    ranks = rows[0]["ranks"]
+    ours, theirs = {}, {}
+    for r in rows:
+        if r["subdomains"] == "lammps":
+            theirs.setdefault(r["scene"], []).append(float(r["pupcs"]))
+        else:
+            key = (r["scene"], r["subdomains"])
+            ours.setdefault(key, {}).setdefault(int(r["blocks_per_rank"]), []).append(
+                float(r["pupcs"]))
     fig, ax = plt.subplots(figsize=(7, 4.5))
     colours = {"a": "tab:blue", "b": "tab:orange", "c": "tab:green"}
-    for (scene, subdomains), points in sorted(results.items()):
+    for (scene, subdomains), points in sorted(ours.items()):
         xs = sorted(points)
         ys = [statistics.median(points[x]) for x in xs]
         lows = [y - min(points[x]) for x, y in zip(xs, ys)]
         highs = [max(points[x]) - y for x, y in zip(xs, ys)]
-        style = "-o" if subdomains == "merged" else ":x"
-        label = f"scene {scene.upper()}" + ("" if subdomains == "merged" else
-                                            " (one subdomain per block)")
-        ax.errorbar(xs, ys, yerr=[lows, highs], fmt=style, color=colours[scene], label=label,
-                    capsize=3)
-        if subdomains == "merged":
-            ax.axhline(statistics.median(lammps_pupcs[scene]), color=colours[scene],
-                       linestyle="--", linewidth=1, label=f"LAMMPS, scene {scene.upper()}")
+        merged = subdomains == "merged"
+        label = f"scene {scene.upper()}" + ("" if merged else ", one subdomain per block")
+        ax.errorbar(xs, ys, yerr=[lows, highs], fmt="-o" if merged else ":x",
+                    color=colours[scene], label=label, capsize=3)
+    for scene, pupcs in sorted(theirs.items()):
+        ax.axhline(statistics.median(pupcs), color=colours[scene], linestyle="--", linewidth=1,
+                   label=f"LAMMPS, scene {scene.upper()}")
     ax.set_xscale("log", base=2)
+    ax.set_yscale("log")
     ax.set_xlabel("blocks per rank")
     ax.set_ylabel("PUpCS (particle updates per core-second)")
-    ax.set_title(f"Blocks per rank, defaults only, {ranks} rank(s): median and range")
-    ax.set_ylim(bottom=0)
+    ax.set_title(f"Scenes as a user writes them, defaults only, {ranks} rank(s): "
+                 "median and range", fontsize=9)
     ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -171,11 +184,15 @@ def main():
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--subdomains", nargs="*", default=["merged"])
-    p.add_argument("--chart")
+    p.add_argument("--chart", help="PNG to draw from this run's CSV")
+    p.add_argument("--chart-from", help="draw --chart from this CSV instead of running")
     a = p.parse_args()
+    if a.chart_from:
+        chart(a.chart, a.chart_from)
+        return
     app = os.path.join(a.build, "bin", "regolith")
     os.makedirs(a.out, exist_ok=True)
-    results, theirs, rows = {}, {}, []
+    theirs, rows = {}, []
     print(f"ranks {a.ranks}, {a.steps} steps, {a.repeats} repeats, defaults only")
     print("| scene | grains | blocks per rank | subdomains | PUpCS (median) | range | "
           "vs 1 block | vs LAMMPS |")
@@ -217,7 +234,6 @@ def main():
                 rows.append([scene, a.ranks, "lammps", "", repeat, grains, a.steps, loop,
                              theirs[scene][-1], "", "", "", "", ""])
             for (subdomains, b), pupcs in sorted(runs.items()):
-                results.setdefault((scene, subdomains), {})[b] = pupcs
                 one = runs[(subdomains, a.blocks[0])]
                 vs_one = statistics.median(x / y for x, y in zip(pupcs, one))
                 vs_lmp = statistics.median(x / y for x, y in zip(pupcs, theirs[scene]))
@@ -227,15 +243,15 @@ def main():
             lmp = theirs[scene]
             print(f"| {scene.upper()} | {grains} | LAMMPS | | {statistics.median(lmp):.3e} | "
                   f"{min(lmp):.3e}–{max(lmp):.3e} | | |", flush=True)
-    with open(os.path.join(a.out, f"blocks_per_rank_np{a.ranks}.csv"), "w", newline="",
-              encoding="utf-8") as f:
+    csv_path = os.path.join(a.out, f"blocks_per_rank_np{a.ranks}.csv")
+    with open(csv_path, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(["scene", "ranks", "subdomains", "blocks_per_rank", "repeat", "grains",
                     "steps", "loop_s", "pupcs", "sync_s", "contact_s", "integrate_s",
                     "shadows", "peak_rss_bytes"])
         w.writerows(rows)
     if a.chart:
-        chart(a.chart, results, theirs, a.ranks)
+        chart(a.chart, csv_path)
 
 
 if __name__ == "__main__":
