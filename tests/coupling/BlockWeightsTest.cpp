@@ -33,10 +33,14 @@ int blockIndex(core::AABB const& box) {
 
 } // namespace
 
-TEST(BlockWeights, GrainsAndCellsPerBlockOnEveryRank) {
+/// The particles on one subdomain per block, or on each rank's blocks merged: the weights are
+/// the forest blocks' either way.
+class BlockWeightsOn : public ::testing::TestWithParam<domain::Subdomains> {};
+
+TEST_P(BlockWeightsOn, GrainsAndCellsPerBlockOnEveryRank) {
     Comm world;
     auto const spec = forestSpec(Vec3::Zero(), Vec3(8, 1, 1), {8, 1, 1}, allAxes(false));
-    domain::BlockForest const forest(world, spec);
+    domain::BlockForest const forest(world, spec, {}, GetParam());
     particles::LocalParticles local(forest);
     addAll(local, world, crowdedRow(70));
     domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {});
@@ -50,6 +54,13 @@ TEST(BlockWeights, GrainsAndCellsPerBlockOnEveryRank) {
         EXPECT_DOUBLE_EQ(withCells(box, 0), 1.0 + grains + 0.25 * 16.0) << "block " << b;
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(Subdomains, BlockWeightsOn,
+                         ::testing::Values(domain::Subdomains::Blocks,
+                                           domain::Subdomains::RankBoxes),
+                         [](auto const& p) {
+                             return p.param == domain::Subdomains::Blocks ? "Blocks" : "Merged";
+                         });
 
 TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
     Comm world;
