@@ -37,7 +37,7 @@ from types import SimpleNamespace
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, HERE)
-from lammps_compare import lammps_params  # noqa: E402  (the same contact numbers)
+from lammps_compare import lammps_params, write_data  # noqa: E402  (the same numbers, data)
 
 ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 MPIEXEC = ["mpiexec", "--oversubscribe"]
@@ -84,31 +84,6 @@ def regolith(app, scene, ranks, args, json_path):
         sys.exit(f"blocks_per_rank: {' '.join(command)} failed\n{done.stdout}\n{done.stderr}")
     with open(json_path, encoding="utf-8") as f:
         return json.load(f)
-
-
-def write_data(dump_csv, extent, path):
-    """LAMMPS data file (atom_style sphere), type 1 for the smallest radius, 2 for larger."""
-    with open(dump_csv, encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
-    small = min(float(r["radius"]) for r in rows)
-    types = 2 if any(float(r["radius"]) > small for r in rows) else 1
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(f"Regolith initial state\n\n{len(rows)} atoms\n{types} atom types\n\n")
-        for axis, length in zip("xyz", extent):
-            f.write(f"0 {length!r} {axis}lo {axis}hi\n")
-        f.write("\nAtoms # sphere\n\n")
-        for r in rows:
-            radius, mass = float(r["radius"]), float(r["mass"])
-            density = mass / (4.0 / 3.0 * math.pi * radius ** 3)
-            kind = 1 if radius == small else 2
-            f.write(f"{int(r['uid']) + 1} {kind} {2 * radius!r} {density!r} {r['x']} {r['y']} "
-                    f"{r['z']}\n")
-        f.write("\nVelocities\n\n")
-        for r in rows:
-            f.write(f"{int(r['uid']) + 1} {r['vx']} {r['vy']} {r['vz']} {r['wx']} {r['wy']} "
-                    f"{r['wz']}\n")
-    small_mass = next(float(r["mass"]) for r in rows if float(r["radius"]) == small)
-    return len(rows), small_mass
 
 
 def lammps(scene, ranks, data, params, steps, workdir):
@@ -206,7 +181,10 @@ def main():
                      os.path.join(tmp, "init.json"))
             data = os.path.join(tmp, "grains.data")
             extent = (spec["extent"][0] * a.ranks, *spec["extent"][1:])
-            grains, mass = write_data(dump, extent, data)
+            rows_in = write_data(dump, extent, data)
+            grains = len(rows_in)
+            small = min(rows_in, key=lambda r: float(r["radius"]))
+            mass = float(small["mass"])
             case = SimpleNamespace(stiffness=spec["stiffness"], restitution=spec["restitution"],
                                    friction=spec["friction"], extent=extent,
                                    lammps_vars=spec["vars"])

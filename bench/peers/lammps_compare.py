@@ -119,18 +119,23 @@ def regolith(app, case, args, json_path, extra=()):
 
 
 def write_data(dump_csv, extent, path):
-    """LAMMPS data file (atom_style sphere: id type diameter density x y z) from a dump."""
+    """LAMMPS data file (atom_style sphere: id type diameter density x y z) from a dump: type 1
+    for the grains of the smallest radius, 2 for the larger ones (neighbor multi's
+    collections). Returns the dump's rows."""
     with open(dump_csv, encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
+    small = min(float(r["radius"]) for r in rows)
+    types = 2 if any(float(r["radius"]) > small for r in rows) else 1
     with open(path, "w", encoding="utf-8") as f:
-        f.write(f"Regolith initial state\n\n{len(rows)} atoms\n1 atom types\n\n")
+        f.write(f"Regolith initial state\n\n{len(rows)} atoms\n{types} atom types\n\n")
         for axis, length in zip("xyz", extent):
             f.write(f"0 {length!r} {axis}lo {axis}hi\n")
         f.write("\nAtoms # sphere\n\n")
         for r in rows:
             radius, mass = float(r["radius"]), float(r["mass"])
             density = mass / (4.0 / 3.0 * math.pi * radius ** 3)
-            f.write(f"{int(r['uid']) + 1} 1 {2 * radius!r} {density!r} {r['x']} {r['y']} "
+            kind = 1 if radius == small else 2
+            f.write(f"{int(r['uid']) + 1} {kind} {2 * radius!r} {density!r} {r['x']} {r['y']} "
                     f"{r['z']}\n")
         f.write("\nVelocities\n\n")
         for r in rows:
