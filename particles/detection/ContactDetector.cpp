@@ -200,16 +200,38 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
         m_list.restart(ps, 0.0);
         return;
     }
-    double const skin = m_config.skin > 0.0 ? m_config.skin : -m_config.relativeSkin;
+    // A skin for the scene: every kSkinChoiceEvery-th rebuild bins with the widest one and
+    // chooses; the others bin with the choice (negative: relative to the small radius).
+    constexpr std::uint32_t kSkinChoiceEvery = 16;
+    bool const choose = widens() && m_rebuilds % kSkinChoiceEvery == 0;
+    ++m_rebuilds;
+    double skin = m_config.skin > 0.0 ? m_config.skin : -m_config.relativeSkin;
+    if (choose)
+        skin = -m_config.widestRelativeSkin;
+    else if (widens() && m_relativeSkin > 0.0)
+        skin = -m_relativeSkin;
     LocalPositions const positions = bin(ps, frame, skin);
+    double const binned = m_stats.skin; // the reach of the cells' candidates
+    if (choose) {
+        double const rSmallMax = binned / m_config.widestRelativeSkin;
+        m_relativeSkin = chooseRelativeSkin(ps, positions, rSmallMax);
+        m_stats.skin = m_relativeSkin * rSmallMax;
+    }
     m_listSkin = m_stats.skin;
     m_list.restart(ps, m_listSkin); // ids = indices, as the cells' members
-    m_cells.forEachOverlap([&](std::size_t a, std::size_t b) {
+    // Binned wider than the list's skin: the candidates beyond it are left out (in the local
+    // frame, which the slack covers, as the cells' own test).
+    double const slack = m_stats.slack;
+    auto const add = [&](std::size_t a, std::size_t b) {
+        if (m_listSkin < binned) {
+            double const reach = ps.radius(a) + ps.radius(b) + m_listSkin + slack;
+            if (!((positions[a] - positions[b]).squaredNorm() < reach * reach))
+                return;
+        }
         m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
-    });
-    largePass(positions, ps, m_stats.slack + m_listSkin, [&](std::size_t a, std::size_t b) {
-        m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
-    });
+    };
+    m_cells.forEachOverlap(add);
+    largePass(positions, ps, slack + binned, add);
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
     classifyListed(ps, region, frame, 0);

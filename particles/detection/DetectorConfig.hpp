@@ -11,6 +11,11 @@ struct DetectorConfig {
     double skin = 0.0;
     /// If skin is 0: skin = relativeSkin * (the largest small radius) at every rebuild.
     double relativeSkin = 0.0;
+    /// With relativeSkin: the list's skin may widen to 2, 3, ... times relativeSkin, up to
+    /// this, where that lists hardly more pairs (a packing whose next neighbours lie beyond
+    /// the first shell): the list then holds longer at nearly the same cost per step
+    /// (ContactDetector, "A skin for the scene"). 0 or below relativeSkin: never wider.
+    double widestRelativeSkin = 0.0;
     /// Spheres with a radius above this go to the large pass [length]; 0 = automatic:
     /// `largeFactor` times the median radius of the block's spheres.
     double largeRadius = 0.0;

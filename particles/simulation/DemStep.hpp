@@ -41,8 +41,9 @@ struct DemStepConfig {
     double dt = 0.0;                         ///< time step [time], > 0 and finite
     core::Vec3 gravity = core::Vec3::Zero(); ///< uniform external acceleration [length/time^2]
     /// Contact detection of every block: by default a Verlet list with a skin of a quarter of
-    /// the small grains' radius (reused across steps, see ContactDetector).
-    DetectorConfig detector{.skin = 0.0, .relativeSkin = 0.25};
+    /// the small grains' radius, widened up to three quarters where that lists hardly more
+    /// pairs (reused across steps; ContactDetector, "A skin for the scene").
+    DetectorConfig detector{.skin = 0.0, .relativeSkin = 0.25, .widestRelativeSkin = 0.75};
     /// Check the synchronisation invariants (particles/sync/SyncInvariants.hpp) over all
     /// ranks after every sync call and throw core::Error on every rank if one fails. A
     /// debugging aid (it gathers every copy on rank 0); on by default in builds with

@@ -58,16 +58,22 @@ struct Scene {
     }
 };
 
+/// The list's skin: 0.1, or chosen for the scene (ContactDetector, "A skin for the scene").
+DetectorConfig absoluteSkin() {
+    DetectorConfig c;
+    c.skin = 0.1;
+    return c;
+}
+
 /// The scene of SameContactsAsCells... with evaluation region `region` (settled pairs are
-/// decided against it): returns the settled pairs seen, over all calls.
-std::size_t sameContactsAsCells(AABB const& region) {
+/// decided against it) and the list configured by `withSkin`: returns the settled pairs seen,
+/// over all calls.
+std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = absoluteSkin()) {
     Scene s;
     s.region = region;
     ParticleStorage ps;
     for (int k = 0; k < 400; ++k)
         ps.add(s.randomCopy());
-    DetectorConfig withSkin;
-    withSkin.skin = 0.1;
     ContactDetector listed(withSkin);
     ContactDetector cells;
     std::size_t rebuilds = 0, arrivals = 0, contacts = 0, settled = 0;
@@ -125,6 +131,46 @@ TEST(VerletList, SameContactsAsCellsInOneBlockOfSeveral) {
     // A block of a 2 x 2 x 1 forest: pairs are settled against its faces (evaluated here
     // always, never) and those near a face keep the contact-point rule.
     EXPECT_GT(sameContactsAsCells(AABB{Vec3(3.0, 0.0, 0.0), Vec3(6.0, 3.0, 6.0)}), 0U);
+}
+
+TEST(VerletList, SameContactsAsCellsWithTheSkinChosenForTheScene) {
+    DetectorConfig chosen;
+    chosen.relativeSkin = 0.25;
+    chosen.widestRelativeSkin = 0.75;
+    EXPECT_GT(sameContactsAsCells(AABB{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)}, chosen), 0U);
+}
+
+/// The skin chosen at the first rebuild of equal spheres of radius 0.5 on a simple cubic
+/// lattice of spacing `spacing` (in a periodic box of 8 x 8 x 8 sites).
+double skinChosenForLattice(double spacing) {
+    double const edge = 8.0 * spacing;
+    PeriodicFrame const frame{AABB{Vec3::Zero(), Vec3::Constant(edge)}, {true, true, true}};
+    ParticleStorage ps;
+    Uid uid = 0;
+    for (int z = 0; z < 8; ++z)
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x)
+                ps.add(sphere(uid++, spacing * Vec3(x + 0.5, y + 0.5, z + 0.5), 0.5, 1.0));
+    DetectorConfig chosen;
+    chosen.relativeSkin = 0.25;
+    chosen.widestRelativeSkin = 0.75;
+    ContactDetector listed(chosen);
+    ContactList out;
+    listed.detect(ps, {}, frame.domain, frame, out);
+    EXPECT_TRUE(listed.stats().rebuilt);
+    return listed.stats().skin;
+}
+
+TEST(VerletList, APackingTakesAWiderSkinThanAGas) {
+    // Touching spheres: the next sites lie sqrt(2) - 1 = 0.41 beyond contact, so every
+    // candidate up to 0.75 r = 0.375 lists the same six neighbours: the widest is taken.
+    EXPECT_DOUBLE_EQ(skinChosenForLattice(1.0), 0.375);
+    // Sites 1.1 apart (gap 0.1): every candidate lists the six neighbours (the next sites
+    // lie sqrt(2) 1.1 - 1 = 0.56 beyond contact): the widest again.
+    EXPECT_DOUBLE_EQ(skinChosenForLattice(1.1), 0.375);
+    // Sites 1.2 apart (gap 0.2): 0.125 lists nothing, 0.25 the six neighbours: the first
+    // candidate is kept (a list that grows from nothing is not "hardly longer").
+    EXPECT_DOUBLE_EQ(skinChosenForLattice(1.2), 0.125);
 }
 
 TEST(VerletList, RebuildsWhenTheTraceBreaks) {
