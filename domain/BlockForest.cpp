@@ -42,36 +42,32 @@ BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount,
         busy[static_cast<std::size_t>(leaf.owner)] = 1;
     m_idleRankCount = static_cast<int>(std::count(busy.begin(), busy.end(), 0));
 
-    std::vector<RankBox> const boxes =
+    SubdomainCut const cut =
         subdomains == Subdomains::RankBoxes ? mergeRankLeaves(leaves) : oneBoxPerLeaf(leaves);
-    m_globalSubdomainCount = boxes.size();
-    // Per leaf, its box; per box, its real box once rather than once per link.
-    std::vector<std::uint32_t> boxOf(leaves.size());
-    std::vector<core::AABB> real;
-    real.reserve(boxes.size());
-    for (std::size_t b = 0; b < boxes.size(); ++b) {
-        for (std::uint32_t l : boxes[b].leaves)
+    m_globalSubdomainCount = cut.boxes.size();
+    std::vector<std::uint32_t> boxOf(leaves.size()); // per leaf, its box
+    for (std::size_t b = 0; b < cut.boxes.size(); ++b)
+        for (std::uint32_t l : cut.leavesOf(cut.boxes[b]))
             boxOf[l] = static_cast<std::uint32_t>(b);
-        real.push_back(m_geometry.box(boxes[b].lattice));
-    }
     std::vector<LeafLink> leafLinks;
     std::vector<LeafLink> links; // (box, image) of the block's links
-    for (std::size_t b = 0; b < boxes.size(); ++b) {
-        RankBox const& box = boxes[b];
+    for (std::size_t b = 0; b < cut.boxes.size(); ++b) {
+        RankBox const& box = cut.boxes[b];
         if (box.owner != rank)
             continue;
-        ForestLeaf const& first = leaves[box.leaves.front()];
+        auto const mine = cut.leavesOf(box);
+        ForestLeaf const& first = leaves[mine.front()];
         Block block;
         block.id = first.id;
-        block.aabb = real[b];
+        block.aabb = m_geometry.box(box.lattice);
         block.level = first.id.level();
         block.owner = rank;
         block.weight = 0.0;
-        block.curveIndex = box.leaves.front();
+        block.curveIndex = mine.front();
         block.lattice = box.lattice;
         // A box touches another's image iff one of its leaves touches one of the other's.
         links.clear();
-        for (std::uint32_t l : box.leaves) {
+        for (std::uint32_t l : mine) {
             ForestLeaf const& leaf = leaves[l];
             block.leaves.push_back(
                 CoveredLeaf{leaf.id, m_geometry.box(leaf.box), leaf.box, l, leaf.weight});
@@ -93,9 +89,9 @@ BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount,
                     links.end());
         block.neighbours.reserve(links.size());
         for (LeafLink const& l : links) {
-            RankBox const& n = boxes[l.leaf];
-            BlockId const id = leaves[n.leaves.front()].id;
-            block.neighbours.push_back(BlockLink{id, real[l.leaf], n.owner, id.level(),
+            RankBox const& n = cut.boxes[l.leaf];
+            BlockId const id = leaves[cut.leavesOf(n).front()].id;
+            block.neighbours.push_back(BlockLink{id, m_geometry.box(n.lattice), n.owner, id.level(),
                                                  m_geometry.shift(l.image), l.image, n.lattice});
             if (n.owner != rank)
                 m_neighbourRanks.push_back(n.owner);

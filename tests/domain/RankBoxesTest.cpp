@@ -37,13 +37,15 @@ TEST_P(RankBoxes, EachBoxIsExactlyTiledByLeavesOfItsRank) {
     for (int ranks : {1, 2, 3, 5, 8}) {
         builder.assign(randomWeight, ranks);
         auto const& leaves = builder.leaves();
-        std::vector<RankBox> const boxes = mergeRankLeaves(leaves);
+        SubdomainCut const cut = mergeRankLeaves(leaves);
+        std::vector<RankBox> const& boxes = cut.boxes;
         std::vector<int> covered(leaves.size(), 0);
         for (RankBox const& box : boxes) {
             LatticeIndex sum = 0;
-            ASSERT_FALSE(box.leaves.empty());
-            EXPECT_TRUE(std::is_sorted(box.leaves.begin(), box.leaves.end()));
-            for (std::uint32_t l : box.leaves) {
+            auto const mine = cut.leavesOf(box);
+            ASSERT_FALSE(mine.empty());
+            EXPECT_TRUE(std::is_sorted(mine.begin(), mine.end()));
+            for (std::uint32_t l : mine) {
                 ++covered[l];
                 EXPECT_EQ(leaves[l].owner, box.owner) << leaves[l].id;
                 EXPECT_TRUE(inside(leaves[l].box, box.lattice)) << leaves[l].id;
@@ -54,7 +56,7 @@ TEST_P(RankBoxes, EachBoxIsExactlyTiledByLeavesOfItsRank) {
         EXPECT_TRUE(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }))
             << ranks << " ranks: a leaf in no box or in two";
         for (std::size_t b = 1; b < boxes.size(); ++b)
-            EXPECT_LT(boxes[b - 1].leaves.front(), boxes[b].leaves.front());
+            EXPECT_LT(cut.leavesOf(boxes[b - 1]).front(), cut.leavesOf(boxes[b]).front());
     }
 }
 
@@ -63,7 +65,7 @@ TEST_P(RankBoxes, ARankWhoseLeavesFormACuboidGetsOneBox) {
     for (int ranks : {1, 2, 4, 8}) {
         builder.assign({}, ranks);
         auto const& leaves = builder.leaves();
-        std::vector<RankBox> const boxes = mergeRankLeaves(leaves);
+        std::vector<RankBox> const boxes = mergeRankLeaves(leaves).boxes;
         for (int r = 0; r < ranks; ++r) {
             LatticeBox hull{{1LL << 62, 1LL << 62, 1LL << 62},
                             {-(1LL << 62), -(1LL << 62), -(1LL << 62)}};
