@@ -19,6 +19,8 @@ std::string toJson(RunSummary const& s) {
         .member("scene", s.scene)
         .member("ranks", s.ranks)
         .member("blocks", s.blocks)
+        .member("particle_subdomains", s.particleSubdomains)
+        .member("subdomains", s.subdomains)
         .member("sync", s.sync)
         .member("particles", s.particles)
         .member("shadows", s.shadows)

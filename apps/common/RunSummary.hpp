@@ -14,6 +14,10 @@ struct RunSummary {
     std::string scene;
     int ranks = 1;
     std::int64_t blocks = 0;
+    /// The particles' subdomains over all ranks and how they were cut (JSON keys
+    /// "particle_subdomains" and "subdomains": "merged" or "blocks", beyond the contract's).
+    std::int64_t particleSubdomains = 0;
+    std::string subdomains;
     std::string sync;
     std::int64_t particles = 0; ///< masters at the end, over all ranks
     std::int64_t shadows = 0;   ///< shadow copies at the end, over all ranks

@@ -262,6 +262,10 @@ int runSceneUnlocated(core::AppContext& ctx) {
     summary.scene = scene.name;
     summary.ranks = world.size();
     summary.blocks = static_cast<std::int64_t>(forest.globalBlockCount());
+    summary.particleSubdomains =
+        static_cast<std::int64_t>(placement.particleForest->globalSubdomainCount());
+    summary.subdomains =
+        scene.sync.subdomains == domain::Subdomains::RankBoxes ? "merged" : "blocks";
     summary.sync = std::string(toString(scene.sync.method));
     fillLoopSummary(world, loop, local, summary);
     summary.peakRssBytes = peakRssBytes(world);

@@ -59,12 +59,16 @@ TimeSection parseTime(core::ConfigTable const& t) {
     s.allowUnstable = t.getOr<bool>("allow_unstable", false);
     s.integrator = static_cast<Integrator>(t.getChoiceOr(
         "integrator", kIntegratorNames, static_cast<std::size_t>(Integrator::Verlet)));
-    if (t.has("orientation") && t.kindOf("orientation") == core::ConfigKind::String) {
-        if (t.getString("orientation") != "auto")
+    if (t.has("orientation")) {
+        core::ConfigKind const kind = t.kindOf("orientation");
+        bool const isAuto =
+            kind == core::ConfigKind::String && t.getString("orientation") == "auto";
+        if (!isAuto && kind != core::ConfigKind::Boolean)
             t.failExpected("orientation", "true, false or \"auto\"");
-    } else if (t.has("orientation")) {
-        s.orientation = t.getOr<bool>("orientation", true);
-        s.orientationAuto = false;
+        if (!isAuto) {
+            s.orientation = t.getBool("orientation");
+            s.orientationAuto = false;
+        }
     }
     if (!s.orientation && s.integrator != Integrator::Verlet)
         t.failExpected("orientation", "true with integrator = \"euler\" (only velocity Verlet "
@@ -77,13 +81,17 @@ SyncSection parseSync(core::ConfigTable const& t) {
     s.method = static_cast<particles::SyncMethod>(t.getChoiceOr(
         "method", kSyncNames, static_cast<std::size_t>(particles::SyncMethod::Hybrid)));
     s.reproducible = t.getOr<bool>("reproducible", false);
-    if (t.has("skin") && t.kindOf("skin") == core::ConfigKind::String) {
-        if (t.getString("skin") != "auto")
+    if (t.has("skin")) {
+        core::ConfigKind const kind = t.kindOf("skin");
+        bool const isAuto = kind == core::ConfigKind::String && t.getString("skin") == "auto";
+        bool const isNumber = kind == core::ConfigKind::Float || kind == core::ConfigKind::Integer;
+        if (!isAuto && !isNumber)
             t.failExpected("skin", "a non-negative finite length or \"auto\"");
-    } else if (t.has("skin")) {
-        s.skin = t.getIf<double>("skin", isNonNegativeFinite,
-                                 "a non-negative finite length or \"auto\"");
-        s.skinAuto = false;
+        if (!isAuto) {
+            s.skin = t.getIf<double>("skin", isNonNegativeFinite,
+                                     "a non-negative finite length or \"auto\"");
+            s.skinAuto = false;
+        }
     }
     s.subdomains = static_cast<domain::Subdomains>(t.getChoiceOr(
         "subdomains", kSubdomainNames, static_cast<std::size_t>(domain::Subdomains::RankBoxes)));

@@ -32,7 +32,8 @@ std::vector<AutoChoice> resolveSpeedChoices(core::Comm const& comm,
             time.orientation = true;
             out.push_back({"time.orientation", "true", "semi-implicit Euler integrates it"});
         } else {
-            time.orientation = scene.output.checkpointEvery > 0;
+            time.orientation =
+                scene.output.checkpointEvery > 0 && scene.output.checkpointEvery <= time.steps;
             out.push_back({"time.orientation", time.orientation ? "true" : "false",
                            time.orientation ? "the checkpoints store the grains' orientation"
                                             : "spheres, and no output writes an orientation"});
@@ -57,13 +58,19 @@ std::vector<AutoChoice> resolveSpeedChoices(core::Comm const& comm,
         particles::SyncConfig grown = sync;
         grown.skin = skin;
         particles::ParticleSync const probe(comm, local.forest(), grown);
-        bool const refused = comm.allReduce(probe.findNnsViolation(local).has_value() ? 1 : 0,
-                                            core::ReduceOp::Max) != 0;
+        auto const violation = probe.findNnsViolation(local);
+        bool const refused = comm.allReduce(violation ? 1 : 0, core::ReduceOp::Max) != 0;
+        bool const anyway =
+            comm.allReduce(violation && violation->radiusAlone ? 1 : 0, core::ReduceOp::Max) != 0;
         if (refused) {
             out.push_back({"sync.skin", "0",
-                           fmt::format("a grain's ball grown by {:g} would reach past the "
-                                       "blocks next to it, which sync.method = \"nns\" refuses",
-                                       skin)});
+                           anyway
+                               ? std::string("sync.method = \"nns\" refuses a grain of this scene "
+                                             "whatever the skin (below)")
+                               : fmt::format("a grain's ball grown by {:g} would reach past the "
+                                             "subdomains next to it, which sync.method = \"nns\" "
+                                             "refuses",
+                                             skin)});
             return out;
         }
     }

@@ -18,8 +18,9 @@ inline constexpr double kAutoSyncSkinPerRadius = 0.25;
 
 /// Resolves the speed keys of `scene` left "auto" (none with explicit values) and returns the
 /// decisions:
-///  - time.orientation: integrated where something reads it -- a checkpoint (it stores the
-///    orientation), or semi-implicit Euler (which always integrates it); the grains are
+///  - time.orientation: integrated where something reads it -- a checkpoint the run will
+///    write (it stores the orientation), or semi-implicit Euler (which always integrates it);
+///    the grains are
 ///    spheres, whose orientation no contact and no other output reads;
 ///  - sync.skin: kAutoSyncSkinPerRadius times the smallest grain radius over all ranks, for
 ///    methods "hybrid" and "nns" (0 for "sos"; 0 for "nns" where a grain's ball grown by it

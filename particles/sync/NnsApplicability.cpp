@@ -52,19 +52,24 @@ void ParticleSync::requireNnsApplicable(LocalParticles const& local) const {
     bool const radiusAlone = comm.allReduce(v && v->radiusAlone ? 1 : 0, core::ReduceOp::Max) != 0;
     double const skinBound = comm.allReduce(
         v ? v->skinBound : std::numeric_limits<double>::infinity(), core::ReduceOp::Min);
+    // The boxes NNS reaches: blocks, or each rank's blocks merged (sync.subdomains).
+    bool const merged = m_impl->forest().subdomains() == domain::Subdomains::RankBoxes;
+    char const* const boxes = merged ? "subdomains" : "blocks";
     std::ostringstream msg;
     if (m_config.skin > 0.0 && !radiusAlone)
         msg << "sync.skin = " << m_config.skin << ": with sync.method = \"nns\", particle uid "
             << *first << "'s radius " << radii[at] << " plus the skin is not below the smallest "
-            << "edge " << edges[at] << " of the blocks it may touch (NNS only reaches next "
+            << "edge " << edges[at] << " of the " << boxes
+            << " it may touch (NNS only reaches next "
             << "neighbours); reduce sync.skin below " << skinBound
             << ", or use sync.method = \"sos\" or \"hybrid\"";
     else
         msg << "sync.method = \"nns\" cannot simulate this scene: particle uid " << *first
             << " has radius " << radii[at] << (m_config.skin > 0.0 ? " plus sync.skin" : "")
-            << ", not below the smallest edge " << edges[at]
-            << " of the blocks it may touch (NNS only reaches next neighbours); use "
-            << "sync.method = \"sos\" or \"hybrid\", or larger blocks";
+            << ", not below the smallest edge " << edges[at] << " of the " << boxes
+            << " it may touch (NNS only reaches next neighbours); use "
+            << "sync.method = \"sos\" or \"hybrid\", or larger blocks"
+            << (merged ? " or fewer ranks (a rank's blocks form its subdomains)" : "");
     throw core::InputError(msg.str());
 }
 

@@ -328,8 +328,10 @@ void ParticleSync::syncInFull(LocalParticles& local,
                 msg << "NNS cannot synchronise particle uid " << ps.uid(i) << ": its radius "
                     << ps.radius(i) << (grow > 0.0 ? " plus sync.skin" : "")
                     << (small ? " plus its displacement in one step reach" : " is not below")
-                    << " the smallest block edge " << edge
-                    << " it may touch; set sync.method = \"sos\" or \"hybrid\""
+                    << " the smallest "
+                    << (engine.forest().subdomains() == domain::Subdomains::RankBoxes ? "subdomain"
+                                                                                      : "block")
+                    << " edge " << edge << " it may touch; set sync.method = \"sos\" or \"hybrid\""
                     << (grow > 0.0 ? ", reduce sync.skin" : "")
                     << (small ? ", or reduce time.dt" : "");
                 // Found here alone, mid-sync: the job ends with this message (exit 2).

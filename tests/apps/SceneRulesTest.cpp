@@ -67,8 +67,11 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "--set time.allow_unstable=1: time.allow_unstable: expected a boolean, got 1 (an "
               "integer)");
     EXPECT_EQ(errorWith("time.orientation=0"),
-              "--set time.orientation=0: time.orientation: expected a boolean, got 0 (an "
-              "integer)");
+              "--set time.orientation=0: time.orientation: expected true, false or \"auto\", "
+              "got 0");
+    EXPECT_EQ(errorWith("sync.skin=true"),
+              "--set sync.skin=true: sync.skin: expected a non-negative finite length or "
+              "\"auto\", got true");
     EXPECT_EQ(errorWith("sync.method=sso"),
               "--set sync.method=sso: sync.method: expected one of \"nns\", \"sos\", \"hybrid\", "
               "got \"sso\" \u2014 did you mean \"sos\"?");
