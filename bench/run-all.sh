@@ -31,8 +31,12 @@ if command -v lmp >/dev/null; then
   # Blocks per rank as a user runs them (the first paper's scenes A, B, C with defaults only,
   # 1 to 512 blocks per rank, LAMMPS in the same invocation; docs/results.md, "Blocks per
   # rank"): the chart on one rank, the two-rank weak scaling with and without merging.
-  /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out" --repeats 3 \
-      --chart docs/images/dem-blocks-per-rank.png | tee "$out/blocks_per_rank_np1.txt"
+  /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out/blocks-ab" \
+      --scenes a b --repeats 3 --subdomains merged blocks | tee "$out/blocks_per_rank_np1.txt"
+  /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out/blocks-c" \
+      --scenes c --repeats 3 | tee -a "$out/blocks_per_rank_np1.txt"
+  /usr/bin/python3 bench/peers/blocks_per_rank.py --chart docs/images/dem-blocks-per-rank.png \
+      --chart-from "$out/blocks-ab/blocks_per_rank_np1.csv" "$out/blocks-c/blocks_per_rank_np1.csv"
   /usr/bin/python3 bench/peers/blocks_per_rank.py --build "$build" --out "$out" --ranks 2 \
       --scenes a b --blocks 1 8 32 64 --repeats 5 --subdomains merged blocks \
       | tee "$out/blocks_per_rank_np2.txt"

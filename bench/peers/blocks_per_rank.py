@@ -20,7 +20,7 @@ neigh_modify delay 0 every 1 check yes, fix nve/sphere; decks granular.in, ramp.
 
 usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
-                          [--subdomains merged [blocks]] [--chart PNG [--chart-from CSV]]
+                          [--subdomains merged [blocks]] [--chart PNG [--chart-from CSV...]]
 """
 import argparse
 import csv
@@ -107,14 +107,17 @@ def lammps(scene, ranks, data, params, steps, workdir):
     return float(m.group(1)), int(m.group(4))
 
 
-def chart(path, csv_path):
-    """PUpCS against blocks per rank from a CSV this script wrote: median and range per scene
-    (merged subdomains; one subdomain per block dotted, if measured), LAMMPS's median dashed."""
+def chart(path, csv_paths):
+    """PUpCS against blocks per rank from CSVs this script wrote (one rank count): median and
+    range per scene (merged subdomains; one subdomain per block dotted, if measured), LAMMPS's
+    median dashed."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    with open(csv_path, encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
+    rows = []
+    for csv_path in csv_paths:
+        with open(csv_path, encoding="utf-8") as f:
+            rows += list(csv.DictReader(f))
     ranks = rows[0]["ranks"]
     ours, theirs = {}, {}
     for r in rows:
@@ -160,7 +163,8 @@ def main():
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--subdomains", nargs="*", default=["merged"])
     p.add_argument("--chart", help="PNG to draw from this run's CSV")
-    p.add_argument("--chart-from", help="draw --chart from this CSV instead of running")
+    p.add_argument("--chart-from", nargs="+",
+                   help="draw --chart from these CSVs instead of running")
     a = p.parse_args()
     if a.chart_from:
         chart(a.chart, a.chart_from)
@@ -229,7 +233,7 @@ def main():
                     "shadows", "peak_rss_bytes"])
         w.writerows(rows)
     if a.chart:
-        chart(a.chart, csv_path)
+        chart(a.chart, [csv_path])
 
 
 if __name__ == "__main__":
