@@ -28,6 +28,15 @@ BlockForest::BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWe
     : BlockForest(buildAndAssign(spec, weight, comm.size()), comm.rank(), comm.size(), subdomains) {
 }
 
+std::pair<BlockForest, BlockForest> BlockForest::blocksAnd(core::Comm const& comm,
+                                                           ForestSpec const& spec,
+                                                           BlockWeight const& weight,
+                                                           Subdomains particles) {
+    ForestBuilder const builder = buildAndAssign(spec, weight, comm.size());
+    return {BlockForest(builder, comm.rank(), comm.size(), Subdomains::Blocks),
+            BlockForest(builder, comm.rank(), comm.size(), particles)};
+}
+
 BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount,
                          Subdomains subdomains)
     : m_geometry(builder.geometry())

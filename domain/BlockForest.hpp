@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace regolith::domain {
@@ -32,6 +33,12 @@ public:
     /// queries below answer for those boxes.
     BlockForest(core::Comm const& comm, ForestSpec const& spec, BlockWeight const& weight = {},
                 Subdomains subdomains = Subdomains::Blocks);
+    /// The same assignment cut twice from one global set-up: as blocks (the grid fields') and
+    /// as `particles` (the particles' subdomains). Not collective, as the constructor.
+    [[nodiscard]] static std::pair<BlockForest, BlockForest> blocksAnd(core::Comm const& comm,
+                                                                       ForestSpec const& spec,
+                                                                       BlockWeight const& weight,
+                                                                       Subdomains particles);
 
     // ---- the forest as a whole (identical on every rank) ----------------------------------
     [[nodiscard]] ForestGeometry const& geometry() const { return m_geometry; }

@@ -5,6 +5,7 @@
 #include "io/checkpoint/RestoreGrains.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace regolith::apps {
@@ -20,13 +21,20 @@ bool sameBlocks(domain::BlockForest const& a, domain::BlockForest const& b) {
                       [](domain::Block const& x, domain::Block const& y) { return x.id == y.id; });
 }
 
+/// The forest and the particles' cut of it, for block weights `weight`.
+void placeForests(core::Comm const& comm, SceneDescription const& scene,
+                  domain::BlockWeight const& weight, BlockPlacement& p) {
+    auto [blocks, subdomains] =
+        domain::BlockForest::blocksAnd(comm, scene.forest, weight, scene.sync.subdomains);
+    p.forest = std::make_unique<domain::BlockForest>(std::move(blocks));
+    p.particleForest = std::make_unique<domain::BlockForest>(std::move(subdomains));
+}
+
 } // namespace
 
 BlockPlacement uniformPlacement(core::Comm const& comm, SceneDescription const& scene) {
     BlockPlacement p;
-    p.forest = std::make_unique<domain::BlockForest>(comm, scene.forest);
-    p.particleForest = std::make_unique<domain::BlockForest>(
-        comm, scene.forest, domain::BlockWeight{}, scene.sync.subdomains);
+    placeForests(comm, scene, {}, p);
     p.local = std::make_unique<particles::LocalParticles>(*p.particleForest);
     return p;
 }
@@ -38,13 +46,12 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     coupling::BlockLoadModel model;
     if (usesGrid(scene.gravity.self))
         model = {scene.forest.cellsPerBlock, scene.forest.cellWeight};
-    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, *placement.local, model);
-    auto forest = std::make_unique<domain::BlockForest>(comm, scene.forest, weight);
-    if (comm.allTrue(sameBlocks(*forest, *placement.forest)))
+    BlockPlacement balanced;
+    placeForests(comm, scene, coupling::grainAndCellWeights(comm, *placement.local, model),
+                 balanced);
+    if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;
-    auto particleForest =
-        std::make_unique<domain::BlockForest>(comm, scene.forest, weight, scene.sync.subdomains);
-    auto local = std::make_unique<particles::LocalParticles>(*particleForest);
+    auto local = std::make_unique<particles::LocalParticles>(*balanced.particleForest);
     {
         // The masters travel as a restart's grains do (one sparse exchange, state complete).
         std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);
@@ -52,8 +59,8 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
         io::restoreGrains(comm, *local, grains, "balancing the blocks by load");
     }
     placement.local = std::move(local);
-    placement.particleForest = std::move(particleForest);
-    placement.forest = std::move(forest);
+    placement.particleForest = std::move(balanced.particleForest);
+    placement.forest = std::move(balanced.forest);
     return true;
 }
 

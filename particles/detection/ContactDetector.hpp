@@ -85,16 +85,9 @@ core::AABB everywhere();
 /// (plus 64), or when an arrival lies beyond the coordinate scale of the last rebuild (its
 /// rounding slack).
 ///
-/// A skin for the scene (DetectorConfig::widestRelativeSkin). A list that must be rebuilt every
-/// few steps (a packing that flows as a whole) costs its rebuilds, which a wider skin makes
-/// rarer; in a gas a wider skin lists many more pairs, each tested every step. So every 16th
-/// rebuild (the first included) bins with the widest skin, counts the pairs each candidate
-/// skin (1, 2, ... times relativeSkin) would list, and takes the widest that lists at most an
-/// eighth more pairs than relativeSkin; the rebuilds until the next choice use it. In a
-/// packing of equal spheres the next shell lies 0.41 diameters beyond the first, so the list
-/// of the first shell takes a skin of up to 0.4 diameters at no cost per step (the dense
-/// ramp: 3 times fewer rebuilds); a gas keeps relativeSkin. The pairs are those of any skin's
-/// list: the contacts, and the trajectory with them, do not depend on it.
+/// A skin for the scene (DetectorConfig::widestRelativeSkin): a packing lists its first shell
+/// with a wider skin at no cost per step and rebuilds less often; a gas keeps relativeSkin.
+/// The contacts do not depend on it (SkinChoice.cpp).
 ///
 /// Settled pairs and the fused loop. When a pair is listed (rebuild or arrival), the detector
 /// decides once what the contact-point rule will answer for it while the list holds
@@ -246,13 +239,9 @@ private:
                    double reachSlack, F&& f);
     void rebuildList(ParticleStorage& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
-    /// Whether the list's skin adapts to the scene (see "A skin for the scene").
-    [[nodiscard]] bool widens() const {
-        return m_config.skin == 0.0 && m_config.relativeSkin > 0.0 &&
-               m_config.widestRelativeSkin > m_config.relativeSkin;
-    }
-    /// The relative skin the next rebuilds take, from the pairs the cells (binned with the
-    /// widest skin, for small radii up to rSmallMax) would list with each candidate skin.
+    /// Whether the list's skin adapts to the scene, and the relative skin the next rebuilds
+    /// take, from the cells binned with the widest (SkinChoice.cpp).
+    [[nodiscard]] bool widens() const;
     [[nodiscard]] double chooseRelativeSkin(ParticleStorage const& particles,
                                             LocalPositions const& positions,
                                             double rSmallMax) const;

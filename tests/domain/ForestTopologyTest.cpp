@@ -21,7 +21,10 @@ using namespace regolith::domain::test;
 
 namespace {
 
+/// Properties of every forest, blocks or merged subdomains (forestCasesBothWays).
 class ForestTopology : public ::testing::TestWithParam<ForestCase> {};
+/// Properties of the leaves themselves: refinement, balance, curve order, assignment.
+class ForestLeaves : public ::testing::TestWithParam<ForestCase> {};
 
 std::unordered_map<BlockId, GlobalBlock const*> byId(std::vector<GlobalBlock> const& all) {
     std::unordered_map<BlockId, GlobalBlock const*> map;
@@ -122,12 +125,10 @@ TEST_P(ForestTopology, LinksAreExactlyTheTouchingImages) {
     }
 }
 
-TEST_P(ForestTopology, TwoToOneBalanceAndRefinementReached) {
-    if (GetParam().subdomains != Subdomains::Blocks)
-        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
+TEST_P(ForestLeaves, TwoToOneBalanceAndRefinementReached) {
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec, {}, GetParam().subdomains);
+    BlockForest const forest(world, spec);
     auto const all = gatherBlocks(world, forest);
 
     int maxRequested = 0;
@@ -173,11 +174,9 @@ TEST_P(ForestTopology, NeighbourRanksAreTheLinkOwnersAndSymmetric) {
             EXPECT_EQ(matrix[r * p + q], matrix[q * p + r]) << r << " vs " << q;
 }
 
-TEST_P(ForestTopology, CurveOrderIsHilbertOverRootsThenDepthFirst) {
-    if (GetParam().subdomains != Subdomains::Blocks)
-        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
+TEST_P(ForestLeaves, CurveOrderIsHilbertOverRootsThenDepthFirst) {
     core::Comm world;
-    BlockForest const forest(world, GetParam().spec, {}, GetParam().subdomains);
+    BlockForest const forest(world, GetParam().spec);
     auto const all = gatherBlocks(world, forest);
     int const bits = hilbertBitsFor(forest.rootBlocks());
     auto const hilbert = [&](BlockId id) {
@@ -201,22 +200,18 @@ TEST_P(ForestTopology, CurveOrderIsHilbertOverRootsThenDepthFirst) {
     }
 }
 
-TEST_P(ForestTopology, UnitWeightsGiveBlockCountsWithinOneOfTheMean) {
-    if (GetParam().subdomains != Subdomains::Blocks)
-        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
+TEST_P(ForestLeaves, UnitWeightsGiveBlockCountsWithinOneOfTheMean) {
     core::Comm world;
-    BlockForest const forest(world, GetParam().spec, {}, GetParam().subdomains);
+    BlockForest const forest(world, GetParam().spec);
     double const mean = static_cast<double>(forest.globalBlockCount()) / world.size();
     EXPECT_LT(std::abs(static_cast<double>(forest.blocks().size()) - mean), 1.0);
     EXPECT_DOUBLE_EQ(forest.localLoad(), static_cast<double>(forest.blocks().size()));
 }
 
-TEST_P(ForestTopology, WeightedAssignmentIsBalancedContiguousAndRankIndependent) {
-    if (GetParam().subdomains != Subdomains::Blocks)
-        GTEST_SKIP() << "a property of the leaves (RankBoxesTest covers merged forests)";
+TEST_P(ForestLeaves, WeightedAssignmentIsBalancedContiguousAndRankIndependent) {
     core::Comm world;
     ForestSpec const& spec = GetParam().spec;
-    BlockForest const forest(world, spec, randomWeight, GetParam().subdomains);
+    BlockForest const forest(world, spec, randomWeight);
 
     double localMax = 0.0;
     double sum = 0.0;
@@ -253,5 +248,7 @@ TEST_P(ForestTopology, WeightedAssignmentIsBalancedContiguousAndRankIndependent)
     }
 }
 
+INSTANTIATE_TEST_SUITE_P(Cases, ForestLeaves, ::testing::ValuesIn(forestCases()),
+                         [](auto const& c) { return c.param.name; });
 INSTANTIATE_TEST_SUITE_P(Cases, ForestTopology, ::testing::ValuesIn(forestCasesBothWays()),
                          [](auto const& c) { return c.param.name; });
