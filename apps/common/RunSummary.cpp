@@ -42,6 +42,15 @@ std::string toJson(RunSummary const& s) {
         .member("method", s.gravity.method)
         .member("updates", s.gravity.updates)
         .endObject();
+    w.key("balance")
+        .beginObject()
+        .member("every", s.balance.every)
+        .member("threshold", s.balance.threshold)
+        .member("rebalances", s.balance.rebalances)
+        .member("seconds", s.balance.seconds)
+        .member("mean_imbalance", s.balance.meanImbalance)
+        .member("final_imbalance", s.balance.finalImbalance)
+        .endObject();
     w.key("auto").beginObject();
     for (RunSummary::AutoChoice const& c : s.autoChoices)
         w.key(c.key).beginObject().member("value", c.value).member("reason", c.reason).endObject();

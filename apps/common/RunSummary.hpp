@@ -45,6 +45,19 @@ struct RunSummary {
         long long updates = 0;
     } gravity;
 
+    /// The ranks' load balance (JSON key "balance", beyond the contract's keys): the
+    /// imbalance max / mean of the ranks' loads (grains and grid cells of their blocks),
+    /// averaged over the measurements during the loop and at its end, and the rebalances
+    /// ([balance] every, threshold) with the time they took.
+    struct Balance {
+        std::int64_t every = 0;
+        double threshold = 1.1;
+        long long rebalances = 0;
+        double seconds = 0.0;
+        double meanImbalance = 1.0;
+        double finalImbalance = 1.0;
+    } balance;
+
     /// The "auto" scene keys and what was chosen (JSON key "auto": {key: {value, reason}},
     /// beyond the contract's keys).
     struct AutoChoice {

@@ -1,6 +1,5 @@
 #include "apps/regolith/BlockPlacement.hpp"
 
-#include "coupling/balance/BlockWeights.hpp"
 #include "io/checkpoint/GrainState.hpp"
 #include "io/checkpoint/RestoreGrains.hpp"
 
@@ -39,29 +38,41 @@ BlockPlacement uniformPlacement(core::Comm const& comm, SceneDescription const& 
     return p;
 }
 
-bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
-                   BlockPlacement& placement) {
-    if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
-        return false;
+coupling::BlockLoadModel loadModel(SceneDescription const& scene) {
     coupling::BlockLoadModel model;
     if (usesGrid(scene.gravity.self))
         model = {scene.forest.cellsPerBlock, scene.forest.cellWeight};
+    return model;
+}
+
+BalanceOutcome balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
+                             BlockPlacement& placement, WorthMoving const& worthMoving) {
+    BalanceOutcome out;
+    if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
+        return out;
+    coupling::BlockLoadModel const model = loadModel(scene);
+    out.before = coupling::loadImbalance(comm, coupling::rankLoad(*placement.local, model));
+    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, *placement.local, model);
     BlockPlacement balanced;
-    placeForests(comm, scene, coupling::grainAndCellWeights(comm, *placement.local, model),
-                 balanced);
-    if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
-        return false;
-    auto local = std::make_unique<particles::LocalParticles>(*balanced.particleForest);
-    {
-        // The masters travel as a restart's grains do (one sparse exchange, state complete).
-        std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);
-        placement.local.reset();
-        io::restoreGrains(comm, *local, grains, "balancing the blocks by load");
+    placeForests(comm, scene, weight, balanced);
+    double load = 0.0;
+    for (domain::Block const& b : balanced.forest->blocks())
+        load += weight(b.aabb, b.id.level());
+    out.after = coupling::loadImbalance(comm, load);
+    if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)) ||
+        (worthMoving && !worthMoving(out.before, out.after))) {
+        out.after = out.before;
+        return out;
     }
-    placement.local = std::move(local);
-    placement.particleForest = std::move(balanced.particleForest);
-    placement.forest = std::move(balanced.forest);
-    return true;
+    // The masters travel as a restart's grains do (one sparse exchange, state complete). The
+    // objects stay where they are: what refers to them sees the new assignment.
+    std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);
+    *placement.forest = std::move(*balanced.forest);
+    *placement.particleForest = std::move(*balanced.particleForest);
+    *placement.local = particles::LocalParticles(*placement.particleForest);
+    io::restoreGrains(comm, *placement.local, grains, "balancing the blocks by load");
+    out.moved = true;
+    return out;
 }
 
 } // namespace regolith::apps

@@ -51,10 +51,13 @@ std::string ProgressLine::text(std::int64_t stepsDone, double elapsed) const {
     auto const left = static_cast<double>(m_settings.lastStep - stepsDone);
     double const rate = elapsed > 0.0 ? done / elapsed : 0.0;
     std::string const eta = rate > 0.0 ? duration(left / rate) : std::string("?");
-    return fmt::format("step {}/{}  t = {:.6g}  {:.4g} steps/s  ETA {}  {} grains  sync {}  "
-                       "gravity {}",
-                       stepsDone, m_settings.lastStep, m_settings.firstTime + done * m_settings.dt,
-                       rate, eta, m_settings.grains, m_settings.sync, m_settings.gravity);
+    std::string line = fmt::format(
+        "step {}/{}  t = {:.6g}  {:.4g} steps/s  ETA {}  {} grains  sync {}  gravity {}", stepsDone,
+        m_settings.lastStep, m_settings.firstTime + done * m_settings.dt, rate, eta,
+        m_settings.grains, m_settings.sync, m_settings.gravity);
+    if (m_settings.ranks > 1)
+        line += fmt::format("  imbalance {:.3g}", m_imbalance);
+    return line;
 }
 
 void ProgressLine::afterStep(std::int64_t stepsDone) {

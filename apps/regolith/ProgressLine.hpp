@@ -4,6 +4,9 @@
 /// line every output.progress_seconds; nothing with --quiet.
 ///
 ///     step 1200/5000  t = 12  850 steps/s  ETA 4.5 s  3937 grains  sync hybrid  gravity none
+///
+/// followed on more than one rank by the last measured load imbalance (DynamicBalance.hpp),
+/// "imbalance 1.04".
 #include <cstdint>
 #include <string>
 
@@ -17,6 +20,7 @@ struct ProgressSettings {
     std::int64_t grains = 0;    ///< masters at the start, over all ranks
     std::string sync;           ///< synchronisation method
     std::string gravity;        ///< self-gravity method
+    int ranks = 1;              ///< the run's ranks
     double logSeconds = 10.0;   ///< interval of log lines when not on a terminal; <= 0: none
     bool enabled = true;        ///< false on ranks other than 0 and with --quiet
 };
@@ -28,6 +32,8 @@ public:
     explicit ProgressLine(ProgressSettings settings);
     /// After each step: prints if it is time to. Not collective (rank 0 alone prints).
     void afterStep(std::int64_t stepsDone);
+    /// The load imbalance (max / mean) the line shows from now on. Not collective.
+    void setImbalance(double imbalance) { m_imbalance = imbalance; }
     /// Ends the live line (a newline, so that what follows starts on its own line).
     void finish();
     /// Erases the live line before other output (a log line) is printed; the next
@@ -44,6 +50,7 @@ private:
     bool m_drawn = false;
     double m_start = 0.0;
     double m_lastPrint = 0.0;
+    double m_imbalance = 1.0;
 };
 
 } // namespace regolith::apps

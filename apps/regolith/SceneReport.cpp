@@ -78,6 +78,11 @@ void printRunReport(RunSummary const& summary, std::int64_t leftDomain,
     text +=
         fmt::format("  messages per step {:.4g}, bytes per step {:.4g}, at most {} peers\n",
                     summary.comm.messagesPerStep, summary.comm.bytesPerStep, summary.comm.maxPeers);
+    if (summary.ranks > 1)
+        text += fmt::format("  load imbalance (max / mean) {:.3g} on average, {:.3g} at the end; "
+                            "{} rebalance(s) in {:.3g} s\n",
+                            summary.balance.meanImbalance, summary.balance.finalImbalance,
+                            summary.balance.rebalances, summary.balance.seconds);
     text += timers.format();
     std::fputs(text.c_str(), stdout);
     std::fflush(stdout);

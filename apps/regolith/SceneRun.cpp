@@ -12,6 +12,7 @@
 #include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/Checkpointing.hpp"
+#include "apps/regolith/DynamicBalance.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/InitialState.hpp"
@@ -229,19 +230,33 @@ int runSceneUnlocated(core::AppContext& ctx) {
     ProgressLine progress(ProgressSettings{
         startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
         std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
-        scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
+        world.size(), scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
+    // A rebalance moves the grains in place (BlockPlacement); what stands on the blocks'
+    // assignment moves with them.
+    DynamicBalance balance(world, scene, placement, [&] {
+        sync.relocate(*placement.particleForest);
+        if (selfGravity)
+            selfGravity->relocate(forest);
+        dem.relocated();
+        if (selfGravity && vtk) // the grid output until the next update (as on a restart)
+            selfGravity->refreshGridFields(local);
+    });
     auto const afterStep = [&](std::int64_t stepsDone) {
         if (checkpoints.due(stepsDone))
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
             vtk->write(stepsDone, timeAt(stepsDone), local, gridFieldsOf(selfGravity.get()));
+        balance.afterStep(stepsDone);
+        progress.setImbalance(balance.imbalance());
         progress.afterStep(stepsDone);
     };
-    // Only output and checkpoints look at the grains between steps (the progress line does
-    // not): the other steps end Open, their last half kick merged into the next step's first.
+    // Only output, checkpoints and the load balance look at the grains between steps (the
+    // progress line does not): the other steps end Open, their last half kick merged into the
+    // next step's first.
     auto const observes = [&](std::int64_t stepsDone) {
-        return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0);
+        return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0) ||
+               balance.due(stepsDone);
     };
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);
@@ -268,6 +283,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         scene.sync.subdomains == domain::Subdomains::RankBoxes ? "merged" : "blocks";
     summary.sync = std::string(toString(scene.sync.method));
     fillLoopSummary(world, loop, local, summary);
+    summary.balance = balance.finish();
     summary.peakRssBytes = peakRssBytes(world);
     summary.conserved = conservedQuantitiesFrom(world, masters, scene.gravity.external);
     summary.gravity.method = std::string(toString(scene.gravity.self));

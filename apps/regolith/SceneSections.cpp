@@ -100,6 +100,26 @@ SyncSection parseSync(core::ConfigTable const& t) {
     return s;
 }
 
+BalanceSection parseBalance(core::ConfigTable const& t) {
+    BalanceSection s;
+    if (t.has("every")) {
+        bool const isAuto =
+            t.kindOf("every") == core::ConfigKind::String && t.getString("every") == "auto";
+        if (!isAuto) {
+            if (t.kindOf("every") != core::ConfigKind::Integer)
+                t.failExpected("every", "a number of steps >= 0 or \"auto\"");
+            s.every = t.getIf<std::int64_t>(
+                "every", [](std::int64_t n) { return n >= 0; },
+                "a number of steps >= 0 or \"auto\"");
+            s.everyAuto = false;
+        }
+    }
+    s.threshold = t.getOrIf<double>(
+        "threshold", s.threshold, [](double x) { return x >= 1.0 && std::isfinite(x); },
+        "an imbalance (max / mean load) >= 1");
+    return s;
+}
+
 ContactSection parseContact(core::ConfigTable const& t) {
     ContactSection s;
     s.model = static_cast<ContactModel>(t.getChoiceOr("model", kContactNames, 0));
@@ -297,6 +317,7 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     scene.sync = optionalSection<SyncSection>(root, "sync", parseSync);
     scene.contact = optionalSection<ContactSection>(root, "contact", parseContact);
     scene.gravity = optionalSection<GravitySection>(root, "gravity", parseGravity);
+    scene.balance = optionalSection<BalanceSection>(root, "balance", parseBalance);
     scene.output = optionalSection<OutputSection>(root, "output", parseOutput);
     std::string const sceneDir = source.parent_path().string();
     auto const entries = root.tableArray("particles");

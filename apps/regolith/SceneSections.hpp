@@ -123,6 +123,17 @@ struct OutputSection {
     double progressSeconds = 10.0;
 };
 
+/// [balance] every: steps between two measurements of the ranks' loads (the blocks' grains
+/// and grid cells, coupling/balance), where the blocks are re-cut along the space-filling
+/// curve when the imbalance (max / mean) exceeds `threshold` and the new cut lowers it by at
+/// least half of (threshold - 1), the hysteresis; 0: the assignment of the start stays; "auto"
+/// (the default): 0 on one rank, kAutoBalanceEvery otherwise. threshold >= 1, default 1.1.
+struct BalanceSection {
+    std::int64_t every = 0;
+    bool everyAuto = true;
+    double threshold = 1.1;
+};
+
 /// A whole scene. `name` is the top-level `name` key, else the scene file's stem.
 struct SceneDescription {
     std::string name;
@@ -131,6 +142,7 @@ struct SceneDescription {
     SyncSection sync;
     ContactSection contact;
     GravitySection gravity;
+    BalanceSection balance;
     /// The [[particles]] entries in scene order, checked with
     /// particles::validateParticleSpecs against [domain] (files are read only when generated).
     std::vector<particles::ParticleSpec> particles;
@@ -145,6 +157,7 @@ struct SceneDescription {
 /// One [[walls]] entry: point, normal (non-zero; unit length after parsing, pointing into the
 /// half-space where the grains are), type (material index, default 0); uid = wallUid(index).
 [[nodiscard]] particles::Wall parseWall(core::ConfigTable const& entry, std::size_t index);
+[[nodiscard]] BalanceSection parseBalance(core::ConfigTable const& section);
 [[nodiscard]] OutputSection parseOutput(core::ConfigTable const& section);
 /// One [[particles]] entry, read into the generators' input (particles/generators/
 /// GeneratorSpec.hpp, which documents the keys). Checks what TOML decides: key names, value

@@ -1,5 +1,7 @@
 #include "apps/regolith/SpeedChoices.hpp"
 
+#include "apps/regolith/DynamicBalance.hpp"
+#include "core/Error.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
 #include <fmt/format.h>
@@ -19,12 +21,41 @@ double smallestRadius(core::Comm const& comm, particles::LocalParticles const& l
     return comm.allReduce(r, core::ReduceOp::Min);
 }
 
+/// balance.every: "auto" resolved; an explicit interval checked against what can move.
+void resolveBalance(core::Comm const& comm, SceneDescription& scene, std::vector<AutoChoice>& out) {
+    BalanceSection& balance = scene.balance;
+    bool const fixed = scene.forest.balance == domain::ForestSpec::Balance::Blocks;
+    if (balance.everyAuto) {
+        balance.everyAuto = false;
+        balance.every = comm.size() > 1 && !fixed ? kAutoBalanceEvery : 0;
+        out.push_back({"balance.every", fmt::format("{}", balance.every),
+                       comm.size() == 1 ? "one rank: nothing to balance"
+                       : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
+                                        : "the ranks' loads measured, the blocks re-cut when "
+                                          "they differ by more than balance.threshold"});
+        return;
+    }
+    if (balance.every == 0)
+        return;
+    if (comm.size() == 1)
+        throw core::InputError(fmt::format("balance.every = {}: the run has one rank, whose "
+                                           "blocks cannot move; expected 0 (or \"auto\") on one "
+                                           "rank",
+                                           balance.every));
+    if (fixed)
+        throw core::InputError(fmt::format("balance.every = {}: domain.balance = \"blocks\" "
+                                           "weighs every block the same, so the blocks never "
+                                           "move; expected 0, or domain.balance = \"load\"",
+                                           balance.every));
+}
+
 } // namespace
 
 std::vector<AutoChoice> resolveSpeedChoices(core::Comm const& comm,
                                             particles::LocalParticles const& local,
                                             SceneDescription& scene) {
     std::vector<AutoChoice> out;
+    resolveBalance(comm, scene, out);
     TimeSection& time = scene.time;
     if (time.orientationAuto) {
         time.orientationAuto = false;

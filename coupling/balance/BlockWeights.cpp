@@ -17,11 +17,29 @@ BlockKey keyOf(core::AABB const& box, int level) {
 
 } // namespace
 
+double BlockLoadModel::weight(std::size_t grains) const {
+    double const cells =
+        static_cast<double>(cellsPerBlock[0]) * cellsPerBlock[1] * cellsPerBlock[2];
+    return 1.0 + static_cast<double>(grains) + cellWeight * cells;
+}
+
+double rankLoad(particles::LocalParticles const& local, BlockLoadModel const& model) {
+    double load = 0.0;
+    for (std::size_t b = 0; b < local.blocks().size(); ++b)
+        for (std::size_t const grains : local.countMastersPerLeaf(b))
+            load += model.weight(grains);
+    return load;
+}
+
+double loadImbalance(core::Comm const& comm, double load) {
+    double const most = comm.allReduce(load, core::ReduceOp::Max);
+    double const total = comm.allReduce(load, core::ReduceOp::Sum);
+    return total > 0.0 ? most * comm.size() / total : 1.0;
+}
+
 domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                         particles::LocalParticles const& local,
                                         BlockLoadModel const& model) {
-    double const cells = static_cast<double>(model.cellsPerBlock[0]) * model.cellsPerBlock[1] *
-                         model.cellsPerBlock[2];
     constexpr std::size_t kFields = 5; // min x, y, z, level, weight
     std::vector<double> mine;
     mine.reserve(local.blocks().size() * kFields);
@@ -33,8 +51,7 @@ domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
             core::AABB const& box = leaves[l].aabb;
             mine.insert(mine.end(),
                         {box.min.x(), box.min.y(), box.min.z(),
-                         static_cast<double>(leaves[l].id.level()),
-                         1.0 + static_cast<double>(grains[l]) + model.cellWeight * cells});
+                         static_cast<double>(leaves[l].id.level()), model.weight(grains[l])});
         }
     }
     std::vector<double> const all = comm.allGatherVarying(std::span<double const>(mine));

@@ -13,13 +13,25 @@
 #include "particles/sync/BlockParticles.hpp"
 
 #include <array>
+#include <cstddef>
 
 namespace regolith::coupling {
 
 struct BlockLoadModel {
     std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< 0: the run has no grid field
     double cellWeight = 0.0;                   ///< cost of a cell relative to a grain
+
+    /// w_b of a block holding `grains` masters.
+    [[nodiscard]] double weight(std::size_t grains) const;
 };
+
+/// The load of this rank: the weights of the forest blocks (leaves) its particle blocks
+/// cover, summed. Local.
+[[nodiscard]] double rankLoad(particles::LocalParticles const& local, BlockLoadModel const& model);
+
+/// The imbalance of the ranks' loads, max / mean (1: even; 1 also when there is no load).
+/// COLLECTIVE.
+[[nodiscard]] double loadImbalance(core::Comm const& comm, double load);
 
 /// The weight function of every block of `local`'s forest, from the masters each block holds
 /// now. Blocks are matched by (box, level), which the same forest specification reproduces

@@ -188,6 +188,7 @@ std::array<double, 3> periodicExtent(domain::BlockForest const& forest) {
 SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest const& forest,
                                      SelfGravityConfig const& config)
     : m_comm(&comm)
+    , m_config(config)
     , m_method(std::make_unique<Method>(comm, forest, config))
     , m_policy(config.updateThreshold, periodicExtent(forest))
     , m_uidOrder(config.reproducible)
@@ -195,6 +196,13 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
     , m_softening(config.softening) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
+
+void SelfGravityForces::relocate(domain::BlockForest const& forest) {
+    m_method.reset(); // its grid and communicators go before the new ones are made
+    m_method = std::make_unique<Method>(*m_comm, forest, m_config);
+    m_gridRefreshed = false;
+    m_lastUpdated = false;
+}
 
 void SelfGravityForces::gather(particles::LocalParticles const& local) {
     m_uid.clear();

@@ -102,6 +102,13 @@ public:
     void restore(SelfGravityState const& state, std::span<particles::Uid const> uid,
                  std::span<gravity::GrainRecord const> records);
 
+    /// For a new assignment of the blocks (a rebalance): the method starts anew on `forest`
+    /// (a grid method's cells and solver; a Poisson solve then starts from zero once); the
+    /// per-grain records and the statistics go on, each record brought to its grain's rank
+    /// by the next addForces(). gridFields() is empty until the next update or
+    /// refreshGridFields(). COLLECTIVE.
+    void relocate(domain::BlockForest const& forest);
+
     /// The cell fields of a grid method (density, potential, acceleration of the last update)
     /// for output, or nullopt for a method without a grid or before the first update of this
     /// process (or refreshGridFields). Not collective; the same answer on every rank.
@@ -122,6 +129,7 @@ private:
     void gather(particles::LocalParticles const& local);
 
     core::Comm const* m_comm;
+    SelfGravityConfig m_config;
     std::unique_ptr<Method> m_method;
     gravity::UpdatePolicy m_policy;
     SelfGravityStats m_stats;

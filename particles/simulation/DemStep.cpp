@@ -31,25 +31,37 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     , m_frame(local.forest().geometry()) {
     if (!(config.dt > 0.0) || !std::isfinite(config.dt))
         throw core::Error("DemStep: the time step must be positive and finite");
+    placeOnBlocks();
+}
+
+void DemStep::placeOnBlocks() {
     // Per block, the smallest edge of it and its neighbours: a master that moves less in a
     // step stays within the blocks the sync reaches from its block.
-    for (BlockParticles const& bp : local.blocks()) {
+    m_reachEdge.clear();
+    for (BlockParticles const& bp : m_local->blocks()) {
         double edge = bp.block->aabb.extent().minCoeff();
         for (domain::BlockLink const& l : bp.block->neighbours)
             edge = std::min(edge, l.aabb.extent().minCoeff());
         m_reachEdge.push_back(edge);
     }
     m_movedSinceSync.assign(m_reachEdge.size(), 0.0);
-    std::size_t const blocks = local.blocks().size();
+    std::size_t const blocks = m_local->blocks().size();
     // The spring-dashpot batch takes springs kept beside the lists (without model C's
     // rolling spring, which stays in the histories).
-    DetectorConfig detector = config.detector;
+    DetectorConfig detector = m_config.detector;
     auto const* linear = std::get_if<SpringDashpot>(&m_model);
-    detector.keepSprings = config.keepSprings && linear != nullptr && !linear->hasRollingSpring();
+    detector.keepSprings = m_config.keepSprings && linear != nullptr && !linear->hasRollingSpring();
     detector.settleFaceTwins = true; // the storages are the synchronisation's
     m_detectors.assign(blocks, ContactDetector(detector));
-    m_contacts.resize(blocks);
-    m_records.resize(blocks);
+    m_contacts.assign(blocks, ContactList{});
+    m_records.assign(blocks, std::vector<ForceRecord>{});
+}
+
+int DemStep::relocated() {
+    if (m_kickPending)
+        throw core::Error("DemStep::relocated: the last step ended Open (its half kick is due)");
+    placeOnBlocks();
+    return resume(m_steps);
 }
 
 int DemStep::setUp() {

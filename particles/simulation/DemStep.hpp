@@ -137,6 +137,14 @@ public:
     /// of sync calls. COLLECTIVE.
     int resume(std::uint64_t stepsDone);
 
+    /// After the grains were moved to other blocks or ranks between two steps (a
+    /// rebalance: `local` and the synchronisation now stand on another assignment of the
+    /// blocks, the masters carry force, torque and contact history as after a Complete step):
+    /// the per-block detectors and lists start anew for the new blocks and the run goes on as
+    /// after resume(stepsDone()), the trajectory the same bit for bit. Throws core::Error if
+    /// the last step ended Open. Returns the number of sync calls. COLLECTIVE.
+    int relocated();
+
     /// How a step ends. Complete: with the second half kick (postForce), the velocities those
     /// of the step's end. Open: the half kick is left to the next step, which applies it in
     /// the same pass over the grains as its own first one (the integrator's postThenPreForce,
@@ -206,6 +214,8 @@ public:
     [[nodiscard]] PeriodicFrame const& frame() const { return m_frame; }
 
 private:
+    /// Sizes the per-block state (detectors, contact lists, reach) for the blocks of m_local.
+    void placeOnBlocks();
     void syncParticles();
     /// A count of the local blocks' last detections, summed (DetectorStats).
     [[nodiscard]] std::size_t detectorSum(std::size_t DetectorStats::*count) const;

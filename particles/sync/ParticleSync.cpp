@@ -84,9 +84,19 @@ core::SendBuffer& ParticleSync::Impl::out(int rank) {
 
 ParticleSync::ParticleSync(core::Comm const& comm, domain::BlockForest const& forest,
                            SyncConfig config)
-    : m_impl(std::make_unique<Impl>(comm, forest, config))
+    : m_comm(&comm)
+    , m_impl(std::make_unique<Impl>(comm, forest, config))
     , m_updateList(UpdateList::forConfig(config, comm, forest))
     , m_config(config) {}
+
+void ParticleSync::relocate(domain::BlockForest const& forest) {
+    m_impl.reset(); // its communicators are freed before the new ones are made
+    m_updateList.reset();
+    m_impl = std::make_unique<Impl>(*m_comm, forest, m_config);
+    m_updateList = UpdateList::forConfig(m_config, *m_comm, forest);
+    m_last = {};
+    m_reducedAlongList = false;
+}
 
 ParticleSync::~ParticleSync() = default;
 

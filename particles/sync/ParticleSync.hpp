@@ -67,6 +67,12 @@ public:
     ParticleSync(ParticleSync const&) = delete;
     ParticleSync& operator=(ParticleSync const&) = delete;
 
+    /// For a new assignment of the blocks (a rebalance): the exchanges and the update list
+    /// start anew on `forest`, whose LocalParticles hold masters only; the configuration and
+    /// the counters go on. The next call must be syncUntilConverged (DemStep::relocated).
+    /// COLLECTIVE.
+    void relocate(domain::BlockForest const& forest);
+
     /// One synchronisation call with the configured method. Post (NNS-class grains): every
     /// block the grain overlaps holds exactly one copy per overlapping image, no other block
     /// holds one, masters sit in the block containing their centre. With a skin
@@ -139,6 +145,7 @@ private:
     void syncInFull(LocalParticles& local, std::span<std::vector<std::uint32_t> const> only,
                     double grow);
 
+    core::Comm const* m_comm;
     std::unique_ptr<Impl> m_impl;
     std::unique_ptr<UpdateList> m_updateList; ///< with a skin only
     SyncConfig m_config;

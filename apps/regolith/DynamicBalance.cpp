@@ -1,0 +1,60 @@
+#include "apps/regolith/DynamicBalance.hpp"
+
+#include "coupling/balance/BlockWeights.hpp"
+
+#include <mpi.h>
+
+#include <utility>
+
+namespace regolith::apps {
+
+DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
+                               BlockPlacement& placement, Relocate relocate)
+    : m_comm(&comm)
+    , m_scene(&scene)
+    , m_placement(&placement)
+    , m_relocate(std::move(relocate))
+    , m_interval(scene.balance.every > 0 ? scene.balance.every : kAutoBalanceEvery) {}
+
+bool DynamicBalance::due(std::int64_t stepsDone) const {
+    return stepsDone % m_interval == 0;
+}
+
+bool DynamicBalance::afterStep(std::int64_t stepsDone) {
+    if (!due(stepsDone))
+        return false;
+    m_last = coupling::loadImbalance(*m_comm,
+                                     coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+    m_sum += m_last;
+    ++m_measurements;
+    BalanceSection const& balance = m_scene->balance;
+    if (balance.every == 0 || !(m_last > balance.threshold))
+        return false;
+    double const started = MPI_Wtime();
+    double const hysteresis = 0.5 * (balance.threshold - 1.0);
+    BalanceOutcome const outcome =
+        balanceByLoad(*m_comm, *m_scene, *m_placement, [hysteresis](double before, double after) {
+            return after <= before - hysteresis;
+        });
+    if (outcome.moved) {
+        m_relocate();
+        ++m_rebalances;
+    }
+    m_seconds += MPI_Wtime() - started; // a cut not worth moving to costs its search
+    return outcome.moved;
+}
+
+RunSummary::Balance DynamicBalance::finish() {
+    RunSummary::Balance out;
+    out.every = m_scene->balance.every;
+    out.threshold = m_scene->balance.threshold;
+    out.rebalances = m_rebalances;
+    out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
+    out.finalImbalance = coupling::loadImbalance(
+        *m_comm, coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+    out.meanImbalance =
+        m_measurements > 0 ? m_sum / static_cast<double>(m_measurements) : out.finalImbalance;
+    return out;
+}
+
+} // namespace regolith::apps

@@ -1,0 +1,60 @@
+#pragma once
+/// Dynamic load balancing ([balance]): every `every` steps the ranks measure their loads (the
+/// grains and grid cells of the blocks they own: coupling/balance/BlockWeights.hpp) and agree
+/// on the imbalance, max / mean. Above the threshold the blocks are re-cut along the Hilbert
+/// curve by those loads (balanceByLoad), if the new cut lowers the imbalance by at least half
+/// of (threshold - 1): the hysteresis that keeps a borderline run from moving blocks at every
+/// measurement. The grains move with their complete state, as a restart's do, so a run that
+/// rebalances continues bit for bit in reproducible mode; what stands on the old assignment
+/// (the synchronisation, the contact lists, a gravity grid) the caller's `relocate` rebuilds.
+/// With `every` = 0 the loads are still measured, every kAutoBalanceEvery steps, for the run
+/// summary.
+#include "apps/common/RunSummary.hpp"
+#include "apps/regolith/BlockPlacement.hpp"
+#include "apps/regolith/SceneSections.hpp"
+#include "core/mpi/Comm.hpp"
+
+#include <cstdint>
+#include <functional>
+
+namespace regolith::apps {
+
+/// balance.every = "auto" on more than one rank, and the measuring interval of a run that
+/// does not rebalance [steps]: a measurement costs a count of the masters and two
+/// all-reductions, far below 1 % of a step at this interval.
+inline constexpr std::int64_t kAutoBalanceEvery = 100;
+
+class DynamicBalance {
+public:
+    /// Rebuilds what stands on the blocks' assignment after the grains moved. COLLECTIVE.
+    using Relocate = std::function<void()>;
+
+    /// `placement` is the run's (its objects are replaced in place when the blocks move).
+    DynamicBalance(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
+                   Relocate relocate);
+
+    /// Whether the loads are measured after the step that leaves `stepsDone` steps done: that
+    /// step must end Complete (the grains may move to other ranks after it).
+    [[nodiscard]] bool due(std::int64_t stepsDone) const;
+    /// Measures the imbalance, and rebalances if the scene asks and the imbalance is over the
+    /// threshold (see the file comment). Returns whether the blocks moved. COLLECTIVE.
+    bool afterStep(std::int64_t stepsDone);
+    /// The last measured imbalance (1 before the first measurement).
+    [[nodiscard]] double imbalance() const { return m_last; }
+    /// Measures the final imbalance and returns what the run summary reports. COLLECTIVE.
+    [[nodiscard]] RunSummary::Balance finish();
+
+private:
+    core::Comm const* m_comm;
+    SceneDescription const* m_scene;
+    BlockPlacement* m_placement;
+    Relocate m_relocate;
+    std::int64_t m_interval;
+    double m_last = 1.0;
+    double m_sum = 0.0;
+    double m_seconds = 0.0;
+    long long m_measurements = 0;
+    long long m_rebalances = 0;
+};
+
+} // namespace regolith::apps
