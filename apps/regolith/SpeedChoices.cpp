@@ -37,15 +37,15 @@ void resolveBalance(core::Comm const& comm, SceneDescription& scene, std::vector
     }
     if (balance.every == 0)
         return;
-    if (comm.size() == 1)
-        throw core::InputError(fmt::format("balance.every = {}: the run has one rank, whose "
-                                           "blocks cannot move; expected 0 (or \"auto\") on one "
-                                           "rank",
-                                           balance.every));
     if (fixed)
         throw core::InputError(fmt::format("balance.every = {}: domain.balance = \"blocks\" "
                                            "weighs every block the same, so the blocks never "
                                            "move; expected 0, or domain.balance = \"load\"",
+                                           balance.every));
+    if (comm.size() == 1)
+        throw core::InputError(fmt::format("balance.every = {}: the run has one rank, whose "
+                                           "blocks cannot move; expected 0 (or \"auto\") on one "
+                                           "rank",
                                            balance.every));
 }
 

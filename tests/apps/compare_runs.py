@@ -3,12 +3,12 @@ agree.
 
 usage: compare_runs.py --mpiexec M --app APP --out DIR --name NAME [--np 1 4]
                        [--case "NP [ARGS...]" ...] [--reference STEM]
-                       [--same KEY ...] [--expect KEY=VALUE ...] [--dump]
+                       [--same KEY ...] [--expect KEY=VALUE|KEY>NUMBER ...] [--dump]
                        [--final "UID COLUMN OP VALUE" ...] [--reload SCENE] [--close TOL]
                        -- [app arguments]
 
 Every run must exit 0 and write a summary (--json); the summaries must agree on every --same
-key (e.g. particles, checksum) and satisfy every --expect. Runs: one per --np value with the
+key (e.g. particles, checksum) and satisfy every --expect (a nested key as a.b). Runs: one per --np value with the
 app arguments, then one per --case, a string holding the rank count and further arguments
 for that run only (split like a shell would), e.g. --case "4 --set domain.blocks=[2,2,1]".
 With --reference STEM the runs are compared with STEM.json (and STEM.csv with --dump), the
@@ -31,6 +31,7 @@ import argparse
 import json
 import operator
 import os
+import re
 import shlex
 import struct
 import subprocess
@@ -139,6 +140,23 @@ def check_final(path, check):
     fail(f"--final {check!r}: uid {uid} is not in the final state {path}")
 
 
+def check_expectation(summary, expectation, label):
+    """KEY=VALUE (the value's text) or KEY>NUMBER; KEY may name a nested key, a.b."""
+    match = re.fullmatch(r"([\w.]+)(=|>)(.*)", expectation)
+    if not match:
+        fail(f"--expect {expectation!r}: expected KEY=VALUE or KEY>NUMBER")
+    key, op, expected = match.groups()
+    value = summary
+    for part in key.split("."):
+        if not isinstance(value, dict) or part not in value:
+            fail(f"{label}: the summary has no {key}")
+        value = value[part]
+    if op == "=" and str(value) != expected:
+        fail(f"{label}: {key} = {value!r}, expected {expected}")
+    if op == ">" and not value > float(expected):
+        fail(f"{label}: {key} = {value!r}, expected more than {expected}")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--mpiexec", required=True)
@@ -182,9 +200,7 @@ def main():
         if summary["ranks"] != np:
             fail(f"{label}: the summary says ranks = {summary['ranks']}")
         for expectation in args.expect:
-            key, expected = expectation.split("=", 1)
-            if str(summary[key]) != expected:
-                fail(f"{label}: {key} = {summary[key]!r}, expected {expected}")
+            check_expectation(summary, expectation, label)
         if dump:
             recomputed = check_dump(dump, summary)
             if recomputed != summary["checksum"]:

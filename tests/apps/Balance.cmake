@@ -1,0 +1,47 @@
+# Dynamic load balance: runs whose blocks move between ranks during the run (balance.every
+# = 10 or 2, threshold = 1: a new cut whenever a better one exists) must end in the serial
+# run's state, byte for byte, having moved their blocks at least once: the settling gas (its
+# load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
+# update_threshold > 0 (the cached field follows its grains to their new ranks) on 2 and 3.
+# Included by tests/apps/CMakeLists.txt (needs Python and ${compare}).
+
+# regolith_balance_equality(<name> EVERY <steps> RANKS <np> ... ARGS <app arguments>)
+function(regolith_balance_equality name)
+  cmake_parse_arguments(ARG "" "EVERY" "RANKS;ARGS" ${ARGN})
+  set(app_args ${ARG_ARGS})
+  add_test(NAME regolith.balance.${name}.np1
+           COMMAND ${compare} --name balance_${name} --np 1 --expect balance.rebalances=0
+                   --dump -- ${app_args})
+  set_tests_properties(regolith.balance.${name}.np1 PROPERTIES FIXTURES_SETUP balance_${name}
+                       ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}" LABELS "scene" TIMEOUT 60)
+  foreach(np IN LISTS ARG_RANKS)
+    set(test regolith.balance.${name}.np${np})
+    add_test(NAME ${test}
+             COMMAND ${compare} --name balance_${name}
+                     --case "${np} --set balance.every=${ARG_EVERY} --set balance.threshold=1"
+                     --reference ${app_test_out}/balance_${name}.np1 --same particles checksum
+                     --expect balance.rebalances>0 --dump -- ${app_args})
+    set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED balance_${name}
+                         ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}" LABELS "scene;mpi"
+                         TIMEOUT 120 PROCESSORS 2)
+  endforeach()
+endfunction()
+
+regolith_balance_equality(settling EVERY 10 RANKS 2 3 4 8 27 ARGS
+  ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300)
+regolith_balance_equality(gravity EVERY 2 RANKS 2 3 ARGS
+  ${bad}/restart_gravity.toml --set domain.blocks=[4,4,4])
+
+# A checkpoint written after rebalances, restarted on another rank count (which cuts its
+# blocks by the load at once, then goes on rebalancing), ends in the serial run's state.
+set(restart_dir ${app_test_out}/balance_restart)
+add_test(NAME regolith.balance.settling_restart
+         COMMAND ${compare} --name balance_settling_restart
+                 --case "3 --set balance.every=10 --set balance.threshold=1 --set output.checkpoint_every=150 --output ${restart_dir}"
+                 --case "2 --set balance.every=10 --set balance.threshold=1 --restart ${restart_dir}/checkpoint_00000150.h5 --output ${restart_dir}"
+                 --reference ${app_test_out}/balance_settling.np1 --same particles checksum
+                 --expect balance.rebalances>0 --dump --
+                 ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300)
+set_tests_properties(regolith.balance.settling_restart PROPERTIES
+                     FIXTURES_REQUIRED balance_settling ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                     LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
