@@ -45,3 +45,11 @@ add_test(NAME regolith.balance.settling_restart
 set_tests_properties(regolith.balance.settling_restart PROPERTIES
                      FIXTURES_REQUIRED balance_settling ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
                      LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+
+# ParaView sees the blocks change owner: blocks.pvd's pieces at the start and the end.
+add_test(NAME regolith.balance.blocks_vtk
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/balance_vtk_check.py
+                 --mpiexec ${REGOLITH_MPIEXEC} --app $<TARGET_FILE:regolith>
+                 --scene ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --out ${app_test_out})
+set_tests_properties(regolith.balance.blocks_vtk PROPERTIES ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                     LABELS "scene;mpi" TIMEOUT 60 PROCESSORS 2)
