@@ -13,7 +13,11 @@ namespace regolith::domain {
 /// and Baden ("Dynamic partitioning of non-uniform structured workloads with spacefilling
 /// curves", IEEE TPDS 7(3), 1996), with the element midpoint deciding which side of a cut an
 /// element falls on. Each chunk then starts within w_max / 2 of its ideal cut, so every rank's
-/// load differs from W / P by less than the largest element weight w_max.
+/// load differs from W / P by less than the largest element weight w_max. Then single
+/// elements move across the cuts while that relieves the heavier of two neighbouring parts
+/// (the lighter staying below what the heavier weighed): this keeps the bound, never raises
+/// the largest load, and lowers it where the midpoints cut unluckily (blocks of very
+/// different weights: a settled pile next to empty blocks).
 /// If all weights are zero, the elements are counted instead (every weight taken as 1).
 /// Throws core::InputError if a weight is negative or not finite, or parts < 1.
 /// Deterministic: the same input gives the same owners on every rank. Not collective.

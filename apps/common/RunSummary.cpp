@@ -2,6 +2,7 @@
 
 #include "core/json/JsonWriter.hpp"
 
+#include <span>
 #include <sys/resource.h>
 
 namespace regolith::apps {
@@ -49,7 +50,12 @@ std::string toJson(RunSummary const& s) {
         .member("rebalances", s.balance.rebalances)
         .member("seconds", s.balance.seconds)
         .member("mean_imbalance", s.balance.meanImbalance)
-        .member("final_imbalance", s.balance.finalImbalance)
+        .member("final_imbalance", s.balance.finalImbalance);
+    w.key("history")
+        .beginObject()
+        .member("step", std::span<double const>(s.balance.steps))
+        .member("imbalance", std::span<double const>(s.balance.imbalances))
+        .endObject()
         .endObject();
     w.key("auto").beginObject();
     for (RunSummary::AutoChoice const& c : s.autoChoices)

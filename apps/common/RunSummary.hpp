@@ -48,7 +48,8 @@ struct RunSummary {
     /// The ranks' load balance (JSON key "balance", beyond the contract's keys): the
     /// imbalance max / mean of the ranks' loads (grains and grid cells of their blocks),
     /// averaged over the measurements during the loop and at its end, and the rebalances
-    /// ([balance] every, threshold) with the time they took.
+    /// ([balance] every, threshold) with the time they took; "history": every measurement, the
+    /// step after which it was taken and the imbalance then (before a rebalance).
     struct Balance {
         std::int64_t every = 0;
         double threshold = 1.1;
@@ -56,6 +57,8 @@ struct RunSummary {
         double seconds = 0.0;
         double meanImbalance = 1.0;
         double finalImbalance = 1.0;
+        std::vector<double> steps;
+        std::vector<double> imbalances;
     } balance;
 
     /// The "auto" scene keys and what was chosen (JSON key "auto": {key: {value, reason}},

@@ -4,6 +4,7 @@
 
 #include <mpi.h>
 
+#include <numeric>
 #include <utility>
 
 namespace regolith::apps {
@@ -14,7 +15,8 @@ DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& s
     , m_scene(&scene)
     , m_placement(&placement)
     , m_relocate(std::move(relocate))
-    , m_interval(scene.balance.every > 0 ? scene.balance.every : kAutoBalanceEvery) {}
+    , m_interval(scene.balance.every > 0 ? scene.balance.every
+                                         : autoBalanceEvery(scene.time.steps)) {}
 
 bool DynamicBalance::due(std::int64_t stepsDone) const {
     return stepsDone % m_interval == 0;
@@ -25,8 +27,8 @@ bool DynamicBalance::afterStep(std::int64_t stepsDone) {
         return false;
     m_last = coupling::loadImbalance(*m_comm,
                                      coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
-    m_sum += m_last;
-    ++m_measurements;
+    m_steps.push_back(static_cast<double>(stepsDone));
+    m_imbalances.push_back(m_last);
     BalanceSection const& balance = m_scene->balance;
     if (balance.every == 0 || !(m_last > balance.threshold))
         return false;
@@ -52,8 +54,12 @@ RunSummary::Balance DynamicBalance::finish() {
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
     out.finalImbalance = coupling::loadImbalance(
         *m_comm, coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
-    out.meanImbalance =
-        m_measurements > 0 ? m_sum / static_cast<double>(m_measurements) : out.finalImbalance;
+    out.meanImbalance = out.finalImbalance;
+    if (!m_imbalances.empty())
+        out.meanImbalance = std::accumulate(m_imbalances.begin(), m_imbalances.end(), 0.0) /
+                            static_cast<double>(m_imbalances.size());
+    out.steps = m_steps;
+    out.imbalances = m_imbalances;
     return out;
 }
 

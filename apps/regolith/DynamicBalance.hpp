@@ -7,22 +7,27 @@
 /// measurement. The grains move with their complete state, as a restart's do, so a run that
 /// rebalances continues bit for bit in reproducible mode; what stands on the old assignment
 /// (the synchronisation, the contact lists, a gravity grid) the caller's `relocate` rebuilds.
-/// With `every` = 0 the loads are still measured, every kAutoBalanceEvery steps, for the run
-/// summary.
+/// With `every` = 0 the loads are still measured, every autoBalanceEvery(time.steps) steps,
+/// for the run summary.
 #include "apps/common/RunSummary.hpp"
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "core/mpi/Comm.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace regolith::apps {
 
 /// balance.every = "auto" on more than one rank, and the measuring interval of a run that
-/// does not rebalance [steps]: a measurement costs a count of the masters and two
-/// all-reductions, far below 1 % of a step at this interval.
-inline constexpr std::int64_t kAutoBalanceEvery = 100;
+/// does not rebalance [steps]: 20 measurements in a run of `steps`, between 10 and 100 steps
+/// apart. A measurement costs a count of the masters and two all-reductions (below 1 % of a
+/// step at these intervals); a rebalance, when the loads differ, a few steps' time.
+[[nodiscard]] constexpr std::int64_t autoBalanceEvery(std::int64_t steps) {
+    return std::clamp<std::int64_t>(steps / 20, 10, 100);
+}
 
 class DynamicBalance {
 public:
@@ -51,10 +56,9 @@ private:
     Relocate m_relocate;
     std::int64_t m_interval;
     double m_last = 1.0;
-    double m_sum = 0.0;
     double m_seconds = 0.0;
-    long long m_measurements = 0;
     long long m_rebalances = 0;
+    std::vector<double> m_steps, m_imbalances; ///< the measurements
 };
 
 } // namespace regolith::apps

@@ -127,7 +127,8 @@ struct OutputSection {
 /// and grid cells, coupling/balance), where the blocks are re-cut along the space-filling
 /// curve when the imbalance (max / mean) exceeds `threshold` and the new cut lowers it by at
 /// least half of (threshold - 1), the hysteresis; 0: the assignment of the start stays; "auto"
-/// (the default): 0 on one rank, kAutoBalanceEvery otherwise. threshold >= 1, default 1.1.
+/// (the default): 0 on one rank, otherwise 20 measurements a run, 10 to 100 steps apart
+/// (DynamicBalance.hpp). threshold >= 1, default 1.1.
 struct BalanceSection {
     std::int64_t every = 0;
     bool everyAuto = true;

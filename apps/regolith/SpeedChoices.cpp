@@ -27,12 +27,13 @@ void resolveBalance(core::Comm const& comm, SceneDescription& scene, std::vector
     bool const fixed = scene.forest.balance == domain::ForestSpec::Balance::Blocks;
     if (balance.everyAuto) {
         balance.everyAuto = false;
-        balance.every = comm.size() > 1 && !fixed ? kAutoBalanceEvery : 0;
+        balance.every = comm.size() > 1 && !fixed ? autoBalanceEvery(scene.time.steps) : 0;
         out.push_back({"balance.every", fmt::format("{}", balance.every),
                        comm.size() == 1 ? "one rank: nothing to balance"
                        : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
-                                        : "the ranks' loads measured, the blocks re-cut when "
-                                          "they differ by more than balance.threshold"});
+                                        : "the ranks' loads measured 20 times a run (every 10 to "
+                                          "100 steps), the blocks re-cut when they differ by "
+                                          "more than balance.threshold"});
         return;
     }
     if (balance.every == 0)

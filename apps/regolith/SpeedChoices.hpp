@@ -20,7 +20,7 @@ inline constexpr double kAutoSyncSkinPerRadius = 0.25;
 
 /// Resolves the speed keys of `scene` left "auto" (none with explicit values) and returns the
 /// decisions:
-///  - balance.every: kAutoBalanceEvery on more than one rank (0 on one, or with
+///  - balance.every: autoBalanceEvery(time.steps) on more than one rank (0 on one, or with
 ///    domain.balance = "blocks"); an explicit interval above 0 on one rank or with
 ///    domain.balance = "blocks" is refused (core::InputError, on every rank);
 ///  - time.orientation: integrated where something reads it -- a checkpoint the run will

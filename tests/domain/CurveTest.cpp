@@ -123,7 +123,22 @@ TEST(SfcPartition, EqualWeightsAndIdleRanks) {
     auto const z = partitionCurve(zeros, 5);
     EXPECT_EQ(z, (std::vector<int>{0, 1, 2, 3, 4}));
     std::vector<double> const heavy{1, 1, 100, 1, 1}; // one block outweighs the rest
-    EXPECT_EQ(checkPartition(heavy, partitionCurve(heavy, 4), 4), 3);
+    // The midpoints leave a rank idle; relieving the part of the two last blocks uses it.
+    EXPECT_EQ(checkPartition(heavy, partitionCurve(heavy, 4), 4), 4);
+}
+
+TEST(SfcPartition, RelievesAPartTheMidpointsOverload) {
+    // Empty blocks (weight 1) before a settled pile (10 each), as a load that fell to the
+    // floor: the midpoints give the parts 18, 30, 20, 20; one heavy block moved across the
+    // first cut gives 28, 20, 20, 20, the least largest load any cut reaches.
+    std::vector<double> w(8, 1.0);
+    w.insert(w.end(), 8, 10.0);
+    std::vector<int> const owner = partitionCurve(w, 4);
+    checkPartition(w, owner, 4);
+    std::vector<double> load(4, 0.0);
+    for (std::size_t i = 0; i < w.size(); ++i)
+        load[static_cast<std::size_t>(owner[i])] += w[i];
+    EXPECT_EQ(load, (std::vector<double>{28.0, 20.0, 20.0, 20.0}));
 }
 
 TEST(SfcPartition, RejectsBadWeightsAndRankCounts) {

@@ -1,0 +1,146 @@
+"""Dynamic load balance ([balance]) on the scenes whose load moves, static against rebalanced.
+
+usage: load_balance.py --build DIR --out DIR [imbalance] [wall] [--ranks 8 27]
+                       [--repeats N] [--chart FILE]
+
+imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
+  assigned at the start only (balance.every = 0, the loads still measured) and once with the
+  defaults (balance.every = "auto"); the time-averaged and final imbalance max / mean of the
+  ranks' loads in work units (a block weighs 1 + its grains [+ its cells for grid gravity],
+  coupling/balance), so the figure holds on any machine; the rebalances and their cost in
+  steps' time. Writes load_balance_imbalance.csv and, with --chart, imbalance against step.
+wall: the settling gas and the default scene on 2 ranks, static and rebalanced alternately
+  (--repeats pairs): the wall time of the loop, the ratio's median and range. Writes
+  load_balance_wall.csv.
+Block layouts: several blocks per rank, as users run them (the scene's own on 2 ranks).
+"""
+import argparse
+import csv
+import json
+import os
+import statistics
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+SCENES = os.path.join(ROOT, "scenes")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+# name: (scene file, extra arguments, blocks on 8 ranks, blocks on 27 ranks)
+CASES = {
+    "settling gas": ("settling-gas.toml", [], "[4,4,8]", "[6,6,12]"),
+    "default (two piles merge)": ("default.toml", [], "[8,6,4]", "[12,9,6]"),
+    "cold collapse": ("cold-collapse.toml", [], "[4,4,4]", "[6,6,6]"),
+    "two agglomerates, bound": (
+        "two-agglomerates.toml",
+        ["--set", "particles[0].velocity=[0.0,0.27,0.0]",
+         "--set", "particles[1].velocity=[0.0,-0.27,0.0]", "--set", "time.steps=2000"],
+        "[8,8,4]", "[12,12,6]"),
+}
+
+
+def run(build, np, scene, extra, json_path):
+    command = ["mpiexec", "-n", str(np), "--oversubscribe",
+               os.path.join(build, "bin", "regolith"), os.path.join(SCENES, scene), *extra,
+               "--quiet", "--json", json_path]
+    done = subprocess.run(command, env=ENV, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        sys.exit(f"{' '.join(command)} exited with {done.returncode}\n{done.stderr}")
+    with open(json_path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+def imbalance(args):
+    rows, histories = [], {}
+    for np in args.ranks:
+        for name, (scene, extra, blocks8, blocks27) in CASES.items():
+            blocks = blocks8 if np <= 8 else blocks27
+            for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
+                path = os.path.join(args.out, f"balance_{scene}_{np}_{mode}.json")
+                s = run(args.build, np, scene,
+                        [*extra, "--set", f"domain.blocks={blocks}", *every], path)
+                b = s["balance"]
+                step_seconds = s["wall_s"] / max(s["steps"], 1)
+                cost = b["seconds"] / b["rebalances"] / step_seconds if b["rebalances"] else 0.0
+                rows.append({"scene": name, "ranks": np, "blocks": s["blocks"], "mode": mode,
+                             "every": b["every"], "steps": s["steps"],
+                             "mean_imbalance": round(b["mean_imbalance"], 3),
+                             "final_imbalance": round(b["final_imbalance"], 3),
+                             "rebalances": b["rebalances"],
+                             "steps_per_rebalance": round(cost, 2)})
+                histories[(name, np, mode)] = (b["history"]["step"], b["history"]["imbalance"])
+                print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
+    with open(os.path.join(args.out, "load_balance_imbalance.csv"), "w", newline="",
+              encoding="utf-8") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    if args.chart:
+        chart(histories, args.ranks, args.chart)
+
+
+def chart(histories, ranks, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(CASES), figsize=(4 * len(CASES), 3.4), squeeze=False)
+    for ax, name in zip(axes[0], CASES):
+        for np, colour in zip(ranks, ("tab:blue", "tab:red", "tab:green")):
+            for mode, style in (("static", "--"), ("rebalanced", "-")):
+                steps, values = histories[(name, np, mode)]
+                ax.plot(steps, values, style, color=colour, label=f"{np} ranks, {mode}")
+        ax.set_title(name, fontsize=10)
+        ax.set_xlabel("step")
+        ax.axhline(1.15, color="grey", linewidth=0.6)
+        ax.set_ylim(bottom=1.0)
+    axes[0][0].set_ylabel("imbalance (max / mean load)")
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    print(f"chart: {path}")
+
+
+def wall(args):
+    rows = []
+    for name, scene in (("settling gas", "settling-gas.toml"),
+                        ("default (two piles merge)", "default.toml")):
+        times = {"static": [], "rebalanced": []}
+        for k in range(args.repeats):
+            for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
+                path = os.path.join(args.out, f"balance_wall_{scene}_{mode}.json")
+                times[mode].append(run(args.build, 2, scene, every, path)["wall_s"])
+        ratios = [r / s for r, s in zip(times["rebalanced"], times["static"])]
+        rows.append({"scene": name, "ranks": 2,
+                     "static_s": round(statistics.median(times["static"]), 3),
+                     "rebalanced_s": round(statistics.median(times["rebalanced"]), 3),
+                     "ratio_median": round(statistics.median(ratios), 3),
+                     "ratio_min": round(min(ratios), 3), "ratio_max": round(max(ratios), 3),
+                     "repeats": args.repeats})
+        print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
+    with open(os.path.join(args.out, "load_balance_wall.csv"), "w", newline="",
+              encoding="utf-8") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("parts", nargs="*", default=["imbalance", "wall"])
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--ranks", type=int, nargs="*", default=[8, 27])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--chart")
+    args = parser.parse_args()
+    args.build = os.path.abspath(args.build)
+    os.makedirs(args.out, exist_ok=True)
+    if "imbalance" in args.parts:
+        imbalance(args)
+    if "wall" in args.parts:
+        wall(args)
+
+
+if __name__ == "__main__":
+    main()
