@@ -12,7 +12,8 @@ imbalance: each scene on each rank count of --ranks (oversubscribed), once with 
 wall: the settling gas and the default scene on 2 ranks, static and rebalanced alternately
   (--repeats pairs): the wall time of the loop, the ratio's median and range. Writes
   load_balance_wall.csv.
-Block layouts: several blocks per rank, as users run them (the scene's own on 2 ranks).
+Block layouts: tens of blocks per rank, as a user who balances chooses them (a block holds
+at most a fraction of a rank's share of the load; the scene's own layout on 2 ranks).
 """
 import argparse
 import csv
@@ -29,8 +30,8 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 
 # name: (scene file, extra arguments, blocks on 8 ranks, blocks on 27 ranks)
 CASES = {
-    "settling gas": ("settling-gas.toml", [], "[4,4,8]", "[6,6,12]"),
-    "default (two piles merge)": ("default.toml", [], "[8,6,4]", "[12,9,6]"),
+    "settling gas": ("settling-gas.toml", [], "[6,6,12]", "[10,10,20]"),
+    "default (two piles merge)": ("default.toml", [], "[16,12,8]", "[24,18,12]"),
     "cold collapse": ("cold-collapse.toml", [], "[4,4,4]", "[6,6,6]"),
     "two agglomerates, bound": (
         "two-agglomerates.toml",
