@@ -17,17 +17,18 @@ BlockKey keyOf(core::AABB const& box, int level) {
 
 } // namespace
 
-double BlockLoadModel::weight(std::size_t grains) const {
+double BlockLoadModel::weight(particles::LocalParticles::LeafLoad const& load) const {
     double const cells =
         static_cast<double>(cellsPerBlock[0]) * cellsPerBlock[1] * cellsPerBlock[2];
-    return 1.0 + static_cast<double>(grains) + cellWeight * cells;
+    return 1.0 + static_cast<double>(load.grains) +
+           contactWeight * static_cast<double>(load.contacts) + cellWeight * cells;
 }
 
 double rankLoad(particles::LocalParticles const& local, BlockLoadModel const& model) {
     double load = 0.0;
     for (std::size_t b = 0; b < local.blocks().size(); ++b)
-        for (std::size_t const grains : local.countMastersPerLeaf(b))
-            load += model.weight(grains);
+        for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b))
+            load += model.weight(leaf);
     return load;
 }
 
@@ -45,13 +46,13 @@ domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
     mine.reserve(local.blocks().size() * kFields);
     auto const blocks = local.blocks();
     for (std::size_t b = 0; b < blocks.size(); ++b) {
-        std::vector<std::size_t> const grains = local.countMastersPerLeaf(b);
+        auto const loads = local.loadPerLeaf(b);
         auto const& leaves = blocks[b].block->leaves;
         for (std::size_t l = 0; l < leaves.size(); ++l) {
             core::AABB const& box = leaves[l].aabb;
             mine.insert(mine.end(),
                         {box.min.x(), box.min.y(), box.min.z(),
-                         static_cast<double>(leaves[l].id.level()), model.weight(grains[l])});
+                         static_cast<double>(leaves[l].id.level()), model.weight(loads[l])});
         }
     }
     std::vector<double> const all = comm.allGatherVarying(std::span<double const>(mine));

@@ -1,12 +1,14 @@
 #pragma once
 /// Block weights for the block -> rank assignment of a coupled run (DESIGN.md: one forest, one
 /// assignment for particles and grid fields). The particle module's cost of a block grows with
-/// its grains, the grid module's with its cells, so a block weighs
+/// its grains and their contacts, the grid module's with its cells, so a block weighs
 ///
-///     w_b = 1 + grains_b + cellWeight * cells_b
+///     w_b = 1 + grains_b + contactWeight * contacts_b + cellWeight * cells_b
 ///
-/// where cellWeight is the cost of one cell per step relative to one grain per step (measured:
-/// docs/results.md, "Coupled runs") and the 1 spreads empty blocks evenly over the ranks. With
+/// where contactWeight is the cost of a contact per step relative to a grain's without one
+/// (measured: docs/balance.md), cellWeight that of one cell (docs/results.md, "Coupled runs"),
+/// and the 1 spreads empty blocks evenly over the ranks. The contacts are those of the grains'
+/// histories (none before the first step). With
 /// equal counts in every block the weights are equal and the assignment is the uniform one.
 #include "core/mpi/Comm.hpp"
 #include "domain/Block.hpp"
@@ -20,9 +22,14 @@ namespace regolith::coupling {
 struct BlockLoadModel {
     std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< 0: the run has no grid field
     double cellWeight = 0.0;                   ///< cost of a cell relative to a grain
+    double contactWeight = kContactWeight;     ///< cost of a contact relative to a grain
 
-    /// w_b of a block holding `grains` masters.
-    [[nodiscard]] double weight(std::size_t grains) const;
+    /// A settled pile's step costs 7.2-8.1x a falling gas's per grain with 2.5 contacts per
+    /// grain (scenes/settling-gas.toml on one rank; docs/balance.md).
+    static constexpr double kContactWeight = 2.5;
+
+    /// w_b of a block holding `load`.
+    [[nodiscard]] double weight(particles::LocalParticles::LeafLoad const& load) const;
 };
 
 /// The load of this rank: the weights of the forest blocks (leaves) its particle blocks
@@ -33,9 +40,10 @@ struct BlockLoadModel {
 /// COLLECTIVE.
 [[nodiscard]] double loadImbalance(core::Comm const& comm, double load);
 
-/// The weight function of every block of `local`'s forest, from the masters each block holds
-/// now. Blocks are matched by (box, level), which the same forest specification reproduces
-/// exactly. COLLECTIVE (one all-gather of O(global blocks) doubles); the result is local.
+/// The weight function of every block of `local`'s forest, from the masters (and their
+/// contacts) each block holds now. Blocks are matched by (box, level), which the same forest
+/// specification reproduces exactly. COLLECTIVE (one all-gather of O(global blocks) doubles); the
+/// result is local.
 [[nodiscard]] domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                                       particles::LocalParticles const& local,
                                                       BlockLoadModel const& model);

@@ -90,7 +90,7 @@ void writeBlockPiece(std::string const& path, particles::LocalParticles const& l
     auto const blocks = local.blocks();
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         // The forest's blocks, also where the particles' subdomains merge several.
-        std::vector<std::size_t> const count = local.countMastersPerLeaf(b);
+        auto const load = local.loadPerLeaf(b);
         auto const& leaves = blocks[b].block->leaves;
         for (std::size_t l = 0; l < leaves.size(); ++l) {
             append(bounds, leaves[l].aabb.min);
@@ -98,7 +98,7 @@ void writeBlockPiece(std::string const& path, particles::LocalParticles const& l
             id.push_back(leaves[l].id.raw());
             owner.push_back(blocks[b].block->owner);
             level.push_back(leaves[l].id.level());
-            grains.push_back(static_cast<std::int64_t>(count[l]));
+            grains.push_back(static_cast<std::int64_t>(load[l].grains));
         }
     }
     std::vector<ArraySpec> const specs = blockArrays();

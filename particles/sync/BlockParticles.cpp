@@ -90,17 +90,16 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
     masters.clear();
 }
 
-std::vector<std::size_t> LocalParticles::countMastersPerLeaf(std::size_t b) const {
+std::vector<LocalParticles::LeafLoad> LocalParticles::loadPerLeaf(std::size_t b) const {
     BlockParticles const& bp = m_blocks[b];
-    std::vector<std::size_t> counts(bp.block->leaves.size(), 0);
-    if (counts.size() == 1) {
-        counts[0] = bp.particles.countMasters();
-        return counts;
-    }
+    std::vector<LeafLoad> load(bp.block->leaves.size());
+    bool const one = load.size() == 1;
     bp.particles.forEachMaster([&](std::size_t i) {
-        ++counts[m_forest->leafContaining(*bp.block, bp.particles.position(i))];
+        LeafLoad& l = load[one ? 0 : m_forest->leafContaining(*bp.block, bp.particles.position(i))];
+        ++l.grains;
+        l.contacts += bp.particles.history(i).size();
     });
-    return counts;
+    return load;
 }
 
 std::size_t LocalParticles::countMasters() const {

@@ -54,9 +54,16 @@ public:
     /// whole instead of copied: the set-up then holds the grains once, not twice.
     void adoptMasters(ParticleStorage&& masters);
 
-    /// The masters of local block b per leaf it covers (domain::Block::leaves, in that
-    /// order): the grains of each forest block, where the particles' blocks merge several.
-    [[nodiscard]] std::vector<std::size_t> countMastersPerLeaf(std::size_t b) const;
+    /// What a leaf (forest block) holds: its masters, and their contact-history entries (the
+    /// contacts they take part in, each counted once: a pair's entry lives on one of its
+    /// grains, a wall's on the grain; entries of contacts broken since the last prune too).
+    struct LeafLoad {
+        std::size_t grains = 0;
+        std::size_t contacts = 0;
+    };
+    /// Per leaf local block b covers (domain::Block::leaves, in that order): the load of each
+    /// forest block, where the particles' blocks merge several.
+    [[nodiscard]] std::vector<LeafLoad> loadPerLeaf(std::size_t b) const;
 
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;

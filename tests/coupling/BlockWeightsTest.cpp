@@ -1,6 +1,6 @@
 // Block weights of a coupled run (coupling/balance/BlockWeights.hpp): every block weighs
-// 1 + its grains + cellWeight x its cells, on any rank count, and the forest re-assigned with
-// them puts the one crowded block on a rank of its own.
+// 1 + its grains + contactWeight x their contacts + cellWeight x its cells, on any rank count, and
+// the forest re-assigned with them puts the one crowded block on a rank of its own.
 #include "coupling/balance/BlockWeights.hpp"
 
 #include "tests/particles/sync/SyncTestUtil.hpp"
@@ -37,21 +37,31 @@ int blockIndex(core::AABB const& box) {
 /// the forest blocks' either way.
 class BlockWeightsOn : public ::testing::TestWithParam<domain::Subdomains> {};
 
-TEST_P(BlockWeightsOn, GrainsAndCellsPerBlockOnEveryRank) {
+TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     Comm world;
     auto const spec = forestSpec(Vec3::Zero(), Vec3(8, 1, 1), {8, 1, 1}, allAxes(false));
     domain::BlockForest const forest(world, spec, {}, GetParam());
     particles::LocalParticles local(forest);
     addAll(local, world, crowdedRow(70));
+    // The grains of block 3 touch two partners each (entries in their contact histories).
+    for (particles::BlockParticles& bp : local.blocks())
+        bp.particles.forEachMaster([&](std::size_t i) {
+            if (bp.particles.position(i).x() >= 3.0 && bp.particles.position(i).x() < 4.0)
+                for (particles::Uid partner : {1000, 1001})
+                    bp.particles.history(i).touch(partner, 1);
+        });
     domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {});
     domain::BlockWeight const withCells =
         coupling::grainAndCellWeights(world, local, {{4, 2, 2}, 0.25});
+    double const perContact = coupling::BlockLoadModel::kContactWeight;
     // Every rank answers for every block, not only its own.
     for (int b = 0; b < 8; ++b) {
         core::AABB const box{Vec3(b, 0, 0), Vec3(b + 1, 1, 1)};
         double const grains = b == 0 ? 70.0 : 10.0;
-        EXPECT_DOUBLE_EQ(grainsOnly(box, 0), 1.0 + grains) << "block " << b;
-        EXPECT_DOUBLE_EQ(withCells(box, 0), 1.0 + grains + 0.25 * 16.0) << "block " << b;
+        double const contacts = b == 3 ? 20.0 : 0.0;
+        double const load = 1.0 + grains + perContact * contacts;
+        EXPECT_DOUBLE_EQ(grainsOnly(box, 0), load) << "block " << b;
+        EXPECT_DOUBLE_EQ(withCells(box, 0), load + 0.25 * 16.0) << "block " << b;
     }
 }
 
