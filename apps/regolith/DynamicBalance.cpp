@@ -4,27 +4,38 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <numeric>
 #include <utility>
 
 namespace regolith::apps {
 
 DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
-                               BlockPlacement& placement, Relocate relocate)
+                               BlockPlacement& placement, std::int64_t stepsDone, Relocate relocate)
     : m_comm(&comm)
     , m_scene(&scene)
     , m_placement(&placement)
     , m_relocate(std::move(relocate))
-    , m_interval(scene.balance.every > 0 ? scene.balance.every
-                                         : autoBalanceEvery(scene.time.steps)) {}
+    , m_longest(scene.balance.every > 0 ? scene.balance.every : autoBalanceEvery(scene.time.steps))
+    , m_interval(m_longest)
+    , m_next((stepsDone / m_longest + 1) * m_longest) {}
 
 bool DynamicBalance::due(std::int64_t stepsDone) const {
-    return stepsDone % m_interval == 0;
+    return stepsDone >= m_next;
 }
 
 bool DynamicBalance::afterStep(std::int64_t stepsDone) {
     if (!due(stepsDone))
         return false;
+    bool const moved = measureAndMove(stepsDone);
+    if (m_scene->balance.adapts) // sooner after a move, back to the longest when even
+        m_interval = moved ? std::max(kShortestAutoInterval, m_interval / 2)
+                           : std::min(m_longest, m_interval * 2);
+    m_next = stepsDone + m_interval;
+    return moved;
+}
+
+bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
     m_last = coupling::loadImbalance(*m_comm,
                                      coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
     m_steps.push_back(static_cast<double>(stepsDone));

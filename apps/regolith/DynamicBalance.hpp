@@ -8,7 +8,7 @@
 /// rebalances continues bit for bit in reproducible mode; what stands on the old assignment
 /// (the synchronisation, the contact lists, a gravity grid) the caller's `relocate` rebuilds.
 /// With `every` = 0 the loads are still measured, every autoBalanceEvery(time.steps) steps,
-/// for the run summary.
+/// for the run summary; with "auto" the interval adapts (autoBalanceEvery).
 #include "apps/common/RunSummary.hpp"
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/SceneSections.hpp"
@@ -21,12 +21,19 @@
 
 namespace regolith::apps {
 
+/// The shortest interval of balance.every = "auto" [steps].
+inline constexpr std::int64_t kShortestAutoInterval = 10;
+
 /// balance.every = "auto" on more than one rank, and the measuring interval of a run that
 /// does not rebalance [steps]: 20 measurements in a run of `steps`, between 10 and 100 steps
-/// apart. A measurement costs a count of the masters and two all-reductions (below 1 % of a
-/// step at these intervals); a rebalance, when the loads differ, a few steps' time.
+/// apart. With "auto" this is the longest interval: after a rebalance the next measurement
+/// comes after half the interval (at least kShortestAutoInterval), after an even measurement
+/// after twice it, so that a load that moves fast (a gas landing on a floor) is followed
+/// closely and a steady one costs 20 measurements. A measurement costs a count of the masters
+/// and two all-reductions (below 1 % of a step at these intervals); a rebalance, when the
+/// loads differ, a few steps' time.
 [[nodiscard]] constexpr std::int64_t autoBalanceEvery(std::int64_t steps) {
-    return std::clamp<std::int64_t>(steps / 20, 10, 100);
+    return std::clamp<std::int64_t>(steps / 20, kShortestAutoInterval, 100);
 }
 
 class DynamicBalance {
@@ -34,9 +41,10 @@ public:
     /// Rebuilds what stands on the blocks' assignment after the grains moved. COLLECTIVE.
     using Relocate = std::function<void()>;
 
-    /// `placement` is the run's (its objects are replaced in place when the blocks move).
+    /// `placement` is the run's (its objects are replaced in place when the blocks move);
+    /// the run starts after `stepsDone` steps.
     DynamicBalance(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
-                   Relocate relocate);
+                   std::int64_t stepsDone, Relocate relocate);
 
     /// Whether the loads are measured after the step that leaves `stepsDone` steps done: that
     /// step must end Complete (the grains may move to other ranks after it).
@@ -50,11 +58,15 @@ public:
     [[nodiscard]] RunSummary::Balance finish();
 
 private:
+    bool measureAndMove(std::int64_t stepsDone);
+
     core::Comm const* m_comm;
     SceneDescription const* m_scene;
     BlockPlacement* m_placement;
     Relocate m_relocate;
-    std::int64_t m_interval;
+    std::int64_t m_longest;  ///< balance.every, or the interval of the measurements
+    std::int64_t m_interval; ///< the current one (below m_longest with "auto" after a move)
+    std::int64_t m_next;     ///< the step after which the next measurement comes
     double m_last = 1.0;
     double m_seconds = 0.0;
     long long m_rebalances = 0;

@@ -233,7 +233,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         world.size(), scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
     // A rebalance moves the grains in place (BlockPlacement); what stands on the blocks'
     // assignment moves with them.
-    DynamicBalance balance(world, scene, placement, [&] {
+    DynamicBalance balance(world, scene, placement, startStep, [&] {
         sync.relocate(*placement.particleForest);
         if (selfGravity)
             selfGravity->relocate(forest);

@@ -132,6 +132,7 @@ struct OutputSection {
 struct BalanceSection {
     std::int64_t every = 0;
     bool everyAuto = true;
+    bool adapts = false; ///< "auto" resolved to every > 0: the interval adapts up to it
     double threshold = 1.1;
 };
 

@@ -28,12 +28,14 @@ void resolveBalance(core::Comm const& comm, SceneDescription& scene, std::vector
     if (balance.everyAuto) {
         balance.everyAuto = false;
         balance.every = comm.size() > 1 && !fixed ? autoBalanceEvery(scene.time.steps) : 0;
+        balance.adapts = balance.every > 0;
         out.push_back({"balance.every", fmt::format("{}", balance.every),
                        comm.size() == 1 ? "one rank: nothing to balance"
                        : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
-                                        : "the ranks' loads measured 20 times a run (every 10 to "
-                                          "100 steps), the blocks re-cut when they differ by "
-                                          "more than balance.threshold"});
+                                        : "the ranks' loads measured every 10 to 100 steps (20 "
+                                          "times a run, more often while the blocks move), the "
+                                          "blocks re-cut when they differ by more than "
+                                          "balance.threshold"});
         return;
     }
     if (balance.every == 0)

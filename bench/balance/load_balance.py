@@ -32,7 +32,7 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 CASES = {
     "settling gas": ("settling-gas.toml", [], "[6,6,12]", "[10,10,20]"),
     "default (two piles merge)": ("default.toml", [], "[16,12,8]", "[24,18,12]"),
-    "cold collapse": ("cold-collapse.toml", [], "[4,4,4]", "[6,6,6]"),
+    "cold collapse": ("cold-collapse.toml", [], "[8,8,8]", "[12,12,12]"),
     "two agglomerates, bound": (
         "two-agglomerates.toml",
         ["--set", "particles[0].velocity=[0.0,0.27,0.0]",
