@@ -1,7 +1,7 @@
 """Dynamic load balance ([balance]) on the scenes whose load moves, static against rebalanced.
 
 usage: load_balance.py --build DIR --out DIR [imbalance] [wall] [--ranks 8 27]
-                       [--repeats N] [--chart FILE]
+                       [--repeats N] [--chart FILE] [--steps N]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
   assigned at the start only (balance.every = 0, the loads still measured) and once with the
@@ -41,10 +41,12 @@ CASES = {
 }
 
 
-def run(build, np, scene, extra, json_path):
+def run(build, np, scene, extra, json_path, steps=None):
     command = ["mpiexec", "-n", str(np), "--oversubscribe",
                os.path.join(build, "bin", "regolith"), os.path.join(SCENES, scene), *extra,
                "--quiet", "--json", json_path]
+    if steps:
+        command += ["--set", f"time.steps={steps}"]
     done = subprocess.run(command, env=ENV, capture_output=True, text=True, check=False)
     if done.returncode != 0:
         sys.exit(f"{' '.join(command)} exited with {done.returncode}\n{done.stderr}")
@@ -60,7 +62,7 @@ def imbalance(args):
             for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
                 path = os.path.join(args.out, f"balance_{scene}_{np}_{mode}.json")
                 s = run(args.build, np, scene,
-                        [*extra, "--set", f"domain.blocks={blocks}", *every], path)
+                        [*extra, "--set", f"domain.blocks={blocks}", *every], path, args.steps)
                 b = s["balance"]
                 step_seconds = s["wall_s"] / max(s["steps"], 1)
                 cost = b["seconds"] / b["rebalances"] / step_seconds if b["rebalances"] else 0.0
@@ -110,7 +112,7 @@ def wall(args):
         for k in range(args.repeats):
             for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
                 path = os.path.join(args.out, f"balance_wall_{scene}_{mode}.json")
-                times[mode].append(run(args.build, 2, scene, every, path)["wall_s"])
+                times[mode].append(run(args.build, 2, scene, every, path, args.steps)["wall_s"])
         ratios = [r / s for r, s in zip(times["rebalanced"], times["static"])]
         rows.append({"scene": name, "ranks": 2,
                      "static_s": round(statistics.median(times["static"]), 3),
@@ -134,6 +136,7 @@ def main():
     parser.add_argument("--ranks", type=int, nargs="*", default=[8, 27])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--chart")
+    parser.add_argument("--steps", type=int, help="time.steps of every run (the scenes' own)")
     args = parser.parse_args()
     args.build = os.path.abspath(args.build)
     os.makedirs(args.out, exist_ok=True)
