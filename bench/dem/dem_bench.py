@@ -18,7 +18,8 @@ summaries. Benchmarks, not tests: nothing here asserts a time.
            16: NNS class, and SOS class, which leaves the list idle); PUpCS ratio skin / none.
 
 usage: dem_bench.py [methods|radius|radius-chart|memory|skin ...] [--build build/default]
-                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--scenes ...] [--edge 40]
+                    [--out bench/out] [--repeats 3] [--ranks 1 2] [--scenes ...] [--steps N]
+                    [--set app.key=value ...] [--edge 40]
                     [--radii 4 8 12 16 20 24] [--skin 0.1] [--no-docs]
 """
 import argparse
@@ -83,6 +84,9 @@ def methods(a):
     for scene, (app, args, steps) in SCENES.items():
         if scene not in a.scenes:
             continue
+        args = args + [x for key in a.overrides if key.split(".")[0] == scene
+                       for x in ("--set", key)]
+        steps = a.steps or steps
         for ranks in a.ranks:
             runs = {m: [] for m in METHODS}
             for repeat in range(a.repeats):
@@ -269,6 +273,11 @@ def main():
     p.add_argument("--ranks", type=int, nargs="*", default=[1, 2])
     p.add_argument("--scenes", nargs="*", default=list(SCENES), choices=list(SCENES),
                    help="the scenes `methods` runs")
+    p.add_argument("--steps", type=int, default=None,
+                   help="methods: steps per run instead of each scene's own")
+    p.add_argument("--set", action="append", default=[], dest="overrides", metavar="KEY=VALUE",
+                   help="methods: a scene key for the scene whose app section KEY names "
+                        "(e.g. granular_gas.per_rank=[6,6,6]); repeatable")
     p.add_argument("--edge", type=float, default=40.0)
     p.add_argument("--radii", type=float, nargs="*", default=[4, 8, 12, 16, 18])
     p.add_argument("--radius-steps", type=int, default=200)

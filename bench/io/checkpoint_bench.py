@@ -4,6 +4,7 @@ checkpoints"), on scenes/checkpoint-bench.toml (103,823 grains; checkpoints at s
 
 usage: python3 bench/io/checkpoint_bench.py [--app build/default/bin/regolith]
                                             [--np 1 2 4] [--repeats 3] [--out out/ckpt-bench]
+                                            [--set section.key=value ...]
 
 For each rank count and repeat: one run of 20 steps writing both checkpoints (the write time
 is the one `regolith` logs: collect the masters, write the temporary file collectively with
@@ -43,6 +44,8 @@ def main():
     parser.add_argument("--np", type=int, nargs="+", default=[1, 2, 4])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--out", default="out/ckpt-bench")
+    parser.add_argument("--set", action="append", default=[], dest="overrides",
+                        metavar="KEY=VALUE", help="a scene key for every run; repeatable")
     a = parser.parse_args()
     print("| ranks | grains | history entries | file [MB] | bytes / grain | write [s] | "
           "read [s] |")
@@ -52,7 +55,7 @@ def main():
         for _ in range(a.repeats):
             shutil.rmtree(a.out, ignore_errors=True)
             base = ["mpiexec", "--oversubscribe", "-n", str(np), a.app, a.scene,
-                    "--output", a.out]
+                    "--output", a.out] + [x for kv in a.overrides for x in ("--set", kv)]
             lines = WRITE.findall(run(base))
             last = lines[-1]
             writes.append(float(last[4]))
