@@ -1,5 +1,5 @@
 """Shared by the benchmark scripts: run a Regolith app under mpiexec and return its run summary
-(DESIGN.md, "Run summary")."""
+(docs/design.md, "Run summary")."""
 import json
 import os
 import subprocess

@@ -1,6 +1,7 @@
 #pragma once
-/// What a block forest is made of: the `[domain]` section of a scene (DESIGN.md), as plain
-/// data. Parsed from TOML by domain/ForestConfig.hpp; turned into a forest by BlockForest.
+/// What a block forest is made of: the `[domain]` section of a scene (docs/design.md, "Scene
+/// file"), as plain data. Parsed from TOML by domain/ForestConfig.hpp; turned into a forest by
+/// BlockForest.
 #include "core/math/AABB.hpp"
 
 #include <array>

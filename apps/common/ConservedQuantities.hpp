@@ -15,7 +15,7 @@ namespace regolith::apps {
 ///  - potential_energy     sum -m g.x in the uniform external field `gravity` (self-gravity
 ///                         energy is not included: it belongs to the gravity module);
 ///  - center_of_mass       sum m x / sum m (zero when there is no mass);
-///  - mass                 sum m (beyond the DESIGN.md contract).
+///  - mass                 sum m (beyond the contract of docs/design.md, "Run summary").
 /// Positions are taken as stored, i.e. wrapped into the domain on periodic axes (where the
 /// angular momentum and centre of mass are frame quantities, not conserved ones). Summed
 /// locally in storage order, then over ranks with MPI_Allreduce: equal for any rank count to

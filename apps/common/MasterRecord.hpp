@@ -1,7 +1,7 @@
 #pragma once
 /// One master particle as the apps report it (checksum, `--dump`, conserved quantities): plain
 /// data, independent of the particle storage, in the columns of the dump contract
-/// (DESIGN.md, "Run summary": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass).
+/// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass).
 #include "core/math/Vec3.hpp"
 
 #include <cstdint>

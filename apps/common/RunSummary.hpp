@@ -1,5 +1,5 @@
 #pragma once
-/// The run summary every app writes with `--json` (DESIGN.md, "Run summary").
+/// The run summary every app writes with `--json` (docs/design.md, "Run summary").
 #include "core/math/Vec3.hpp"
 #include "core/mpi/Comm.hpp"
 
@@ -98,8 +98,8 @@ struct RunSummary {
 /// was timed (wall_s <= 0), so the JSON never holds an infinity.
 [[nodiscard]] double pupcs(RunSummary const& s);
 
-/// The summary as a JSON document (keys in the order of DESIGN.md; "left_domain" follows
-/// "shadows").
+/// The summary as a JSON document (keys in the order of docs/design.md, "Run summary";
+/// "left_domain" follows "shadows").
 [[nodiscard]] std::string toJson(RunSummary const& s);
 
 /// The largest peak resident set size of any rank, in bytes (getrusage ru_maxrss, which

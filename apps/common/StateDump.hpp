@@ -1,5 +1,5 @@
 #pragma once
-/// The `--dump` file (DESIGN.md, "Run summary"): the masters of all ranks sorted by uid as
+/// The `--dump` file (docs/design.md, "Dump"): the masters of all ranks sorted by uid as
 /// CSV, written by rank 0. Readable back as a `kind = "file"` particle source.
 #include "apps/common/MasterRecord.hpp"
 #include "core/mpi/Comm.hpp"

@@ -2,7 +2,8 @@
 /// Where the blocks of a run live: the forest is built once with every block weighing the
 /// same (grains are generated on it), then re-assigned by its load at the start (grains and
 /// grid cells, coupling::grainAndCellWeights) unless the scene says `domain.balance =
-/// "blocks"`. Particles and grid fields share this one assignment (DESIGN.md).
+/// "blocks"`. Particles and grid fields share this one assignment (docs/design.md, "The time
+/// step").
 #include "apps/regolith/SceneSections.hpp"
 #include "core/mpi/Comm.hpp"
 #include "coupling/balance/BlockWeights.hpp"

@@ -1,5 +1,5 @@
-// [[particles]] entries: the four kinds of particle source (DESIGN.md, "Scene file"), read into
-// the generators' input types. Only what TOML decides is checked here (key names, types,
+// [[particles]] entries: the four kinds of particle source (docs/design.md, "Scene file"), read
+// into the generators' input types. Only what TOML decides is checked here (key names, types,
 // choices, integer ranges that the target types cannot hold); the value rules live in one
 // place, particles::validateParticleSpecs, which parseScene runs on the result.
 #include "apps/regolith/SceneSections.hpp"

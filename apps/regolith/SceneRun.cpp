@@ -1,6 +1,6 @@
 // The generic scene run behind `regolith` and the reference-scene apps: builds the block
 // forest, generates the initial particles on every rank, runs the DEM time steps with shadow
-// synchronisation and writes the run summary and dump (DESIGN.md, "Contracts"), checkpoints
+// synchronisation and writes the run summary and dump (docs/design.md, "Contracts"), checkpoints
 // (output.checkpoint_every) and restarts from one (--restart).
 #include "apps/regolith/SceneRun.hpp"
 
@@ -185,7 +185,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     if (wallOverlaps > 0 && !restart)
         core::log::warn("{} of {} grains overlap a wall at the start", wallOverlaps, counts.total);
 
-    // The time step (DESIGN.md, "The time step"): NNS refuses a grain too large for it
+    // The time step (docs/design.md, "The time step"): NNS refuses a grain too large for it
     // (InputError, exit 2 on every rank), then every shadow is created and, for a new run,
     // the initial forces computed (a restart has them from the checkpoint).
     particles::ParticleSync sync(world, *placement.particleForest, scene.sync);

@@ -1,5 +1,5 @@
 #pragma once
-/// The scene run every app shares (DESIGN.md, "The time step" and "Contracts"): reads the
+/// The scene run every app shares (docs/design.md, "The time step" and "Contracts"): reads the
 /// scene in `ctx.scene`, builds the forest, generates the grains, refuses a scene the chosen
 /// synchronisation cannot simulate, runs `time.steps` steps and writes the run summary
 /// (--json) and the dump (--dump).

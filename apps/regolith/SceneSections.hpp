@@ -1,5 +1,5 @@
 #pragma once
-/// The sections of a scene file (DESIGN.md, "Scene file") as plain structs, parsed and
+/// The sections of a scene file (docs/design.md, "Scene file") as plain structs, parsed and
 /// validated. [domain] is parsed by its module (domain/ForestConfig.hpp); [[particles]] and
 /// [[walls]] are read straight into the particles module's types (particles::ParticleSpec,
 /// particles::Wall); the other sections are parsed here until their modules (time stepping,
@@ -67,7 +67,7 @@ enum class ContactModel { SpringDashpot, Hertz };
 /// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry),
 /// neighbour_skin (the Verlet list's skin, a length >= 0, LAMMPS's `neighbor` skin; 0: no
 /// list, linked cells every step; absent: a quarter of each block's small grains' radius).
-/// Defaults as in DESIGN.md: 1e4, 0.9, 0.5, 0; initial_overlap 1e-6.
+/// Defaults as in docs/guide/scene.md: 1e4, 0.9, 0.5, 0; initial_overlap 1e-6.
 struct ContactSection {
     ContactModel model = ContactModel::SpringDashpot;
     double stiffness = 1e4;

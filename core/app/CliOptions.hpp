@@ -1,5 +1,5 @@
 #pragma once
-/// The command line shared by every Regolith app (DESIGN.md, "Command line"):
+/// The command line shared by every Regolith app (docs/design.md, "Command line"):
 ///   app [scene.toml] [--set section.key=value]... [--json summary.json] [--dump final.csv]
 ///       [--steps N] [--output DIR] [--restart CHECKPOINT] [--quiet]
 /// CLI11 does the parsing; it stays private to regolith::core.

@@ -1,7 +1,7 @@
 #pragma once
 /// Counter-based random numbers keyed by (seed, particle uid): the numbers a particle draws
 /// depend only on the seed, its uid and how many it drew, never on ranks or blocks, which is
-/// what the reproducible mode (DESIGN.md) needs.
+/// what the reproducible mode (docs/design.md, "Reproducible mode") needs.
 #include "core/random/Philox.hpp"
 
 #include <cstdint>

@@ -1,7 +1,8 @@
 #pragma once
-/// Block weights for the block -> rank assignment of a coupled run (DESIGN.md: one forest, one
-/// assignment for particles and grid fields). The particle module's cost of a block grows with
-/// its grains and their contacts, the grid module's with its cells, so a block weighs
+/// Block weights for the block -> rank assignment of a coupled run (docs/design.md, "The time
+/// step": one forest, one assignment for particles and grid fields). The particle module's cost of
+/// a block grows with its grains and their contacts, the grid module's with its cells, so a block
+/// weighs
 ///
 ///     w_b = 1 + grains_b + contactWeight * contacts_b + cellWeight * cells_b
 ///

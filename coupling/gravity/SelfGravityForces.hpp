@@ -1,7 +1,7 @@
 #pragma once
-/// Self-gravity on the DEM grains (DESIGN.md, "The time step": "if gravity due: ... field at
-/// grains"): gathers the masters of the local blocks, asks the update policy whether the field
-/// must be recomputed, evaluates it with the chosen method (direct sum, Barnes–Hut, the
+/// Self-gravity on the DEM grains (docs/design.md, "The time step": "body forces:
+/// self-gravity if due"): gathers the masters of the local blocks, asks the update policy whether
+/// the field must be recomputed, evaluates it with the chosen method (direct sum, Barnes–Hut, the
 /// mutual tree, the mesh, P3M or the second paper's node methods) and adds m g to every
 /// master's force. Installed into
 /// particles::DemStep as its body forces.

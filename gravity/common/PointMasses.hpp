@@ -1,8 +1,8 @@
 #pragma once
 /// The data every self-gravity kernel works on: point masses in SoA spans (positions in m,
 /// masses in kg, optional radii in m) and the field written back (accelerations in m/s²,
-/// potential in m²/s²). Gravity never sees the particle storage (DESIGN.md layers): the caller
-/// hands spans of its masters, so a kernel test needs no particles and no forest.
+/// potential in m²/s²). Gravity never sees the particle storage (docs/design.md, "Layers"): the
+/// caller hands spans of its masters, so a kernel test needs no particles and no forest.
 #include <cstddef>
 #include <span>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// The `[[particles]]` entries of a scene (DESIGN.md, "Scene file") as plain data: what the
+/// The `[[particles]]` entries of a scene (docs/design.md, "Scene file") as plain data: what the
 /// generators in particles/generators/ take as input. The scene reader (core/config) fills
 /// these structs from TOML; nothing here parses TOML. Key names in the comments are the scene
 /// keys, which the generators also use in their error messages ("particles[2].spacing: ...").
@@ -66,8 +66,8 @@ struct ListSpec {
 /// `kind = "file"`: grains from a CSV file, one per line after a header line naming the
 /// columns. Required columns x, y, z, radius; optional vx, vy, vz, wx, wy, wz (angular
 /// velocity), density or mass (not both), uid, type. Missing velocity components are 0.
-/// Blank lines and lines starting with '#' are skipped. The `--dump` format of DESIGN.md
-/// (uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass) is a valid input.
+/// Blank lines and lines starting with '#' are skipped. The `--dump` format
+/// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass) is a valid input.
 struct FileSpec {
     std::string path; ///< `path`, opened as given (the scene reader resolves relative paths)
     /// `density`: used when the file has neither a density nor a mass column.

@@ -2,7 +2,7 @@
 /// The initial grains of a scene: the `[[particles]]` entries generated in order, each rank
 /// asking only for the grains whose centre lies in its blocks.
 ///
-/// Rules (DESIGN.md, "Scene file"):
+/// Rules (docs/design.md, "Scene file"):
 ///  - Uids. Entry k owns the uid range [entryUidBegin[k], entryUidBegin[k+1]), the entries'
 ///    ranges laid end to end from 0. Its width and the uid of a grain in it are fixed by the
 ///    entry alone: lattice: the linear index of the site (LatticeSites), width = candidate

@@ -1,6 +1,6 @@
 #pragma once
 /// One participant's share of one contact, kept apart instead of summed at once, so that a
-/// master's total can be summed in a canonical order (reproducible mode, DESIGN.md).
+/// master's total can be summed in a canonical order (docs/design.md, "Reproducible mode").
 #include "core/math/Vec3.hpp"
 #include "particles/storage/Uid.hpp"
 

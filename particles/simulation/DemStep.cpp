@@ -357,9 +357,9 @@ void DemStep::computeForces(std::uint32_t stamp) {
             ps.resetForces();
             m_records[b].clear();
             // The block evaluates the pairs whose ownership point lies in its own box
-            // (DESIGN.md: exactly one block per contact). Walls are global: every block tests
-            // its copies against all of them, and the detector keeps a sphere-wall contact
-            // only for the sphere's master, so it too is evaluated once.
+            // (docs/design.md, "The time step": each contact evaluated once). Walls are global:
+            // every block tests its copies against all of them, and the detector keeps a
+            // sphere-wall contact only for the sphere's master, so it too is evaluated once.
             std::visit(
                 [&](auto const& model) {
                     if (reproducible) {

@@ -1,5 +1,5 @@
 #pragma once
-/// The DEM time step of one rank over all its local blocks (DESIGN.md, "The time step"):
+/// The DEM time step of one rank over all its local blocks (docs/design.md, "The time step"):
 /// velocity Verlet (or semi-implicit Euler) split around the force computation, the shadow
 /// synchronisation between the moves and the contacts, contact detection and evaluation per
 /// block, and the reduction of shadow forces to the masters.
@@ -79,7 +79,7 @@ struct DemStepConfig {
 /// In reproducible mode (sync.config().reproducible) every block evaluates with
 /// evaluateContactsRecorded and the reduction sums every master's force from its records in
 /// ascending partner uid, so that the trajectory does not depend on the number of ranks or
-/// blocks (DESIGN.md, "Reproducible mode"); otherwise forces are accumulated in place and the
+/// blocks (docs/design.md, "Reproducible mode"); otherwise forces are accumulated in place and the
 /// shadows' shares added to the masters.
 ///
 /// Between two sync calls only the integrator moves masters (the caller must not move

@@ -1,9 +1,9 @@
 #pragma once
 /// The tangential-spring history of one particle's contacts, keyed by partner uid, kept with
-/// the particle so that it travels with it (DESIGN.md: whichever block evaluates a contact
-/// finds its history). A pair's entry lives on the partner with the smaller uid (the `i` of
-/// the canonical contact order); a sphere–wall entry lives on the sphere, keyed by the wall's
-/// uid.
+/// the particle so that it travels with it (docs/design.md, "The time step": whichever
+/// block evaluates a contact finds its history). A pair's entry lives on the partner with the
+/// smaller uid (the `i` of the canonical contact order); a sphere–wall entry lives on the sphere,
+/// keyed by the wall's uid.
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"

@@ -1,5 +1,5 @@
 // ParticleSync::reduceForces: shadow -> master reduction of forces, torques and contact
-// history ("reduce forces/torques shadow->master" of the time step in DESIGN.md).
+// history ("reduce forces/torques shadow->master" of the time step in docs/design.md).
 #include "core/Error.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "particles/sync/CopyScan.hpp"
@@ -169,7 +169,7 @@ void ParticleSync::reduceForces(LocalParticles& local,
     core::CommStats stats;
     auto contributions = exchangeShadowShares(*m_impl, local, &records, stamp, stats);
     // Every master's force summed from zero in ascending partner uid: the same sum whatever
-    // block evaluated each contact (DESIGN.md, reproducible mode).
+    // block evaluated each contact (docs/design.md, "Reproducible mode").
     std::sort(contributions.begin(), contributions.end(),
               [](Contribution const& a, Contribution const& b) {
                   if (std::tie(a.block, a.master) != std::tie(b.block, b.master))

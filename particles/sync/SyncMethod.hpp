@@ -26,7 +26,8 @@ enum class SyncMethod {
 struct SyncConfig {
     SyncMethod method = SyncMethod::Hybrid;
     /// Sum contact forces on masters in a canonical order (by partner uid), so that results
-    /// are bitwise identical for any rank count and block layout (DESIGN.md).
+    /// are bitwise identical for any rank count and block layout (docs/design.md, "Reproducible
+    /// mode").
     bool reproducible = false;
     /// Shadow skin [length], 0: off. When > 0, NNS-class shadows are decided for the ball
     /// grown by the skin, and between two such decisions the masters only copy their state to

@@ -1,4 +1,4 @@
-"""Checks a run summary (--json) against the contract in DESIGN.md.
+"""Checks a run summary (--json) against the contract in docs/design.md, "Run summary".
 
 usage: check_summary.py summary.json [key=value | key>number | key<number ...]
 Every contract key must be present with the right type; each key=value compares a value, the

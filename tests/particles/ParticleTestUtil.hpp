@@ -30,7 +30,7 @@ inline double sphereMass(double radius, double density) {
     return density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
 }
 
-/// One block without neighbours: the time step of DESIGN.md minus synchronisation.
+/// One block without neighbours: the time step of docs/design.md minus synchronisation.
 template <ContactModel M, Integrator I>
 class BlockStepper {
 public:

@@ -68,7 +68,7 @@ TEST(GrainCsv, ReadsAGoodFile) {
 }
 
 TEST(GrainCsv, DumpFormatReadBackKeepsUidsAndMassesExactly) {
-    // DESIGN.md's --dump header; mass kept bit for bit, density derived from it.
+    // The --dump header (docs/design.md, "Dump"); mass kept bit for bit, density derived from it.
     TempFile const f("dump.csv", "uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n"
                                  "17,1,1,1,0,0,0,0,0,0.5,0.5,0.1234567890123\n"
                                  "4,3,3,3,1,0,0,0,0,0,0.25,0.0311\n"

@@ -126,7 +126,7 @@ TEST(LatticeSc, SiteRuleOnPeriodicAndWalledAxes) {
 }
 
 TEST(LatticeSc, LargePeriodicLatticeHasOneGrainPerCell) {
-    // The DESIGN.md example: spacing 1 in [0, 40)^3 periodic gives 40^3 grains.
+    // The example of GeneratorSpec.hpp, at 40: spacing 1 in [0, 40)^3 periodic gives 40^3 grains.
     core::AABB const domain = box(Vec3::Zero(), Vec3(40, 40, 40));
     auto const g = generateOne(lattice(LatticeKind::SimpleCubic, 1.0, 0.4, domain), domain,
                                {true, true, true});

@@ -93,7 +93,7 @@ TEST(Skip, SameEntryOverlapsAreKeptLaterEntriesSkipAgainstAllEarlier) {
 
 TEST(Skip, WalledDomainWithBoulderAfterLattice) {
     // A boulder listed after the lattice is itself skipped if it overlaps a lattice grain:
-    // the order of the entries decides, as DESIGN.md says.
+    // the order of the entries decides, as docs/design.md says ("Scene file").
     core::AABB const domain = box(Vec3::Zero(), Vec3(8, 8, 8));
     Periodic const periodic{false, false, false};
     std::vector<ParticleSpec> const specs{

@@ -65,7 +65,8 @@ struct Outcome {
     std::uint64_t shadowContacts = 0; ///< contacts evaluated with a shadow participant, all steps
 };
 
-/// The DEM loop of DESIGN.md on `spec` over `comm`: set-up forces, then `steps` steps.
+/// The DEM loop of docs/design.md ("The time step") on `spec` over `comm`: set-up forces, then
+/// `steps` steps.
 Outcome run(Comm const& comm, domain::ForestSpec const& spec, SyncConfig config,
             std::vector<ParticleInit> const& gas, int steps) {
     domain::BlockForest const forest(comm, spec);
