@@ -1,4 +1,4 @@
-"""Shared by the chart scripts (issue 9): matplotlib without a display, and where a chart's
+"""Shared by the chart scripts: matplotlib without a display, and where a chart's
 CSV and PNG go (bench/out/, the PNG also to docs/images/ for docs/results.md)."""
 import csv
 import os

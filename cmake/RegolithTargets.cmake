@@ -31,9 +31,8 @@ endif()
 # divisions is longer than the reorder window can hide, so eight lanes per instruction instead
 # of four cut the batch model's time by a third even on Zen 4, which splits a 512-bit operation
 # into two 256-bit halves (particles_bench springDashpotBatch/0: 11.8 -> 7.8 ns per contact;
-# 256-bit AVX-512 with its 32 registers: 11.4 ns; docs/results.md, issue 5). The same IEEE
-# operations in every lane, no contraction: the same bits. They include no Eigen code that
-# GCC bug 105593 trips over.
+# 256-bit AVX-512 with its 32 registers: 11.4 ns). The same IEEE operations in every lane, no
+# contraction: the same bits. They include no Eigen code that GCC bug 105593 trips over.
 set(REGOLITH_LANE_CODEGEN "")
 if(REGOLITH_NATIVE)
   include(CheckCXXSourceRuns)

@@ -1,5 +1,5 @@
 #pragma once
-/// "Model no more than the scene needs" (issue 8): the scene keys that may be "auto" —
+/// "Model no more than the scene needs": the scene keys that may be "auto" —
 /// gravity.self, gravity.update_threshold and time.dt — resolved from the grains and the
 /// target accuracy, each with the reason, for the run report and the run summary.
 #include "apps/regolith/SceneSections.hpp"
@@ -34,7 +34,7 @@ inline constexpr TreeErrorPoint kTreeErrors[] = {{0.9, 5.2e-3}, {0.7, 1.45e-3}, 
 /// grains: 23 ms direct vs 5 ms tree at θ = 0.5; the ratio grows as N).
 inline constexpr long long kDirectSumMaxGrains = 2000;
 
-/// The grid methods for "auto" (issue 6). P3M is considered only where it is safe — the scene
+/// The grid methods for "auto". P3M is considered only where it is safe — the scene
 /// has a grid (domain.cells_per_block), the forest is unrefined and the domain free-space or
 /// periodic on every axis — and meets gravity.accuracy by its measured error at the scene's
 /// cells across the body (GridAccuracy.hpp); it is chosen only where it is also cheaper than the

@@ -183,7 +183,7 @@ void checkRestart(core::Comm const& comm, std::string const& path, io::Checkpoin
         throw core::InputError(fmt::format("{}: the checkpoint is at step {}, beyond the scene's "
                                            "time.steps = {} (a total, not a remainder)",
                                            context, info.step, scene.time.steps));
-    if (info.step == scene.time.steps) // (a review read --steps as a remainder)
+    if (info.step == scene.time.steps) // --steps is a total, not a remainder
         core::log::warn("{}: the checkpoint is at step {}, the scene's time.steps (a total, not "
                         "a remainder): no step to run",
                         context, info.step);

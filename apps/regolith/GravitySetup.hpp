@@ -36,8 +36,8 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles c
 /// Warns (rank 0, once) when the linear contacts are too soft for the grains' own gravity: two
 /// touching grains overlap at rest by G m² / (2r)² / k under their mutual attraction alone;
 /// above kSoftContactOverlap of the radius for the grain with the largest m² / r³ (a pile's
-/// weight adds to it, impacts more). Found by a review: grains of cold-collapse sank 1.5 radii
-/// into each other, and a pair with G 10⁴ times larger passed through each other and was
+/// weight adds to it, impacts more). Without it, grains of cold-collapse sank 1.5 radii into
+/// each other, and a pair with G 10⁴ times larger passed through each other and was
 /// ejected (point-mass gravity inside an overlap). COLLECTIVE when self-gravity is on.
 void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& local,
                       SceneDescription const& scene);
@@ -48,8 +48,8 @@ inline constexpr double kSoftContactOverlap = 0.1;
 /// With self-gravity, warns if time.dt exceeds the orbital period of two touching grains of
 /// the largest density, 2 pi sqrt(3 / (pi G rho)), over kOrbitSteps: a close orbit then takes
 /// fewer steps than that and its energy is not kept (time.dt = "auto" takes the period / 200).
-/// The contact guard (t_c / 10) does not see it when contacts are soft. Found by a review: a
-/// Kepler pair at dt = T / 2.2 was ejected without a word. COLLECTIVE when self-gravity is on.
+/// The contact guard (t_c / 10) does not see it when contacts are soft: a Kepler pair at
+/// dt = T / 2.2 was ejected without a word. COLLECTIVE when self-gravity is on.
 void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,
                          SceneDescription const& scene);
 

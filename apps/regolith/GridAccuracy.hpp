@@ -1,5 +1,5 @@
 #pragma once
-/// "A forest too coarse for the requested accuracy" (issue 6): the grid methods' force error
+/// A forest too coarse for the requested accuracy: the grid methods' force error
 /// is set by the grid spacing relative to the body, so a scene that asks for a
 /// gravity.accuracy the mesh cannot give on its domain.cells_per_block is refused before the
 /// run, naming the cells per block it would need.
@@ -56,8 +56,8 @@ inline constexpr std::size_t kAccuracySample = 256;
 /// After set-up, for pm or p3m with gravity.accuracy given in free space: the first field's
 /// median force error measured on about kAccuracySample of the scene's own grains against the
 /// direct sum (SelfGravityForces::sampledMedianError). checkGridAccuracy's estimate comes from
-/// another body, and a review measured P3M 2.4-5 times worse than it on a uniform cloud and on
-/// the default scene's rubble piles. Throws core::InputError (on every rank alike) if it is
+/// another body, and P3M measured 2.4-5 times worse than it on a uniform cloud and on the
+/// default scene's rubble piles. Throws core::InputError (on every rank alike) if it is
 /// above the accuracy, naming gravity.accuracy and what to change. Periodic domains are not
 /// checked (the direct sum has no images). COLLECTIVE (over the communicator of `gravity`).
 void checkMeasuredGridAccuracy(coupling::SelfGravityForces const& gravity,

@@ -140,8 +140,8 @@ namespace {
 /// Warns if a periodic length lies below 2 (r_a + r_b) for the two largest grains while the
 /// contacts carry springs (friction or rolling friction): a pair may then touch through two
 /// periodic images at once, and both contacts share one spring (a grain's contact history is
-/// keyed by its partner's uid; docs/results.md, "A pair touching through two periodic images
-/// shares one tangential spring"). COLLECTIVE.
+/// keyed by its partner's uid; docs/notes/contact-models.md, "A pair touching through two periodic
+/// images shares one tangential spring"). COLLECTIVE.
 void warnTwoImageContacts(core::Comm const& comm, particles::ParticleStorage const& ps,
                           SceneDescription const& scene) {
     if (!(scene.contact.friction > 0.0) && !(scene.contact.rollingFriction > 0.0))

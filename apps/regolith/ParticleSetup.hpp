@@ -1,7 +1,7 @@
 #pragma once
 #include "particles/integration/TimeStepGuard.hpp"
 /// The generated grains as particles: masters owned by the local block that contains their
-/// centre, checked before the first step (issue: "bad input"), and the contact model,
+/// centre, checked before the first step (bad input is refused), and the contact model,
 /// integrator and walls of the scene for the time step.
 #include "apps/regolith/SceneSections.hpp"
 #include "core/mpi/Comm.hpp"

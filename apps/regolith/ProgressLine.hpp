@@ -1,5 +1,5 @@
 #pragma once
-/// The progress of a run on rank 0's standard output (issue 9, "Progress"): on a terminal a
+/// The progress of a run on rank 0's standard output (docs/guide/parallel.md): on a terminal a
 /// live line redrawn in place (at most 5 times a second), otherwise, e.g. in a log file, one
 /// line every output.progress_seconds; nothing with --quiet.
 ///

@@ -281,8 +281,8 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
 /// Warns where a lattice entry fills a periodic axis whose extent is not a multiple of the
 /// lattice's period there (particles::latticePeriod): the sites across the face are then
 /// closer (the overlap check refuses them once they overlap) or farther apart than inside,
-/// so the lattice is not the uniform one asked for. Found by a review: a gas box of 10.5 ran
-/// with a gap of 1.5 across one face.
+/// so the lattice is not the uniform one asked for (a gas box of 10.5 at spacing 1 would run
+/// with a gap of 1.5 across one face).
 void warnLatticeOffPeriod(particles::LatticeSpec const& lattice, core::ConfigTable const& entry,
                           domain::ForestSpec const& forest) {
     for (int a = 0; a < 3; ++a) {

@@ -1,4 +1,4 @@
-"""The second paper's two-agglomerates scene through the coupled time step (issue 8 figures).
+"""The second paper's two-agglomerates scene through the coupled time step (figures).
 
 1. Time per step and per phase for the three instances (small 3,866 / medium 11,100 / large
    38,358 grains) on 1 and 2 ranks with the paper's settings (Barnes-Hut, gravity updated after

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""DEM benchmark suite (issue 5) on the apps of the first paper's scenes, from their run
+"""DEM benchmark suite on the apps of the first paper's scenes, from their run
 summaries. Benchmarks, not tests: nothing here asserts a time.
 
   methods  PUpCS of NNS, SOS and hybrid for granular_gas, dense_ramp and bidisperse on 1 and 2

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""DEM time-step charts (issue 9) on an elastic granular gas (scenes/granular-gas.toml with
+"""DEM time-step charts on an elastic granular gas (scenes/granular-gas.toml with
 restitution 1 and no friction, run by `regolith`): total energy is then kinetic + the normal
 springs' energy (elastic_energy.py), so its drift is the integrator's error.
 

@@ -1,4 +1,4 @@
-// Self-gravity benchmark (issue 7; not a test): time per force evaluation and relative force
+// Self-gravity benchmark (not a test): time per force evaluation and relative force
 // error against the direct sum for the second paper's agglomerates (3,866 / 11,100 / 38,358
 // grains) and Plummer spheres (10⁵, 10⁶, optionally 2.1 × 10⁶), for every method and θ.
 //
@@ -11,7 +11,7 @@
 //       [--thresholds 0.01,0.1,1,6] [--step-displacement 0.001] [--stale-theta 0.5]
 //                                                                      (method stale-tree)
 //
-// Added for the charts (issue 9; not in the default --methods): `pm`, the particle-mesh method
+// Added for the charts (not in the default --methods): `pm`, the particle-mesh method
 // (gravity/GridGravity, TSC, PETSc CG+GAMG from a cold start, set-up not counted, best of two)
 // at cell spacings given as multiples of the largest grain diameter; `stale-tree`, the update
 // threshold (StaleFieldStudy.hpp: the tree field at --stale-theta kept until the fastest grain

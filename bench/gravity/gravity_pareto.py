@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Self-gravity charts (issue 9) from one gravity_bench run on one rank: force error against
+"""Self-gravity charts from one gravity_bench run on one rank: force error against
 time per evaluation for every method and parameter (a Pareto chart), and two stability maps,
 the opening angle θ against the tree's error and the cell spacing against the mesh's error,
 with the region above the target error shaded.

@@ -1,4 +1,4 @@
-// Grid self-gravity on the second paper's largest agglomerate (issue 6; not a test): the
+// Grid self-gravity on the second paper's largest agglomerate (not a test): the
 // relative error of g against the direct sum and the time per evaluation, for the bare mesh
 // ("pm", grains deposited as volumes) and P3M (points + pair correction within the cut-off)
 // at several grid spacings, plus the Barnes–Hut tree and the direct sum on the same grains

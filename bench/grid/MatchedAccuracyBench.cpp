@@ -1,4 +1,4 @@
-// PETSc against the FFT reference at equal accuracy (issue 6; not a test). For the free-space
+// PETSc against the FFT reference at equal accuracy (not a test). For the free-space
 // potential of two smooth balls (the density of grid_bench, whose potential is analytic), the
 // error of φ against the analytic potential, and the solve time, of
 //  - the FFT reference (Hockney–Eastwood, rank 0), and

@@ -1,5 +1,5 @@
-"""Checkpoint write and read time and size per grain (docs/results.md, "Output and
-checkpoints"), on scenes/checkpoint-bench.toml (103,823 grains; checkpoints at steps 10 and
+"""Checkpoint write and read time and size per grain (docs/results.md, "Checkpoints
+and output"), on scenes/checkpoint-bench.toml (103,823 grains; checkpoints at steps 10 and
 20, the second with ~34,000 contact-history entries).
 
 usage: python3 bench/io/checkpoint_bench.py [--app build/default/bin/regolith]

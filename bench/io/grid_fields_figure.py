@@ -1,5 +1,5 @@
-"""A picture of the grid fields the driver writes for ParaView (docs/results.md, "Grid fields
-in VTK"): the default scene (two rubble piles, 24 blocks of 16^3 cells) with particle-mesh
+"""A picture of the grid fields the driver writes for ParaView (docs/results.md,
+"Checkpoints and output"): the default scene (two rubble piles, 24 blocks of 16^3 cells) with particle-mesh
 self-gravity, run for --steps steps on --np ranks with output.vtk_every = --steps; the last
 grid.pvd entry is read back with VTK's own readers (vtkXMLMultiBlockDataReader: the .vtm and
 its one .vti per block) and drawn: density, potential and |g| in the layer of cells just

@@ -1,6 +1,6 @@
 // What a pair loop shaped like LAMMPS's costs on this machine with Regolith's own contact
 // model: the floor against which the fused contact loop (ContactDetector::listedPass +
-// BatchedSpringDashpot) is judged (docs/results.md, issue 5, "How fast can the pair loop be").
+// BatchedSpringDashpot) is judged (docs/notes/contact-loop.md).
 //
 // The MESA-PD "GranularGas" geometry of bench/peers/lammps_compare.py's `mesapd` case: an
 // n^3 simple-cubic lattice, spacing 1, radius 0.6, periodic, every sphere overlapping its six

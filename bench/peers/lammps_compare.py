@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Regolith side by side with LAMMPS (issue 5): the same grains, contact model, time step and
+"""Regolith side by side with LAMMPS: the same grains, contact model, time step and
 steps on one core, runs alternating (regolith, lmp, regolith, lmp, ...) so that a change of
 machine load hits both alike. Reports PUpCS (particle updates per core-second of the time-step
 loop: Regolith's wall_s, LAMMPS's "Loop time") and the ratio Regolith / LAMMPS: the median of

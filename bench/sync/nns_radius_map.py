@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Stability map of the synchronisation (issue 9): which grain radius / block edge pairs NNS
+"""Stability map of the synchronisation: which grain radius / block edge pairs NNS
 accepts, against SOS, from actual short runs of the `bidisperse` app (one large sphere among
 the sc grains of radius 0.4, one periodic building block cut into n x n x n blocks, 2 ranks).
 NNS refuses a grain that is not smaller than the blocks it may touch: the app then exits with

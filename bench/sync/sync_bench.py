@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Synchronisation figures (issue 4) from `regolith` run summaries, on the sparse granular gas
+"""Synchronisation figures from `regolith` run summaries, on the sparse granular gas
 of scenes/granular-gas.toml:
 
   pupcs  PUpCS of NNS, SOS and hybrid on the same scene and rank count, runs alternating

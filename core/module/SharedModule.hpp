@@ -2,7 +2,7 @@
 /// Regolith's own shared modules: a third-party library (PETSc, VTK, HDF5) wrapped behind a
 /// plain C++ interface in a library of its own, opened with dlopen the first time a run needs
 /// it. A run that never needs one maps none of its libraries, which are megabytes of resident
-/// pages in every process (docs/results.md, "Memory"). A module exports one `extern "C"`
+/// pages in every process (docs/notes/memory.md). A module exports one `extern "C"`
 /// function returning its interface; it links no static Regolith library, so everything
 /// that crosses the boundary is header-only (standard types, MPI handles, plain structs).
 #include <string>

@@ -1,8 +1,8 @@
 #pragma once
 /// The force error of a run's self-gravity measured on the run's own grains: the field of a
 /// sample of grains against the direct sum over all of them. The grid methods' accuracy check
-/// before the run is an estimate from another body (apps/regolith/GridAccuracy.hpp); a review
-/// measured P3M 2.4-5 times worse than that estimate on other bodies (a uniform cloud, two
+/// before the run is an estimate from another body (apps/regolith/GridAccuracy.hpp); P3M
+/// measured 2.4-5 times worse than that estimate on other bodies (a uniform cloud, two
 /// rubble piles), so a run that asks for an accuracy checks the real one after set-up.
 #include "core/mpi/Comm.hpp"
 #include "gravity/common/ForceError.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// Exact pairwise self-gravity over all masters on all ranks: the reference for every
-/// accuracy figure of the tree and grid methods (issue 7).
+/// accuracy figure of the tree and grid methods.
 ///
 /// Parallel scheme: a ring pass (the "systolic" all-pairs scheme). Every rank packs its
 /// grains into one block; in P steps each block visits every rank, which adds the block's

@@ -3,7 +3,7 @@
 /// (libregolith_petsc.so, PetscModule.cpp) that is loaded with dlopen the first time a run
 /// needs PETSc (PetscSession, i.e. grid gravity solved with PETSc). A run that never solves on
 /// the grid then maps none of PETSc's libraries: PETSc, Trilinos, HYPRE, SuperLU, ... are
-/// 16 MB of resident pages in every process (docs/results.md, "Memory"). No PETSc header here.
+/// 16 MB of resident pages in every process (docs/notes/memory.md). No PETSc header here.
 #include <mpi.h>
 
 #include <cstdint>

@@ -21,7 +21,7 @@
 /// the 7-point Laplacian (PoissonSolver) follows the lattice's own Green's function instead,
 /// which differs from 1/r by ~h² / (4 r³) (LatticeGreensFunction.hpp): with Newton's values a
 /// grain 2.5 cells from a face felt 6e-3 of a neighbour's pull 4 cells away from its own field
-/// (docs/results.md, grid gravity's "Choices and limits"). With BoundaryKernel::Lattice the
+/// (docs/notes/grid-gravity.md). With BoundaryKernel::Lattice the
 /// occupied cells within kLatticeRadius cells of a ghost (per axis) contribute the lattice
 /// kernel's value, so the solve reproduces the infinite lattice's solution up to the far
 /// cells' ~h² / (4 r³) (r > kLatticeRadius cells) and the tree's error. Those cells (all

@@ -1,5 +1,5 @@
 #pragma once
-/// Parallel Barnes–Hut self-gravity (issue 7, `gravity.self = "tree"`): monopole +
+/// Parallel Barnes–Hut self-gravity (`gravity.self = "tree"`): monopole +
 /// quadrupole cells about the centre of mass, the offset-guarded opening test (Octree.hpp),
 /// grouped walks with batched interaction lists (InteractionList.hpp) and locally essential
 /// trees between ranks (LocallyEssentialTree.hpp).

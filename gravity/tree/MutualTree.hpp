@@ -1,5 +1,5 @@
 #pragma once
-/// Momentum-conserving tree gravity (issue 7, beyond the papers): the mutual dual-tree walk
+/// Momentum-conserving tree gravity (beyond the papers): the mutual dual-tree walk
 /// of Dehnen (2002, "A hierarchical O(N) force calculation algorithm", J. Comput. Phys. 179,
 /// 27; the falcON scheme). Cells interact with cells; each interaction computes the force
 /// between two cells once, from the interaction energy

@@ -10,7 +10,7 @@ namespace regolith::gravity::tree {
 /// and b_max (largest distance from com to one of its grains) may act as a multipole on a
 /// point at distance d from com: d > rcrit with
 enum class OpeningCriterion {
-    BmaxPlusOffset, ///< rcrit = b_max/θ + δ (default; the guarded form asked for in issue 7)
+    BmaxPlusOffset, ///< rcrit = b_max/θ + δ (default; guarded against a far centre of mass)
     Bmax,           ///< rcrit = b_max/θ (Salmon & Warren 1994, §3): cheapest at equal error
     EdgePlusOffset, ///< rcrit = l/θ + δ (Barnes 1994; the classic geometric test + guard)
 };

@@ -1,5 +1,5 @@
 #pragma once
-/// When to recompute self-gravity (issue 7; the second paper, §3 and §6: "self-gravity is
+/// When to recompute self-gravity (the second paper, §3 and §6: "self-gravity is
 /// updated after at least one particle has moved more than a certain distance threshold",
 /// there twice the largest radius). Between updates the grains keep the stored field.
 ///
@@ -34,7 +34,7 @@ public:
     /// core::InputError naming the key if negative or not finite. `period`: the domain's
     /// extent on its periodic axes, 0 on the others; a displacement is measured to the nearest
     /// image there, so that a grain wrapped across a periodic face has moved only its step
-    /// (a review counted extra updates at every crossing).
+    /// (not the jump across the domain, which would count an update at every crossing).
     explicit UpdatePolicy(double threshold, std::array<double, 3> period = {0.0, 0.0, 0.0});
     ~UpdatePolicy();
     UpdatePolicy(UpdatePolicy&&) noexcept;

@@ -4,7 +4,7 @@
 /// loaded with dlopen the first time a run writes or reads a checkpoint
 /// (core/module/SharedModule.hpp). A run without checkpoints then maps none of HDF5's
 /// libraries (with the TLS, Kerberos and LDAP libraries that Debian's HDF5 brings: 5.9 MB of
-/// resident pages in every process; docs/results.md, "Memory"). No HDF5 header here. Errors
+/// resident pages in every process; docs/notes/memory.md). No HDF5 header here. Errors
 /// are core::InputError / core::Error (header-only) with the messages of the file layout's
 /// checks.
 #include "io/checkpoint/CheckpointInfo.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-/// A picture of one output step without a display (issue 9, "A picture without a display"):
+/// A picture of one output step without a display (docs/guide/paraview.md):
 /// the grains of a particles .pvtu as spheres of their radius coloured by speed, the block
 /// outlines of the matching blocks .pvtu coloured by owner rank, rendered off screen with
 /// VTK into a PNG. VTK's OpenGL window needs an X display: on a machine without one run the

@@ -2,9 +2,8 @@
 /// Every VTK call of the simulation's output sits behind this interface, implemented by a
 /// shared module (libregolith_vtk.so, VtkModule.cpp) that is loaded with dlopen the first time
 /// a run writes VTK output (core/module/SharedModule.hpp). A run without VTK output then maps
-/// none of VTK's libraries: 9.5 MB of resident pages in every process (docs/results.md,
-/// "Memory"). No VTK header here; the callers hand over plain arrays, which the module wraps
-/// without copying.
+/// none of VTK's libraries: 9.5 MB of resident pages in every process (docs/notes/memory.md). No
+/// VTK header here; the callers hand over plain arrays, which the module wraps without copying.
 #include "io/vtk/VtkSeries.hpp"
 
 #include <array>

@@ -109,7 +109,7 @@ core::AABB everywhere();
 /// handed to the callback in place of the history hint, as LAMMPS's fix neigh/history keeps
 /// its shear history; so is a settled face pair's (below), whose wraps are handled there. Why:
 /// touching the grain's history per contact cost a quarter of a static packing's pair loop
-/// (docs/results.md, issue 5, "The kernel with the springs beside the list"). The grains' histories
+/// (docs/notes/contact-loop.md). The grains' histories
 /// are stale for those pairs until writeBackSprings(), which the caller must call before anything
 /// reads or changes them or moves a copy out of the block: before a synchronisation whose motion
 /// could reach skin / 2 (beforeSync), a checkpoint, release(). The next detect fills the springs
@@ -121,8 +121,8 @@ core::AABB everywhere();
 /// any instance gives the same bits, so the list settles the one whose i is i's master when its
 /// copies will live as long as the list, and drops its twins (same uids and image difference;
 /// FaceTwins.cpp, docs/sync.md "Pairs across a periodic face of a one-block domain"). On
-/// MESA-PD's lattice the rule per step for them was a tenth of the step (docs/results.md,
-/// issue 5, "Face pairs settled").
+/// MESA-PD's lattice the rule per step for them was a tenth of the step
+/// (docs/notes/contact-loop.md).
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image

@@ -38,7 +38,7 @@ struct HertzMindlinParams {
 ///                         limit = mu max(F_n, 0)), a sliding spring truncated to its own
 ///                         share of the capped force (SlipTruncation::SpringOnly).
 /// With this damping (proportional to delta^(1/4)) the restitution does not depend on the
-/// impact velocity (Antypov & Elliott 2011); a review measured e within 1e-4 for e = 0.1-0.9.
+/// impact velocity (Antypov & Elliott 2011); measured within 1e-4 of e for e = 0.1-0.9.
 class HertzMindlin {
 public:
     using Params = HertzMindlinParams;

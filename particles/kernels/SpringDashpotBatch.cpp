@@ -40,8 +40,7 @@ using Vector4 = double __attribute__((vector_size(32)));
 using Vector8 = double __attribute__((vector_size(64)));
 
 /// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes: eight loads and
-/// eleven shuffles, where a gather per component cost ~2.5x more (docs/results.md, issue 5,
-/// "Loads by index and transposed").
+/// eleven shuffles, where a gather per component cost ~2.5x more.
 [[gnu::always_inline]] inline void loadTransposed(double const* base, std::uint32_t const* idx,
                                                   double* x, double* y, double* z) {
     Vector4 r[8]; // r[k] = (x_k y_k z_k 0), without reading past z_k (the last copy's Vec3

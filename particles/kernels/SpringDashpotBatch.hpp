@@ -9,8 +9,8 @@
 /// code on 3-vectors (callgrind, static lattice), much of it moving the same numbers between
 /// structs; here each lane is a plain double array and the model runs 4 contacts per AVX2
 /// instruction, 8 per AVX-512 one where the machine has it (REGOLITH_LANE_CODEGEN: the loop is
-/// latency-bound, so wider lanes pay even where the units are 256 bits wide; docs/results.md,
-/// issue 5, "Contact loop in batches" and "Lane kernels in 512 bits"). The grains' state is
+/// latency-bound, so wider lanes pay even where the units are 256 bits wide;
+/// cmake/RegolithTargets.cmake). The grains' state is
 /// loaded by index, not copied pair by pair: centres, velocities and spins eight contacts at a
 /// time, transposed in registers, and the scalars (inverse masses and inertias, radii) by
 /// gathers inside the loop ("Loads by index and transposed").

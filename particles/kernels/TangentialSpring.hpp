@@ -35,8 +35,8 @@ enum class SlipTruncation {
     /// spring = -F / k_t: the spring alone gives F, the dashpot is dropped while sliding
     /// (LIGGGHTS). Needed where k_t grows with the overlap faster than c_t (Hertz: k_t ~ a,
     /// c_t ~ sqrt(a)): the dashpot's share kept in the spring would turn into an elastic force
-    /// along the slip as the contact loads (a review measured friction pushing a sliding sphere
-    /// forward, and model C's rolling couple adding spin).
+    /// along the slip as the contact loads (friction would push a sliding sphere forward, and
+    /// model C's rolling couple would add spin).
     SpringOnly,
 };
 
@@ -76,7 +76,7 @@ inline core::Vec3 tangentialForce(core::Vec3& spring, core::Vec3 const& normal,
 /// resisted). Its magnitude is capped at what would stop the relative rolling within `dt`,
 /// the usual fix for model A's chattering around zero rolling velocity. Known limit: it
 /// cannot hold a grain at rest against a driving torque T, which creeps at the relative spin
-/// T dt ΣI⁻¹ (docs/results.md, "Known limits of the contact models"); model C
+/// T dt ΣI⁻¹ (docs/notes/contact-models.md); model C
 /// (rollingSpringTorque) does.
 inline core::Vec3 rollingTorque(ContactState const& s, double rollingFriction, double normalForce,
                                 double dt) {

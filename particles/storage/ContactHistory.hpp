@@ -43,7 +43,7 @@ struct KeptSpring {
 /// holds the entry count, the capacity and the entries (a ThinList). The contact loop touches a
 /// history per contact, at scattered addresses: one block is one dependent load fewer than a
 /// pointer to a std::vector (the vector object, then its buffer); the dense ramp's contact phase
-/// ran 1.08x faster with it (docs/results.md).
+/// ran 1.08x faster with it.
 class ContactHistory {
 public:
     /// The entry for `partner`, or nullptr.

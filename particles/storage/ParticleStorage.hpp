@@ -133,7 +133,7 @@ public:
     }
     /// Does the storage keep an orientation per copy? Not until a copy gets another than the
     /// identity (and again not once the storage is empty): spheres whose orientation is not
-    /// integrated (time.orientation = false) cost no 32 bytes per copy (docs/results.md).
+    /// integrated (time.orientation = false) cost no 32 bytes per copy (docs/notes/memory.md).
     [[nodiscard]] bool storesOrientations() const { return !m_orientation.empty(); }
     [[nodiscard]] core::Vec3& force(Index i) { return m_force[i]; }
     [[nodiscard]] core::Vec3 const& force(Index i) const { return m_force[i]; }
@@ -143,7 +143,7 @@ public:
     [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
     /// 1 / mass, 0 for a Fixed particle. Stored, not computed on use: recomputing both
     /// inverses in the integrators' loops (two divisions per grain and half-step) cost ~7 %
-    /// of the sparse gas's step rate for 16 bytes per copy (docs/results.md, "Memory").
+    /// of the sparse gas's step rate for 16 bytes per copy (docs/notes/memory.md).
     [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
     /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
     [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }

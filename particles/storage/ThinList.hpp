@@ -7,7 +7,7 @@
 /// shadows), so it is one pointer (8 bytes), null while empty, to ONE heap block holding the
 /// count, the capacity and the elements — not a pointer to a std::vector, whose buffer is a
 /// second dependent load: the synchronisation reads the holders of every master near a face
-/// every step, at scattered addresses (as ContactHistory, docs/results.md). Iterators are
+/// every step, at scattered addresses (as ContactHistory). Iterators are
 /// pointers; they are invalidated by every change, and an empty list has begin() == end() ==
 /// nullptr. T must be trivially destructible (freeing a block is just deallocation).
 /// ContactHistory keeps its entries in one.

@@ -102,7 +102,7 @@ public:
     /// Passes between two prunes of the masters' contact histories. An entry left over from a
     /// broken contact is harmless meanwhile: ContactHistory::touch restarts an entry that the
     /// previous pass did not touch from a zero spring, as a new one. Visiting every history
-    /// each pass cost 4 % of a static packing's step (docs/results.md).
+    /// each pass cost 4 % of a static packing's step.
     static constexpr std::uint32_t kHistoryPruneInterval = 16;
 
     /// Reproducible variant: `records[b]` holds the per-contact force records of local block

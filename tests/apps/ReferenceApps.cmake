@@ -1,4 +1,4 @@
-# The reference-scene apps (issue 5): granular_gas, dense_ramp and bidisperse, each at CI size,
+# The reference-scene apps: granular_gas, dense_ramp and bidisperse, each at CI size,
 # run end to end. Weak scaling must give the per-rank grain count times the rank count; strong
 # scaling in reproducible mode must give the serial checksum on every rank count; the
 # bidisperse scene must run with SOS and hybrid and be refused by NNS. Included by
@@ -71,7 +71,7 @@ regolith_reference_app_test(bidisperse_hybrid APP bidisperse NP 1 2 4 SAME
 regolith_reference_app_test(bidisperse_sos APP bidisperse NP 1 3 SAME
   EXPECT particles=13826 steps=30 sync=sos ARGS ${bidisperse_small} --set sync.method=sos)
 
-# Two agglomerates (the second paper's scene, issue 8) at CI size: 2 x 100 grains, 30 steps.
+# Two agglomerates (the second paper's scene) at CI size: 2 x 100 grains, 30 steps.
 # With the direct sum (bitwise rank-independent) in reproducible mode and the field computed
 # every step, every rank count gives the serial state; with the tree it runs and keeps every
 # grain. (With update_threshold > 0 a grain that changes rank forces an update, so the update
@@ -97,7 +97,7 @@ regolith_reference_app_test(two_agglomerates_pm_parallel APP regolith NP 1 2 CLO
   ARGS ${agglomerates_small} --set gravity.self=pm --set gravity.update_threshold=0.0
        --set domain.cells_per_block=[8,8,8])
 
-# Rubble pile around a boulder wider than three blocks (issue 8) at CI size: 2,000 grains;
+# Rubble pile around a boulder wider than three blocks at CI size: 2,000 grains;
 # hybrid and SOS equal to the serial hybrid run with direct gravity in reproducible mode, on
 # 1-8 ranks; NNS refuses it (regolith.rubble_pile_nns_refused).
 set(rubble_small ${PROJECT_SOURCE_DIR}/scenes/rubble-pile-boulder.toml --steps 10

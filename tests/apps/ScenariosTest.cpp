@@ -61,7 +61,7 @@ TEST(Scenarios, RefusesWhatItCannotLayOut) {
     auto badRadius = scene("[bidisperse]\nedge = 20.0\nlarge_radius = 10.0\n[domain]\n"
                            "[[particles]]\nkind = \"list\"\n");
     EXPECT_THROW(expandScenarios(badRadius, 1), core::InputError);
-    // Found by a review: the messages named keys of another scenario, or none.
+    // The messages name the keys of this scenario (not another's, not none).
     auto const message = [](std::string const& text) {
         auto s = scene(text);
         try {

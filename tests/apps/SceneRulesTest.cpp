@@ -20,7 +20,7 @@ TEST(SceneSections, DomainRules) {
     EXPECT_EQ(errorWith("domain.blocks=[4,0,4]"),
               "--set domain.blocks=[4,0,4]: domain.blocks: expected an array of 3 positive "
               "integers (at most 2097152 each), got [4, 0, 4]");
-    // Beyond int: the limit, not "expected integers" (found by a review).
+    // Beyond int: the limit, not "expected integers".
     EXPECT_EQ(errorWith("domain.blocks=[9223372036854775807,1,1]"),
               "--set domain.blocks=[9223372036854775807,1,1]: domain.blocks: expected an array of "
               "3 positive integers (at most 2097152 each), got [9223372036854775807, 1, 1]");

@@ -1,4 +1,4 @@
-# Equality with the serial run (issue 4): the synchronisation scenes of scenes/sync-*.toml run
+# Equality with the serial run: the synchronisation scenes of scenes/sync-*.toml run
 # 200 steps in reproducible mode on 1, 2, 3, 4 and 8 ranks, with 1, 2 and 8 blocks per rank,
 # on a statically refined forest, and with every synchronisation method that can simulate the
 # scene; every final state (checksum and --dump CSV, byte for byte) must equal the 1-rank run

@@ -1,4 +1,4 @@
-"""Cold collapse through the coupled time step (issue 8 validation): runs
+"""Cold collapse through the coupled time step (validation): runs
 scenes/cold-collapse.toml (a uniform cloud, radius R = 1, mass M = 1, G = 1, at rest) to the
 analytic half-radius time t_1/2 = sqrt(R^3 / (2 G M)) (pi/4 + 1/2) and checks that the grains
 of the outer half (initial distance from the centre of mass above R/2, where the enclosed mass

@@ -1,4 +1,4 @@
-"""Conservation over the small two-agglomerates instance (issue 8 validation): runs
+"""Conservation over the small two-agglomerates instance (validation): runs
 scenes/two-agglomerates.toml (3,866 grains, elastic contacts, dt = 0.01 s) for --steps steps
 with one gravity method and compares the final state with the initial one, both read from
 --dump (exact sums with math.fsum):

@@ -1,4 +1,4 @@
-"""Grid fields in the driver's VTK output (issue 9): scenes/kepler.toml with particle-mesh
+"""Grid fields in the driver's VTK output: scenes/kepler.toml with particle-mesh
 self-gravity (4 blocks of 8 x 8 x 16 cells over [-4, 4]^3) for 20 steps with
 output.vtk_every = 10, on --np ranks. Checks from the XML headers: out/grid.pvd lists steps
 0, 10, 20; each .vtm names the 4 blocks' .vti pieces, which exist; each piece has 8 x 8 x 16

@@ -1,4 +1,4 @@
-"""Kepler orbits through the whole coupled time step (issue 8 validation): runs
+"""Kepler orbits through the whole coupled time step (validation): runs
 scenes/kepler.toml (two grains of mass 1, G = 1, semi-major axis 1, period
 T = 2 pi / sqrt(2)) for a whole number of periods with the given self-gravity method and
 checks against the two-body solution:

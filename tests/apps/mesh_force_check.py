@@ -1,4 +1,4 @@
-"""The particle-mesh self-gravity in the coupled time step (issue 8): the Kepler pair of
+"""The particle-mesh self-gravity in the coupled time step: the Kepler pair of
 scenes/kepler.toml (separation 1, G = 1) takes one step with gravity.self = "pm" on grids of
 spacing h = 1, 1/2, 1/4 (cells_per_block doubled each time; 4th-order gradient) and with the
 direct sum; the relative error of the velocity change of grain 1 against the direct sum is the

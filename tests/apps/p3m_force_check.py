@@ -1,4 +1,4 @@
-"""P3M in the coupled time step through the whole driver (issues 6 and 8): the Kepler pair of
+"""P3M in the coupled time step through the whole driver: the Kepler pair of
 scenes/kepler.toml (separation 1, G = 1) takes one step with gravity.self = "pm" and "p3m" on
 grids where the pair is only 1 and 2 cells apart (h = 1 with a 2-cell cut-off, h = 1/2 with the
 default 4 cells; 4th-order gradient), and with the direct sum. The relative error of grain 1's

@@ -1,4 +1,4 @@
-"""Checkpoint and restart of `regolith` end to end (issue 9), on the scene
+"""Checkpoint and restart of `regolith` end to end, on the scene
 tests/apps/scenes/restart.toml (1000 grains falling on a floor, reproducible mode, 40 steps).
 
 usage: restart_runs.py --mpiexec M --app APP --scene SCENE --out DIR [--case plain|gravity]
@@ -395,7 +395,7 @@ def main():
         command = [runner.mpiexec, "-n", "2", "--oversubscribe", runner.app, scene, *args]
         return command, subprocess.run(command, capture_output=True, text=True, timeout=60,
                                        check=False)
-    # A restart at the scene's last step runs none, and says so (a review read --steps as a
+    # A restart at the scene's last step runs none, and says so (--steps is a total, not a
     # remainder).
     command, done = loud(runner.scene, ["--restart", step20, "--output", runner.path("none"),
                                         "--steps", "20"])
@@ -409,8 +409,8 @@ def main():
     if done.returncode != 0 or done.stdout.count(warning) != 1:
         fail(f"{' '.join(command)}: exit {done.returncode}, expected 0 and the warning "
              f"{warning!r} once\n--- stdout:\n{done.stdout}")
-    # The banner of a restart: the steps still to run and the grains of the checkpoint (it
-    # said "40 steps" and "from 1 [[particles]] entries"; a review).
+    # The banner of a restart: the steps still to run and the grains of the checkpoint (not
+    # "40 steps" and "from 1 [[particles]] entries").
     for expected in ("  20 steps (from step 20 to 40) of dt", "1000 particles from the checkpoint"):
         if expected not in done.stdout:
             fail(f"{' '.join(command)}: expected {expected!r} in the banner\n--- stdout:\n"

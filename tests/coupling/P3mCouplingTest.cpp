@@ -93,8 +93,8 @@ TEST(P3mCoupling, ClosePairAcrossAPeriodicFace) {
 /// -2.4 to -3.4 against -0.667 (m1 m2 = 4, r = 6). Bound 0.1 % (measured 1.5e-4 at 12 h,
 /// the mesh potential's own error there; 1e-6 within the cut-off). On a periodic domain the
 /// energy also holds the images (Ewald): the change between two close separations is the
-/// Newtonian one, and the energy does not jump as the pair crosses the cut-off (a review found
-/// 35 % of the pair's energy when the table's image part was removed inside it only).
+/// Newtonian one, and the energy does not jump as the pair crosses the cut-off (by 35 % of the
+/// pair's energy when the table's image part was removed inside it only).
 TEST(P3mCoupling, PairEnergyIsNewtonianWhereverTheGrainsSit) {
     double const h = 0.5;
     core::Vec3 const dir = core::Vec3{1.0, 0.3, -0.4}.normalized();

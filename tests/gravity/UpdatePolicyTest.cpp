@@ -37,7 +37,7 @@ TEST(UpdatePolicy, TriggersOnTheLargestDisplacementOfAnyRank) {
 
 TEST(UpdatePolicy, AWrapAcrossAPeriodicFaceIsOnlyTheStep) {
     // A grain 0.1 inside the lower x face of a periodic domain of extent 10 steps 0.2 across
-    // it and is wrapped to 9.9: it moved 0.2, not 9.8 (a review counted an update at every
+    // it and is wrapped to 9.9: it moved 0.2, not 9.8 (which would count an update at every
     // crossing). The open axis y counts the whole displacement.
     std::vector<std::uint64_t> uid{static_cast<std::uint64_t>(world().rank())};
     std::vector<double> x{0.1}, y{5.0}, z{5.0};

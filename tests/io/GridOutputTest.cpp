@@ -1,4 +1,4 @@
-// Grid fields in VTK (io/vtk, issue 9): grid gravity's density, potential and acceleration
+// Grid fields in VTK (io/vtk): grid gravity's density, potential and acceleration
 // written per block as image data and gathered in a multi-block .vtm per step, read back
 // with VTK's own XML readers (vtkXMLMultiBlockDataReader for the .vtm with its pieces,
 // vtkXMLImageDataReader for one piece, vtkXMLDataParser for the grid.pvd series): block

@@ -215,8 +215,8 @@ TEST(TimeStepFailure, RestitutionErrorGrowsWithDtAndTheGuardRefuses) {
 TEST(TimeStepFailure, TheGuardsLimitIsStableAtAnyRestitution) {
     // The guard's t_c is the undamped duration: at t_c / 10, omega_0 dt = pi / 10, inside the
     // explicit step's stability bound 2 (sqrt(1 + zeta^2) - zeta) >= 0.83 for every damping
-    // ratio zeta <= 1. The damped duration it took before is 4.5x longer at e = 1e-6: a review's
-    // pair blew up at a dt the guard accepted, and rebounded faster than it came at 0.7 x it.
+    // ratio zeta <= 1. The damped duration is 4.5x longer at e = 1e-6: with it a pair
+    // blew up at a dt the guard accepted, and rebounded faster than it came at 0.7 x it.
     for (double e : {1e-6, 1e-3, 0.1}) {
         SCOPED_TRACE(::testing::Message() << "e = " << e);
         SpringDashpot const model = linearModel(1e4, e);
@@ -243,8 +243,8 @@ TEST(HertzImpact, SlidingFrictionOpposesTheSlipThroughTheContact) {
     // step and take at least mu (1 + e) v_n of it (the impulse mu J_n; a little more where F_n
     // turns attractive: max(F_n, 0) then caps nothing). A sliding spring that kept the
     // dashpot's share (c_t v_t / k_t, with k_t ~ a but c_t ~ sqrt(a)) turned into a force
-    // along the slip while the contact loaded (a review measured 0.63 of the impulse, the
-    // sphere sliding faster than it came).
+    // along the slip while the contact loaded (0.63 of the impulse, the sphere sliding
+    // faster than it came).
     double const e = 0.2, mu = 0.3, r = 0.5, m = 1.0;
     auto const p = HertzMindlinParams::fromMaterials(1e5, 0.3, 1e5, 0.3, e, mu);
     HertzMindlin const model{MaterialTable<HertzMindlinParams>(1, p)};
@@ -272,8 +272,8 @@ TEST(HertzImpact, ModelCRollingCoupleOnlySlowsTheSpin) {
     // A spinning sphere dropped on a wall without friction: the only torque is model C's
     // rolling couple, which must slow the spin (by at most mu_r r J_n / I, a little more where
     // F_n turns attractive) and never add energy. Its slider kept the dashpot's share, which
-    // grew into a couple along the rolling as the Hertz contact loaded (k_r ~ a): a review
-    // measured the spin rising from 20 to 20.24.
+    // grew into a couple along the rolling as the Hertz contact loaded (k_r ~ a): the spin
+    // rose from 20 to 20.24.
     double const e = 0.2, muRoll = 0.1, r = 0.5, m = 1.0, spin = 20.0;
     auto p = HertzMindlinParams::fromMaterials(1e5, 0.3, 1e5, 0.3, e, 0.0, muRoll);
     p.rollingSpring.enabled = true; // default damping ratio 0.3

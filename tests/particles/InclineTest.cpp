@@ -178,9 +178,9 @@ RollingSpring modelC() {
 
 TEST(RollingResistance, SpringHoldsAGrainAtRestWhereTheConstantCoupleCreeps) {
     // Model A's couple is capped at what stops the relative spin within one step, so against
-    // gravity's torque it lets the sphere creep at ~T dt / I (docs/results.md, "Known limits of
-    // the contact models"); model C's spring takes the torque up as a displacement
-    // (m g sin(theta) / k_r ~ 1e-4 here) and, damped, comes to rest.
+    // gravity's torque it lets the sphere creep at ~T dt / I (docs/notes/contact-models.md); model
+    // C's spring takes the torque up as a displacement (m g sin(theta) / k_r ~ 1e-4 here) and,
+    // damped, comes to rest.
     double const theta = 5.0 * std::numbers::pi / 180.0;
     double const delta = kMass * kG * std::cos(theta) / 1e5;
     auto const [creep, creptBy] = restOnSlope(linearModel(0.5, 0.2), delta, 2.0, 1e-4);

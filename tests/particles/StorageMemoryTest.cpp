@@ -1,4 +1,4 @@
-// The storage's memory layout (docs/results.md, "Memory"): owners as slots in a table of the
+// The storage's memory layout (docs/notes/memory.md): owners as slots in a table of the
 // distinct owners, contact histories as one pointer that exists only with entries, exact
 // reservation followed by gentle growth. Each test fails if the compact form loses data or
 // if the layout falls back to the larger one.

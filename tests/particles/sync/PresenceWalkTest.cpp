@@ -1,4 +1,4 @@
-// Presence walk (issue 4): one sphere is moved in small steps through a 3x3x3 forest of
+// Presence walk: one sphere is moved in small steps through a 3x3x3 forest of
 // edge-10 blocks, across faces, edges and corners (and, periodic, across the domain's faces,
 // edges and its corner); after every synchronisation every block holds a copy at image k iff
 // the sphere's image reaches it, and the master iff it contains the centre. Meant for 27 ranks
