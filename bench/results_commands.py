@@ -74,6 +74,7 @@ SMALL = {
                               "--methods", "direct", "--out", "{tmp}/bench/out"],
     "checkpoint_bench.py": ["--np", "1", "--repeats", "1", "--set",
                             "particles[0].region={min=[0.0,0.0,0.0],max=[8.0,8.0,8.0]}"],
+    "regolith": ["--steps", "2", "--output", "{tmp}/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
 }
 MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
