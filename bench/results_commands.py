@@ -47,11 +47,11 @@ KNOWN_NEEDS = {"lmp", "matplotlib", "vtk"}
 SMALL = {
     "lammps_compare.py": ["--box", "6", "--steps", "10", "--repeats", "1",
                           "--out", "{tmp}/bench/out"],
-    "blocks_per_rank.py": ["--steps", "5", "--repeats", "1", "--blocks", "1", "8"],
+    "blocks_per_rank.py": ["--steps", "5", "--repeats", "1", "--blocks", "1", "--small"],
     "particles_bench": ["--benchmark_filter=sparseGas", "--benchmark_min_time=0.01"],
     "dem_timestep.py": ["--sweep-box", "4", "--sweep-time", "0.5", "--repeats", "1",
                         "--fractions", "20", "10", "--map-box", "3", "--map-time", "0.2",
-                        "--stiffness", "50", "--map-dt-count", "2", "--no-docs",
+                        "--stiffness", "10", "50", "--map-dt-count", "2", "--no-docs",
                         "--out", "{tmp}/bench/out"],
     "sync_bench.py": ["--repeats", "1", "--steps", "5", "--box", "8", "--comm-ranks", "1", "2",
                       "--comm-steps", "5", "--out", "{tmp}/bench/out"],
@@ -60,10 +60,11 @@ SMALL = {
                      "--set", "dense_ramp.per_rank=[6,5.196152422706632,4]",
                      "--radii", "4", "--radius-steps", "2", "--edge", "20", "--radius-ranks", "1",
                      "--memory-boxes", "10", "--no-docs", "--out", "{tmp}/bench/out"],
-    "nns_radius_map.py": ["--splits", "2", "--ratios", "0.5", "1.0", "--steps", "1",
+    "nns_radius_map.py": ["--edge", "8", "--splits", "2", "--ratios", "0.5", "1.0", "--steps", "1",
                           "--no-docs", "--out", "{tmp}/bench/out"],
     "gravity_bench": ["--instances", "agg3866", "--samples", "100", "--repeat", "1"],
-    "gravity_pareto.py": ["--instance", "agg3866", "--thetas", "0.5,0.9", "--spacings", "4",
+    "gravity_pareto.py": ["--instance", "agg3866", "--methods", "direct,tree,pm,stale-tree",
+                          "--thetas", "0.5,0.9", "--spacings", "4",
                           "--node-spacings", "2.5", "--thresholds", "1", "--samples", "100",
                           "--repeat", "1", "--no-docs", "--out", "{tmp}/bench/out"],
     "grid_bench": ["--min-cells", "16", "--max-cells", "16"],
@@ -74,9 +75,11 @@ SMALL = {
                               "--methods", "direct", "--out", "{tmp}/bench/out"],
     "checkpoint_bench.py": ["--np", "1", "--repeats", "1", "--set",
                             "particles[0].region={min=[0.0,0.0,0.0],max=[8.0,8.0,8.0]}"],
-    "regolith": ["--steps", "2", "--output", "{tmp}/out"],
+    "regolith": ["--output", "{tmp}/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
 }
+# Options a program refuses to see twice (CLI11): small mode replaces their value in place.
+SMALL_REPLACE = {"regolith": {"--steps": "2"}}
 MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
 
 
@@ -183,6 +186,11 @@ def prepare(c, build, small, tmp):
         if argv[0] != "ctest":
             if name not in SMALL:
                 raise ValueError(f"no small mode for {name} (bench/results_commands.py, SMALL)")
+            for option, value in SMALL_REPLACE.get(name, {}).items():
+                if option in argv[p + 1:]:
+                    argv[argv.index(option, p + 1) + 1] = value
+                else:
+                    argv += [option, value]
             argv += [a.replace("{tmp}", tmp) for a in SMALL[name]]
     return argv
 

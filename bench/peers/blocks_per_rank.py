@@ -20,7 +20,8 @@ neigh_modify delay 0 every 1 check yes, fix nve/sphere; decks granular.in, ramp.
 
 usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
-                          [--subdomains merged [blocks]] [--chart PNG [--chart-from CSV...]]
+                          [--subdomains merged [blocks]] [--small]
+                          [--chart PNG [--chart-from CSV...]]
 """
 import argparse
 import csv
@@ -55,6 +56,15 @@ SCENES = {
 }
 LAMMPS_SKIN = 0.1
 
+# --small (the check of docs/results.md's commands, bench/results_commands.py): each scene on a
+# box of a few hundred grains, its lattice periods kept (scene C's sphere moved into it).
+SMALL = {
+    "a": dict(extent=(6.0, 6.0, 6.0), sets=[]),
+    "b": dict(extent=(6.0, 3.0 * math.sqrt(3.0), 8.0), sets=[]),
+    "c": dict(extent=(20.0, 20.0, 20.0),
+              sets=["particles[0].position=[[10.0,10.0,10.0]]", "particles[0].radius=4.0"]),
+}
+
 
 # Blocks per rank as a root grid per rank (x, y, z); the ranks are laid along x.
 LAYOUTS = {1: (1, 1, 1), 2: (2, 1, 1), 4: (2, 2, 1), 8: (2, 2, 2), 16: (4, 2, 2),
@@ -72,7 +82,9 @@ def blocks_arg(per_rank, ranks):
 def scene_args(scene, ranks, steps):
     """The --set arguments that weak-scale `scene` to `ranks` ranks along x, and the steps."""
     e = SCENES[scene]["extent"]
-    return ["--steps", str(steps), "--set", f"domain.max=[{e[0] * ranks!r},{e[1]!r},{e[2]!r}]"]
+    sets = [x for kv in SCENES[scene].get("sets", []) for x in ("--set", kv)]
+    return ["--steps", str(steps), "--set", f"domain.max=[{e[0] * ranks!r},{e[1]!r},{e[2]!r}]",
+            *sets]
 
 
 def regolith(app, scene, ranks, args, json_path):
@@ -162,6 +174,8 @@ def main():
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--ranks", type=int, default=1)
     p.add_argument("--subdomains", nargs="*", default=["merged"])
+    p.add_argument("--small", action="store_true",
+                   help="every scene in a box of a few hundred grains (a check, not a figure)")
     p.add_argument("--chart", help="PNG to draw from this run's CSV")
     p.add_argument("--chart-from", nargs="+",
                    help="draw --chart from these CSVs instead of running")
@@ -169,6 +183,9 @@ def main():
     if a.chart_from:
         chart(a.chart, a.chart_from)
         return
+    if a.small:
+        for scene, small in SMALL.items():
+            SCENES[scene].update(small)
     app = os.path.join(a.build, "bin", "regolith")
     os.makedirs(a.out, exist_ok=True)
     theirs, rows = {}, []
