@@ -48,7 +48,7 @@ SMALL = {
     "lammps_compare.py": ["--box", "6", "--steps", "10", "--repeats", "1",
                           "--out", "{tmp}/bench/out"],
     "blocks_per_rank.py": ["--steps", "5", "--repeats", "1", "--blocks", "1", "--small"],
-    "particles_bench": ["--benchmark_filter=sparseGas", "--benchmark_min_time=0.01"],
+    "particles_bench": ["--benchmark_filter=springDashpotBatch/0/1", "--benchmark_min_time=0.01"],
     "dem_timestep.py": ["--sweep-box", "4", "--sweep-time", "0.5", "--repeats", "1",
                         "--fractions", "20", "10", "--map-box", "3", "--map-time", "0.2",
                         "--stiffness", "10", "50", "--map-dt-count", "2", "--no-docs",
