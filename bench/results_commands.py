@@ -14,8 +14,9 @@ several joined by a trailing backslash; `build/default` in it stands for the bui
   run    run every command in page order from the repository's root, each one's output to
          bench/out/<label>.log (the raw CSV files go where the command says, bench/out/)
   check  run every command in a small mode: the arguments in SMALL are appended (the last
-         value of an option wins, in the Python scripts and in the C++ benchmarks alike), paths
-         under bench/out/ and docs/images/ are moved to a temporary folder, and `ctest`
+         value of an option wins, in the Python scripts and in the C++ benchmarks alike; a
+         command's own --out is kept), paths under bench/out/ and docs/images/ are moved to a
+         temporary folder, so the check writes nothing into the repository, and `ctest`
          commands only list their tests. Fails on a command that exits non-zero, runs longer
          than --timeout, names a missing script or executable, a `ctest` selection with no
          test, or a table that names a label no block defines.
@@ -47,7 +48,8 @@ KNOWN_NEEDS = {"lmp", "matplotlib", "vtk"}
 SMALL = {
     "lammps_compare.py": ["--box", "6", "--steps", "10", "--repeats", "1",
                           "--out", "{tmp}/bench/out"],
-    "blocks_per_rank.py": ["--steps", "5", "--repeats", "1", "--blocks", "1", "--small"],
+    "blocks_per_rank.py": ["--steps", "5", "--repeats", "1", "--blocks", "1", "--small",
+                           "--out", "{tmp}/bench/out"],
     "particles_bench": ["--benchmark_filter=springDashpotBatch/0/1", "--benchmark_min_time=0.01"],
     "dem_timestep.py": ["--sweep-box", "4", "--sweep-time", "0.5", "--repeats", "1",
                         "--fractions", "20", "10", "--map-box", "3", "--map-time", "0.2",
@@ -191,7 +193,11 @@ def prepare(c, build, small, tmp):
                     argv[argv.index(option, p + 1) + 1] = value
                 else:
                     argv += [option, value]
-            argv += [a.replace("{tmp}", tmp) for a in SMALL[name]]
+            extra = [a.replace("{tmp}", tmp) for a in SMALL[name]]
+            if "--out" in extra and "--out" in argv[p + 1:]: # the command's own, moved to tmp
+                i = extra.index("--out")
+                del extra[i:i + 2]
+            argv += extra
     return argv
 
 
