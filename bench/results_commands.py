@@ -77,6 +77,8 @@ SMALL = {
                               "--methods", "direct", "--out", "{tmp}/bench/out"],
     "checkpoint_bench.py": ["--np", "1", "--repeats", "1", "--set",
                             "particles[0].region={min=[0.0,0.0,0.0],max=[8.0,8.0,8.0]}"],
+    "load_balance.py": ["--ranks", "2", "--steps", "5", "--repeats", "1",
+                        "--out", "{tmp}/bench/out"],
     "regolith": ["--output", "{tmp}/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
 }

@@ -1,6 +1,7 @@
 """Dynamic load balance ([balance]) on the scenes whose load moves, static against rebalanced.
 
-usage: load_balance.py --build DIR --out DIR [imbalance] [wall] [--ranks 8 27]
+usage: load_balance.py [imbalance] [wall] [--build build/default] [--out bench/out/balance]
+                       [--ranks 8 27]
                        [--repeats N] [--chart FILE] [--steps N]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
@@ -131,8 +132,8 @@ def wall(args):
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("parts", nargs="*", default=["imbalance", "wall"])
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--out", required=True)
+    parser.add_argument("--build", default="build/default")
+    parser.add_argument("--out", default="bench/out/balance")
     parser.add_argument("--ranks", type=int, nargs="*", default=[8, 27])
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--chart")
