@@ -10,7 +10,8 @@ imbalance: each scene on each rank count of --ranks (oversubscribed), once with 
   ranks' loads in work units (a block weighs 1 + its grains [+ its cells for grid gravity],
   coupling/balance), so the figure holds on any machine; the rebalances and their cost in
   steps' time. Writes load_balance_imbalance.csv and, with --chart, imbalance against step.
-wall: the settling gas and the default scene on 2 ranks, static and rebalanced alternately
+wall: the settling gas (8 times the grains) and the default scene on 2 ranks, static and
+  rebalanced alternately
   (--repeats pairs): the wall time of the loop, the ratio's median and range. Writes
   load_balance_wall.csv.
 Block layouts: tens of blocks per rank, as a user who balances chooses them (a block holds
@@ -107,13 +108,18 @@ def chart(histories, ranks, path):
 
 def wall(args):
     rows = []
-    for name, scene in (("settling gas", "settling-gas.toml"),
-                        ("default (two piles merge)", "default.toml")):
+    # The settling gas at 8 times its grains (a 20 x 20 x 40 box): at 1,024 grains its two
+    # ranks wait on each other's messages more than they compute.
+    big = ["--set", "domain.max=[20,20,40]", "--set", "domain.blocks=[8,8,16]",
+           "--set", "walls[1].point=[0.0,0.0,40.0]"]
+    for name, scene, extra in (("settling gas, 8,192 grains", "settling-gas.toml", big),
+                               ("default (two piles merge)", "default.toml", [])):
         times = {"static": [], "rebalanced": []}
         for k in range(args.repeats):
             for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
                 path = os.path.join(args.out, f"balance_wall_{scene}_{mode}.json")
-                times[mode].append(run(args.build, 2, scene, every, path, args.steps)["wall_s"])
+                s = run(args.build, 2, scene, [*extra, *every], path, args.steps)
+                times[mode].append(s["wall_s"])
         ratios = [r / s for r, s in zip(times["rebalanced"], times["static"])]
         rows.append({"scene": name, "ranks": 2,
                      "static_s": round(statistics.median(times["static"]), 3),
