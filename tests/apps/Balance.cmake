@@ -1,6 +1,6 @@
-# Dynamic load balance: runs whose blocks move between ranks during the run (balance.every
-# = 10 or 2, threshold = 1: a new cut whenever a better one exists) must end in the serial
-# run's state, byte for byte, having moved their blocks at least once: the settling gas (its
+# Dynamic load balance: runs in reproducible mode whose blocks move between ranks during the
+# run (balance.every = 10 or 2, threshold = 1: a new cut whenever a better one exists) must
+# end in the serial run's state, byte for byte, having moved their blocks at least once: the settling gas (its
 # load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
 # update_threshold > 0 (the cached field follows its grains to their new ranks) on 2 and 3.
 # Included by tests/apps/CMakeLists.txt (needs Python and ${compare}).
@@ -28,7 +28,8 @@ function(regolith_balance_equality name)
 endfunction()
 
 regolith_balance_equality(settling EVERY 10 RANKS 2 3 4 8 27 ARGS
-  ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300)
+  ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
+  --set sync.reproducible=true)
 regolith_balance_equality(gravity EVERY 2 RANKS 2 3 ARGS
   ${bad}/restart_gravity.toml --set domain.blocks=[4,4,4])
 
@@ -41,7 +42,8 @@ add_test(NAME regolith.balance.settling_restart
                  --case "2 --set balance.every=10 --set balance.threshold=1 --restart ${restart_dir}/checkpoint_00000150.h5 --output ${restart_dir}"
                  --reference ${app_test_out}/balance_settling.np1 --same particles checksum
                  --expect balance.rebalances>0 --dump --
-                 ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300)
+                 ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
+                 --set sync.reproducible=true)
 set_tests_properties(regolith.balance.settling_restart PROPERTIES
                      FIXTURES_REQUIRED balance_settling ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
                      LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
