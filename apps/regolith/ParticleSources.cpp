@@ -107,8 +107,10 @@ particles::FileSpec parseFile(core::ConfigTable const& t, std::string const& sce
     s.path = t.get<std::string>("path");
     // Relative to the scene file; an empty path stays empty for the validation to reject.
     std::filesystem::path const p(s.path);
-    if (!s.path.empty() && !p.is_absolute() && !sceneDir.empty())
+    if (!s.path.empty() && !p.is_absolute() && !sceneDir.empty()) {
         s.path = (std::filesystem::path(sceneDir) / p).lexically_normal().string();
+        s.resolvedFrom = sceneDir;
+    }
     if (t.has("density"))
         s.density = t.get<double>("density");
     return s;

@@ -1,21 +1,24 @@
 #include "core/config/ConfigFile.hpp"
 
 #include "core/Error.hpp"
+#include "core/file/Files.hpp"
 
 #include <fmt/format.h>
 
 #include <cerrno>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 namespace regolith::core {
 
 std::string readTextFile(std::string const& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw InputError(fmt::format("cannot read '{}': it is a directory", path));
+    // A FIFO would block the read, /dev/zero fill the memory: only regular files are read.
+    std::string const why = whyNotRegularFile(path);
+    if (why == "no such file")
+        throw InputError(fmt::format("cannot read '{}': No such file or directory", path));
+    if (!why.empty())
+        throw InputError(fmt::format("cannot read '{}': it is {}, not a regular file", path, why));
     std::ifstream in(path, std::ios::binary);
     if (!in)
         throw InputError(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));

@@ -59,7 +59,7 @@ bool EntrySource::isAgglomerate() const {
 }
 
 void EntrySource::prepareFile(FileSpec const& file, GeneratorDomain const& domain) {
-    m_table = readGrainCsv(file.path, m_key + ".path");
+    m_table = readGrainCsv(file.path, m_key + ".path", file.resolvedFrom);
     auto where = [&](CsvGrain const& g) {
         return fmt::format("{}.path: '{}' line {}", m_key, file.path, g.line);
     };

@@ -70,6 +70,9 @@ struct ListSpec {
 /// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass) is a valid input.
 struct FileSpec {
     std::string path; ///< `path`, opened as given (the scene reader resolves relative paths)
+    /// The scene file's folder a relative `path` was resolved from ("": given absolute, or no
+    /// scene file), named when the file cannot be opened.
+    std::string resolvedFrom;
     /// `density`: used when the file has neither a density nor a mass column.
     std::optional<double> density;
 };

@@ -1,14 +1,16 @@
 #include "particles/generators/GrainCsv.hpp"
 
 #include "core/Error.hpp"
+#include "core/file/Files.hpp"
+#include "core/log/Printable.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <limits>
@@ -22,6 +24,14 @@ enum class Column { X, Y, Z, Radius, Vx, Vy, Vz, Wx, Wy, Wz, Density, Mass, Uid,
 
 constexpr std::array<std::string_view, static_cast<std::size_t>(Column::Count)> kColumnNames{
     "x", "y", "z", "radius", "vx", "vy", "vz", "wx", "wy", "wz", "density", "mass", "uid", "type"};
+
+/// At most this many bytes of a field are quoted in a message: the file may be anything
+/// (path = "/etc/shadow"), and its content is not the message's to print.
+constexpr std::size_t kQuotedBytes = 24;
+
+std::string quoted(std::string_view field) {
+    return core::printable(field, kQuotedBytes);
+}
 
 std::string_view trim(std::string_view s) {
     auto const first = s.find_first_not_of(" \t\r");
@@ -63,7 +73,7 @@ double parseReal(std::string_view field, Place const& at, std::size_t column,
     auto const [ptr, ec] = std::from_chars(field.data(), end, value);
     if (field.empty() || ec != std::errc{} || ptr != end || !std::isfinite(value))
         throw core::InputError(fmt::format("{}, column {} ({}): expected a finite number, got '{}'",
-                                           at.str(), column + 1, name, field));
+                                           at.str(), column + 1, name, quoted(field)));
     return value;
 }
 
@@ -75,7 +85,7 @@ std::uint64_t parseCount(std::string_view field, Place const& at, std::size_t co
     if (field.empty() || ec != std::errc{} || ptr != end)
         throw core::InputError(
             fmt::format("{}, column {} ({}): expected a non-negative integer, got '{}'", at.str(),
-                        column + 1, name, field));
+                        column + 1, name, quoted(field)));
     return value;
 }
 
@@ -109,6 +119,14 @@ CsvGrainTable parseGrainCsv(std::istream& in, std::string const& fileName, std::
                                            key, fileName));
     Place const headerAt{key, fileName, lineNo};
     auto const header = splitFields(text);
+    // A first line without one column name is not a grain table's header: say so without
+    // quoting it (it may be anything).
+    if (std::none_of(header.begin(), header.end(), [](std::string_view h) {
+            return std::find(kColumnNames.begin(), kColumnNames.end(), h) != kColumnNames.end();
+        }))
+        throw core::InputError(fmt::format("{}: not a header of grain columns (expected column "
+                                           "names such as x,y,z,radius; known: {})",
+                                           headerAt.str(), fmt::join(kColumnNames, ",")));
     std::vector<Column> columnOf(header.size(), Column::Count);
     std::array<bool, static_cast<std::size_t>(Column::Count)> present{};
     for (std::size_t c = 0; c < header.size(); ++c) {
@@ -118,11 +136,11 @@ CsvGrainTable parseGrainCsv(std::istream& in, std::string const& fileName, std::
                 found = n;
         if (found == kColumnNames.size())
             throw core::InputError(fmt::format("{}, column {}: unknown column '{}' (known: {})",
-                                               headerAt.str(), c + 1, header[c],
+                                               headerAt.str(), c + 1, quoted(header[c]),
                                                fmt::join(kColumnNames, ",")));
         if (present[found])
             throw core::InputError(fmt::format("{}, column {}: duplicate column '{}'",
-                                               headerAt.str(), c + 1, header[c]));
+                                               headerAt.str(), c + 1, quoted(header[c])));
         present[found] = true;
         columnOf[c] = static_cast<Column>(found);
     }
@@ -219,13 +237,24 @@ CsvGrainTable parseGrainCsv(std::istream& in, std::string const& fileName, std::
     return table;
 }
 
-CsvGrainTable readGrainCsv(std::string const& path, std::string const& key) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) // opens "fine" and reads as empty
-        throw core::InputError(fmt::format("{}: '{}' is a directory, not a CSV file", key, path));
+CsvGrainTable readGrainCsv(std::string const& path, std::string const& key,
+                           std::string const& resolvedFrom) {
+    // Where a relative path was looked for: the scene file's folder, not the working directory.
+    std::string const from =
+        resolvedFrom.empty()
+            ? std::string()
+            : fmt::format(" (a relative path is taken from the scene file's folder '{}')",
+                          resolvedFrom);
+    std::string const why = core::whyNotRegularFile(path);
+    if (why == "no such file")
+        throw core::InputError(
+            fmt::format("{}: cannot open '{}': no such file{}", key, path, from));
+    if (!why.empty())
+        throw core::InputError(
+            fmt::format("{}: '{}' is {}, not a regular file (a CSV file)", key, path, why));
     std::ifstream in(path);
     if (!in)
-        throw core::InputError(fmt::format("{}: cannot open '{}'", key, path));
+        throw core::InputError(fmt::format("{}: cannot open '{}'{}", key, path, from));
     return parseGrainCsv(in, path, key);
 }
 

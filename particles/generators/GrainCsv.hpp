@@ -46,7 +46,10 @@ struct CsvGrainTable {
                                           std::string const& key);
 
 /// Opens `path` and parses it (parseGrainCsv); throws core::InputError naming `key` and the
-/// path if the file cannot be opened. Not collective: every rank may read the same file.
-[[nodiscard]] CsvGrainTable readGrainCsv(std::string const& path, std::string const& key);
+/// path if it is not a regular file (a FIFO would block, /dev/zero never end) or cannot be
+/// opened, then naming `resolvedFrom` too if given (the folder a relative path was taken
+/// from). Not collective: every rank may read the same file.
+[[nodiscard]] CsvGrainTable readGrainCsv(std::string const& path, std::string const& key,
+                                         std::string const& resolvedFrom = {});
 
 } // namespace regolith::particles

@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace regolith::core;
@@ -201,7 +202,20 @@ TEST(ConfigFile, MissingFileAndDirectory) {
     EXPECT_EQ(inputErrorOf([] { (void)ConfigTable::fromFile("/nonexistent/scene.toml"); }),
               "cannot read '/nonexistent/scene.toml': No such file or directory");
     EXPECT_EQ(inputErrorOf([] { (void)ConfigTable::fromFile("/tmp"); }),
-              "cannot read '/tmp': it is a directory");
+              "cannot read '/tmp': it is a directory, not a regular file");
+}
+
+TEST(ConfigFile, RefusesFifosAndDevices) {
+    // Read, a FIFO waits for a writer forever and /dev/zero fills the memory.
+    auto const fifo = (std::filesystem::temp_directory_path() /
+                       ("regolith-config-fifo-" + std::to_string(getpid())))
+                          .string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_EQ(inputErrorOf([&] { (void)ConfigTable::fromFile(fifo); }),
+              "cannot read '" + fifo + "': it is a FIFO, not a regular file");
+    std::filesystem::remove(fifo);
+    EXPECT_EQ(inputErrorOf([] { (void)ConfigTable::fromFile("/dev/zero"); }),
+              "cannot read '/dev/zero': it is a character device, not a regular file");
 }
 
 TEST(ConfigFile, CollectiveLoadGivesEveryRankTheSameTableOrTheSameError) {

@@ -7,8 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <numbers>
 #include <sstream>
+#include <sys/stat.h>
 #include <vector>
 
 using namespace regolith;
@@ -159,7 +161,54 @@ TEST(GrainCsv, FileEntryErrorsNameTheEntryFileAndLine) {
     expectContains(inputErrorOf([&] {
                        (void)particles::generateGrains(directory, kDomain, {false, false, false});
                    }),
-                   {"particles[0].path", "is a directory, not a CSV file"});
+                   {"particles[0].path", "is a directory, not a regular file"});
+}
+
+TEST(GrainCsv, RefusesFifosAndDevices) {
+    // Read, a FIFO blocks until a writer comes and /dev/zero never ends.
+    std::string const fifo = tempPath("grains-fifo.csv").string();
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::vector<ParticleSpec> const fromFifo{fileEntry(fifo, 1.0)};
+    expectContains(inputErrorOf([&] {
+                       (void)particles::generateGrains(fromFifo, kDomain, {false, false, false});
+                   }),
+                   {"particles[0].path", "is a FIFO, not a regular file"});
+    std::filesystem::remove(fifo);
+    std::vector<ParticleSpec> const fromZero{fileEntry("/dev/zero", 1.0)};
+    expectContains(inputErrorOf([&] {
+                       (void)particles::generateGrains(fromZero, kDomain, {false, false, false});
+                   }),
+                   {"particles[0].path", "'/dev/zero' is a character device, not a regular file"});
+}
+
+TEST(GrainCsv, MissingFileNamesTheFolderARelativePathIsTakenFrom) {
+    ParticleSpec entry = fileEntry("/nowhere/scenes/grains.csv", 1.0);
+    std::get<particles::FileSpec>(entry.kind).resolvedFrom = "/nowhere/scenes";
+    std::vector<ParticleSpec> const specs{entry};
+    expectContains(inputErrorOf([&] {
+                       (void)particles::generateGrains(specs, kDomain, {false, false, false});
+                   }),
+                   {"particles[0].path: cannot open '/nowhere/scenes/grains.csv': no such file (a "
+                    "relative path is taken from the scene file's folder '/nowhere/scenes')"});
+}
+
+TEST(GrainCsv, QuotesAtMostAShortEscapedPrefixOfTheFile) {
+    // Any file may be named: a first line without a column name is not quoted at all ...
+    auto const shadow = parseError("root:$y$j9T$SECRET0123456789abcdef:19000:0:99999:7:::\n");
+    expectContains(shadow, {"'grains.csv' line 1: not a header of grain columns"});
+    EXPECT_EQ(shadow.find("SECRET"), std::string::npos) << shadow;
+    EXPECT_EQ(shadow.find("root"), std::string::npos) << shadow;
+    // ... and a field at most by its first 24 bytes, control bytes escaped (a NUL ended the
+    // printed message).
+    std::string binary = "x,y,z,radius,ab";
+    binary += '\0';
+    binary += "cd" + std::string(100, 'q') + "\n";
+    auto const column = parseError(binary);
+    expectContains(column, {"unknown column 'ab\\x00cdqqqqqqqqqqqqqqqqqqq...'"});
+    EXPECT_EQ(column.find('\0'), std::string::npos);
+    auto const number = parseError("x,y,z,radius\n1,2," + std::string(80, '7') + "e,0.5\n");
+    expectContains(number, {"got '777777777777777777777777...'"});
 }
 
 TEST(GrainCsv, RowIndexUidsAndDensityFromTheEntry) {
