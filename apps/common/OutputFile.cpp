@@ -1,6 +1,7 @@
 #include "apps/common/OutputFile.hpp"
 
 #include "core/Error.hpp"
+#include "core/file/Files.hpp"
 
 #include <fmt/format.h>
 
@@ -30,11 +31,6 @@ void onRootForAll(core::Comm const& comm, Action&& action) {
     comm.broadcast(failure, 0);
     if (!failure.empty())
         throw core::InputError(failure);
-}
-
-[[noreturn]] void failWrite(std::string const& tmp, std::string const& path, std::string_view why) {
-    std::remove(tmp.c_str());
-    throw core::InputError(fmt::format("cannot write '{}': {}", path, why));
 }
 
 std::string directoryOf(std::string const& path) {
@@ -90,12 +86,11 @@ void writeFileAtomically(std::string const& path, std::string_view text) {
             throw core::InputError(fmt::format("cannot write '{}': {}", path, why));
         return;
     }
-    std::string const target = replacedFile(path);
-    std::string const tmp = fmt::format("{}.tmp{}", target, static_cast<long>(getpid()));
-    if (std::string const why = writeAll(tmp, "wb", text); !why.empty())
-        failWrite(tmp, path, why);
-    if (std::rename(tmp.c_str(), target.c_str()) != 0)
-        failWrite(tmp, path, std::strerror(errno));
+    // Through a fresh temporary beside the file replaced (a leftover one is never reused).
+    core::replaceFile(replacedFile(path), [&](std::string const& tmp) {
+        if (std::string const why = writeAll(tmp, "wb", text); !why.empty())
+            throw core::InputError(fmt::format("cannot write '{}': {}", path, why));
+    });
 }
 
 void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::string_view text) {
@@ -108,6 +103,11 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
         std::error_code ec;
         if (std::filesystem::is_directory(path, ec))
             throw core::InputError(fmt::format("{} {}: is a directory", option, path));
+        // "newdir/" names a directory: refused before the directory is made and the run done.
+        if (std::filesystem::path(path).filename().empty() || path.ends_with("/.") ||
+            path.ends_with("/..") || path == "." || path == "..")
+            throw core::InputError(
+                fmt::format("{} {}: names a directory, expected a file name", option, path));
         // Created as the VTK and checkpoint output directories are: `--json out/summary.json`
         // in a fresh directory works.
         if (!std::filesystem::is_directory(dir, ec)) {
@@ -127,13 +127,11 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
         }
         // A file created and removed there, as the write will (access() says yes to root
         // even where nothing can be created, e.g. in /proc, and the run's end is too late).
-        std::string const probe =
-            fmt::format("{}.tmp{}", replacedFile(path), static_cast<long>(getpid()));
-        std::FILE* f = std::fopen(probe.c_str(), "wb");
-        if (f == nullptr)
-            throw core::InputError(fmt::format("{} {}: cannot create a file in '{}': {}", option,
-                                               path, dir, std::strerror(errno)));
-        std::fclose(f);
+        std::string why;
+        std::string const probe = core::createTemporaryBeside(replacedFile(path), why);
+        if (probe.empty())
+            throw core::InputError(
+                fmt::format("{} {}: cannot create a file in '{}': {}", option, path, dir, why));
         std::remove(probe.c_str());
     });
 }

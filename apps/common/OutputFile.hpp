@@ -8,9 +8,9 @@
 
 namespace regolith::apps {
 
-/// Writes `text` to "<path>.tmp<pid>" in the same directory, then renames it to `path`, so a
-/// reader never sees a partial file. Through a symbolic link, the file it names is replaced
-/// (the link stays); a FIFO, a device or anything under /dev or /proc (/dev/null,
+/// Writes `text` to a fresh temporary in the same directory (core::replaceFile), then renames
+/// it to `path`, so a reader never sees a partial file. Through a symbolic link, the file it names
+/// is replaced (the link stays); a FIFO, a device or anything under /dev or /proc (/dev/null,
 /// /dev/stdout, also when that is redirected to a file) is written in place, never replaced. Throws
 /// core::InputError "cannot write '<path>': <why>". Not collective.
 void writeFileAtomically(std::string const& path, std::string_view text);
@@ -19,8 +19,8 @@ void writeFileAtomically(std::string const& path, std::string_view text);
 /// the outcome and throws the same core::InputError if it failed. COLLECTIVE over `comm`.
 void writeFileOnRoot(core::Comm const& comm, std::string const& path, std::string_view text);
 
-/// Checks before the run that `path` could be written: its directory exists (created if
-/// missing) and is writable.
+/// Checks before the run that `path` could be written: it names a file (not "dir/"), its
+/// directory exists (created if missing) and is writable.
 /// Rank 0 checks; every rank throws the same core::InputError "<option> <path>: ..." if not,
 /// so a long run never ends with an unwritable summary. COLLECTIVE over `comm`.
 void checkWritable(core::Comm const& comm, std::string const& path, std::string_view option);

@@ -1,6 +1,7 @@
 #include "io/checkpoint/CheckpointWriter.hpp"
 
 #include "core/Error.hpp"
+#include "core/file/Files.hpp"
 #include "io/checkpoint/GrainColumns.hpp"
 
 #include <fmt/format.h>
@@ -73,7 +74,19 @@ std::uint64_t writeCheckpoint(core::Comm const& comm, std::string const& path, C
     std::uint64_t const checksum = infoHash(info) + comm.allReduce(localHash, core::ReduceOp::Sum);
     detail::GrainColumns columns = detail::toColumns(grains, entrySlab.offset);
 
-    std::string const tmp = path + ".tmp";
+    // A fresh temporary beside the checkpoint, made by rank 0 and written by all: a leftover
+    // one (a link, say) is never written through.
+    std::string tmp;
+    std::string why;
+    if (comm.rank() == 0) {
+        tmp = core::createTemporaryBeside(path, why);
+        if (tmp.empty())
+            why = fmt::format("{}: {}", context, why);
+    }
+    comm.broadcast(why, 0);
+    if (!why.empty())
+        throw core::InputError(why);
+    comm.broadcast(tmp, 0);
     std::vector<detail::ColumnView> const views = detail::columnViews(columns);
     try {
         detail::hdf5().write(comm.raw(), tmp, {&info, checksum, &views, grainSlab, entrySlab},

@@ -11,7 +11,9 @@
 namespace regolith::io {
 
 /// Writes `grains` (this rank's masters; any count, also none) and `info` to `path`, in the
-/// layout of CheckpointInfo.hpp: first to "<path>.tmp", which is flushed, closed and synced
+/// layout of CheckpointInfo.hpp: first to a fresh temporary "<path>.tmp<pid>" that rank 0
+/// creates (core::createTemporaryBeside: a leftover one, or a link, is never written
+/// through), which is flushed, closed and synced
 /// to disk, then, after a barrier, renamed to `path` by rank 0 (an atomic replacement on a
 /// POSIX file system). A crash at any moment therefore leaves either the previous file at
 /// `path` or the complete new one. Fills info.grainCount, historyCount and returns the file

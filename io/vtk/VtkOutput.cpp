@@ -1,6 +1,7 @@
 #include "io/vtk/VtkOutput.hpp"
 
 #include "core/Error.hpp"
+#include "core/file/Files.hpp"
 #include "core/log/Log.hpp"
 #include "core/mpi/AgreeOnInputError.hpp"
 #include "io/vtk/GridPieces.hpp"
@@ -11,8 +12,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <limits>
+#include <string_view>
 #include <system_error>
 
 namespace regolith::io {
@@ -20,29 +21,6 @@ namespace regolith::io {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Writes `text` to `path` through a temporary file and a rename; on failure removes the
-/// temporary. Throws core::InputError.
-void writeText(fs::path const& path, std::string const& text) {
-    fs::path const tmp = path.string() + ".tmp";
-    std::error_code ec;
-    bool written = false;
-    {
-        std::ofstream out(tmp, std::ios::binary);
-        out << text;
-        written = static_cast<bool>(out.flush());
-    }
-    if (!written) {
-        fs::remove(tmp, ec);
-        throw core::InputError(fmt::format("cannot write '{}'", tmp.string()));
-    }
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        std::string const reason = ec.message();
-        fs::remove(tmp, ec);
-        throw core::InputError(fmt::format("cannot write '{}': {}", path.string(), reason));
-    }
-}
 
 std::string pvdText(std::vector<std::pair<double, std::string>> const& steps) {
     std::string out = "<?xml version=\"1.0\"?>\n"
@@ -62,14 +40,34 @@ std::vector<std::pair<double, std::string>> keptEntries(std::string const& pvd, 
     std::vector<std::pair<double, std::string>> out;
     if (time == -std::numeric_limits<double>::infinity() || !fs::is_regular_file(pvd))
         return out;
-    try {
-        for (SeriesEntry const& e : readSeries(pvd))
-            if (e.time < time || (inclusive && e.time == time))
-                out.emplace_back(e.time, e.file);
-    } catch (core::InputError const& e) {
-        core::log::warn("{}: starting the series afresh", e.what());
-    }
+    for (SeriesEntry const& e : readSeries(pvd))
+        if (e.time < time || (inclusive && e.time == time))
+            out.emplace_back(e.time, e.file);
     return out;
+}
+
+/// Whether the file at `pvd` is a series this program writes: a VTK collection each of whose
+/// data sets is "vtk/<kind>_<digits>.<extension>" (also none).
+bool isOwnSeries(std::string const& pvd, std::string_view kind, std::string_view extension) {
+    if (!core::whyNotRegularFile(pvd).empty())
+        return false;
+    std::string const prefix = fmt::format("vtk/{}_", kind);
+    std::string const suffix = fmt::format(".{}", extension);
+    try {
+        for (SeriesEntry const& e : readSeries(pvd)) {
+            std::string_view const f = e.file;
+            if (!f.starts_with(prefix) || !f.ends_with(suffix) ||
+                f.size() == prefix.size() + suffix.size())
+                return false;
+            std::string_view const digits =
+                f.substr(prefix.size(), f.size() - prefix.size() - suffix.size());
+            if (digits.find_first_not_of("0123456789") != std::string_view::npos)
+                return false;
+        }
+    } catch (core::InputError const&) {
+        return false;
+    }
+    return true;
 }
 
 } // namespace
@@ -87,15 +85,35 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
                 "output.dir = \"{}\": cannot create '{}' for "
                 "the VTK output: {}",
                 m_options.dir, (fs::path(m_options.dir) / "vtk").string(), ec.message()));
+        // Only a series this program writes is replaced or removed: anything else under its
+        // name is the user's, refused before the first step.
+        struct Series {
+            std::string path;
+            char const* kind;
+            char const* extension;
+            bool written;
+        };
+        for (Series const& s : {Series{particleSeriesPath(), "particles", "pvtu", true},
+                                Series{blockSeriesPath(), "blocks", "pvtu", m_options.blocks},
+                                Series{gridSeriesPath(), "grid", "vtm", m_options.writesGrid}})
+            if (s.written && fs::exists(fs::symlink_status(s.path, ec)) &&
+                !isOwnSeries(s.path, s.kind, s.extension))
+                throw core::InputError(fmt::format(
+                    "output.dir = \"{}\" holds '{}', which is not a {} series this program "
+                    "writes: this run writes its {} series there; remove or rename it, or choose "
+                    "another output.dir",
+                    m_options.dir, fs::path(s.path).filename().string(), s.kind, s.kind));
         m_particleSteps = keptEntries(particleSeriesPath(), m_options.keepEntriesBefore);
         m_blockSteps = keptEntries(blockSeriesPath(), m_options.keepEntriesBefore);
         // A restart writes no grid at its first step (the field is restored per grain, not
         // on the grid): the original run's entry of that step stays.
         m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore, true);
         bool const fresh = m_options.keepEntriesBefore == -std::numeric_limits<double>::infinity();
-        if (fresh && !m_options.writesGrid && fs::exists(gridSeriesPath())) {
-            fs::remove(gridSeriesPath(), ec);
-            if (ec)
+        if (fresh && !m_options.writesGrid && fs::exists(gridSeriesPath(), ec)) {
+            if (!isOwnSeries(gridSeriesPath(), "grid", "vtm"))
+                core::log::warn("'{}' is not a grid series this program writes: left alone",
+                                gridSeriesPath());
+            else if (fs::remove(gridSeriesPath(), ec); ec)
                 core::log::warn("cannot remove '{}', an earlier run's grid series (this run writes "
                                 "no grid): {}",
                                 gridSeriesPath(), ec.message());
@@ -146,15 +164,22 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
     std::string const blockIndex = fmt::format("blocks_{:08d}.pvtu", step);
     core::agreeOnInputError(*m_comm, [&] {
         try {
-            detail::writeParticlePiece((vtkDir / piece("particles", m_comm->rank())).string(),
-                                       local, m_options.shadows);
+            // Each piece through a fresh temporary: a link under its name is replaced, not
+            // written through.
+            core::replaceFile((vtkDir / piece("particles", m_comm->rank())).string(),
+                              [&](std::string const& tmp) {
+                                  detail::writeParticlePiece(tmp, local, m_options.shadows);
+                              });
             if (m_options.blocks)
-                detail::writeBlockPiece((vtkDir / piece("blocks", m_comm->rank())).string(), local);
+                core::replaceFile(
+                    (vtkDir / piece("blocks", m_comm->rank())).string(),
+                    [&](std::string const& tmp) { detail::writeBlockPiece(tmp, local); });
             if (grid) {
                 auto const& blocks = grid->layout->forest().blocks();
                 for (std::size_t b = 0; b < blocks.size(); ++b)
-                    detail::writeGridPiece(
-                        (vtkDir / gridPiece(step, blocks[b].curveIndex)).string(), *grid, b);
+                    core::replaceFile(
+                        (vtkDir / gridPiece(step, blocks[b].curveIndex)).string(),
+                        [&](std::string const& tmp) { detail::writeGridPiece(tmp, *grid, b); });
             }
         } catch (core::InputError const&) {
             throw;
@@ -172,25 +197,26 @@ void VtkOutput::write(std::int64_t step, double time, particles::LocalParticles 
             particlePieces.push_back(piece("particles", r));
             blockPieces.push_back(piece("blocks", r));
         }
-        writeText(vtkDir / particleIndex,
-                  detail::pvtuText(detail::particleArrays(m_options.shadows), {}, particlePieces));
+        core::replaceFileWith(
+            (vtkDir / particleIndex).string(),
+            detail::pvtuText(detail::particleArrays(m_options.shadows), {}, particlePieces));
         m_particleSteps.emplace_back(time, "vtk/" + particleIndex);
-        writeText(particleSeriesPath(), pvdText(m_particleSteps));
+        core::replaceFileWith(particleSeriesPath(), pvdText(m_particleSteps));
         if (m_options.blocks) {
-            writeText(vtkDir / blockIndex,
-                      detail::pvtuText({}, detail::blockArrays(), blockPieces));
+            core::replaceFileWith((vtkDir / blockIndex).string(),
+                                  detail::pvtuText({}, detail::blockArrays(), blockPieces));
             m_blockSteps.emplace_back(time, "vtk/" + blockIndex);
-            writeText(blockSeriesPath(), pvdText(m_blockSteps));
+            core::replaceFileWith(blockSeriesPath(), pvdText(m_blockSteps));
         }
         if (grid) {
             std::vector<detail::BlockPiece> gridPieces;
             for (std::uint64_t const c : m_gridBlocks)
                 gridPieces.push_back({fmt::format("block {}", c), gridPiece(step, c)});
             std::string const gridIndex = fmt::format("grid_{:08d}.vtm", step);
-            writeText(vtkDir / gridIndex, detail::vtmText(gridPieces));
+            core::replaceFileWith((vtkDir / gridIndex).string(), detail::vtmText(gridPieces));
             std::erase_if(m_gridSteps, [&](auto const& e) { return e.first == time; });
             m_gridSteps.emplace_back(time, "vtk/" + gridIndex);
-            writeText(gridSeriesPath(), pvdText(m_gridSteps));
+            core::replaceFileWith(gridSeriesPath(), pvdText(m_gridSteps));
         }
     });
 }

@@ -40,24 +40,27 @@ struct VtkOptions {
     double keepEntriesBefore = -std::numeric_limits<double>::infinity();
     /// Whether this run writes grid fields. A fresh run (keepEntriesBefore at its default)
     /// that does not removes an earlier run's grid.pvd from `dir`, with a warning: it would
-    /// otherwise sit beside this run's series as if it belonged to it (its pieces stay).
+    /// otherwise sit beside this run's series as if it belonged to it (its pieces stay). A
+    /// grid.pvd that is not a grid series this program writes is left alone, with a warning.
     bool writesGrid = false;
 };
 
 class VtkOutput {
 public:
     /// Rank 0 creates <dir>/vtk and reads the entries to keep of existing series (see
-    /// VtkOptions::keepEntriesBefore; an unreadable old series is started afresh, with a
-    /// warning); throws core::InputError on every rank if the directory cannot be made.
-    /// COLLECTIVE over `comm`, which must outlive this object.
+    /// VtkOptions::keepEntriesBefore); throws core::InputError on every rank if the directory
+    /// cannot be made, or if a .pvd this run writes exists and is not a series of its kind
+    /// this program writes (a VTK collection of "vtk/<kind>_<step>..." files): a user's file is
+    /// never replaced. COLLECTIVE over `comm`, which must outlive this object.
     VtkOutput(core::Comm const& comm, VtkOptions options);
 
     /// Writes the state of step `step` at simulated time `time`: every rank its pieces, rank
-    /// 0 the .pvtu indices and both .pvd series (rewritten whole each time, via a temporary
-    /// file, so they stay valid if the run stops). Throws core::InputError on every rank if a
-    /// file cannot be written. With `grid` (grid gravity's fields, given on every rank alike)
-    /// also the grid fields of every block and the grid.pvd series. COLLECTIVE over the
-    /// communicator.
+    /// 0 the .pvtu indices and both .pvd series (rewritten whole each time). Every file goes
+    /// to a fresh temporary and is renamed into place (core::replaceFile), so they stay valid
+    /// if the run stops and a link under a file's name is replaced, not written through. Throws
+    /// core::InputError on every rank if a file cannot be written. With `grid` (grid gravity's
+    /// fields, given on every rank alike) also the grid fields of every block and the grid.pvd
+    /// series. COLLECTIVE over the communicator.
     void write(std::int64_t step, double time, particles::LocalParticles const& local,
                std::optional<gravity::GridFieldsView> const& grid = std::nullopt);
 

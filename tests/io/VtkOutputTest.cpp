@@ -21,9 +21,12 @@
 
 #include <array>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <set>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using namespace regolith;
@@ -215,8 +218,7 @@ TEST(VtkOutput, UnwritablePieceIsAnErrorOnEveryRank) {
         out.write(10, 0.25, local);
         ADD_FAILURE() << "no error";
     } catch (core::InputError const& e) {
-        EXPECT_NE(std::string(e.what()).find("cannot write VTK file '" + blocked + "'"),
-                  std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("cannot write '" + blocked + "'"), std::string::npos)
             << e.what();
     }
     EXPECT_FALSE(fs::exists(dir + "/vtk/particles_00000010.pvtu"));
@@ -228,7 +230,99 @@ TEST(VtkOutput, UnwritablePieceIsAnErrorOnEveryRank) {
     }
     world.barrier();
     EXPECT_THROW(out.write(20, 0.5, local), core::InputError);
-    EXPECT_FALSE(fs::exists(dir + "/particles.pvd.tmp"));
+    for (auto const& entry : fs::directory_iterator(dir))
+        EXPECT_FALSE(entry.path().filename().string().starts_with("particles.pvd.tmp"))
+            << entry.path();
+    world.barrier();
+    if (world.rank() == 0)
+        fs::remove_all(dir);
+}
+
+namespace {
+
+std::string contentOf(std::string const& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+} // namespace
+
+/// A piece or series name that is a symbolic link, and a leftover temporary that is one: the
+/// link under the output's name is replaced, and nothing is written through a link.
+TEST(VtkOutput, LinksUnderItsNamesAreReplacedNotWrittenThrough) {
+    core::Comm const world;
+    domain::BlockForest const forest(world, spec());
+    particles::LocalParticles local(forest);
+    fill(local);
+    std::string const dir = fmt::format("vtk_links_np{}", world.size());
+    std::string const victim = dir + "/victim.txt";
+    // Rank 0 writes the series: its process id names the temporary it would take first.
+    long const pid = world.allReduce(world.rank() == 0 ? static_cast<long>(::getpid()) : 0L,
+                                     core::ReduceOp::Sum);
+    std::string const leftover = fmt::format("{}/blocks.pvd.tmp{}", dir, pid);
+    if (world.rank() == 0) {
+        fs::remove_all(dir);
+        fs::create_directories(dir + "/vtk");
+        std::ofstream(victim) << "keep";
+        for (int r = 0; r < world.size(); ++r)
+            fs::create_symlink("../victim.txt",
+                               fmt::format("{}/vtk/particles_00000010_r{:04d}.vtu", dir, r));
+        fs::create_symlink("victim.txt", leftover);
+    }
+    world.barrier();
+    io::VtkOutput out(world, io::VtkOptions{dir, false, true});
+    out.write(10, 0.25, local);
+    world.barrier();
+    EXPECT_EQ(contentOf(victim), "keep");
+    std::string const piece =
+        fmt::format("{}/vtk/particles_00000010_r{:04d}.vtu", dir, world.rank());
+    EXPECT_FALSE(fs::is_symlink(piece));
+    EXPECT_TRUE(fs::is_regular_file(piece));
+    EXPECT_EQ(readPvd(dir + "/particles.pvd").size(), 1U);
+    EXPECT_TRUE(fs::is_symlink(leftover)); // not ours to remove
+    EXPECT_EQ(readPvd(dir + "/blocks.pvd").size(), 1U);
+    world.barrier();
+    if (world.rank() == 0)
+        fs::remove_all(dir);
+}
+
+/// A file under a series' name that this program did not write is the user's: not removed
+/// (grid.pvd, which a run without grid gravity removes when it is an earlier run's series),
+/// not replaced (a series this run writes: refused before anything is written).
+TEST(VtkOutput, OnlyItsOwnSeriesAreRemovedOrReplaced) {
+    core::Comm const world;
+    std::string const dir = fmt::format("vtk_users_files_np{}", world.size());
+    std::string const notes = "my own grid notes\n";
+    if (world.rank() == 0) {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        std::ofstream(dir + "/grid.pvd") << notes;
+    }
+    world.barrier();
+    {
+        io::VtkOutput const fresh(world, io::VtkOptions{dir, false, true});
+        world.barrier();
+        EXPECT_EQ(contentOf(dir + "/grid.pvd"), notes);
+    }
+    std::string const collection =
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
+        "  <Collection>\n    <DataSet timestep=\"0\" file=\"mine/run1.vtu\"/>\n"
+        "  </Collection>\n</VTKFile>\n";
+    if (world.rank() == 0)
+        std::ofstream(dir + "/particles.pvd") << collection;
+    world.barrier();
+    try {
+        io::VtkOutput const refused(world, io::VtkOptions{dir, false, true});
+        ADD_FAILURE() << "no error";
+    } catch (core::InputError const& e) {
+        EXPECT_NE(std::string(e.what()).find("holds 'particles.pvd', which is not a particles "
+                                             "series this program writes"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(contentOf(dir + "/particles.pvd"), collection);
     world.barrier();
     if (world.rank() == 0)
         fs::remove_all(dir);
