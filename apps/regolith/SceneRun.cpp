@@ -18,6 +18,7 @@
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/ProgressLine.hpp"
+#include "apps/regolith/RunPaths.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
@@ -124,7 +125,9 @@ int runSceneUnlocated(core::AppContext& ctx) {
     expandScenarios(ctx.scene, world.size());
     SceneDescription scene = parseScene(ctx.scene, ctx.options.scenePath);
     bool const restart = !ctx.options.restartPath.empty();
-    // Fail before the run, not after it, if an output file cannot be written.
+    // Fail before the run, not after it, if an output file would overwrite an input or
+    // another output, or cannot be written.
+    checkRunPaths(world, ctx.options, scene);
     if (!ctx.options.jsonPath.empty())
         checkWritable(world, ctx.options.jsonPath, "--json");
     if (!ctx.options.dumpPath.empty())
@@ -270,8 +273,18 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // The summary reads the masters from the storages (no record list of every grain: that
     // was the run's memory peak); only --dump gathers them, and frees them again at once.
     MasterSource const masters = masterSource(local);
+    // A dump that cannot be written (a full disk) does not cost the summary: both are tried,
+    // then every failure is reported.
+    std::string outputFailures;
+    auto const tryWrite = [&](std::string const& path, auto const& textOf) {
+        try {
+            writeFileOnRoot(world, path, textOf());
+        } catch (core::InputError const& e) {
+            outputFailures += (outputFailures.empty() ? "" : "\n") + std::string(e.what());
+        }
+    };
     if (!ctx.options.dumpPath.empty())
-        writeFileOnRoot(world, ctx.options.dumpPath, gatherDumpCsv(world, masterRecords(local)));
+        tryWrite(ctx.options.dumpPath, [&] { return gatherDumpCsv(world, masterRecords(local)); });
 
     RunSummary summary;
     summary.scene = scene.name;
@@ -299,7 +312,9 @@ int runSceneUnlocated(core::AppContext& ctx) {
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);
     if (!ctx.options.jsonPath.empty())
-        writeFileOnRoot(world, ctx.options.jsonPath, toJson(summary));
+        tryWrite(ctx.options.jsonPath, [&] { return toJson(summary); });
+    if (!outputFailures.empty())
+        throw core::InputError(outputFailures);
     return 0;
 }
 

@@ -1,0 +1,19 @@
+#pragma once
+/// The files a `regolith` run reads and writes, checked against each other before the first
+/// step: an output that names an input (the scene file, a [[particles]] CSV file, the
+/// --restart checkpoint) or another output would overwrite it after the run, silently.
+#include "apps/regolith/SceneSections.hpp"
+#include "core/app/CliOptions.hpp"
+#include "core/mpi/Comm.hpp"
+
+namespace regolith::apps {
+
+/// Throws core::InputError on every rank, naming the option and both uses of the file, if
+/// --json or --dump names an input of the run, the other of them, or a file the run writes
+/// in output.dir (the VTK series and pieces with output.vtk_every > 0, the checkpoints with
+/// output.checkpoint_every > 0). Files written in place (a FIFO, /dev/null, /dev/stdout) may
+/// be shared. Rank 0 looks; COLLECTIVE over `world`.
+void checkRunPaths(core::Comm const& world, core::CliOptions const& options,
+                   SceneDescription const& scene);
+
+} // namespace regolith::apps
