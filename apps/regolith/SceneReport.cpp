@@ -1,5 +1,7 @@
 #include "apps/regolith/SceneReport.hpp"
 
+#include "core/log/Printable.hpp"
+
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -36,7 +38,9 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
                       ParticleCounts const& particles, std::int64_t startStep) {
     auto const& d = forest.domain();
     auto const& n = forest.rootBlocks();
-    std::string text = fmt::format("{}: scene '{}' ({})\n", ctx.appName, scene.name, ctx.sceneName);
+    // The name and path as text a terminal shows whole (a NUL in the name cut the report).
+    std::string text = fmt::format("{}: scene '{}' ({})\n", ctx.appName,
+                                   core::printable(scene.name), core::printable(ctx.sceneName));
     text +=
         fmt::format("  domain [{}, {}, {}] - [{}, {}, {}], periodic: {}\n", d.min.x(), d.min.y(),
                     d.min.z(), d.max.x(), d.max.y(), d.max.z(), axes(forest.periodic()));

@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 #include "core/config/ConfigFile.hpp"
 #include "core/log/Log.hpp"
+#include "core/log/Printable.hpp"
 #include "core/memory/HeapPolicy.hpp"
 
 #include <fmt/format.h>
@@ -29,7 +30,8 @@ void printInputError(std::string_view appName, std::string_view message) {
         auto end = message.find('\n', start);
         if (end == std::string_view::npos)
             end = message.size();
-        auto const line = message.substr(start, end - start);
+        // A NUL byte from a file would end the line early: control bytes are escaped.
+        std::string const line = printable(message.substr(start, end - start));
         std::fprintf(stderr, "%.*s: error: %.*s\n", static_cast<int>(appName.size()),
                      appName.data(), static_cast<int>(line.size()), line.data());
         start = end + 1;

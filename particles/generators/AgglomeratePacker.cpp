@@ -48,10 +48,11 @@ std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_
             "is at least {:.4f} with grain_radius {} and radius {}; decrease count or "
             "grain_radius, or increase radius",
             key, spec.count, leastFraction, rMin, spec.radius));
-    core::requireMemory(
-        static_cast<double>(spec.count) *
-            static_cast<double>(sizeof(GrainInit) + sizeof(core::random::CounterRng)),
-        key + ".count", fmt::format("an agglomerate of {} grains", spec.count));
+    core::requireMemory(static_cast<double>(spec.count) *
+                            static_cast<double>(sizeof(GrainInit) +
+                                                sizeof(core::random::CounterRng) +
+                                                sizeof(std::size_t)),
+                        key + ".count", fmt::format("an agglomerate of {} grains", spec.count));
     std::vector<core::random::CounterRng> rng;
     rng.reserve(count);
     std::vector<GrainInit> grains(count);
