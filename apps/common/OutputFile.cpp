@@ -38,23 +38,6 @@ std::string directoryOf(std::string const& path) {
     return dir.empty() ? std::string(".") : dir.string();
 }
 
-/// Whether `path` exists and is written in place: neither a regular file nor a directory
-/// (through symlinks: a FIFO, a device such as /dev/null, a socket), or anything under /dev
-/// or /proc.
-bool isSpecialFile(std::string const& path) {
-    std::error_code ec;
-    // /dev/stdout redirected to a file resolves to that regular file (through /proc/self/fd):
-    // replacing it would cut the run's own log; anything under /dev or /proc is written in
-    // place.
-    auto const st = std::filesystem::status(path, ec);
-    std::string const absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
-    if (std::filesystem::exists(st) &&
-        (absolute.starts_with("/dev/") || absolute.starts_with("/proc/")))
-        return true;
-    return std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
-           !std::filesystem::is_directory(st);
-}
-
 /// Writes `text` to `path` opened with `mode`; the reason it failed, or "".
 std::string writeAll(std::string const& path, char const* mode, std::string_view text) {
     std::FILE* f = std::fopen(path.c_str(), mode);
@@ -79,9 +62,23 @@ std::string replacedFile(std::string const& path) {
 
 } // namespace
 
+bool writtenInPlace(std::string const& path) {
+    std::error_code ec;
+    // /dev/stdout redirected to a file resolves to that regular file (through /proc/self/fd):
+    // replacing it would cut the run's own log; anything under /dev or /proc is written in
+    // place.
+    auto const st = std::filesystem::status(path, ec);
+    std::string const absolute = std::filesystem::absolute(path, ec).lexically_normal().string();
+    if (std::filesystem::exists(st) &&
+        (absolute.starts_with("/dev/") || absolute.starts_with("/proc/")))
+        return true;
+    return std::filesystem::exists(st) && !std::filesystem::is_regular_file(st) &&
+           !std::filesystem::is_directory(st);
+}
+
 void writeFileAtomically(std::string const& path, std::string_view text) {
     // A FIFO's reader, a device, /dev/stdout redirected to a log: written in place, appending.
-    if (isSpecialFile(path)) {
+    if (writtenInPlace(path)) {
         if (std::string const why = writeAll(path, "ab", text); !why.empty())
             throw core::InputError(fmt::format("cannot write '{}': {}", path, why));
         return;
@@ -119,7 +116,7 @@ void checkWritable(core::Comm const& comm, std::string const& path, std::string_
                                 made ? made.message() : (ec ? ec.message() : "not a directory")));
         }
         // A FIFO or a device is written in place (writeFileAtomically): it must be writable.
-        if (isSpecialFile(path)) {
+        if (writtenInPlace(path)) {
             if (::access(path.c_str(), W_OK) != 0)
                 throw core::InputError(
                     fmt::format("{} {}: not writable: {}", option, path, std::strerror(errno)));

@@ -8,6 +8,11 @@
 
 namespace regolith::apps {
 
+/// Whether `path` exists and is written in place rather than replaced: neither a regular file
+/// nor a directory (through symlinks: a FIFO, a device such as /dev/null, a socket), or
+/// anything under /dev or /proc (/dev/stdout redirected to a file included). Not collective.
+[[nodiscard]] bool writtenInPlace(std::string const& path);
+
 /// Writes `text` to a fresh temporary in the same directory (core::replaceFile), then renames
 /// it to `path`, so a reader never sees a partial file. Through a symbolic link, the file it names
 /// is replaced (the link stays); a FIFO, a device or anything under /dev or /proc (/dev/null,

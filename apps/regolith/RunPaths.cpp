@@ -1,5 +1,6 @@
 #include "apps/regolith/RunPaths.hpp"
 
+#include "apps/common/OutputFile.hpp"
 #include "core/Error.hpp"
 #include "core/file/Files.hpp"
 #include "core/mpi/AgreeOnInputError.hpp"
@@ -55,12 +56,6 @@ std::string writtenInOutputDir(std::string const& path, OutputSection const& out
     if (output.checkpointEvery > 0 && core::sameFile(dir, output.dir) && isCheckpointName(name))
         return fmt::format("a checkpoint's name in {}", where);
     return {};
-}
-
-/// Written in place, not replaced: a FIFO, a device (/dev/null, /dev/stdout).
-bool writtenInPlace(std::string const& path) {
-    std::string const why = core::whyNotRegularFile(path);
-    return !why.empty() && why != "no such file" && why != "a directory";
 }
 
 } // namespace
