@@ -18,7 +18,8 @@ stderr, no crash, within the timeout):
                     and the --json summary is written all the same;
   name_nul          a scene name with a NUL byte prints whole in the report, escaped;
   csv_secret        a CSV path naming a file that is no grain table: the message quotes
-                    nothing of it.
+                    nothing of it;
+  csv_nul           a CSV column name with a NUL byte: the message prints whole, escaped.
 """
 import argparse
 import hashlib
@@ -152,6 +153,13 @@ def main():
                       "--set", f"particles.0.path=\"{secret}\"")
         if "SECRET" in p.stderr or "root" in p.stderr:
             fail(f"the message quotes the file:\n{p.stderr}")
+    elif c == "csv_nul":
+        binary = os.path.join(work, "binary.csv")
+        with open(binary, "wb") as f:
+            f.write(b"x,y,z,radius,ab\0cd\n1,1,1,0.5,0\n")
+        r.refused("unknown column 'ab\\x00cd' (known: x,y,z,",
+                  os.path.join(args.scenes, "missing_particle_file.toml"),
+                  "--set", f"particles.0.path=\"{binary}\"")
     else:
         fail(f"unknown case {c}")
     shutil.rmtree(work, ignore_errors=True)
