@@ -38,7 +38,7 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
                       ParticleCounts const& particles, std::int64_t startStep) {
     auto const& d = forest.domain();
     auto const& n = forest.rootBlocks();
-    // The name and path as text a terminal shows whole (a NUL in the name cut the report).
+    // The name and path as text a terminal shows whole (a NUL would cut the report short).
     std::string text = fmt::format("{}: scene '{}' ({})\n", ctx.appName,
                                    core::printable(scene.name), core::printable(ctx.sceneName));
     text +=

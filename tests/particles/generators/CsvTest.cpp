@@ -199,8 +199,8 @@ TEST(GrainCsv, QuotesAtMostAShortEscapedPrefixOfTheFile) {
     expectContains(shadow, {"'grains.csv' line 1: not a header of grain columns"});
     EXPECT_EQ(shadow.find("SECRET"), std::string::npos) << shadow;
     EXPECT_EQ(shadow.find("root"), std::string::npos) << shadow;
-    // ... and a field at most by its first 24 bytes, control bytes escaped (a NUL ended the
-    // printed message).
+    // ... and a field at most by its first 24 bytes, control bytes escaped (a NUL would end
+    // the printed message).
     std::string binary = "x,y,z,radius,ab";
     binary += '\0';
     binary += "cd" + std::string(100, 'q') + "\n";
