@@ -56,6 +56,13 @@ def run(build, np, scene, extra, json_path, steps=None):
         return json.load(f)
 
 
+def write_csv(path, rows):
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+
 def imbalance(args):
     rows, histories = [], {}
     for np in args.ranks:
@@ -76,11 +83,7 @@ def imbalance(args):
                              "steps_per_rebalance": round(cost, 2)})
                 histories[(name, np, mode)] = (b["history"]["step"], b["history"]["imbalance"])
                 print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
-    with open(os.path.join(args.out, "load_balance_imbalance.csv"), "w", newline="",
-              encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(os.path.join(args.out, "load_balance_imbalance.csv"), rows)
     if args.chart:
         chart(histories, args.ranks, args.chart)
 
@@ -128,11 +131,7 @@ def wall(args):
                      "ratio_min": round(min(ratios), 3), "ratio_max": round(max(ratios), 3),
                      "repeats": args.repeats})
         print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
-    with open(os.path.join(args.out, "load_balance_wall.csv"), "w", newline="",
-              encoding="utf-8") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    write_csv(os.path.join(args.out, "load_balance_wall.csv"), rows)
 
 
 def main():
