@@ -46,8 +46,9 @@ struct RunSummary {
     } gravity;
 
     /// The ranks' load balance (JSON key "balance", beyond the contract's keys): the
-    /// imbalance max / mean of the ranks' loads (grains and grid cells of their blocks),
-    /// averaged over the measurements during the loop and at its end, and the rebalances
+    /// imbalance max / mean of the ranks' loads (grains, contacts and grid cells of their
+    /// blocks), averaged over the loop's steps (each measurement standing for the steps since
+    /// the one before) and at its end, and the rebalances
     /// ([balance] every, threshold) with the time they took; "history": every measurement, the
     /// step after which it was taken and the imbalance then (before a rebalance).
     struct Balance {

@@ -5,7 +5,6 @@
 #include <mpi.h>
 
 #include <algorithm>
-#include <numeric>
 #include <utility>
 
 namespace regolith::apps {
@@ -18,7 +17,8 @@ DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& s
     , m_relocate(std::move(relocate))
     , m_longest(scene.balance.every > 0 ? scene.balance.every : autoBalanceEvery(scene.time.steps))
     , m_interval(m_longest)
-    , m_next((stepsDone / m_longest + 1) * m_longest) {}
+    , m_next((stepsDone / m_longest + 1) * m_longest)
+    , m_start(stepsDone) {}
 
 bool DynamicBalance::due(std::int64_t stepsDone) const {
     return stepsDone >= m_next;
@@ -65,10 +65,18 @@ RunSummary::Balance DynamicBalance::finish() {
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
     out.finalImbalance = coupling::loadImbalance(
         *m_comm, coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+    // The time average: each measurement stands for the steps since the one before it (with
+    // "auto" they are closer while the blocks move).
     out.meanImbalance = out.finalImbalance;
-    if (!m_imbalances.empty())
-        out.meanImbalance = std::accumulate(m_imbalances.begin(), m_imbalances.end(), 0.0) /
-                            static_cast<double>(m_imbalances.size());
+    if (!m_imbalances.empty()) {
+        double sum = 0.0;
+        double previous = static_cast<double>(m_start);
+        for (std::size_t k = 0; k < m_imbalances.size(); ++k) {
+            sum += m_imbalances[k] * (m_steps[k] - previous);
+            previous = m_steps[k];
+        }
+        out.meanImbalance = sum / (previous - static_cast<double>(m_start));
+    }
     out.steps = m_steps;
     out.imbalances = m_imbalances;
     return out;

@@ -67,6 +67,7 @@ private:
     std::int64_t m_longest;  ///< balance.every, or the interval of the measurements
     std::int64_t m_interval; ///< the current one (below m_longest with "auto" after a move)
     std::int64_t m_next;     ///< the step after which the next measurement comes
+    std::int64_t m_start;    ///< steps done when the run started
     double m_last = 1.0;
     double m_seconds = 0.0;
     long long m_rebalances = 0;
