@@ -45,24 +45,22 @@ coupling::BlockLoadModel loadModel(SceneDescription const& scene) {
     return model;
 }
 
-BalanceOutcome balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
-                             BlockPlacement& placement, WorthMoving const& worthMoving) {
-    BalanceOutcome out;
+bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
+                   WorthMoving const& worthMoving) {
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
-        return out;
-    coupling::BlockLoadModel const model = loadModel(scene);
-    out.before = coupling::loadImbalance(comm, coupling::rankLoad(*placement.local, model));
-    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, *placement.local, model);
+        return false;
+    domain::BlockWeight const weight =
+        coupling::grainAndCellWeights(comm, *placement.local, loadModel(scene));
     BlockPlacement balanced;
     placeForests(comm, scene, weight, balanced);
-    double load = 0.0;
-    for (domain::Block const& b : balanced.forest->blocks())
-        load += weight(b.aabb, b.id.level());
-    out.after = coupling::loadImbalance(comm, load);
-    if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)) ||
-        (worthMoving && !worthMoving(out.before, out.after))) {
-        out.after = out.before;
-        return out;
+    if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
+        return false;
+    if (worthMoving) {
+        double load = 0.0;
+        for (domain::Block const& b : balanced.forest->blocks())
+            load += weight(b.aabb, b.id.level());
+        if (!worthMoving(coupling::loadImbalance(comm, load)))
+            return false;
     }
     // The masters travel as a restart's grains do (one sparse exchange, state complete). The
     // objects stay where they are: what refers to them sees the new assignment.
@@ -71,8 +69,7 @@ BalanceOutcome balanceByLoad(core::Comm const& comm, SceneDescription const& sce
     *placement.particleForest = std::move(*balanced.particleForest);
     *placement.local = particles::LocalParticles(*placement.particleForest);
     io::restoreGrains(comm, *placement.local, grains, "balancing the blocks by load");
-    out.moved = true;
-    return out;
+    return true;
 }
 
 } // namespace regolith::apps

@@ -32,16 +32,9 @@ struct BlockPlacement {
 /// The blocks' load model of `scene`: grains, and cells when its gravity uses a grid.
 [[nodiscard]] coupling::BlockLoadModel loadModel(SceneDescription const& scene);
 
-/// What balanceByLoad found: the imbalance of the ranks' loads (max / mean) before, after
-/// (the same when nothing moved), and whether the blocks moved.
-struct BalanceOutcome {
-    double before = 1.0;
-    double after = 1.0;
-    bool moved = false;
-};
-
-/// Whether a new cut is worth moving the grains, from the imbalance before and after.
-using WorthMoving = std::function<bool(double before, double after)>;
+/// Whether a new cut is worth moving the grains, from the imbalance of the ranks' loads
+/// (max / mean) it would give.
+using WorthMoving = std::function<bool(double after)>;
 
 /// Re-assigns the blocks of `placement` by the load of the masters it holds (and the cells,
 /// when the scene's gravity uses a grid) and moves every master, with its force, torque and
@@ -49,8 +42,8 @@ using WorthMoving = std::function<bool(double before, double after)>;
 /// (references to them stay valid and see the new assignment; what was built on the old one,
 /// the synchronisation, DemStep's lists, a grid, must be relocated). Keeps `placement` when
 /// the assignment does not change (equal loads, or domain.balance = "blocks") or
-/// `worthMoving` (if given) says no. COLLECTIVE.
-BalanceOutcome balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
-                             BlockPlacement& placement, WorthMoving const& worthMoving = {});
+/// `worthMoving` (if given) says no. Returns whether the blocks moved. COLLECTIVE.
+bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
+                   WorthMoving const& worthMoving = {});
 
 } // namespace regolith::apps

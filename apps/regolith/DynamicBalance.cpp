@@ -35,26 +35,28 @@ bool DynamicBalance::afterStep(std::int64_t stepsDone) {
     return moved;
 }
 
+double DynamicBalance::measure() const {
+    return coupling::loadImbalance(*m_comm,
+                                   coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+}
+
 bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
-    m_last = coupling::loadImbalance(*m_comm,
-                                     coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+    m_last = measure();
     m_steps.push_back(static_cast<double>(stepsDone));
     m_imbalances.push_back(m_last);
     BalanceSection const& balance = m_scene->balance;
     if (balance.every == 0 || !(m_last > balance.threshold))
         return false;
     double const started = MPI_Wtime();
-    double const hysteresis = 0.5 * (balance.threshold - 1.0);
-    BalanceOutcome const outcome =
-        balanceByLoad(*m_comm, *m_scene, *m_placement, [hysteresis](double before, double after) {
-            return after <= before - hysteresis;
-        });
-    if (outcome.moved) {
+    double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
+    bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement,
+                                     [enough](double after) { return after <= enough; });
+    if (moved) {
         m_relocate();
         ++m_rebalances;
     }
     m_seconds += MPI_Wtime() - started; // a cut not worth moving to costs its search
-    return outcome.moved;
+    return moved;
 }
 
 RunSummary::Balance DynamicBalance::finish() {
@@ -63,8 +65,7 @@ RunSummary::Balance DynamicBalance::finish() {
     out.threshold = m_scene->balance.threshold;
     out.rebalances = m_rebalances;
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
-    out.finalImbalance = coupling::loadImbalance(
-        *m_comm, coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+    out.finalImbalance = measure();
     // The time average: each measurement stands for the steps since the one before it (with
     // "auto" they are closer while the blocks move).
     out.meanImbalance = out.finalImbalance;

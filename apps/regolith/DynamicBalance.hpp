@@ -58,6 +58,8 @@ public:
     [[nodiscard]] RunSummary::Balance finish();
 
 private:
+    /// The imbalance of the ranks' loads now. COLLECTIVE.
+    [[nodiscard]] double measure() const;
     bool measureAndMove(std::int64_t stepsDone);
 
     core::Comm const* m_comm;

@@ -190,10 +190,7 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
     : m_comm(&comm)
     , m_config(config)
     , m_method(std::make_unique<Method>(comm, forest, config))
-    , m_policy(config.updateThreshold, periodicExtent(forest))
-    , m_uidOrder(config.reproducible)
-    , m_G(config.G)
-    , m_softening(config.softening) {}
+    , m_policy(config.updateThreshold, periodicExtent(forest)) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
 
@@ -222,7 +219,7 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
             m_r.push_back(ps.radius(i));
         });
     }
-    if (!m_uidOrder)
+    if (!m_config.reproducible)
         return;
     std::size_t const n = m_uid.size();
     std::vector<std::uint32_t> order(n);
@@ -267,7 +264,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         particles::ParticleStorage& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             if (updated) {
-                std::size_t const s = m_uidOrder ? m_slot[k] : k;
+                std::size_t const s = m_config.reproducible ? m_slot[k] : k;
                 ps.force(i) += ps.mass(i) * core::Vec3(m_ax[s], m_ay[s], m_az[s]);
             } else {
                 auto const& a = m_policy.record(ps.uid(i))->field;
@@ -299,7 +296,7 @@ std::optional<double> SelfGravityForces::sampledMedianError(std::size_t sample) 
     if (!m_lastUpdated)
         return std::nullopt;
     return coupling::sampledMedianError(*m_comm, {m_x, m_y, m_z, m_m, m_r}, m_uid,
-                                        {m_ax, m_ay, m_az}, m_G, m_softening, sample);
+                                        {m_ax, m_ay, m_az}, m_config.G, m_config.softening, sample);
 }
 
 void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local) {

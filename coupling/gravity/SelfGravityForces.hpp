@@ -129,19 +129,17 @@ private:
     void gather(particles::LocalParticles const& local);
 
     core::Comm const* m_comm;
-    SelfGravityConfig m_config;
+    SelfGravityConfig m_config; ///< reproducible: each update from the masters in uid order
     std::unique_ptr<Method> m_method;
     gravity::UpdatePolicy m_policy;
     SelfGravityStats m_stats;
-    bool m_uidOrder;              ///< SelfGravityConfig::reproducible
     bool m_gridRefreshed = false; ///< refreshGridFields computed the grid fields
-    double m_G;
-    double m_softening;
-    bool m_lastUpdated = false; ///< the last addForces() updated the field (m_ax... hold it)
+    bool m_lastUpdated = false;   ///< the last addForces() updated the field (m_ax... hold it)
     // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
-    /// With m_uidOrder: the slot in those arrays of the k-th master in block then storage order.
+    /// In reproducible mode: the slot in those arrays of the k-th master in block then storage
+    /// order.
     std::vector<std::uint32_t> m_slot;
     // The field of the last update per grain lives in m_policy's records (keyed by uid): it
     // follows a grain to another block or rank.
