@@ -1,6 +1,7 @@
 # regolith_add_module(<name> SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
 # One library per module with the alias regolith::<name>; the repository root is the
-# include root, so headers are included as "core/mpi/Comm.hpp".
+# include root, so headers are included as "core/mpi/Comm.hpp". Installed (cmake/RegolithInstall.cmake)
+# as the same regolith::<name>, headers under <prefix>/include/regolith/<name>/.
 set(REGOLITH_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wshadow -Wnon-virtual-dtor
     -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wimplicit-fallthrough)
 
@@ -21,8 +22,13 @@ set(REGOLITH_WARNINGS -Wall -Wextra -Wpedantic -Werror -Wshadow -Wnon-virtual-dt
 #                   (the particles module built with AVX-512: same time).
 option(REGOLITH_NATIVE "Optimise for the building machine (-march=native)" ON)
 set(REGOLITH_CODEGEN -fno-math-errno -ffp-contract=off)
+set(REGOLITH_ABI_FLAGS "")
 if(REGOLITH_NATIVE)
-  list(APPEND REGOLITH_CODEGEN -march=native -mno-avx512f)
+  # Part of the ABI: Eigen aligns its fixed-size types (Quat, in ParticleInit and the storage
+  # records) to the widest vector the instruction set has, so a program built against the
+  # installed modules must compile with the same set (regolith_add_module exports it).
+  set(REGOLITH_ABI_FLAGS -march=native -mno-avx512f)
+  list(APPEND REGOLITH_CODEGEN ${REGOLITH_ABI_FLAGS})
 endif()
 
 # REGOLITH_LANE_CODEGEN, for the files whose loops run over structure-of-arrays lanes
@@ -58,9 +64,13 @@ function(regolith_add_module name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   add_library(regolith_${name} ${ARG_SOURCES})
   add_library(regolith::${name} ALIAS regolith_${name})
-  target_include_directories(regolith_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_include_directories(regolith_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/regolith>)
   target_link_libraries(regolith_${name} PUBLIC ${ARG_PUBLIC_LIBS} PRIVATE ${ARG_PRIVATE_LIBS})
   regolith_target_defaults(regolith_${name})
+  target_compile_options(regolith_${name} INTERFACE "$<INSTALL_INTERFACE:${REGOLITH_ABI_FLAGS}>")
+  regolith_install_module(${name})
 endfunction()
 
 # A shared module (core/module/SharedModule.hpp): library `lib<output>.so` in <build>/lib, built
@@ -76,11 +86,18 @@ function(regolith_add_shared_module target)
     LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/lib)
   add_dependencies(${ARG_LOADER} ${target})
   set_source_files_properties(${ARG_LOADER_SOURCE} TARGET_DIRECTORY ${ARG_LOADER}
-    PROPERTIES COMPILE_DEFINITIONS "REGOLITH_SHARED_MODULE_PATH=\"$<TARGET_FILE:${target}>\"")
+    PROPERTIES COMPILE_DEFINITIONS
+    "REGOLITH_SHARED_MODULE_PATH=\"$<TARGET_FILE:${target}>\";REGOLITH_INSTALLED_MODULE_DIR=\"${CMAKE_INSTALL_FULL_LIBDIR}\"")
+  install(TARGETS ${target} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime)
 endfunction()
 
 function(regolith_add_app name)
   add_executable(${name} ${ARGN})
   regolith_target_defaults(${name})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin)
+endfunction()
+
+# regolith_install_app(<name>...): the executables a user runs, into <prefix>/bin.
+function(regolith_install_app)
+  install(TARGETS ${ARGN} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 endfunction()

@@ -2,10 +2,12 @@
 
 #include "core/Error.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <dlfcn.h>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace regolith::core {
@@ -14,17 +16,19 @@ namespace {
 
 std::vector<std::string> candidates(SharedModuleSpec const& spec) {
     std::vector<std::string> out;
+    auto const add = [&](std::string path) {
+        if (!path.empty() && std::find(out.begin(), out.end(), path) == out.end())
+            out.push_back(std::move(path));
+    };
     if (char const* env = std::getenv(spec.envVariable.c_str()); env && env[0] != '\0')
-        out.emplace_back(env);
-    out.push_back(spec.buildPath);
+        add(env);
     std::error_code error;
     std::filesystem::path const exe = std::filesystem::read_symlink("/proc/self/exe", error);
-    if (!error) {
-        std::string const installed =
-            (exe.parent_path().parent_path() / "lib" / spec.file).string();
-        if (installed != out.back()) // the build tree has that layout too
-            out.push_back(installed);
-    }
+    if (!error)
+        add((exe.parent_path().parent_path() / "lib" / spec.file).lexically_normal().string());
+    if (!spec.installDir.empty())
+        add((std::filesystem::path(spec.installDir) / spec.file).string());
+    add(spec.buildPath);
     return out;
 }
 

@@ -13,14 +13,16 @@ struct SharedModuleSpec {
     std::string file;        ///< e.g. "libregolith_petsc.so"
     std::string envVariable; ///< a path that overrides the others, e.g. "REGOLITH_PETSC_MODULE"
     std::string buildPath;   ///< the build tree's copy (compiled in)
+    std::string installDir;  ///< where `cmake --install` puts it (compiled in)
     std::string entry;       ///< the exported function, e.g. "regolith_petsc_module"
     std::string neededFor;   ///< the error's subject, e.g. "grid gravity needs PETSc"
 };
 
 /// Opens the module (never closed: its libraries stay until the process ends) from
-/// $envVariable, else buildPath, else ../lib/ beside the executable (an installed layout), and
-/// returns the address of its entry function. Throws core::Error naming every path tried and
-/// the loader's message. Not collective; thread-safe as dlopen is.
+/// $envVariable, else ../lib/ beside the executable (the build tree's and an installed
+/// regolith's layout), else installDir (a program of one's own built against the installed
+/// package), else buildPath, and returns the address of its entry function. Throws core::Error
+/// naming every path tried and the loader's message. Not collective; thread-safe as dlopen is.
 [[nodiscard]] void* openSharedModule(SharedModuleSpec const& spec);
 
 /// openSharedModule, then calls the entry function `Interface* entry()`.

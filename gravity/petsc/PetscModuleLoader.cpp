@@ -8,7 +8,7 @@ Module& module() {
     // Loaded once (thread-safe); a failed load throws and is tried again on the next call.
     static Module& loaded = core::loadSharedModule<Module>(
         {"libregolith_petsc.so", "REGOLITH_PETSC_MODULE", REGOLITH_SHARED_MODULE_PATH,
-         "regolith_petsc_module", "grid gravity needs PETSc"});
+         REGOLITH_INSTALLED_MODULE_DIR, "regolith_petsc_module", "grid gravity needs PETSc"});
     return loaded;
 }
 

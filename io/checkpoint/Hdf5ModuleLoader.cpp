@@ -8,7 +8,7 @@ Hdf5Module& hdf5() {
     // Loaded once (thread-safe); a failed load throws and is tried again on the next call.
     static Hdf5Module& loaded = core::loadSharedModule<Hdf5Module>(
         {"libregolith_hdf5.so", "REGOLITH_HDF5_MODULE", REGOLITH_SHARED_MODULE_PATH,
-         "regolith_hdf5_module", "checkpoints need HDF5"});
+         REGOLITH_INSTALLED_MODULE_DIR, "regolith_hdf5_module", "checkpoints need HDF5"});
     return loaded;
 }
 

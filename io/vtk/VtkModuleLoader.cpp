@@ -8,7 +8,7 @@ Module& module() {
     // Loaded once (thread-safe); a failed load throws and is tried again on the next call.
     static Module& loaded = core::loadSharedModule<Module>(
         {"libregolith_vtk.so", "REGOLITH_VTK_MODULE", REGOLITH_SHARED_MODULE_PATH,
-         "regolith_vtk_module", "VTK output needs VTK"});
+         REGOLITH_INSTALLED_MODULE_DIR, "regolith_vtk_module", "VTK output needs VTK"});
     return loaded;
 }
 

@@ -20,8 +20,8 @@ using regolith::core::openSharedModule;
 using regolith::core::SharedModuleSpec;
 
 SharedModuleSpec missing() {
-    return {"libregolith_nothing.so", "REGOLITH_NOTHING_MODULE", "/nonexistent/build/lib.so",
-            "regolith_nothing_module", "this test needs nothing"};
+    return {"libregolith_nothing.so",   "REGOLITH_NOTHING_MODULE", "/nonexistent/build/lib.so",
+            "/nonexistent/install/lib", "regolith_nothing_module", "this test needs nothing"};
 }
 
 /// The file of the C maths library this process uses (whatever the platform calls it).
@@ -50,11 +50,17 @@ TEST(SharedModule, AMissingModuleNamesEveryPathTriedAndTheVariable) {
               std::string::npos)
         << what;
     auto const env = what.find("/nonexistent/from/env.so: no such file");
+    auto const besideExe = what.find("/lib/libregolith_nothing.so: no such file");
+    auto const installed =
+        what.find("/nonexistent/install/lib/libregolith_nothing.so: no such file");
     auto const build = what.find("/nonexistent/build/lib.so: no such file");
     EXPECT_NE(env, std::string::npos) << what;
+    EXPECT_NE(besideExe, std::string::npos) << what;
+    EXPECT_NE(installed, std::string::npos) << what;
     EXPECT_NE(build, std::string::npos) << what;
-    EXPECT_LT(env, build) << "the variable's path is tried first";
-    EXPECT_NE(what.find("lib/libregolith_nothing.so: no such file"), std::string::npos) << what;
+    EXPECT_LT(env, besideExe) << "the variable's path is tried first";
+    EXPECT_LT(besideExe, installed) << "then ../lib beside the executable";
+    EXPECT_LT(installed, build) << "then the install prefix, the build tree last";
     EXPECT_NE(what.find("set REGOLITH_NOTHING_MODULE"), std::string::npos) << what;
 }
 
