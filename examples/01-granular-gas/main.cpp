@@ -1,16 +1,14 @@
 // Tutorial 01: a granular gas set up in C++, without a scene file.
 //
 // 4,096 grains on a cubic lattice in a periodic box cut into 4 x 4 x 4 blocks, given random
-// velocities, collide inelastically: the kinetic energy decays (Haff's law). The program builds
-// what the `regolith` driver builds from a scene (forest, particles, synchronisation, DEM step)
-// and prints the energy every 100 steps. Run: mpiexec -n 2 ./01-granular-gas [steps].
+// velocities, collide inelastically: the kinetic energy decays (Haff's law). The program sets up
+// in code what a scene file says to the `regolith` driver (coupling::Simulation: the forest, the
+// grains, the contact law, the step) and prints the energy every 100 steps with an observer of
+// its own. Run: mpiexec -n 2 ./01-granular-gas [steps].
 #include "core/math/Vec3.hpp"
 #include "core/mpi/Comm.hpp"
 #include "core/random/CounterRng.hpp"
-#include "core/timing/TimerTree.hpp"
-#include "domain/BlockForest.hpp"
-#include "domain/ForestSpec.hpp"
-#include "particles/simulation/DemStep.hpp"
+#include "coupling/simulation/Simulation.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -27,13 +25,12 @@ constexpr double kDensity = 1.0;    // [mass/length^3]
 constexpr std::uint64_t kSeed = 42; // velocities depend on (seed, uid) only, not on ranks
 
 /// The translational kinetic energy of all grains on all ranks. COLLECTIVE.
-double kineticEnergy(core::Comm const& comm, particles::LocalParticles const& local) {
+double kineticEnergy(coupling::Simulation& sim) {
     double e = 0.0;
-    for (particles::BlockParticles const& block : local.blocks())
-        block.particles.forEachMaster([&](std::size_t i) {
-            e += 0.5 * block.particles.mass(i) * block.particles.velocity(i).squaredNorm();
-        });
-    return comm.allReduce(e, core::ReduceOp::Sum);
+    sim.forEachGrain([&](particles::ParticleStorage const& grains, std::size_t i) {
+        e += 0.5 * grains.mass(i) * grains.velocity(i).squaredNorm();
+    });
+    return sim.comm().allReduce(e, core::ReduceOp::Sum);
 }
 
 } // namespace
@@ -43,15 +40,27 @@ int main(int argc, char** argv) {
     core::Comm const world;
     int const steps = argc > 1 ? std::atoi(argv[1]) : 1000;
 
-    // The domain and its blocks: each rank gets a share of the 64 blocks (a Hilbert-curve cut).
-    domain::ForestSpec spec;
-    spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(kGrainsPerAxis)};
-    spec.rootBlocks = {4, 4, 4};
-    spec.periodic = {true, true, true};
-    domain::BlockForest const forest(world, spec);
+    coupling::SimulationSetup setup;
+    // The domain: a periodic box cut into 4 x 4 x 4 blocks. Each rank gets a stretch of them
+    // along a Hilbert curve, by the load of the grains in them.
+    setup.domain.domain = core::AABB{Vec3::Zero(), Vec3::Constant(kGrainsPerAxis)};
+    setup.domain.rootBlocks = {4, 4, 4};
+    setup.domain.periodic = {true, true, true};
+    // The contact law: a linear spring-dashpot with Coulomb friction (Cundall & Strack 1979),
+    // one row of material parameters (grain type 0).
+    particles::LinearContactParams contact;
+    contact.stiffness = 1000.0;
+    contact.tangentialStiffness = 2.0 / 7.0 * contact.stiffness;
+    contact.restitution = 0.8;
+    contact.friction = 0.3;
+    setup.contact = particles::SpringDashpot(
+        particles::MaterialTable<particles::LinearContactParams>(1, contact));
+    setup.dem.dt = 0.002; // a twentieth of the contact time pi sqrt(m / 2k)
+    coupling::Simulation sim(world, setup);
 
-    // The grains: every rank offers every grain; addMaster keeps those in its own blocks.
-    particles::LocalParticles local(forest);
+    // The grains, given alike on every rank (each keeps those in its blocks). A grain's
+    // velocity comes from a random stream keyed by its uid, so the gas is the same on any
+    // number of ranks.
     double const mass = 4.0 / 3.0 * std::numbers::pi * kRadius * kRadius * kRadius * kDensity;
     particles::Uid uid = 0;
     for (int i = 0; i < kGrainsPerAxis; ++i)
@@ -64,42 +73,24 @@ int main(int argc, char** argv) {
                 p.velocity = Vec3(rng.normal(), rng.normal(), rng.normal());
                 p.radius = kRadius;
                 p.mass = mass;
-                (void)local.addMaster(p);
+                sim.addGrain(p);
             }
 
-    // The contact law: a linear spring-dashpot with Coulomb friction (Cundall & Strack 1979),
-    // stiff enough that grains at speed 3 overlap by ~2 % of their radius.
-    particles::LinearContactParams contact;
-    contact.stiffness = 1000.0;
-    contact.tangentialStiffness = 2.0 / 7.0 * contact.stiffness;
-    contact.restitution = 0.8;
-    contact.friction = 0.3;
-    particles::SpringDashpot model(
-        particles::MaterialTable<particles::LinearContactParams>(1, contact));
+    // Our own output: the kinetic energy every 100 steps.
+    double e0 = 0.0;
+    sim.addObserver(100, [&](coupling::Simulation& s) {
+        double const e = kineticEnergy(s);
+        if (world.rank() == 0)
+            std::printf("step %5lld  t %6.3f  E_kin / E_kin(0) %.4f\n",
+                        static_cast<long long>(s.stepsDone()), s.time(), e / e0);
+    });
+    sim.start(); // shadows and the initial forces
+    e0 = kineticEnergy(sim);
+    sim.run(steps);
 
-    // The step: NNS/SOS synchronisation (hybrid), velocity Verlet, no walls, no gravity.
-    particles::ParticleSync sync(world, forest, particles::SyncConfig{});
-    core::TimerTree timers;
-    particles::DemStepConfig config;
-    config.dt = 0.002; // a twentieth of the contact time pi sqrt(m / 2k)
-    config.keepContacts = false;
-    particles::DemStep dem(world, sync, local, model, particles::VelocityVerlet{},
-                           particles::WallList{}, config, timers);
-    dem.setUp();
-
-    double const e0 = kineticEnergy(world, local);
-    for (int n = 1; n <= steps; ++n) {
-        dem.step();
-        if (n % 100 == 0 || n == steps) {
-            double const e = kineticEnergy(world, local);
-            if (world.rank() == 0)
-                std::printf("step %5d  t %6.3f  E_kin / E_kin(0) %.4f\n", n, n * config.dt, e / e0);
-        }
-    }
-    dem.completeStep();
     // Every grain is still there, and the gas cooled: inelastic collisions took energy.
-    double const e = kineticEnergy(world, local);
-    auto const grains = world.allReduce(local.countMasters(), core::ReduceOp::Sum);
+    double const e = kineticEnergy(sim);
+    auto const grains = world.allReduce(sim.grains().countMasters(), core::ReduceOp::Sum);
     if (world.rank() == 0)
         std::printf("grains %zu, energy left %.4f\n", grains, e / e0);
     return grains == kGrainsPerAxis * kGrainsPerAxis * kGrainsPerAxis && e < e0 ? 0 : 1;
