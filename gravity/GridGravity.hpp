@@ -65,10 +65,14 @@ public:
     [[nodiscard]] double G() const { return m_options.poisson.G; }
     [[nodiscard]] Assignment assignment() const { return m_options.assignment; }
     [[nodiscard]] bool periodic() const { return m_periodic; }
-    /// The fields of the last update (density, potential, acceleration), read-only; valid
+    /// The fields of the last update ("density" [mass / length^3], "potential" [length^2 /
+    /// time^2], "acceleration" g = -∇φ [length / time^2]), read-only; valid
     /// while this object lives. Not collective.
     [[nodiscard]] GridFieldsView fields() const {
-        return {&m_layout, &m_density, &m_potential, &m_acceleration};
+        return {&m_layout,
+                {{"density", &m_density},
+                 {"potential", &m_potential},
+                 {"acceleration", &m_acceleration}}};
     }
 
 private:

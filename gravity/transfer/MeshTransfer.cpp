@@ -112,9 +112,9 @@ std::string checkGrain(Grains const& g, std::size_t i, domain::BlockForest const
     core::Vec3 const& p = g.position[i];
     double const r = g.radius.empty() ? 0.0 : g.radius[i];
     double const m = g.mass.empty() ? 0.0 : g.mass[i];
-    if (!p.allFinite() || !std::isfinite(r) || r < 0.0 || !std::isfinite(m) || m < 0.0)
+    if (!p.allFinite() || !std::isfinite(r) || r < 0.0 || !std::isfinite(m))
         return fmt::format("grid gravity: a grain has position {}, radius {}, mass {}: expected "
-                           "finite values, radius and mass >= 0",
+                           "finite values and radius >= 0",
                            str(p), r, m);
     if (!forest.insideDomain(p))
         return fmt::format("grid gravity: a grain at {} lies outside the domain {} - {}, which "

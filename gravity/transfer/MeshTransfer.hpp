@@ -21,7 +21,9 @@
 namespace regolith::gravity {
 
 /// The grains this rank contributes (each grain on exactly one rank). Units: position and
-/// radius [length], mass [mass]. radius and mass may be empty where not needed.
+/// radius [length], mass [mass]. radius and mass may be empty where not needed. `mass` is the
+/// weight deposited: a grain's mass for gravity, or any quantity per grain (1 for a number
+/// density, a momentum component, a charge), of either sign.
 struct Grains {
     std::span<core::Vec3 const> position;
     std::span<double const> radius;
@@ -41,7 +43,7 @@ public:
     /// Adds the mass density [mass / length^3] of `grains` to the interior cells of component
     /// 0 of `density` (call density.fill(0) first for a fresh deposit). Mass is conserved to
     /// round-off. Throws core::InputError on every rank if any rank's grain is not finite, has
-    /// a negative radius or mass, or puts mass outside the domain on a non-periodic axis (the
+    /// a negative radius, or puts mass outside the domain on a non-periodic axis (the
     /// message of the rank that found it names position, radius and domain; the field is
     /// then partly updated). COLLECTIVE over the communicator.
     void deposit(Grains const& grains, CellField& density);

@@ -6,8 +6,11 @@
 
 namespace regolith::io::detail {
 
-std::vector<ArraySpec> gridArrays() {
-    return {{"density", "Float64", 1}, {"potential", "Float64", 1}, {"acceleration", "Float64", 3}};
+std::vector<ArraySpec> gridArrays(gravity::GridFieldsView const& fields) {
+    std::vector<ArraySpec> specs;
+    for (gravity::NamedCellField const& f : fields.fields)
+        specs.push_back({f.name, "Float64", f.field != nullptr ? f.field->components() : 1});
+    return specs;
 }
 
 namespace {
@@ -34,12 +37,17 @@ void writeGridPiece(std::string const& path, gravity::GridFieldsView const& fiel
     gravity::CellLayout const& layout = *fields.layout;
     core::Vec3 const& corner = layout.forest().blocks()[b].aabb.min;
     core::Vec3 const& h = layout.spacing();
-    std::vector<double> const density = interiorCells(*fields.density, b);
-    std::vector<double> const potential = interiorCells(*fields.potential, b);
-    std::vector<double> const acceleration = interiorCells(*fields.acceleration, b);
-    std::vector<ArraySpec> const specs = gridArrays();
-    std::vector<vtkxml::Column> const columns{
-        {specs[0], density.data()}, {specs[1], potential.data()}, {specs[2], acceleration.data()}};
+    std::vector<ArraySpec> const specs = gridArrays(fields);
+    std::vector<std::vector<double>> cells;
+    std::vector<vtkxml::Column> columns;
+    cells.reserve(specs.size());
+    for (std::size_t f = 0; f < specs.size(); ++f) {
+        gravity::CellField const* field = fields.fields[f].field;
+        if (field == nullptr)
+            throw core::Error(fmt::format("grid field '{}' has no cells", specs[f].name));
+        cells.push_back(interiorCells(*field, b));
+        columns.push_back({specs[f], cells.back().data()});
+    }
     if (!vtkxml::module().writeImage(path, layout.cellsPerBlock(),
                                      {corner.x(), corner.y(), corner.z()}, {h.x(), h.y(), h.z()},
                                      columns))

@@ -1,6 +1,6 @@
 #pragma once
-/// Internal to io/: the grid fields of grid gravity as VTK image data, one .vti file per
-/// block (interior cells only, ghost layers excluded), and the .vtm multi-block index that
+/// Internal to io/: cell fields (grid gravity's, a program's own) as VTK image data, one .vti file
+/// per block (interior cells only, ghost layers excluded), and the .vtm multi-block index that
 /// gathers every block of an output step so that ParaView shows them together.
 #include "gravity/field/GridFieldsView.hpp"
 #include "io/vtk/VtkPieces.hpp"
@@ -11,8 +11,8 @@
 
 namespace regolith::io::detail {
 
-/// Cell data of a grid piece: density (mass / volume), potential, acceleration (3).
-[[nodiscard]] std::vector<ArraySpec> gridArrays();
+/// Cell data of a grid piece: one Float64 array per field of `fields`, named and sized as it.
+[[nodiscard]] std::vector<ArraySpec> gridArrays(gravity::GridFieldsView const& fields);
 
 /// Writes local block b of `fields` as image data: origin at the block's lower corner,
 /// spacing the cell size, one VTK cell per grid cell (x fastest) with gridArrays() as cell

@@ -6,15 +6,16 @@
 ///     <dir>/particles.pvd, <dir>/blocks.pvd           open these in ParaView
 ///     <dir>/vtk/particles_<step>.pvtu, <dir>/vtk/particles_<step>_r<rank>.vtu
 ///     <dir>/vtk/blocks_<step>.pvtu,    <dir>/vtk/blocks_<step>_r<rank>.vtu
-///     <dir>/grid.pvd                   with grid gravity (write() given its fields)
+///     <dir>/grid.pvd                   with cell fields (write() given grid gravity's or others)
 ///     <dir>/vtk/grid_<step>.vtm,       <dir>/vtk/grid_<step>_b<curve index>.vti
 ///
 /// Particles are points (one vertex cell each) with point data uid, radius, mass, velocity,
 /// angular_velocity, force, owner_rank, and with shadows on also `shadow` (1 for a shadow
 /// copy). Blocks are hexahedra with cell data block_id, owner_rank, level, grains (masters).
 /// Grid fields are one image data piece per block (interior cells, origin at the block's
-/// lower corner, spacing the cell size) with cell data density, potential and acceleration,
-/// and a multi-block .vtm per step naming every block's piece in curve order.
+/// lower corner, spacing the cell size) with the fields as cell data (grid gravity's: density,
+/// potential and acceleration), and a multi-block .vtm per step naming every block's piece in
+/// curve order.
 /// No VTK header is visible here: VTK is linked PRIVATE to regolith::io.
 #include "core/mpi/Comm.hpp"
 #include "gravity/field/GridFieldsView.hpp"

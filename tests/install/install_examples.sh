@@ -20,6 +20,9 @@ cd "$work"
 mpiexec -n 2 "$work/examples/01-granular-gas" 200
 mpiexec -n 2 "$work/examples/03-spin-up" 8 6000
 [[ -s "$work/spin_up.csv" ]] || { echo "03-spin-up wrote no spin_up.csv" >&2; exit 1; }
+mpiexec -n 2 "$work/examples/04-grid-field" 400
+grep -q 'grid_00000400.vtm' "$work/tutorial04/grid.pvd" ||
+    { echo "04-grid-field wrote no grid at step 400" >&2; exit 1; }
 mpiexec -n 2 "$work/prefix/bin/regolith" --steps 20 --output "$work/run" --quiet \
     --set output.vtk_every=10
 [[ -s "$work/run/particles.pvd" ]] || { echo "the installed regolith wrote no particles.pvd" >&2; exit 1; }

@@ -136,6 +136,9 @@ TEST(VtkGridOutput, BlocksFieldsAndSeriesReadBack) {
 
     // Every local block's piece, read alone, holds exactly the field's interior cells.
     gravity::GridFieldsView const fields = grid.fields();
+    gravity::CellField const* const densityField = fields.find("density");
+    gravity::CellField const* const accelerationField = fields.find("acceleration");
+    ASSERT_TRUE(densityField != nullptr && accelerationField != nullptr);
     for (std::size_t b = 0; b < forest.blocks().size(); ++b) {
         std::string const piece =
             fmt::format("{}/vtk/grid_00000005_b{:06d}.vti", dir, forest.blocks()[b].curveIndex);
@@ -154,10 +157,9 @@ TEST(VtkGridOutput, BlocksFieldsAndSeriesReadBack) {
         for (int k = 0; k < kCells; ++k)
             for (int j = 0; j < kCells; ++j)
                 for (int i = 0; i < kCells; ++i, ++c) {
-                    mismatches += density->GetTuple1(c) != fields.density->at(b, i, j, k);
+                    mismatches += density->GetTuple1(c) != densityField->at(b, i, j, k);
                     for (int a = 0; a < 3; ++a)
-                        mismatches +=
-                            g->GetComponent(c, a) != fields.acceleration->at(b, i, j, k, a);
+                        mismatches += g->GetComponent(c, a) != accelerationField->at(b, i, j, k, a);
                 }
         EXPECT_EQ(mismatches, 0) << piece;
     }
