@@ -2,12 +2,15 @@
 
 #include "core/Error.hpp"
 #include "coupling/balance/BlockWeights.hpp"
+#include "particles/integration/TimeStepGuard.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
 
 #include <algorithm>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 namespace regolith::coupling {
 
@@ -62,6 +65,27 @@ void Simulation::place(domain::BlockWeight const& weight) {
         (void)m_local->addMaster(p); // false: another rank's
 }
 
+void Simulation::checkTimeStep() const {
+    particles::ContactTimeEstimate shortest;
+    for (particles::BlockParticles const& block : m_local->blocks()) {
+        particles::ContactTimeEstimate const e = std::visit(
+            [&](auto const& model) -> particles::ContactTimeEstimate {
+                using Model = std::decay_t<decltype(model)>;
+                if constexpr (std::is_same_v<Model, particles::CustomContact>)
+                    return particles::estimateContactTime(block.particles, model.law());
+                else if constexpr (std::is_same_v<Model, particles::SpringDashpot>)
+                    return particles::estimateContactTime(block.particles, model);
+                else
+                    return {}; // Hertz: t_c depends on the impact speed
+            },
+            *m_setup.contact);
+        if (e.contactTime < shortest.contactTime)
+            shortest = e;
+    }
+    shortest = particles::shortestContactTime(*m_comm, shortest);
+    particles::checkTimeStep(m_setup.dem.dt, shortest, m_setup.allowUnstable);
+}
+
 void Simulation::start() {
     if (m_dem)
         throw core::Error("Simulation::start called twice");
@@ -84,6 +108,8 @@ void Simulation::start() {
         throw core::InputError(fmt::format("Simulation::start: {} of {} grains lie outside the "
                                            "domain or were given twice",
                                            given - kept, given));
+
+    checkTimeStep();
 
     m_sync = std::make_unique<particles::ParticleSync>(*m_comm, *m_particleForest, m_setup.sync);
     if (m_setup.selfGravity)

@@ -40,6 +40,10 @@ struct SimulationSetup {
     particles::SyncConfig sync;   ///< NNS / SOS / hybrid, reproducible mode, shadow skin
     particles::DemStepConfig dem; ///< dt (required), uniform external gravity, list skin
     std::optional<particles::AnyContactModel> contact; ///< required: the contact law
+    /// Run even with dem.dt above a tenth of the shortest contact time (TimeStepGuard; the
+    /// guard covers the spring-dashpot and laws of one's own, not Hertz-Mindlin, whose contact
+    /// time depends on the impact speed).
+    bool allowUnstable = false;
     particles::AnyIntegrator integrator = particles::VelocityVerlet{};
     particles::WallList walls;
     std::optional<SelfGravityConfig> selfGravity; ///< none: no self-gravity
@@ -71,7 +75,8 @@ public:
 
     /// Places the grains on the ranks by their load, creates the shadows and computes the
     /// initial forces. Throws core::InputError on every rank if the ranks were given different
-    /// grains or a grain lies outside the domain. COLLECTIVE.
+    /// grains, a grain lies outside the domain, or dt exceeds a tenth of the shortest contact
+    /// time (unless allowUnstable). COLLECTIVE.
     void start();
     /// `steps` time steps (start() first); the grains are complete on return. COLLECTIVE.
     void run(std::int64_t steps);
@@ -100,6 +105,7 @@ private:
         Observer observer;
     };
     void place(domain::BlockWeight const& weight);
+    void checkTimeStep() const;
     [[nodiscard]] bool observed(std::int64_t step) const;
 
     core::Comm const* m_comm;

@@ -145,9 +145,11 @@ int main(int argc, char** argv) {
             std::max(0.0, 1.0 - (p.mass - p.shedMass) / pileMass); // left the box: shed too
         if (liftOff == 0.0 && p.equatorRadius > a) // a grain centre where the edge was
             liftOff = p.spin / omegaC;
-        if (csv)
+        if (csv) {
             std::fprintf(csv, "%.6g,%.6g,%.6g,%.6g,%.6g\n", s.time(), p.spin, p.spin / omegaC, shed,
                          p.equatorRadius + kRadius);
+            std::fflush(csv); // a long run can be watched
+        }
     });
     if (world.rank() == 0)
         std::printf("%lld grains, equatorial radius %.2f, omega_c %.4f; spinning up to 1.3 "

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -92,6 +93,20 @@ ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, HertzMindlin 
     });
     e.parameter =
         fmt::format("the effective Young's modulus (impact velocity {:.6g}) E*", impactVelocity);
+    return e;
+}
+
+ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, ContactLaw const& law) {
+    std::size_t types = 0;
+    for (std::size_t i = 0, n = ps.size(); i < n; ++i)
+        types = std::max<std::size_t>(types, ps.type(i) + std::size_t{1});
+    auto const l = lightestPerType(ps, types);
+    auto e = shortestOverTypePairs(l, [&](std::size_t a, std::size_t b) {
+        double const t = law.contactTime(static_cast<std::uint32_t>(a),
+                                         static_cast<std::uint32_t>(b), pairMass(l[a], l[b]));
+        return std::pair(t, t);
+    });
+    e.parameter = "the contact law's contactTime";
     return e;
 }
 

@@ -3,6 +3,7 @@
 /// usual stability and accuracy bound for explicit DEM (Cundall & Strack 1979; O'Sullivan &
 /// Bray, Eng. Comput. 21 (2004) 278).
 #include "core/mpi/Comm.hpp"
+#include "particles/kernels/ContactLaw.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
 #include "particles/storage/ParticleStorage.hpp"
@@ -38,6 +39,10 @@ ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, SpringDashpot
 /// v^(-1/5). Not collective.
 ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, HertzMindlin const& model,
                                         double impactVelocity);
+
+/// A contact law of one's own: as above with ContactLaw::contactTime for every pair of the
+/// types present. Not collective.
+ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, ContactLaw const& law);
 
 /// The shortest of every rank's `local` estimate (ties: smaller uid), identical on every
 /// rank. COLLECTIVE over `comm`.

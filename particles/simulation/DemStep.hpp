@@ -11,6 +11,7 @@
 #include "particles/detection/PeriodicFrame.hpp"
 #include "particles/integration/SemiImplicitEuler.hpp"
 #include "particles/integration/VelocityVerlet.hpp"
+#include "particles/kernels/ContactLaw.hpp"
 #include "particles/kernels/ForceRecord.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
@@ -32,8 +33,9 @@
 
 namespace regolith::particles {
 
-/// The contact models a run may choose (scene key contact.model).
-using AnyContactModel = std::variant<SpringDashpot, HertzMindlin>;
+/// The contact models a run may choose: the built-in ones (scene key contact.model) and a
+/// law of one's own (CustomContact, from code).
+using AnyContactModel = std::variant<SpringDashpot, HertzMindlin, CustomContact>;
 /// The integrators a run may choose (scene key time.integrator).
 using AnyIntegrator = std::variant<VelocityVerlet, SemiImplicitEuler>;
 

@@ -12,8 +12,11 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <memory>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 using namespace regolith;
@@ -63,6 +66,24 @@ void addGrains(coupling::Simulation& sim) {
             }
 }
 
+/// A law of one's own that is the spring-dashpot: what the built-in model computes in batches,
+/// through one virtual call per contact.
+class ForwardedSpringDashpot final : public particles::ContactLaw {
+public:
+    explicit ForwardedSpringDashpot(particles::SpringDashpot model)
+        : m_model(std::move(model)) {}
+    particles::ContactResponse operator()(particles::ContactState const& s, Vec3& spring,
+                                          Vec3& rolling, double dt) const override {
+        return m_model(s, spring, rolling, dt);
+    }
+    double contactTime(std::uint32_t a, std::uint32_t b, double mass) const override {
+        return particles::SpringDashpot::undampedContactTime(m_model.materials()(a, b), mass);
+    }
+
+private:
+    particles::SpringDashpot m_model;
+};
+
 struct Final {
     particles::Uid uid;
     std::uint64_t x, v;
@@ -83,8 +104,13 @@ std::vector<Final> finalState(coupling::Simulation& sim) {
     return out;
 }
 
-std::vector<Final> runOn(core::Comm const& comm, std::array<int, 3> blocks, bool selfGravity) {
-    coupling::Simulation sim(comm, boxSetup(blocks, selfGravity));
+std::vector<Final> runOn(core::Comm const& comm, std::array<int, 3> blocks, bool selfGravity,
+                         bool ownLaw = false) {
+    coupling::SimulationSetup setup = boxSetup(blocks, selfGravity);
+    if (ownLaw)
+        setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
+            std::get<particles::SpringDashpot>(*setup.contact)));
+    coupling::Simulation sim(comm, setup);
     addGrains(sim);
     sim.start();
     sim.run(400);
@@ -120,6 +146,16 @@ TEST(Simulation, SameBitsOnAnyRanksAndBlocksAsOneBlockOnOneRank) {
                 EXPECT_EQ(run[k].v, reference[k].v) << "uid " << k;
             }
         }
+    }
+}
+
+TEST(Simulation, ALawOfOnesOwnGivesTheBitsOfTheBuiltInModelItForwardsTo) {
+    core::Comm const world;
+    std::vector<Final> const builtIn = runOn(world, {3, 3, 2}, false);
+    std::vector<Final> const own = runOn(world, {3, 3, 2}, false, true);
+    for (std::size_t k = 0; k < builtIn.size(); ++k) {
+        EXPECT_EQ(own[k].x, builtIn[k].x) << "uid " << k;
+        EXPECT_EQ(own[k].v, builtIn[k].v) << "uid " << k;
     }
 }
 
@@ -185,6 +221,19 @@ TEST(Simulation, RefusesWhatCannotRun) {
         sim.start();
     });
     EXPECT_NE(outside.find("1 of 1 grains lie outside the domain"), std::string::npos) << outside;
+
+    // The time-step guard asks a law of one's own for its contact time.
+    std::string const tooLong = errorOf([&] {
+        coupling::SimulationSetup setup = boxSetup({2, 2, 2}, false);
+        setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
+            std::get<particles::SpringDashpot>(*setup.contact)));
+        setup.dem.dt = 0.01; // t_c = pi sqrt(m / 2k) = 0.036
+        coupling::Simulation sim(world, setup);
+        addGrains(sim);
+        sim.start();
+    });
+    EXPECT_NE(tooLong.find("exceeds t_c/10"), std::string::npos) << tooLong;
+    EXPECT_NE(tooLong.find("the contact law's contactTime"), std::string::npos) << tooLong;
 
     if (world.size() > 1) {
         std::string const different = errorOf([&] {

@@ -18,6 +18,7 @@ cmake -S "$source/examples" -B "$work/examples" -DCMAKE_PREFIX_PATH="$work/prefi
 cmake --build "$work/examples" -j2 >"$work/build.log"
 cd "$work"
 mpiexec -n 2 "$work/examples/01-granular-gas" 200
+mpiexec -n 2 "$work/examples/02-contact-law" 20000
 mpiexec -n 2 "$work/examples/03-spin-up" 8 6000
 [[ -s "$work/spin_up.csv" ]] || { echo "03-spin-up wrote no spin_up.csv" >&2; exit 1; }
 mpiexec -n 2 "$work/examples/04-grid-field" 400
