@@ -80,6 +80,8 @@ SMALL = {
     "load_balance.py": ["--ranks", "2", "--steps", "5", "--repeats", "1",
                         "--out", "{tmp}/bench/out"],
     "regolith": ["--output", "{tmp}/out"],
+    "tutorial_figures.py": ["--pull-steps", "2000", "--spin-sites", "6", "--spin-steps", "600",
+                            "--out", "{tmp}/bench/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
 }
 # Options a program refuses to see twice (CLI11): small mode replaces their value in place.
