@@ -26,7 +26,7 @@ set(REGOLITH_ABI_FLAGS "")
 if(REGOLITH_NATIVE)
   # Part of the ABI: Eigen aligns its fixed-size types (Quat, in ParticleInit and the storage
   # records) to the widest vector the instruction set has, so a program built against the
-  # installed modules must compile with the same set (regolith_add_module exports it).
+  # modules must compile with the same set (regolith_add_module makes it a usage requirement).
   set(REGOLITH_ABI_FLAGS -march=native -mno-avx512f)
   list(APPEND REGOLITH_CODEGEN ${REGOLITH_ABI_FLAGS})
 endif()
@@ -69,7 +69,7 @@ function(regolith_add_module name)
     $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/regolith>)
   target_link_libraries(regolith_${name} PUBLIC ${ARG_PUBLIC_LIBS} PRIVATE ${ARG_PRIVATE_LIBS})
   regolith_target_defaults(regolith_${name})
-  target_compile_options(regolith_${name} INTERFACE "$<INSTALL_INTERFACE:${REGOLITH_ABI_FLAGS}>")
+  target_compile_options(regolith_${name} INTERFACE ${REGOLITH_ABI_FLAGS})
   regolith_install_module(${name})
 endfunction()
 
