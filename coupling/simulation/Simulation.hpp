@@ -36,9 +36,16 @@ namespace regolith::coupling {
 
 /// What a run is made of. The defaults are the scene file's.
 struct SimulationSetup {
-    domain::ForestSpec domain;    ///< box, periodic axes, root blocks (several per rank is fine)
-    particles::SyncConfig sync;   ///< NNS / SOS / hybrid, reproducible mode, shadow skin
-    particles::DemStepConfig dem; ///< dt (required), uniform external gravity, list skin
+    domain::ForestSpec domain;  ///< box, periodic axes, root blocks (several per rank is fine)
+    particles::SyncConfig sync; ///< NNS / SOS / hybrid, reproducible mode, shadow skin
+    /// dt (required), uniform external gravity, list skin; the pair contacts are not kept
+    /// for dem().contacts() after each step unless keepContacts is set (as in the driver: it
+    /// costs a copy of every contact every step).
+    particles::DemStepConfig dem = [] {
+        particles::DemStepConfig c;
+        c.keepContacts = false;
+        return c;
+    }();
     std::optional<particles::AnyContactModel> contact; ///< required: the contact law
     /// Run even with dem.dt above a tenth of the shortest contact time (TimeStepGuard; the
     /// guard covers the spring-dashpot and laws of one's own, not Hertz-Mindlin, whose contact
