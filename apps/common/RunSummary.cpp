@@ -41,7 +41,15 @@ std::string toJson(RunSummary const& s) {
     w.key("gravity")
         .beginObject()
         .member("method", s.gravity.method)
-        .member("updates", s.gravity.updates)
+        .member("updates", s.gravity.updates);
+    w.key("error")
+        .beginObject()
+        .member("checks", s.gravity.checks)
+        .member("samples", s.gravity.samples)
+        .member("median", s.gravity.medianError)
+        .member("p99", s.gravity.p99Error)
+        .member("max", s.gravity.maxError)
+        .endObject()
         .endObject();
     w.key("balance")
         .beginObject()

@@ -38,11 +38,18 @@ struct RunSummary {
         double integrate = 0.0;
     } timing;
 
-    /// Self-gravity (JSON key "gravity", beyond the contract's keys): the method and how
-    /// often the field was computed (update policy, gravity.update_threshold).
+    /// Self-gravity (JSON key "gravity", beyond the contract's keys): the method, how often
+    /// the field was computed (update policy, gravity.update_threshold) and the force error
+    /// measured during the run (gravity.check_every; JSON "error": checks, samples, median,
+    /// p99, max; all 0 without checks).
     struct Gravity {
         std::string method = "none";
         long long updates = 0;
+        long long checks = 0;
+        long long samples = 0;
+        double medianError = 0.0;
+        double p99Error = 0.0;
+        double maxError = 0.0;
     } gravity;
 
     /// The ranks' load balance (JSON key "balance", beyond the contract's keys): the

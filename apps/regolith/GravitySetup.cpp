@@ -15,6 +15,26 @@
 
 namespace regolith::apps {
 
+coupling::ForceCheckSchedule forceCheckSchedule(SceneDescription const& scene) {
+    GravitySection const& g = scene.gravity;
+    auto const& periodic = scene.forest.periodic;
+    coupling::ForceCheckSchedule s;
+    if (periodic[0] || periodic[1] || periodic[2]) {
+        // The check's reference is the free-space direct sum, without periodic images.
+        if (!g.checkEveryAuto && g.checkEvery > 0)
+            throw core::InputError(fmt::format(
+                "gravity.check_every = {}: the check compares with the free-space direct sum, "
+                "which has no periodic images, but the domain is periodic; use 0 or \"auto\"",
+                g.checkEvery));
+        return s;
+    }
+    if (g.checkEveryAuto)
+        s.spacingSteps = std::max<std::int64_t>(1, scene.time.steps / kAutoChecksPerRun);
+    else
+        s.everyUpdates = g.checkEvery;
+    return s;
+}
+
 std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& comm,
                                                              domain::BlockForest const& forest,
                                                              SceneDescription const& scene) {
@@ -66,7 +86,34 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     c.allowLargeTheta = g.allowLargeTheta;
     c.updateThreshold = g.updateThreshold;
     c.reproducible = scene.sync.reproducible;
+    c.check = forceCheckSchedule(scene);
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
+}
+
+std::string measuredErrorWarning(coupling::ForceErrorMonitor const& measured,
+                                 SceneDescription const& scene, long long updates,
+                                 long long steps) {
+    GravitySection const& g = scene.gravity;
+    gravity::ErrorStats const& e = measured.stats();
+    if (measured.checks() == 0 || !(e.median > kMeasuredErrorTolerance * g.accuracy))
+        return {};
+    std::string const change =
+        updates < steps
+            ? fmt::format("the field was reused between updates ({} updates in {} steps): lower "
+                          "gravity.update_threshold (now {:g}) or set it to \"auto\"",
+                          updates, steps, g.updateThreshold)
+        : g.self == SelfGravity::Tree || g.self == SelfGravity::MutualTree ||
+                g.self == SelfGravity::TreeNodes
+            ? fmt::format("the field was new every step: lower gravity.theta (now {:g})", g.theta)
+            : fmt::format("the field was new every step: choose a more accurate gravity.self than "
+                          "\"{}\" (or refine its grid)",
+                          toString(g.self));
+    return fmt::format(
+        "gravity.accuracy = {:g}: the measured median force error over the run is "
+        "{:.2g} (p99 {:.2g}; {} checks of about {} grains against the direct sum), more "
+        "than {:g}x the accuracy; {}, or raise gravity.accuracy",
+        g.accuracy, e.median, e.p99, measured.checks(), measured.sample(), kMeasuredErrorTolerance,
+        change);
 }
 
 void warnSelfGravityParameters(core::Comm const& comm, particles::LocalParticles const& local,

@@ -10,8 +10,28 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <string>
 
 namespace regolith::apps {
+
+/// Checks of the measured force error a run with gravity.check_every = "auto" takes.
+inline constexpr std::int64_t kAutoChecksPerRun = 8;
+
+/// When the run measures the force error its grains feel (gravity.check_every; "auto": one check
+/// in each kAutoChecksPerRun-th of time.steps; none in a periodic domain, where the direct sum
+/// lacks the images). Throws core::InputError naming the key for a count > 0 in a periodic
+/// domain. Not collective.
+[[nodiscard]] coupling::ForceCheckSchedule forceCheckSchedule(SceneDescription const& scene);
+
+/// Empty, or the warning for a run whose measured median force error (checks > 0) exceeds
+/// kMeasuredErrorTolerance x gravity.accuracy, naming what to change: the update threshold
+/// when the field was reused between updates (`updates` < `steps`), the method's own
+/// accuracy (theta, the grid) otherwise. Not collective.
+[[nodiscard]] std::string measuredErrorWarning(coupling::ForceErrorMonitor const& measured,
+                                               SceneDescription const& scene, long long updates,
+                                               long long steps);
+
+inline constexpr double kMeasuredErrorTolerance = 2.0;
 
 /// The self-gravity of `scene` on the grains, or nullptr for self = "none". Throws
 /// core::InputError naming gravity.self for a method the time step cannot use yet, and the

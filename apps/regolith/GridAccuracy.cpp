@@ -113,9 +113,10 @@ void checkMeasuredGridAccuracy(coupling::SelfGravityForces const& gravity,
     if (gridErrorPoints(g.self).empty() || !g.accuracyGiven || periodic[0] || periodic[1] ||
         periodic[2])
         return;
-    auto const measured = gravity.sampledMedianError(kAccuracySample);
-    if (!measured || *measured <= g.accuracy)
+    auto const stats = gravity.sampledForceError(kAccuracySample);
+    if (!stats || stats->median <= g.accuracy)
         return;
+    auto const measured = &stats->median;
     throw core::InputError(fmt::format(
         "gravity.accuracy = {:g}: gravity.self = \"{}\" has a median force error of {:.2g} on "
         "this scene's grains at the start (about {} of them against the direct sum); {}, ask "

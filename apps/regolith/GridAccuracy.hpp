@@ -55,7 +55,7 @@ inline constexpr std::size_t kAccuracySample = 256;
 
 /// After set-up, for pm or p3m with gravity.accuracy given in free space: the first field's
 /// median force error measured on about kAccuracySample of the scene's own grains against the
-/// direct sum (SelfGravityForces::sampledMedianError). checkGridAccuracy's estimate comes from
+/// direct sum (SelfGravityForces::sampledForceError). checkGridAccuracy's estimate comes from
 /// another body, and P3M measured 2.4-5 times worse than it on a uniform cloud and on the
 /// default scene's rubble piles. Throws core::InputError (on every rank alike) if it is
 /// above the accuracy, naming gravity.accuracy and what to change. Periodic domains are not

@@ -55,6 +55,9 @@ std::string ProgressLine::text(std::int64_t stepsDone, double elapsed) const {
         "step {}/{}  t = {:.6g}  {:.4g} steps/s  ETA {}  {} grains  sync {}  gravity {}", stepsDone,
         m_settings.lastStep, m_settings.firstTime + done * m_settings.dt, rate, eta,
         m_settings.grains, m_settings.sync, m_settings.gravity);
+    if (m_forceChecks > 0)
+        line +=
+            fmt::format("  force error {:.2g} (p99 {:.2g})", m_forceError.median, m_forceError.p99);
     if (m_settings.ranks > 1)
         line += fmt::format("  imbalance {:.3g}", m_imbalance);
     return line;

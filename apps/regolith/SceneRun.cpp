@@ -252,6 +252,9 @@ int runSceneUnlocated(core::AppContext& ctx) {
             vtk->write(stepsDone, timeAt(stepsDone), local, gridFieldsOf(selfGravity.get()));
         balance.afterStep(stepsDone);
         progress.setImbalance(balance.imbalance());
+        if (selfGravity)
+            progress.setForceError(selfGravity->measuredError().stats(),
+                                   selfGravity->measuredError().checks());
         progress.afterStep(stepsDone);
     };
     // Only output, checkpoints and the load balance look at the grains between steps (the
@@ -307,6 +310,16 @@ int runSceneUnlocated(core::AppContext& ctx) {
         // step (update_threshold = 0).
         summary.conserved.potentialEnergy += selfGravity->stats().potentialEnergy;
         summary.gravity.updates = selfGravity->stats().evaluations;
+        coupling::ForceErrorMonitor const& measured = selfGravity->measuredError();
+        summary.gravity.checks = measured.checks();
+        summary.gravity.samples = measured.stats().count;
+        summary.gravity.medianError = measured.stats().median;
+        summary.gravity.p99Error = measured.stats().p99;
+        summary.gravity.maxError = measured.stats().max;
+        std::string const warning = measuredErrorWarning(
+            measured, scene, selfGravity->stats().evaluations, selfGravity->stats().steps);
+        if (!warning.empty())
+            core::log::warn("{}", warning);
     }
     summary.checksum = stateChecksumFrom(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)

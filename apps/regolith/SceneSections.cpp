@@ -36,6 +36,8 @@ constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
                                 "pm"sv,         "p3m"sv,         "occupied-cells"sv,
                                 "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
+/// gravity.check_every above this is a typo: a run has far fewer updates worth one check.
+constexpr std::int64_t kMaxCheckEvery = 1000000;
 
 /// The parsed section if present, else its defaults (every key of these sections is optional).
 template <class Section, class Parse>
@@ -187,6 +189,15 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.accuracy = t.getOrIf<double>(
         "accuracy", s.accuracy, [](double a) { return a > 0.0 && a < 1.0; },
         "a relative force error in (0, 1)");
+    if (t.has("check_every") && !(t.kindOf("check_every") == core::ConfigKind::String &&
+                                  t.getString("check_every") == "auto")) {
+        char const* const expected = "a number of updates in [0, 1000000] (0: never) or \"auto\"";
+        if (t.kindOf("check_every") != core::ConfigKind::Integer)
+            t.failExpected("check_every", expected);
+        s.checkEvery = t.getIf<std::int64_t>(
+            "check_every", [](std::int64_t n) { return n >= 0 && n <= kMaxCheckEvery; }, expected);
+        s.checkEveryAuto = false;
+    }
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening

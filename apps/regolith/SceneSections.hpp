@@ -107,6 +107,11 @@ struct GravitySection {
     double gridSpacing = 0.0;      ///< gravity.grid_spacing: node distance of the node methods
     double neighbourhood = -1.0;   ///< gravity.neighbourhood (tree-nodes); < 0: grid_spacing
     bool accuracyGiven = false;    ///< gravity.accuracy was set (the mesh methods then check it)
+    /// gravity.check_every: measure the force error the grains feel after every n-th update
+    /// (0: never); "auto" (the default): a check in each eighth of the run, none in a periodic
+    /// domain (coupling/gravity/ForceErrorMonitor.hpp).
+    std::int64_t checkEvery = 0;
+    bool checkEveryAuto = true;
 };
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),

@@ -17,13 +17,14 @@ std::uint64_t mix(std::uint64_t z) {
 
 } // namespace
 
-double sampledMedianError(core::Comm const& comm, gravity::PointMasses const& grains,
-                          std::span<std::uint64_t const> uid, gravity::AccelView const& field,
-                          double G, double softening, std::size_t sample) {
+std::vector<double> sampledForceErrors(core::Comm const& comm, gravity::PointMasses const& grains,
+                                       std::span<std::uint64_t const> uid,
+                                       gravity::AccelView const& field, double G, double softening,
+                                       std::size_t sample) {
     std::size_t const n = grains.size();
     auto const total = comm.allReduce(static_cast<unsigned long long>(n), core::ReduceOp::Sum);
     if (total == 0)
-        return 0.0;
+        return {};
     std::uint64_t const stride =
         std::max<std::uint64_t>(1, total / std::max<std::size_t>(sample, 1));
     // The sample's uid (two exact halves), position and method field, from every rank.
@@ -67,11 +68,15 @@ double sampledMedianError(core::Comm const& comm, gravity::PointMasses const& gr
         if (ref > 0.0)
             errors.push_back(diff / ref);
     }
-    if (errors.empty())
-        return 0.0;
-    auto const mid = errors.begin() + static_cast<std::ptrdiff_t>(errors.size() / 2);
-    std::nth_element(errors.begin(), mid, errors.end());
-    return *mid;
+    return errors;
+}
+
+gravity::ErrorStats sampledForceError(core::Comm const& comm, gravity::PointMasses const& grains,
+                                      std::span<std::uint64_t const> uid,
+                                      gravity::AccelView const& field, double G, double softening,
+                                      std::size_t sample) {
+    return gravity::summarizeErrors(
+        sampledForceErrors(comm, grains, uid, field, G, softening, sample));
 }
 
 } // namespace regolith::coupling

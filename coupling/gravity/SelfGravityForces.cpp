@@ -190,7 +190,8 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
     : m_comm(&comm)
     , m_config(config)
     , m_method(std::make_unique<Method>(comm, forest, config))
-    , m_policy(config.updateThreshold, periodicExtent(forest)) {}
+    , m_policy(config.updateThreshold, periodicExtent(forest))
+    , m_monitor(config.check) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
 
@@ -247,6 +248,10 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     std::size_t const n = m_uid.size();
     bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
     m_lastUpdated = updated;
+    if (updated && m_monitor.armed() && !m_kept.uid.empty()) // the step before, now judged
+        m_monitor.record(coupling::sampledForceErrors(
+            *m_comm, {m_kept.x, m_kept.y, m_kept.z, m_kept.m}, m_kept.uid,
+            {m_kept.ax, m_kept.ay, m_kept.az}, m_config.G, m_config.softening, m_monitor.sample()));
     if (updated) {
         m_ax.assign(n, 0.0);
         m_ay.assign(n, 0.0);
@@ -259,21 +264,32 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     }
     // Masters in gather order: index k is the k-th master visited. Between updates the policy
     // guarantees a record for every local master (fetched from the rank it came from).
+    m_fx.resize(n);
+    m_fy.resize(n);
+    m_fz.resize(n);
     std::size_t k = 0;
     for (particles::BlockParticles& bp : local.blocks()) {
         particles::ParticleStorage& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
+            std::size_t const s = m_config.reproducible ? m_slot[k] : k;
             if (updated) {
-                std::size_t const s = m_config.reproducible ? m_slot[k] : k;
-                ps.force(i) += ps.mass(i) * core::Vec3(m_ax[s], m_ay[s], m_az[s]);
+                m_fx[s] = m_ax[s];
+                m_fy[s] = m_ay[s];
+                m_fz[s] = m_az[s];
             } else {
                 auto const& a = m_policy.record(ps.uid(i))->field;
-                ps.force(i) += ps.mass(i) * core::Vec3(a[0], a[1], a[2]);
+                m_fx[s] = a[0];
+                m_fy[s] = a[1];
+                m_fz[s] = a[2];
             }
+            ps.force(i) += ps.mass(i) * core::Vec3(m_fx[s], m_fy[s], m_fz[s]);
             ++k;
         });
     }
     ++m_stats.steps;
+    m_monitor.afterStep(updated, m_stats.evaluations, m_stats.steps);
+    if (m_monitor.armed())
+        m_kept = {m_uid, m_x, m_y, m_z, m_m, m_fx, m_fy, m_fz};
 }
 
 SelfGravityState SelfGravityForces::state() const {
@@ -292,11 +308,11 @@ std::optional<gravity::GridFieldsView> SelfGravityForces::gridFields() const {
     return m_method->gridFields();
 }
 
-std::optional<double> SelfGravityForces::sampledMedianError(std::size_t sample) const {
+std::optional<gravity::ErrorStats> SelfGravityForces::sampledForceError(std::size_t sample) const {
     if (!m_lastUpdated)
         return std::nullopt;
-    return coupling::sampledMedianError(*m_comm, {m_x, m_y, m_z, m_m, m_r}, m_uid,
-                                        {m_ax, m_ay, m_az}, m_config.G, m_config.softening, sample);
+    return coupling::sampledForceError(*m_comm, {m_x, m_y, m_z, m_m, m_r}, m_uid,
+                                       {m_ax, m_ay, m_az}, m_config.G, m_config.softening, sample);
 }
 
 void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local) {

@@ -6,6 +6,7 @@
 /// master's force. Installed into
 /// particles::DemStep as its body forces.
 #include "core/mpi/Comm.hpp"
+#include "coupling/gravity/ForceErrorMonitor.hpp"
 #include "domain/BlockForest.hpp"
 #include "gravity/PoissonMethod.hpp"
 #include "gravity/field/GridFieldsView.hpp"
@@ -55,6 +56,7 @@ struct SelfGravityConfig {
     // minimum corner:
     double gridSpacing = 0.0;   ///< gravity.grid_spacing, node distance [m] (> 0)
     double neighbourhood = 0.0; ///< gravity.neighbourhood [m] (tree-nodes; >= 0)
+    ForceCheckSchedule check;   ///< gravity.check_every: the run's measured error
 };
 
 /// What the run summary reports about self-gravity.
@@ -119,14 +121,21 @@ public:
     /// method has no grid). Until the next update the output then shows the field of the
     /// restored positions. COLLECTIVE.
     void refreshGridFields(particles::LocalParticles const& local);
-    /// The median relative error of the last update's field against the direct sum, over a
-    /// sample of about `sample` grains (SampledForceError.hpp), or nullopt if the last
-    /// addForces() did not update the field (the grains have moved since). COLLECTIVE.
-    [[nodiscard]] std::optional<double> sampledMedianError(std::size_t sample) const;
+    /// The relative error of the last update's field against the direct sum, over a sample of
+    /// about `sample` grains (SampledForceError.hpp), or nullopt if the last addForces() did
+    /// not update the field (the grains have moved since). COLLECTIVE.
+    [[nodiscard]] std::optional<gravity::ErrorStats> sampledForceError(std::size_t sample) const;
+    /// The errors measured during the run (gravity.check_every). The same on every rank.
+    [[nodiscard]] ForceErrorMonitor const& measuredError() const { return m_monitor; }
 
 private:
     class Method;
     void gather(particles::LocalParticles const& local);
+    /// The grains of a step and the field the integrator gave them (a check's input).
+    struct AppliedField {
+        std::vector<std::uint64_t> uid;
+        std::vector<double> x, y, z, m, ax, ay, az;
+    };
 
     core::Comm const* m_comm;
     SelfGravityConfig m_config; ///< reproducible: each update from the masters in uid order
@@ -138,6 +147,10 @@ private:
     // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;
+    /// The field applied this step to the masters in those arrays' order (a check reads it).
+    std::vector<double> m_fx, m_fy, m_fz;
+    ForceErrorMonitor m_monitor;
+    AppliedField m_kept; ///< the step before, while a check is armed
     /// In reproducible mode: the slot in those arrays of the k-th master in block then storage
     /// order.
     std::vector<std::uint32_t> m_slot;

@@ -24,7 +24,10 @@ std::vector<double> relativeErrors(AccelView approx, AccelView reference) {
 }
 
 ErrorStats errorStats(core::Comm const& comm, std::span<double const> errors) {
-    std::vector<double> all = comm.allGatherVarying(errors);
+    return summarizeErrors(comm.allGatherVarying(errors));
+}
+
+ErrorStats summarizeErrors(std::vector<double> all) {
     ErrorStats s;
     s.count = static_cast<long long>(all.size());
     if (all.empty())

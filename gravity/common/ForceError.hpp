@@ -4,6 +4,7 @@
 #include "core/mpi/Comm.hpp"
 
 #include <span>
+#include <vector>
 
 namespace regolith::gravity {
 
@@ -22,6 +23,10 @@ struct AccelView {
 /// Per-grain relative errors of `approx` against `reference` (same grains, same order).
 /// A grain with zero reference acceleration has error |a| (absolute). Not collective.
 [[nodiscard]] std::vector<double> relativeErrors(AccelView approx, AccelView reference);
+
+/// Statistics of `errors` as they are (one rank's, or errors every rank holds alike). Not
+/// collective.
+[[nodiscard]] ErrorStats summarizeErrors(std::vector<double> errors);
 
 /// Statistics of the errors of all grains on all ranks (gathers the errors). COLLECTIVE over
 /// `comm`.
