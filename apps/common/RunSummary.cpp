@@ -41,7 +41,8 @@ std::string toJson(RunSummary const& s) {
     w.key("gravity")
         .beginObject()
         .member("method", s.gravity.method)
-        .member("updates", s.gravity.updates);
+        .member("updates", s.gravity.updates)
+        .member("interval", s.gravity.interval);
     w.key("error")
         .beginObject()
         .member("checks", s.gravity.checks)

@@ -45,6 +45,7 @@ struct RunSummary {
     struct Gravity {
         std::string method = "none";
         long long updates = 0;
+        long long interval = 0; ///< gravity.update_every at the end [steps] (JSON "interval")
         long long checks = 0;
         long long samples = 0;
         double medianError = 0.0;

@@ -138,10 +138,22 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
         }
     }
     if (g.thresholdAuto) {
-        g.updateThreshold = g.accuracy * e.minRadius; // accuracy x (2 r_min) / 2
-        out.push_back({"gravity.update_threshold", fmt::format("{}", g.updateThreshold),
-                       fmt::format("accuracy {:g} x the smallest grain diameter {:g} / 2",
-                                   g.accuracy, 2.0 * e.minRadius)});
+        // The step count decides, the field extrapolated between updates (measured on the
+        // default scene, docs/notes/update-interval.md: a displacement threshold updated at
+        // nearly every step where bodies move as a whole).
+        g.updateThreshold = 0.0;
+        bool const given = g.updateEvery > 0 || g.updateEveryAdaptive;
+        out.push_back({"gravity.update_threshold", "0",
+                       "no displacement limit: gravity.update_every decides"});
+        if (!given) {
+            g.updateEveryAdaptive = true;
+            out.push_back(
+                {"gravity.update_every", "adaptive",
+                 fmt::format("the field extrapolated in time from the last two updates; "
+                             "the interval follows the extrapolation's measured median "
+                             "error, aimed at {:g} ({:g} x accuracy {:g})",
+                             kExtrapolationShare * g.accuracy, kExtrapolationShare, g.accuracy)});
+        }
     }
     if (scene.time.dtAuto) {
         double const tc = contactTime(comm, masters, scene).contactTime;

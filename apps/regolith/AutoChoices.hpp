@@ -52,8 +52,9 @@ inline constexpr double kP3mSecondsPerGrain = 4.4e-6;
 ///  - gravity.self: "direct" for at most kDirectSumMaxGrains grains (or an accuracy finer
 ///    than the tree's best point), else "tree" with the largest θ of kTreeErrors meeting
 ///    gravity.accuracy, or "p3m" where it is safe, accurate enough and cheaper (see above);
-///  - gravity.update_threshold: accuracy × the smallest grain diameter / 2 (a neighbour at
-///    distance s displaced by δ changes its pull by ~2δ/s: UpdatePolicy's warning);
+///  - gravity.update_threshold: 0, and gravity.update_every (unless given) "adaptive": the
+///    field extrapolated between updates, the interval following the measured extrapolation
+///    error (kExtrapolationShare of gravity.accuracy, GravitySetup.hpp);
 ///  - time.dt: the smaller of t_c / 20 (contact duration) and T_orb / 200, the period of two
 ///    touching grains of the densest material orbiting each other, 2π sqrt(3 / (π G ρ)) (only
 ///    with self-gravity).

@@ -149,7 +149,7 @@ std::vector<AutoChoice> reuseAutoChoices(core::AppContext& ctx, SceneDescription
     if (scene.gravity.self == SelfGravity::Auto)
         keys.insert(keys.end(), {"gravity.self", "gravity.theta"});
     if (scene.gravity.thresholdAuto)
-        keys.emplace_back("gravity.update_threshold");
+        keys.insert(keys.end(), {"gravity.update_threshold", "gravity.update_every"});
     std::vector<AutoChoice> out;
     if (keys.empty())
         return out;
@@ -160,7 +160,7 @@ std::vector<AutoChoice> reuseAutoChoices(core::AppContext& ctx, SceneDescription
     }
     std::string missing;
     for (std::string const& key : keys)
-        if (key != "gravity.theta" &&
+        if (key != "gravity.theta" && key != "gravity.update_every" &&
             std::none_of(out.begin(), out.end(), [&](auto const& c) { return c.key == key; }))
             missing += " " + key;
     if (!missing.empty())
@@ -220,11 +220,13 @@ void restoreSelfGravity(io::CheckpointSlice const& slice,
         for (int k = 0; k < 3; ++k) {
             r.reference[static_cast<std::size_t>(k)] = g.gravityReference[k];
             r.field[static_cast<std::size_t>(k)] = g.gravityField[k];
+            r.slope[static_cast<std::size_t>(k)] = g.gravitySlope[k];
         }
         records.push_back(r); // NaN rows (no record) are skipped by the policy
     }
-    selfGravity.restore({slice.info.gravityUpdates, slice.info.gravityPotentialEnergy}, uid,
-                        records);
+    selfGravity.restore({slice.info.gravityUpdates, slice.info.gravityPotentialEnergy,
+                         slice.info.gravitySinceUpdate, slice.info.gravityInterval},
+                        uid, records);
 }
 
 CheckpointSchedule::CheckpointSchedule(core::Comm const& comm, SceneDescription const& scene,
@@ -303,10 +305,13 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
         coupling::SelfGravityState const s = m_gravity->state();
         info.gravityUpdates = s.updates;
         info.gravityPotentialEnergy = s.potentialEnergy;
+        info.gravitySinceUpdate = s.sinceUpdate;
+        info.gravityInterval = s.interval;
         for (io::GrainState& g : grains)
             if (gravity::GrainRecord const* r = m_gravity->record(g.uid)) {
                 g.gravityReference = core::Vec3(r->reference[0], r->reference[1], r->reference[2]);
                 g.gravityField = core::Vec3(r->field[0], r->field[1], r->field[2]);
+                g.gravitySlope = core::Vec3(r->slope[0], r->slope[1], r->slope[2]);
             }
     }
     std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);

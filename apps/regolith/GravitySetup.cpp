@@ -15,6 +15,20 @@
 
 namespace regolith::apps {
 
+gravity::UpdateInterval updateInterval(SceneDescription const& scene) {
+    GravitySection const& g = scene.gravity;
+    gravity::UpdateInterval u;
+    u.dt = scene.time.dt;
+    if (g.updateEveryAdaptive) {
+        u.every = 1; // the first interval: the second update gives the slopes
+        u.adaptive = true;
+        u.budget = kExtrapolationShare * g.accuracy;
+    } else {
+        u.every = g.updateEvery;
+    }
+    return u;
+}
+
 coupling::ForceCheckSchedule forceCheckSchedule(SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
     auto const& periodic = scene.forest.periodic;
@@ -85,6 +99,7 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     c.theta = g.theta;
     c.allowLargeTheta = g.allowLargeTheta;
     c.updateThreshold = g.updateThreshold;
+    c.interval = updateInterval(scene);
     c.reproducible = scene.sync.reproducible;
     c.check = forceCheckSchedule(scene);
     return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
@@ -97,11 +112,17 @@ std::string measuredErrorWarning(coupling::ForceErrorMonitor const& measured,
     gravity::ErrorStats const& e = measured.stats();
     if (measured.checks() == 0 || !(e.median > kMeasuredErrorTolerance * g.accuracy))
         return {};
+    std::string const reuse =
+        g.updateEveryAdaptive ? "set gravity.update_every to fewer steps than the adaptive "
+                                "interval took"
+        : g.updateEvery > 0   ? fmt::format("lower gravity.update_every (now {})", g.updateEvery)
+                              : fmt::format("lower gravity.update_threshold (now {:g}) or set it "
+                                              "to \"auto\"",
+                                            g.updateThreshold);
     std::string const change =
         updates < steps
-            ? fmt::format("the field was reused between updates ({} updates in {} steps): lower "
-                          "gravity.update_threshold (now {:g}) or set it to \"auto\"",
-                          updates, steps, g.updateThreshold)
+            ? fmt::format("the field was reused between updates ({} updates in {} steps): {}",
+                          updates, steps, reuse)
         : g.self == SelfGravity::Tree || g.self == SelfGravity::MutualTree ||
                 g.self == SelfGravity::TreeNodes
             ? fmt::format("the field was new every step: lower gravity.theta (now {:g})", g.theta)

@@ -14,6 +14,14 @@
 
 namespace regolith::apps {
 
+/// The share of gravity.accuracy an adaptive update interval leaves to the extrapolation
+/// between updates (its median error at the stalest step); the method's own error has the rest.
+inline constexpr double kExtrapolationShare = 0.75;
+
+/// gravity.update_every as the update policy's interval (dt from time.dt; "adaptive" starts at
+/// one step and aims at kExtrapolationShare x gravity.accuracy). Not collective.
+[[nodiscard]] gravity::UpdateInterval updateInterval(SceneDescription const& scene);
+
 /// Checks of the measured force error a run with gravity.check_every = "auto" takes.
 inline constexpr std::int64_t kAutoChecksPerRun = 8;
 

@@ -310,6 +310,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         // step (update_threshold = 0).
         summary.conserved.potentialEnergy += selfGravity->stats().potentialEnergy;
         summary.gravity.updates = selfGravity->stats().evaluations;
+        summary.gravity.interval = selfGravity->updateInterval();
         coupling::ForceErrorMonitor const& measured = selfGravity->measuredError();
         summary.gravity.checks = measured.checks();
         summary.gravity.samples = measured.stats().count;

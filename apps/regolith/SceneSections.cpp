@@ -38,6 +38,8 @@ constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
 /// gravity.check_every above this is a typo: a run has far fewer updates worth one check.
 constexpr std::int64_t kMaxCheckEvery = 1000000;
+/// gravity.update_every likewise.
+constexpr std::int64_t kMaxUpdateEvery = 1000000;
 
 /// The parsed section if present, else its defaults (every key of these sections is optional).
 template <class Section, class Parse>
@@ -189,6 +191,20 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.accuracy = t.getOrIf<double>(
         "accuracy", s.accuracy, [](double a) { return a > 0.0 && a < 1.0; },
         "a relative force error in (0, 1)");
+    if (t.has("update_every")) {
+        char const* const expected = "a number of steps in [1, 1000000] or \"adaptive\"";
+        if (t.kindOf("update_every") == core::ConfigKind::String) {
+            if (t.getString("update_every") != "adaptive")
+                t.failExpected("update_every", expected);
+            s.updateEveryAdaptive = true;
+        } else {
+            if (t.kindOf("update_every") != core::ConfigKind::Integer)
+                t.failExpected("update_every", expected);
+            s.updateEvery = t.getIf<std::int64_t>(
+                "update_every", [](std::int64_t n) { return n >= 1 && n <= kMaxUpdateEvery; },
+                expected);
+        }
+    }
     if (t.has("check_every") && !(t.kindOf("check_every") == core::ConfigKind::String &&
                                   t.getString("check_every") == "auto")) {
         char const* const expected = "a number of updates in [0, 1000000] (0: never) or \"auto\"";

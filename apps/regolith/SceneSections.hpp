@@ -112,6 +112,11 @@ struct GravitySection {
     /// domain (coupling/gravity/ForceErrorMonitor.hpp).
     std::int64_t checkEvery = 0;
     bool checkEveryAuto = true;
+    /// gravity.update_every: recompute the field every n steps (besides update_threshold), the
+    /// field extrapolated in time between updates; "adaptive": n follows the measured
+    /// extrapolation error (gravity::UpdateInterval); 0 (absent): the threshold alone.
+    std::int64_t updateEvery = 0;
+    bool updateEveryAdaptive = false;
 };
 
 /// [output] dir (default "out"), vtk_every >= 0 and checkpoint_every >= 0 (steps; 0: never),

@@ -1,21 +1,12 @@
 #include "coupling/gravity/SampledForceError.hpp"
 
+#include "gravity/common/UidHash.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace regolith::coupling {
-
-namespace {
-
-/// SplitMix64's finaliser: spreads consecutive uids over the whole range.
-std::uint64_t mix(std::uint64_t z) {
-    z = (z ^ (z >> 30U)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27U)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31U);
-}
-
-} // namespace
 
 std::vector<double> sampledForceErrors(core::Comm const& comm, gravity::PointMasses const& grains,
                                        std::span<std::uint64_t const> uid,
@@ -33,7 +24,7 @@ std::vector<double> sampledForceErrors(core::Comm const& comm, gravity::PointMas
     auto const low = [](std::uint64_t u) { return static_cast<double>(u & 0xffffffffULL); };
     std::vector<double> mine;
     for (std::size_t i = 0; i < n; ++i)
-        if (mix(uid[i]) % stride == 0)
+        if (gravity::uidHash(uid[i]) % stride == 0)
             mine.insert(mine.end(), {high(uid[i]), low(uid[i]), grains.x[i], grains.y[i],
                                      grains.z[i], field.ax[i], field.ay[i], field.az[i]});
     std::vector<double> const targets = comm.allGatherVarying<double>(mine);

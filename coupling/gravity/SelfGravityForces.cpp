@@ -190,7 +190,7 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
     : m_comm(&comm)
     , m_config(config)
     , m_method(std::make_unique<Method>(comm, forest, config))
-    , m_policy(config.updateThreshold, periodicExtent(forest))
+    , m_policy(config.updateThreshold, periodicExtent(forest), config.interval)
     , m_monitor(config.check) {}
 
 SelfGravityForces::~SelfGravityForces() = default;
@@ -248,7 +248,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     std::size_t const n = m_uid.size();
     bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
     m_lastUpdated = updated;
-    if (updated && m_monitor.armed() && !m_kept.uid.empty()) // the step before, now judged
+    if (updated && m_monitor.armed() && m_kept.valid) // the step before, now judged
         m_monitor.record(coupling::sampledForceErrors(
             *m_comm, {m_kept.x, m_kept.y, m_kept.z, m_kept.m}, m_kept.uid,
             {m_kept.ax, m_kept.ay, m_kept.az}, m_config.G, m_config.softening, m_monitor.sample()));
@@ -260,6 +260,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
         // The policy keeps the field per uid for the steps until the next update.
         m_policy.markUpdated(m_uid, m_x, m_y, m_z, m_ax, m_ay, m_az);
+        m_policy.adaptInterval(*m_comm);
         ++m_stats.evaluations;
     }
     // Masters in gather order: index k is the k-th master visited. Between updates the policy
@@ -277,7 +278,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
                 m_fy[s] = m_ay[s];
                 m_fz[s] = m_az[s];
             } else {
-                auto const& a = m_policy.record(ps.uid(i))->field;
+                auto const a = m_policy.fieldNow(*m_policy.record(ps.uid(i)));
                 m_fx[s] = a[0];
                 m_fy[s] = a[1];
                 m_fz[s] = a[2];
@@ -289,16 +290,18 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     ++m_stats.steps;
     m_monitor.afterStep(updated, m_stats.evaluations, m_stats.steps);
     if (m_monitor.armed())
-        m_kept = {m_uid, m_x, m_y, m_z, m_m, m_fx, m_fy, m_fz};
+        m_kept = {true, m_uid, m_x, m_y, m_z, m_m, m_fx, m_fy, m_fz};
 }
 
 SelfGravityState SelfGravityForces::state() const {
-    return {m_policy.updates(), m_stats.potentialEnergy};
+    return {m_policy.updates(), m_stats.potentialEnergy, m_policy.stepsSinceUpdate(),
+            m_policy.interval()};
 }
 
 void SelfGravityForces::restore(SelfGravityState const& state, std::span<particles::Uid const> uid,
                                 std::span<gravity::GrainRecord const> records) {
     m_policy.restore(state.updates, uid, records);
+    m_policy.restoreInterval(state.sinceUpdate, state.interval);
     m_stats.potentialEnergy = state.potentialEnergy;
 }
 

@@ -37,11 +37,12 @@ enum class GrainGravityMethod {
 
 struct SelfGravityConfig {
     GrainGravityMethod method = GrainGravityMethod::Direct;
-    double G = 6.674e-11;         ///< gravity.G [m^3 kg^-1 s^-2]
-    double softening = 0.0;       ///< gravity.softening, Plummer length [m]
-    double theta = 0.5;           ///< gravity.theta (tree methods)
-    bool allowLargeTheta = false; ///< gravity.allow_large_theta
-    double updateThreshold = 0.0; ///< gravity.update_threshold [m]; 0: every step
+    double G = 6.674e-11;             ///< gravity.G [m^3 kg^-1 s^-2]
+    double softening = 0.0;           ///< gravity.softening, Plummer length [m]
+    double theta = 0.5;               ///< gravity.theta (tree methods)
+    bool allowLargeTheta = false;     ///< gravity.allow_large_theta
+    double updateThreshold = 0.0;     ///< gravity.update_threshold [m]; 0: every step
+    gravity::UpdateInterval interval; ///< gravity.update_every (field extrapolated between)
     /// sync.reproducible: each update from the local grains in uid order and (grid methods)
     /// each Poisson solve from zero, so that the field depends on the grains only, not on
     /// their storage order or the last solve: a restart, which has neither, repeats the bits.
@@ -71,6 +72,8 @@ struct SelfGravityStats {
 struct SelfGravityState {
     long long updates = 0;        ///< field updates so far (0: the next step updates)
     double potentialEnergy = 0.0; ///< ½ Σ m φ of the last update [J]
+    long long sinceUpdate = 0;    ///< steps since the last update (gravity.update_every)
+    long long interval = 0;       ///< the update interval then [steps] (0: none)
 };
 
 class SelfGravityForces {
@@ -85,15 +88,15 @@ public:
 
     /// Adds m g to the force of every master of `local`; recomputes g first when the update
     /// policy says so (no field yet, a grain moved more than the threshold, or a grain has no
-    /// record on any rank), else uses the field of the last update, which a grain that changed
-    /// rank brings along. COLLECTIVE.
+    /// record on any rank), else uses the field of the last update (extrapolated in time with
+    /// gravity.update_every), which a grain that changed rank brings along. COLLECTIVE.
     void addForces(particles::LocalParticles& local);
 
     [[nodiscard]] SelfGravityStats const& stats() const { return m_stats; }
 
-    /// For checkpoints: the run-wide state, and per grain (uid) its position and field at the
-    /// last update (nullptr if it has none, as always with update_threshold = 0). Not
-    /// collective.
+    /// For checkpoints: the run-wide state, and per grain (uid) its position, field and slope at
+    /// the last update (nullptr if it has none, as always with update_threshold = 0 and no
+    /// update_every). Not collective.
     [[nodiscard]] SelfGravityState state() const;
     [[nodiscard]] gravity::GrainRecord const* record(particles::Uid uid) const {
         return m_policy.record(uid);
@@ -127,12 +130,15 @@ public:
     [[nodiscard]] std::optional<gravity::ErrorStats> sampledForceError(std::size_t sample) const;
     /// The errors measured during the run (gravity.check_every). The same on every rank.
     [[nodiscard]] ForceErrorMonitor const& measuredError() const { return m_monitor; }
+    /// The update interval in steps now (gravity.update_every; 0 without one).
+    [[nodiscard]] long long updateInterval() const { return m_policy.interval(); }
 
 private:
     class Method;
     void gather(particles::LocalParticles const& local);
     /// The grains of a step and the field the integrator gave them (a check's input).
     struct AppliedField {
+        bool valid = false; ///< a step was kept (on every rank alike, also one without grains)
         std::vector<std::uint64_t> uid;
         std::vector<double> x, y, z, m, ax, ay, az;
     };

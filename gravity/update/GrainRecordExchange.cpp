@@ -1,5 +1,7 @@
 #include "gravity/update/GrainRecordExchange.hpp"
 
+#include "gravity/common/UidHash.hpp"
+
 #include <vector>
 
 namespace regolith::gravity {
@@ -15,13 +17,8 @@ struct UidRecord {
 } // namespace
 
 int directoryRank(std::uint64_t uid, int ranks) {
-    // splitmix64's finaliser: uids are (rank << 40) | counter, whose low bits alone would
-    // pile the records of one creating rank onto few directories.
-    std::uint64_t z = uid + 0x9E3779B97F4A7C15ULL;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return static_cast<int>(z % static_cast<std::uint64_t>(ranks));
+    return static_cast<int>(uidHash(uid + 0x9E3779B97F4A7C15ULL) %
+                            static_cast<std::uint64_t>(ranks));
 }
 
 std::size_t fetchMigratedRecords(core::SparseExchange& exchange, int ranks,

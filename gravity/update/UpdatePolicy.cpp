@@ -2,10 +2,12 @@
 
 #include "core/Error.hpp"
 #include "core/mpi/SparseExchange.hpp"
+#include "gravity/common/UidHash.hpp"
 #include "gravity/update/GrainRecordExchange.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -30,14 +32,23 @@ double distance(std::array<double, 3> const& a, double x, double y, double z,
 
 } // namespace
 
-UpdatePolicy::UpdatePolicy(double threshold, std::array<double, 3> period)
+UpdatePolicy::UpdatePolicy(double threshold, std::array<double, 3> period, UpdateInterval interval)
     : m_threshold(threshold)
+    , m_interval(interval)
+    , m_every(interval.every)
     , m_period(period) {
     if (!(threshold >= 0.0) || !std::isfinite(threshold))
         throw core::InputError(fmt::format(
             "gravity.update_threshold = {}: the displacement threshold must be finite and "
             ">= 0 m",
             threshold));
+    if (interval.every < 0 || (interval.every > 0 && !(interval.dt > 0.0)) ||
+        (interval.adaptive && !(interval.budget > 0.0 && interval.budget < 1.0)) ||
+        (interval.adaptive && interval.maxEvery < interval.every))
+        throw core::InputError(fmt::format(
+            "gravity.update_every = {}: expected a number of steps >= 1 (with a time step > 0), "
+            "or an adaptive interval with a prediction error in (0, 1)",
+            interval.every));
 }
 
 UpdatePolicy::~UpdatePolicy() = default;
@@ -47,9 +58,10 @@ UpdatePolicy& UpdatePolicy::operator=(UpdatePolicy&&) noexcept = default;
 bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> uid,
                        std::span<double const> x, std::span<double const> y,
                        std::span<double const> z) {
-    if (m_threshold == 0.0)
+    if (!keepsRecords())
         return true; // every step, on every rank alike: nothing to measure or agree on
     ++m_call;
+    ++m_since;
     double local = m_updates == 0 ? std::numeric_limits<double>::infinity() : 0.0;
     std::vector<std::size_t> missing; // grains without a record here: they changed rank
     for (std::size_t i = 0; i < uid.size() && std::isfinite(local); ++i) {
@@ -59,12 +71,18 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
             continue;
         }
         it->second.seen = m_call;
-        local = std::max(local, distance(it->second.record.reference, x[i], y[i], z[i], m_period));
+        if (m_threshold > 0.0)
+            local =
+                std::max(local, distance(it->second.record.reference, x[i], y[i], z[i], m_period));
     }
     // One reduction: the largest displacement, and whether any rank misses a record.
     std::array<double, 2> global{local, missing.empty() ? 0.0 : 1.0};
     comm.allReduceInPlace(std::span<double>(global), core::ReduceOp::Max);
-    if (global[1] > 0.0 && global[0] <= m_threshold) {
+    bool const stepsDue = m_every > 0 && m_since >= m_every;
+    // Records are fetched unless the step updates anyway (the next due() would give them away).
+    bool const needed =
+        std::isfinite(global[0]) && !stepsDue && (m_threshold == 0.0 || global[0] <= m_threshold);
+    if (global[1] > 0.0 && needed) {
         // Not due on the grains here, but some arrived: their records decide (all ranks).
         if (!m_exchange)
             m_exchange = std::make_unique<core::SparseExchange>(comm);
@@ -75,15 +93,16 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         fetchMigratedRecords(*m_exchange, comm.size(), m_records, wanted, m_call);
         for (std::size_t const i : missing) {
             auto const it = m_records.find(uid[i]);
-            local = it == m_records.end()
-                        ? std::numeric_limits<double>::infinity() // a grain new since the update
-                        : std::max(local, distance(it->second.record.reference, x[i], y[i], z[i],
-                                                   m_period));
+            if (it == m_records.end())
+                local = std::numeric_limits<double>::infinity(); // a grain new since the update
+            else if (m_threshold > 0.0)
+                local = std::max(local,
+                                 distance(it->second.record.reference, x[i], y[i], z[i], m_period));
         }
         global[0] = comm.allReduce(local, core::ReduceOp::Max);
     }
     m_lastMax = global[0];
-    return m_lastMax > m_threshold;
+    return stepsDue || !std::isfinite(m_lastMax) || (m_threshold > 0.0 && m_lastMax > m_threshold);
 }
 
 void UpdatePolicy::markUpdated(std::span<std::uint64_t const> uid, std::span<double const> x,
@@ -97,12 +116,77 @@ void UpdatePolicy::markUpdated(std::span<std::uint64_t const> uid, std::span<dou
                                std::span<double const> ax, std::span<double const> ay,
                                std::span<double const> az) {
     ++m_updates;
-    if (m_threshold == 0.0)
+    if (!keepsRecords())
         return; // due() never looks at the records
-    m_records.clear();
-    m_records.reserve(uid.size());
-    for (std::size_t i = 0; i < uid.size(); ++i)
-        m_records[uid[i]] = Entry{{{x[i], y[i], z[i]}, {ax[i], ay[i], az[i]}}, m_call};
+    std::unordered_map<std::uint64_t, Entry> records;
+    records.reserve(uid.size());
+    m_judgedUid.clear();
+    m_judgedError.clear();
+    // The time since the last update: the slopes' denominator, and the prediction's lead.
+    double const elapsed = static_cast<double>(m_since) * m_interval.dt;
+    for (std::size_t i = 0; i < uid.size(); ++i) {
+        Entry e{{{x[i], y[i], z[i]}, {ax[i], ay[i], az[i]}, {}}, m_call};
+        auto const old = m_records.find(uid[i]);
+        if (m_every > 0 && old != m_records.end() && elapsed > 0.0) {
+            GrainRecord const& r = old->second.record;
+            double diff = 0.0, norm = 0.0;
+            for (std::size_t a = 0; a < 3; ++a) {
+                e.record.slope[a] = (e.record.field[a] - r.field[a]) / elapsed;
+                double const d = r.field[a] + r.slope[a] * elapsed - e.record.field[a];
+                diff += d * d;
+                norm += e.record.field[a] * e.record.field[a];
+            }
+            if (norm > 0.0) {
+                m_judgedUid.push_back(uid[i]);
+                m_judgedError.push_back(std::sqrt(diff / norm));
+            }
+        }
+        records[uid[i]] = e;
+    }
+    m_records = std::move(records);
+    m_since = 0;
+}
+
+void UpdatePolicy::adaptInterval(core::Comm const& comm) {
+    if (!m_interval.adaptive)
+        return;
+    // The sample: the grains whose uid hash a stride picks, the same on any layout.
+    auto const judged =
+        comm.allReduce(static_cast<unsigned long long>(m_judgedUid.size()), core::ReduceOp::Sum);
+    if (judged == 0)
+        return; // the first update: nothing predicted yet
+    std::uint64_t const stride = std::max<std::uint64_t>(1, judged / m_interval.sample);
+    std::vector<double> mine;
+    for (std::size_t i = 0; i < m_judgedUid.size(); ++i)
+        if (uidHash(m_judgedUid[i]) % stride == 0)
+            mine.push_back(m_judgedError[i]);
+    std::vector<double> all = comm.allGatherVarying<double>(mine);
+    std::sort(all.begin(), all.end()); // the ranks' order differs by layout; the set does not
+    if (all.empty())
+        return;
+    double const e = all[(all.size() - 1) / 2];
+    m_lastPredictionError = e;
+    // The interval just ended predicted with slopes from the update before it (error ∝
+    // interval²) unless that was the first update (kept field: ∝ interval).
+    double const power = m_updates > 2 ? 2.0 : 1.0;
+    double const scale = e > 0.0 ? std::pow(m_interval.budget / e, 1.0 / power) : 2.0;
+    auto const interval = static_cast<double>(m_every);
+    m_every = std::clamp(static_cast<long long>(std::floor(interval * std::clamp(scale, 0.5, 2.0))),
+                         1LL, m_interval.maxEvery);
+}
+
+std::array<double, 3> UpdatePolicy::fieldNow(GrainRecord const& r) const {
+    double const elapsed = static_cast<double>(m_since) * m_interval.dt;
+    if (m_every == 0 || elapsed == 0.0)
+        return r.field;
+    return {r.field[0] + r.slope[0] * elapsed, r.field[1] + r.slope[1] * elapsed,
+            r.field[2] + r.slope[2] * elapsed};
+}
+
+void UpdatePolicy::restoreInterval(long long sinceUpdate, long long every) {
+    m_since = sinceUpdate;
+    if (m_interval.adaptive && every > 0)
+        m_every = std::min(every, m_interval.maxEvery);
 }
 
 GrainRecord const* UpdatePolicy::record(std::uint64_t uid) const {
@@ -114,7 +198,7 @@ void UpdatePolicy::restore(long long updates, std::span<std::uint64_t const> uid
                            std::span<GrainRecord const> records) {
     m_updates = updates;
     m_records.clear();
-    if (m_threshold == 0.0)
+    if (!keepsRecords())
         return;
     for (std::size_t i = 0; i < uid.size(); ++i) {
         auto const& r = records[i].reference;

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 namespace regolith::core {
 class SparseExchange;
@@ -26,6 +27,25 @@ namespace regolith::gravity {
 struct GrainRecord {
     std::array<double, 3> reference{}; ///< position at the last update [m]
     std::array<double, 3> field{};     ///< acceleration computed then [m s^-2]
+    /// With an update interval: the field's rate of change between the grain's last two
+    /// updates [m s^-3] (0 after its first), which extrapolates it until the next.
+    std::array<double, 3> slope{};
+};
+
+/// Updates by the step count (`gravity.update_every`), besides or instead of the displacement
+/// threshold. Between updates each grain's field is extrapolated linearly in time from its last
+/// two updates, a(t) = a_k + (a_k - a_{k-1}) (t - t_k) / (t_k - t_{k-1}): the field of a body
+/// moving or turning as a whole follows it to first order, where the kept field lags by the
+/// whole motion. Adaptive: after every update the interval is scaled so that the median
+/// relative error of that prediction against the new field, over a sample of grains picked by
+/// uid, meets `budget` (error ∝ interval² once the slopes are known, ∝ interval before).
+struct UpdateInterval {
+    long long every = 0;       ///< steps between updates; 0: the threshold alone decides
+    bool adaptive = false;     ///< `every` is the first interval and then adapts
+    double budget = 0.0;       ///< adaptive: the median prediction error aimed at
+    double dt = 0.0;           ///< time step [s] (slopes are per unit time; > 0 with every > 0)
+    long long maxEvery = 1000; ///< adaptive: the longest interval [steps]
+    std::size_t sample = 1000; ///< adaptive: grains judged per update, over all ranks
 };
 
 class UpdatePolicy {
@@ -35,14 +55,19 @@ public:
     /// extent on its periodic axes, 0 on the others; a displacement is measured to the nearest
     /// image there, so that a grain wrapped across a periodic face has moved only its step
     /// (not the jump across the domain, which would count an update at every crossing).
-    explicit UpdatePolicy(double threshold, std::array<double, 3> period = {0.0, 0.0, 0.0});
+    /// `interval`: updates by the step count too (UpdateInterval); its `every` < 0, an adaptive
+    /// one without a budget in (0, 1), or a dt <= 0 throw core::InputError naming
+    /// gravity.update_every.
+    explicit UpdatePolicy(double threshold, std::array<double, 3> period = {0.0, 0.0, 0.0},
+                          UpdateInterval interval = {});
     ~UpdatePolicy();
     UpdatePolicy(UpdatePolicy&&) noexcept;
     UpdatePolicy& operator=(UpdatePolicy&&) noexcept;
 
     /// True if gravity must be recomputed: no update yet, or some grain on some rank has
-    /// moved more than the threshold since the last markUpdated() (global maximum), or a
-    /// grain has no record on any rank (it did not exist at the last update). Records of
+    /// moved more than the threshold since the last markUpdated() (global maximum), or the
+    /// interval's steps have passed, or a grain has no record on any rank (it did not exist at
+    /// the last update). Records of
     /// grains that arrived from another rank are fetched from there first (one sparse
     /// exchange through a directory rank, only on steps where some grain arrived; records no
     /// local grain claims are given away then). Positions in m, grains identified by `uid`.
@@ -62,9 +87,16 @@ public:
                      std::span<double const> ax, std::span<double const> ay,
                      std::span<double const> az);
 
+    /// With an adaptive interval, after markUpdated() on every rank: scales the interval by
+    /// the prediction errors measured there (UpdateInterval). COLLECTIVE over `comm`.
+    void adaptInterval(core::Comm const& comm);
+
     /// The record of grain `uid` on this rank, or nullptr. After a due() that returned
     /// false, every grain passed to it has one. Not collective.
     [[nodiscard]] GrainRecord const* record(std::uint64_t uid) const;
+    /// The field of `r` at this step: its field at the last update, extrapolated with its
+    /// slope over the steps since (the kept field without an interval). Not collective.
+    [[nodiscard]] std::array<double, 3> fieldNow(GrainRecord const& r) const;
 
     /// Continues from a checkpoint: `updates` as updates(), and records of any grains (not
     /// necessarily this rank's: the next due() brings each to the rank holding its grain).
@@ -72,8 +104,16 @@ public:
     /// threshold 0 all are ignored. Not collective.
     void restore(long long updates, std::span<std::uint64_t const> uid,
                  std::span<GrainRecord const> records);
+    /// Continues the interval from a checkpoint: steps since the last update and the current
+    /// interval (stepsSinceUpdate(), interval()). Not collective.
+    void restoreInterval(long long sinceUpdate, long long every);
 
     [[nodiscard]] long long updates() const { return m_updates; }
+    [[nodiscard]] long long stepsSinceUpdate() const { return m_since; }
+    /// The current interval in steps (0 without one).
+    [[nodiscard]] long long interval() const { return m_every; }
+    /// The median prediction error the last adaptInterval() measured (0 before).
+    [[nodiscard]] double lastPredictionError() const { return m_lastPredictionError; }
     [[nodiscard]] double threshold() const { return m_threshold; }
     /// The global largest displacement found by the last due(), m (not measured, so 0, with
     /// threshold 0: due() is then true at once, without communication).
@@ -92,7 +132,17 @@ public:
     };
 
 private:
+    /// Records kept between updates (threshold or interval), else every step is an update.
+    [[nodiscard]] bool keepsRecords() const { return m_threshold > 0.0 || m_every > 0; }
+
     double m_threshold;
+    UpdateInterval m_interval;
+    long long m_every = 0; ///< the current interval [steps]
+    long long m_since = 0; ///< due() calls since the last update
+    double m_lastPredictionError = 0.0;
+    /// markUpdated's prediction errors of the grains here, with their uids (adaptInterval).
+    std::vector<std::uint64_t> m_judgedUid;
+    std::vector<double> m_judgedError;
     std::array<double, 3> m_period; ///< periodic extents, 0 on open axes [m]
     long long m_updates = 0;
     double m_lastMax = 0.0;

@@ -33,6 +33,8 @@ std::uint64_t infoHash(CheckpointInfo const& info) {
     h = mix(h, info.historyCount);
     h = mix(h, info.gravityUpdates);
     h = mix(h, info.gravityPotentialEnergy);
+    h = mix(h, info.gravitySinceUpdate);
+    h = mix(h, info.gravityInterval);
     return h;
 }
 

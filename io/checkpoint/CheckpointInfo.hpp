@@ -5,12 +5,14 @@
 /// File layout (HDF5, one file per checkpoint; N grains, H contact-history entries in all):
 ///   attributes of "/": format_version, step, time, dt, domain_min[3], domain_max[3],
 ///                      periodic[3], scene (text), state_checksum (text), grain_count,
-///                      history_count, gravity_updates, gravity_potential_energy, checksum
+///                      history_count, gravity_updates, gravity_potential_energy,
+///                      gravity_since_update, gravity_interval, checksum
 ///   datasets: uid[N], position[N,3], velocity[N,3], angular_velocity[N,3],
 ///             orientation[N,4] (w, x, y, z), force[N,3], torque[N,3], radius[N], mass[N],
-///             type[N], flags[N], gravity_reference[N,3], gravity_field[N,3] (NaN rows: no
-///             self-gravity record), history_offset[N] (first entry of the grain),
-///             history_count[N], history_partner[H], history_spring[H,3], history_stamp[H]
+///             type[N], flags[N], gravity_reference[N,3], gravity_field[N,3],
+///             gravity_slope[N,3] (NaN rows: no self-gravity record), history_offset[N] (first
+///             entry of the grain), history_count[N], history_partner[H], history_spring[H,3],
+///             history_stamp[H]
 /// `checksum` is the FNV-1a of the attributes plus the sum over grains of grainHash: any
 /// slice of grains can be hashed by any rank, so a file is verified on any rank count.
 #include "core/math/AABB.hpp"
@@ -23,7 +25,8 @@ namespace regolith::io {
 
 /// The checkpoint format this build writes and reads. Bump it with every layout change.
 /// 2: self-gravity state (gravity_* attributes and datasets) added.
-inline constexpr std::int64_t kCheckpointFormatVersion = 2;
+/// 3: the update interval's state (gravity_since_update, gravity_interval, gravity_slope).
+inline constexpr std::int64_t kCheckpointFormatVersion = 3;
 
 struct CheckpointInfo {
     std::int64_t formatVersion = kCheckpointFormatVersion;
@@ -40,6 +43,9 @@ struct CheckpointInfo {
     /// last one [J]; the per-grain records are GrainState::gravity*.
     std::int64_t gravityUpdates = 0;
     double gravityPotentialEnergy = 0.0;
+    /// gravity.update_every: steps since the last update, and the interval then (0: none).
+    std::int64_t gravitySinceUpdate = 0;
+    std::int64_t gravityInterval = 0;
 };
 
 /// FNV-1a of every field of `info` (the header part of the file checksum). Not collective.

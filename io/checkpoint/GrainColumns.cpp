@@ -9,7 +9,7 @@ namespace regolith::io::detail {
 void GrainColumns::resize(std::size_t grains, std::size_t entries) {
     uid.resize(grains);
     for (auto* v : {&position, &velocity, &angularVelocity, &force, &torque, &gravityReference,
-                    &gravityField})
+                    &gravityField, &gravitySlope})
         v->resize(3 * grains);
     orientation.resize(4 * grains);
     radius.resize(grains);
@@ -38,6 +38,7 @@ std::vector<ColumnView> columnViews(GrainColumns& c) {
         {"flags", ColumnType::U8, 1, c.flags.data(), false},
         {"gravity_reference", ColumnType::F64, 3, c.gravityReference.data(), false},
         {"gravity_field", ColumnType::F64, 3, c.gravityField.data(), false},
+        {"gravity_slope", ColumnType::F64, 3, c.gravitySlope.data(), false},
         {"history_offset", ColumnType::U64, 1, c.historyOffset.data(), false},
         {"history_count", ColumnType::U32, 1, c.historyCount.data(), false},
         {"history_partner", ColumnType::U64, 1, c.partner.data(), true},
@@ -84,6 +85,7 @@ GrainColumns toColumns(std::span<GrainState const> grains, std::uint64_t history
         c.flags[i] = g.flags;
         put3(c.gravityReference, i, g.gravityReference);
         put3(c.gravityField, i, g.gravityField);
+        put3(c.gravitySlope, i, g.gravitySlope);
         c.historyOffset[i] = historyBase + e;
         c.historyCount[i] = static_cast<std::uint32_t>(g.history.size());
         for (particles::HistoryEntry const& h : g.history) {
@@ -115,6 +117,7 @@ std::vector<GrainState> fromColumns(GrainColumns const& c, std::uint64_t history
         g.flags = c.flags[i];
         g.gravityReference = get3(c.gravityReference, i);
         g.gravityField = get3(c.gravityField, i);
+        g.gravitySlope = get3(c.gravitySlope, i);
         std::uint64_t const first = c.historyOffset[i];
         std::uint64_t const count = c.historyCount[i];
         if (first < historyBase || first - historyBase + count > c.partner.size())

@@ -17,7 +17,7 @@ struct GrainColumns {
     std::vector<double> radius, mass;
     std::vector<std::uint32_t> type;
     std::vector<std::uint8_t> flags;
-    std::vector<double> gravityReference, gravityField;
+    std::vector<double> gravityReference, gravityField, gravitySlope;
     std::vector<std::uint64_t> historyOffset; ///< global index of the grain's first entry
     std::vector<std::uint32_t> historyCount;
     std::vector<std::uint64_t> partner; ///< history entries, grain after grain

@@ -111,6 +111,7 @@ std::uint64_t grainHash(GrainState const& g) {
     h.add(g.flags);
     h.add(g.gravityReference);
     h.add(g.gravityField);
+    h.add(g.gravitySlope);
     for (particles::HistoryEntry const& e : g.history) {
         h.add(e.partner);
         h.add(e.spring);

@@ -30,11 +30,13 @@ struct GrainState {
     std::uint32_t type = 0;                       ///< material index
     std::uint8_t flags = 0;                       ///< particles::Flags bits (Shadow never set)
     std::vector<particles::HistoryEntry> history; ///< in partner uid order
-    /// Self-gravity with update_threshold > 0: the grain's position at the last field update
-    /// and the acceleration it got then, which it keeps until the next update. NaN if it has
-    /// none (no self-gravity, threshold 0, or no update yet).
+    /// Self-gravity with update_threshold > 0 or update_every: the grain's position at the last
+    /// field update, the acceleration it got then, which it keeps until the next update, and
+    /// the rate it is extrapolated at (update_every). NaN if it has none (no self-gravity,
+    /// threshold 0 without update_every, or no update yet).
     core::Vec3 gravityReference = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     core::Vec3 gravityField = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    core::Vec3 gravitySlope = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 /// The masters of every local block, in block order then storage order. Not collective.

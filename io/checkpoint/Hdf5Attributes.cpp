@@ -118,6 +118,8 @@ void writeInfoAttributes(hid_t file, CheckpointInfo const& info, std::uint64_t c
     u64("history_count", info.historyCount);
     i64("gravity_updates", info.gravityUpdates);
     f64("gravity_potential_energy", &info.gravityPotentialEnergy, 1);
+    i64("gravity_since_update", info.gravitySinceUpdate);
+    i64("gravity_interval", info.gravityInterval);
     u64("checksum", checksum);
 }
 
@@ -146,6 +148,8 @@ CheckpointInfo readInfoAttributes(hid_t file, std::uint64_t& checksum, std::stri
     readAttr(file, "gravity_updates", H5T_NATIVE_INT64, 1, &info.gravityUpdates, context);
     readAttr(file, "gravity_potential_energy", H5T_NATIVE_DOUBLE, 1, &info.gravityPotentialEnergy,
              context);
+    readAttr(file, "gravity_since_update", H5T_NATIVE_INT64, 1, &info.gravitySinceUpdate, context);
+    readAttr(file, "gravity_interval", H5T_NATIVE_INT64, 1, &info.gravityInterval, context);
     readAttr(file, "checksum", H5T_NATIVE_UINT64, 1, &checksum, context);
     return info;
 }

@@ -89,7 +89,7 @@ private:
 void pack(core::SendBuffer& b, GrainState const& g) {
     b << g.uid << g.position << g.velocity << g.angularVelocity << g.orientation << g.force
       << g.torque << g.radius << g.mass << g.type << g.flags << g.gravityReference << g.gravityField
-      << static_cast<std::uint64_t>(g.history.size());
+      << g.gravitySlope << static_cast<std::uint64_t>(g.history.size());
     for (particles::HistoryEntry const& e : g.history)
         b << e.partner << e.spring << e.stamp;
 }
@@ -99,7 +99,7 @@ GrainState unpack(core::RecvBuffer& b) {
     std::uint64_t entries = 0;
     b >> g.uid >> g.position >> g.velocity >> g.angularVelocity >> g.orientation >> g.force >>
         g.torque >> g.radius >> g.mass >> g.type >> g.flags >> g.gravityReference >>
-        g.gravityField >> entries;
+        g.gravityField >> g.gravitySlope >> entries;
     g.history.resize(entries);
     for (particles::HistoryEntry& e : g.history)
         b >> e.partner >> e.spring >> e.stamp;

@@ -83,6 +83,13 @@ regolith_reference_app_test(two_agglomerates_direct APP regolith NP 1 2 4 SAME
   EXPECT particles=200 steps=30 left_domain=0
   ARGS ${agglomerates_small} --set gravity.self=direct --set sync.reproducible=true
        --set gravity.update_threshold=0.0)
+# The same with the field recomputed at an adaptive interval and extrapolated in between: the
+# interval follows a median over grains picked by uid, the slopes travel with their grains,
+# so every rank count gives the serial state too.
+regolith_reference_app_test(two_agglomerates_direct_adaptive APP regolith NP 1 2 4 SAME
+  EXPECT particles=200 steps=30 left_domain=0 gravity.interval>1
+  ARGS ${agglomerates_small} --set gravity.self=direct --set sync.reproducible=true
+       --set gravity.update_threshold=0.0 --set gravity.update_every=adaptive)
 regolith_reference_app_test(two_agglomerates_tree APP regolith NP 1 2
   EXPECT particles=200 steps=30 left_domain=0 ARGS ${agglomerates_small})
 # The tree and the mesh equal the serial run to their tolerance, gravity every step: gravity
