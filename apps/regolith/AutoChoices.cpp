@@ -69,6 +69,12 @@ std::optional<double> p3mExpectedError(SceneDescription const& scene, GrainExtre
 
 } // namespace
 
+double treeCostPerStep(TreeErrorPoint const& p, double accuracy) {
+    if (!(p.medianError < kErrorTarget * accuracy))
+        return std::numeric_limits<double>::infinity();
+    return p.wallMs / std::sqrt(extrapolationBudget(accuracy, p.medianError));
+}
+
 std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                                            particles::ParticleStorage const& masters,
                                            SceneDescription& scene) {
@@ -100,9 +106,13 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                          e.count, *p3m, *p3m <= g.accuracy ? "meets" : "misses", g.accuracy)});
     }
     if (g.self == SelfGravity::Auto) {
-        auto const* point =
-            std::find_if(std::begin(kTreeErrors), std::end(kTreeErrors),
-                         [&](TreeErrorPoint const& p) { return p.medianError <= g.accuracy; });
+        auto const* point = std::min_element(std::begin(kTreeErrors), std::end(kTreeErrors),
+                                             [&](TreeErrorPoint const& a, TreeErrorPoint const& b) {
+                                                 return treeCostPerStep(a, g.accuracy) <
+                                                        treeCostPerStep(b, g.accuracy);
+                                             });
+        if (!std::isfinite(treeCostPerStep(*point, g.accuracy)))
+            point = std::end(kTreeErrors);
         if (e.count <= kDirectSumMaxGrains || point == std::end(kTreeErrors)) {
             g.self = SelfGravity::Direct;
             out.push_back({"gravity.self", "direct",
@@ -124,9 +134,12 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
         } else {
             g.self = SelfGravity::Tree;
             g.theta = point->theta;
-            std::string reason = fmt::format("{} grains; the largest opening angle whose median "
-                                             "force error ({:g}) meets accuracy {:g}",
-                                             e.count, point->medianError, g.accuracy);
+            std::string reason = fmt::format(
+                "{} grains; with the update interval, the least cost per step: its median force "
+                "error ({:g}) leaves {:.2g} to the extrapolation between updates (the run aimed "
+                "at {:g} x accuracy {:g})",
+                e.count, point->medianError, extrapolationBudget(g.accuracy, point->medianError),
+                kErrorTarget, g.accuracy);
             if (p3m && *p3m <= g.accuracy)
                 reason += fmt::format("; p3m would meet it on this grid ({:.2g}) but costs {:.0f}x "
                                       "the tree per grain (measured)",
@@ -134,7 +147,8 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
             // Two keys, each a value --set takes (a restart reuses them: Checkpointing.hpp).
             out.push_back({"gravity.self", "tree", reason});
             out.push_back({"gravity.theta", fmt::format("{}", point->theta),
-                           "the opening angle that meets gravity.accuracy (above)"});
+                           "the opening angle of the least cost per step for gravity.accuracy "
+                           "(above)"});
         }
     }
     if (g.thresholdAuto) {
@@ -147,12 +161,11 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                        "no displacement limit: gravity.update_every decides"});
         if (!given) {
             g.updateEveryAdaptive = true;
-            out.push_back(
-                {"gravity.update_every", "adaptive",
-                 fmt::format("the field extrapolated in time from the last two updates; "
-                             "the interval follows the extrapolation's measured median "
-                             "error, aimed at {:g} ({:g} x accuracy {:g})",
-                             kExtrapolationShare * g.accuracy, kExtrapolationShare, g.accuracy)});
+            out.push_back({"gravity.update_every", "adaptive",
+                           fmt::format("the field extrapolated in time from the last two updates; "
+                                       "the interval follows the extrapolation's measured median "
+                                       "error, aimed at {:.2g}",
+                                       extrapolationBudget(g))});
         }
     }
     if (scene.time.dtAuto) {

@@ -19,16 +19,28 @@ struct AutoChoice {
 };
 
 /// The median relative force error of the Barnes–Hut tree (quadrupoles, b_max + offset
-/// opening) measured against the direct sum on the second paper's 38,358-grain agglomerate
+/// opening) measured against the direct sum on the second paper's 38,358-grain agglomerate,
+/// and the wall time of one evaluation there, one rank
 /// (`gravity_bench --instances agg38358 --methods tree --thetas 0.3,0.4,0.5,0.6,0.7,0.9`,
-/// docs/results.md), by opening angle; "auto" picks the largest θ whose error meets
-/// gravity.accuracy.
+/// docs/results.md; θ = 0.4's time, not quoted there, is the geometric mean of its neighbours').
 struct TreeErrorPoint {
     double theta;
     double medianError;
+    double wallMs;
 };
-inline constexpr TreeErrorPoint kTreeErrors[] = {{0.9, 5.2e-3}, {0.7, 1.45e-3}, {0.6, 9.2e-4},
-                                                 {0.5, 6.1e-4}, {0.4, 2.9e-4},  {0.3, 1.1e-4}};
+inline constexpr TreeErrorPoint kTreeErrors[] = {{0.9, 5.2e-3, 29.2}, {0.7, 1.45e-3, 39.0},
+                                                 {0.6, 9.2e-4, 44.8}, {0.5, 6.1e-4, 57.7},
+                                                 {0.4, 2.9e-4, 87.1}, {0.3, 1.1e-4, 131.6}};
+
+/// "auto" aims the run's measured median force error (method and extrapolation between
+/// updates, GravitySetup.hpp's extrapolationBudget) at this share of gravity.accuracy.
+inline constexpr double kErrorTarget = 0.9;
+
+/// The relative cost per step of the tree at `p` with an adaptive update interval: one
+/// evaluation per interval, and the interval grows as the square root of the extrapolation's
+/// error budget (that error ∝ interval²): wallMs / sqrt(budget). +inf where the tree's own
+/// error leaves no budget below kErrorTarget x `accuracy`.
+[[nodiscard]] double treeCostPerStep(TreeErrorPoint const& p, double accuracy);
 
 /// Below this many grains the direct sum (exact, O(N²)) costs about what the tree costs (3,866
 /// grains: 23 ms direct vs 5 ms tree at θ = 0.5; the ratio grows as N).
@@ -50,8 +62,9 @@ inline constexpr double kP3mSecondsPerGrain = 4.4e-6;
 /// Resolves every "auto" key of `scene` in place from `masters` (this rank's; counts and
 /// extremes are reduced over ranks) and returns the decisions (empty if nothing was "auto"):
 ///  - gravity.self: "direct" for at most kDirectSumMaxGrains grains (or an accuracy finer
-///    than the tree's best point), else "tree" with the largest θ of kTreeErrors meeting
-///    gravity.accuracy, or "p3m" where it is safe, accurate enough and cheaper (see above);
+///    than the tree's best point), else "tree" with the θ of kTreeErrors of the least cost per
+///    step together with the update interval (treeCostPerStep), or "p3m" where it is safe,
+///    accurate enough and cheaper (see above);
 ///  - gravity.update_threshold: 0, and gravity.update_every (unless given) "adaptive": the
 ///    field extrapolated between updates, the interval following the measured extrapolation
 ///    error (kExtrapolationShare of gravity.accuracy, GravitySetup.hpp);

@@ -1,5 +1,6 @@
 #include "apps/regolith/GravitySetup.hpp"
 
+#include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
@@ -15,6 +16,32 @@
 
 namespace regolith::apps {
 
+double extrapolationBudget(double accuracy, double methodError) {
+    double const target = kErrorTarget * accuracy;
+    double const left =
+        target > methodError ? std::sqrt(target * target - methodError * methodError) : 0.0;
+    return std::max(left, kMinExtrapolationShare * accuracy);
+}
+
+double extrapolationBudget(GravitySection const& g) {
+    double methodError = 0.5 * kErrorTarget * g.accuracy;
+    if (g.self == SelfGravity::Direct) {
+        methodError = 0.0;
+    } else if (g.self == SelfGravity::Tree) {
+        // kTreeErrors runs from large to small θ: log-linear between the two around g.theta.
+        auto const& t = kTreeErrors;
+        std::size_t const n = std::size(t);
+        methodError = g.theta >= t[0].theta ? t[0].medianError : t[n - 1].medianError;
+        for (std::size_t k = 0; k + 1 < n; ++k)
+            if (g.theta <= t[k].theta && g.theta >= t[k + 1].theta) {
+                double const w = (g.theta - t[k + 1].theta) / (t[k].theta - t[k + 1].theta);
+                methodError = std::exp((1.0 - w) * std::log(t[k + 1].medianError) +
+                                       w * std::log(t[k].medianError));
+            }
+    }
+    return extrapolationBudget(g.accuracy, methodError);
+}
+
 gravity::UpdateInterval updateInterval(SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
     gravity::UpdateInterval u;
@@ -22,7 +49,7 @@ gravity::UpdateInterval updateInterval(SceneDescription const& scene) {
     if (g.updateEveryAdaptive) {
         u.every = 1; // the first interval: the second update gives the slopes
         u.adaptive = true;
-        u.budget = kExtrapolationShare * g.accuracy;
+        u.budget = extrapolationBudget(g);
     } else {
         u.every = g.updateEvery;
     }

@@ -14,12 +14,21 @@
 
 namespace regolith::apps {
 
-/// The share of gravity.accuracy an adaptive update interval leaves to the extrapolation
-/// between updates (its median error at the stalest step); the method's own error has the rest.
-inline constexpr double kExtrapolationShare = 0.75;
+/// The median error an adaptive update interval leaves to the extrapolation between updates
+/// (at the stalest step), when the method's own median error is `methodError`: what is left of
+/// kErrorTarget x `accuracy` (AutoChoices.hpp) as the two add in quadrature (independent
+/// directions), sqrt((kErrorTarget accuracy)² - methodError²), and at least
+/// kMinExtrapolationShare x accuracy. Not collective.
+[[nodiscard]] double extrapolationBudget(double accuracy, double methodError);
+/// The same for the scene's method: the tree's error interpolated in θ from kTreeErrors (its
+/// nearest point beyond them), 0 for the direct sum, half of the target for the others (their
+/// error depends on the grid; the run's measured error tells).
+[[nodiscard]] double extrapolationBudget(GravitySection const& g);
+
+inline constexpr double kMinExtrapolationShare = 0.25;
 
 /// gravity.update_every as the update policy's interval (dt from time.dt; "adaptive" starts at
-/// one step and aims at kExtrapolationShare x gravity.accuracy). Not collective.
+/// one step and aims at extrapolationBudget). Not collective.
 [[nodiscard]] gravity::UpdateInterval updateInterval(SceneDescription const& scene);
 
 /// Checks of the measured force error a run with gravity.check_every = "auto" takes.

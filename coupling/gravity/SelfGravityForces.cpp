@@ -202,7 +202,7 @@ void SelfGravityForces::relocate(domain::BlockForest const& forest) {
     m_lastUpdated = false;
 }
 
-void SelfGravityForces::gather(particles::LocalParticles const& local) {
+void SelfGravityForces::gather(particles::LocalParticles const& local, bool state) {
     m_uid.clear();
     m_x.clear();
     m_y.clear();
@@ -213,6 +213,8 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             m_uid.push_back(ps.uid(i));
+            if (!state)
+                return;
             m_x.push_back(ps.position(i).x());
             m_y.push_back(ps.position(i).y());
             m_z.push_back(ps.position(i).z());
@@ -231,6 +233,8 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
     for (std::size_t j = 0; j < n; ++j)
         m_slot[order[j]] = static_cast<std::uint32_t>(j);
     auto permute = [&](auto& v) {
+        if (v.empty())
+            return;
         auto const copy = v;
         for (std::size_t j = 0; j < n; ++j)
             v[j] = copy[order[j]];
@@ -244,9 +248,15 @@ void SelfGravityForces::gather(particles::LocalParticles const& local) {
 }
 
 void SelfGravityForces::addForces(particles::LocalParticles& local) {
-    gather(local);
+    // The positions are read only by a displacement threshold, an update, or an armed check;
+    // a step that extrapolates the field needs the uids alone.
+    bool const state = m_config.updateThreshold > 0.0 || m_config.interval.every == 0 ||
+                       m_monitor.armed() || m_policy.stepsSinceUpdate() + 1 >= m_policy.interval();
+    gather(local, state);
     std::size_t const n = m_uid.size();
     bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
+    if (updated && !state) // a grain new since the last update forced it
+        gather(local, true);
     m_lastUpdated = updated;
     if (updated && m_monitor.armed() && m_kept.valid) // the step before, now judged
         m_monitor.record(coupling::sampledForceErrors(
@@ -278,7 +288,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
                 m_fy[s] = m_ay[s];
                 m_fz[s] = m_az[s];
             } else {
-                auto const a = m_policy.fieldNow(*m_policy.record(ps.uid(i)));
+                auto const a = m_policy.fieldNow(*m_policy.recordAt(s));
                 m_fx[s] = a[0];
                 m_fy[s] = a[1];
                 m_fz[s] = a[2];
@@ -321,7 +331,7 @@ std::optional<gravity::ErrorStats> SelfGravityForces::sampledForceError(std::siz
 void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local) {
     if (m_stats.evaluations > 0 || m_gridRefreshed || !m_method->gridFields())
         return;
-    gather(local);
+    gather(local, true);
     std::size_t const n = m_uid.size();
     m_ax.assign(n, 0.0);
     m_ay.assign(n, 0.0);

@@ -135,7 +135,8 @@ public:
 
 private:
     class Method;
-    void gather(particles::LocalParticles const& local);
+    /// The local masters' uids, and with `state` their positions, masses and radii.
+    void gather(particles::LocalParticles const& local, bool state);
     /// The grains of a step and the field the integrator gave them (a check's input).
     struct AppliedField {
         bool valid = false; ///< a step was kept (on every rank alike, also one without grains)

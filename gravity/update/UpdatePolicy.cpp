@@ -63,17 +63,24 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
     ++m_call;
     ++m_since;
     double local = m_updates == 0 ? std::numeric_limits<double>::infinity() : 0.0;
+    if (!std::equal(uid.begin(), uid.end(), m_foundUid.begin(), m_foundUid.end())) {
+        m_foundUid.assign(uid.begin(), uid.end());
+        m_found.assign(uid.size(), nullptr);
+    }
     std::vector<std::size_t> missing; // grains without a record here: they changed rank
     for (std::size_t i = 0; i < uid.size() && std::isfinite(local); ++i) {
-        auto const it = m_records.find(uid[i]);
-        if (it == m_records.end()) {
-            missing.push_back(i);
-            continue;
+        if (m_found[i] == nullptr) {
+            auto const it = m_records.find(uid[i]);
+            if (it == m_records.end()) {
+                missing.push_back(i);
+                continue;
+            }
+            m_found[i] = &it->second;
         }
-        it->second.seen = m_call;
+        m_found[i]->seen = m_call;
         if (m_threshold > 0.0)
             local =
-                std::max(local, distance(it->second.record.reference, x[i], y[i], z[i], m_period));
+                std::max(local, distance(m_found[i]->record.reference, x[i], y[i], z[i], m_period));
     }
     // One reduction: the largest displacement, and whether any rank misses a record.
     std::array<double, 2> global{local, missing.empty() ? 0.0 : 1.0};
@@ -93,6 +100,8 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         fetchMigratedRecords(*m_exchange, comm.size(), m_records, wanted, m_call);
         for (std::size_t const i : missing) {
             auto const it = m_records.find(uid[i]);
+            if (it != m_records.end())
+                m_found[i] = &it->second;
             if (it == m_records.end())
                 local = std::numeric_limits<double>::infinity(); // a grain new since the update
             else if (m_threshold > 0.0)
@@ -144,6 +153,7 @@ void UpdatePolicy::markUpdated(std::span<std::uint64_t const> uid, std::span<dou
         records[uid[i]] = e;
     }
     m_records = std::move(records);
+    m_foundUid.clear(); // the entries moved
     m_since = 0;
 }
 
@@ -198,6 +208,7 @@ void UpdatePolicy::restore(long long updates, std::span<std::uint64_t const> uid
                            std::span<GrainRecord const> records) {
     m_updates = updates;
     m_records.clear();
+    m_foundUid.clear();
     if (!keepsRecords())
         return;
     for (std::size_t i = 0; i < uid.size(); ++i) {

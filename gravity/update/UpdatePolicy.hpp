@@ -94,6 +94,11 @@ public:
     /// The record of grain `uid` on this rank, or nullptr. After a due() that returned
     /// false, every grain passed to it has one. Not collective.
     [[nodiscard]] GrainRecord const* record(std::uint64_t uid) const;
+    /// The record of the i-th grain passed to the last due(), as record(uid[i]) but without the
+    /// lookup. Valid until the next due(), markUpdated() or restore(). Not collective.
+    [[nodiscard]] GrainRecord const* recordAt(std::size_t i) const {
+        return i < m_found.size() && m_found[i] != nullptr ? &m_found[i]->record : nullptr;
+    }
     /// The field of `r` at this step: its field at the last update, extrapolated with its
     /// slope over the steps since (the kept field without an interval). Not collective.
     [[nodiscard]] std::array<double, 3> fieldNow(GrainRecord const& r) const;
@@ -148,6 +153,11 @@ private:
     double m_lastMax = 0.0;
     std::uint64_t m_call = 0; ///< due() calls so far (Entry::seen)
     std::unordered_map<std::uint64_t, Entry> m_records;
+    /// The last due()'s grains and their entries (stable in the map until it is rebuilt): a
+    /// step whose grains are the same, in the same order, as the last one's (most steps) finds
+    /// them without hashing.
+    std::vector<std::uint64_t> m_foundUid;
+    std::vector<Entry*> m_found;
     std::unique_ptr<core::SparseExchange> m_exchange; ///< made at the first migration
 };
 
