@@ -288,7 +288,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
                 m_fy[s] = m_ay[s];
                 m_fz[s] = m_az[s];
             } else {
-                auto const a = m_policy.fieldNow(*m_policy.recordAt(s));
+                auto const a = m_policy.fieldAt(s);
                 m_fx[s] = a[0];
                 m_fy[s] = a[1];
                 m_fz[s] = a[2];

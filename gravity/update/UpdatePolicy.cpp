@@ -63,12 +63,16 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
     ++m_call;
     ++m_since;
     double local = m_updates == 0 ? std::numeric_limits<double>::infinity() : 0.0;
-    if (!std::equal(uid.begin(), uid.end(), m_foundUid.begin(), m_foundUid.end())) {
+    bool const same = std::equal(uid.begin(), uid.end(), m_foundUid.begin(), m_foundUid.end());
+    if (!same) {
         m_foundUid.assign(uid.begin(), uid.end());
         m_found.assign(uid.size(), nullptr);
     }
+    // The same grains as at the last call, all found then: nothing to look up or measure
+    // without a threshold (most steps of an interval).
+    bool const lookup = !same || m_threshold > 0.0;
     std::vector<std::size_t> missing; // grains without a record here: they changed rank
-    for (std::size_t i = 0; i < uid.size() && std::isfinite(local); ++i) {
+    for (std::size_t i = 0; lookup && i < uid.size() && std::isfinite(local); ++i) {
         if (m_found[i] == nullptr) {
             auto const it = m_records.find(uid[i]);
             if (it == m_records.end()) {
@@ -86,9 +90,11 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
     std::array<double, 2> global{local, missing.empty() ? 0.0 : 1.0};
     comm.allReduceInPlace(std::span<double>(global), core::ReduceOp::Max);
     bool const stepsDue = m_every > 0 && m_since >= m_every;
-    // Records are fetched unless the step updates anyway (the next due() would give them away).
+    // Records are fetched unless the step updates anyway (the next due() would give them away);
+    // with an interval an update needs them too: the slopes are differences with the old field.
     bool const needed =
-        std::isfinite(global[0]) && !stepsDue && (m_threshold == 0.0 || global[0] <= m_threshold);
+        std::isfinite(global[0]) &&
+        (m_every > 0 || (!stepsDue && (m_threshold == 0.0 || global[0] <= m_threshold)));
     if (global[1] > 0.0 && needed) {
         // Not due on the grains here, but some arrived: their records decide (all ranks).
         if (!m_exchange)
@@ -97,6 +103,10 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         wanted.reserve(missing.size());
         for (std::size_t const i : missing)
             wanted.push_back(uid[i]);
+        if (!lookup) // this rank's records are claimed: none is given away
+            for (Entry* e : m_found)
+                if (e != nullptr)
+                    e->seen = m_call;
         fetchMigratedRecords(*m_exchange, comm.size(), m_records, wanted, m_call);
         for (std::size_t const i : missing) {
             auto const it = m_records.find(uid[i]);
@@ -109,6 +119,15 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
                                  distance(it->second.record.reference, x[i], y[i], z[i], m_period));
         }
         global[0] = comm.allReduce(local, core::ReduceOp::Max);
+    }
+    if (lookup || global[1] > 0.0) { // the fields in grain order, for fieldAt()
+        m_atField.resize(3 * uid.size());
+        m_atSlope.resize(3 * uid.size());
+        for (std::size_t i = 0; i < m_found.size(); ++i)
+            for (std::size_t a = 0; a < 3 && m_found[i] != nullptr; ++a) {
+                m_atField[3 * i + a] = m_found[i]->record.field[a];
+                m_atSlope[3 * i + a] = m_found[i]->record.slope[a];
+            }
     }
     m_lastMax = global[0];
     return stepsDue || !std::isfinite(m_lastMax) || (m_threshold > 0.0 && m_lastMax > m_threshold);
@@ -185,12 +204,11 @@ void UpdatePolicy::adaptInterval(core::Comm const& comm) {
                          1LL, m_interval.maxEvery);
 }
 
-std::array<double, 3> UpdatePolicy::fieldNow(GrainRecord const& r) const {
-    double const elapsed = static_cast<double>(m_since) * m_interval.dt;
-    if (m_every == 0 || elapsed == 0.0)
-        return r.field;
-    return {r.field[0] + r.slope[0] * elapsed, r.field[1] + r.slope[1] * elapsed,
-            r.field[2] + r.slope[2] * elapsed};
+std::array<double, 3> UpdatePolicy::fieldAt(std::size_t i) const {
+    double const elapsed = m_every > 0 ? static_cast<double>(m_since) * m_interval.dt : 0.0;
+    double const* f = &m_atField[3 * i];
+    double const* s = &m_atSlope[3 * i];
+    return {f[0] + s[0] * elapsed, f[1] + s[1] * elapsed, f[2] + s[2] * elapsed};
 }
 
 void UpdatePolicy::restoreInterval(long long sinceUpdate, long long every) {

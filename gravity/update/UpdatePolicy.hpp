@@ -94,14 +94,11 @@ public:
     /// The record of grain `uid` on this rank, or nullptr. After a due() that returned
     /// false, every grain passed to it has one. Not collective.
     [[nodiscard]] GrainRecord const* record(std::uint64_t uid) const;
-    /// The record of the i-th grain passed to the last due(), as record(uid[i]) but without the
-    /// lookup. Valid until the next due(), markUpdated() or restore(). Not collective.
-    [[nodiscard]] GrainRecord const* recordAt(std::size_t i) const {
-        return i < m_found.size() && m_found[i] != nullptr ? &m_found[i]->record : nullptr;
-    }
-    /// The field of `r` at this step: its field at the last update, extrapolated with its
-    /// slope over the steps since (the kept field without an interval). Not collective.
-    [[nodiscard]] std::array<double, 3> fieldNow(GrainRecord const& r) const;
+    /// The field of the i-th grain passed to the last due() that returned false, at this step:
+    /// its field at the last update extrapolated with its slope over the steps since (the kept
+    /// field without an interval); from a copy of the records in that order, read without
+    /// lookups. Not collective.
+    [[nodiscard]] std::array<double, 3> fieldAt(std::size_t i) const;
 
     /// Continues from a checkpoint: `updates` as updates(), and records of any grains (not
     /// necessarily this rank's: the next due() brings each to the rank holding its grain).
@@ -158,6 +155,7 @@ private:
     /// them without hashing.
     std::vector<std::uint64_t> m_foundUid;
     std::vector<Entry*> m_found;
+    std::vector<double> m_atField, m_atSlope;         ///< their fields and slopes, 3 per grain
     std::unique_ptr<core::SparseExchange> m_exchange; ///< made at the first migration
 };
 

@@ -90,6 +90,12 @@ regolith_reference_app_test(two_agglomerates_direct_adaptive APP regolith NP 1 2
   EXPECT particles=200 steps=30 left_domain=0 gravity.interval>1
   ARGS ${agglomerates_small} --set gravity.self=direct --set sync.reproducible=true
        --set gravity.update_threshold=0.0 --set gravity.update_every=adaptive)
+# Grains that cross block faces (and ranks) from the first step on, between updates of an
+# adaptive interval: each brings its field and slope along, on any layout.
+regolith_reference_app_test(migrating_grains_adaptive APP regolith NP 1 2 3 SAME
+  EXPECT particles=729 steps=40 gravity.interval>1
+  ARGS ${PROJECT_SOURCE_DIR}/tests/apps/scenes/restart_gravity.toml
+       --set gravity.update_threshold=0.0 --set gravity.update_every=adaptive)
 regolith_reference_app_test(two_agglomerates_tree APP regolith NP 1 2
   EXPECT particles=200 steps=30 left_domain=0 ARGS ${agglomerates_small})
 # The tree and the mesh equal the serial run to their tolerance, gravity every step: gravity
