@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace regolith::apps {
 
@@ -36,10 +37,22 @@ constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
                                 "pm"sv,         "p3m"sv,         "occupied-cells"sv,
                                 "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
-/// gravity.check_every above this is a typo: a run has far fewer updates worth one check.
-constexpr std::int64_t kMaxCheckEvery = 1000000;
-/// gravity.update_every likewise.
-constexpr std::int64_t kMaxUpdateEvery = 1000000;
+/// gravity.check_every and update_every above this are typos: a run has far fewer updates.
+constexpr std::int64_t kMaxEvery = 1000000;
+
+/// Whether `key` (present) is the word `word`; else its integer in [lo, hi] goes to `value`.
+/// InputError naming the key, with `expected`, for anything else.
+bool isWordElseInteger(core::ConfigTable const& t, char const* key, std::string_view word,
+                       std::int64_t lo, std::int64_t hi, char const* expected,
+                       std::int64_t& value) {
+    if (t.kindOf(key) == core::ConfigKind::String && t.getString(key) == word)
+        return true;
+    if (t.kindOf(key) != core::ConfigKind::Integer)
+        t.failExpected(key, expected);
+    value = t.getIf<std::int64_t>(
+        key, [&](std::int64_t n) { return n >= lo && n <= hi; }, expected);
+    return false;
+}
 
 /// The parsed section if present, else its defaults (every key of these sections is optional).
 template <class Section, class Parse>
@@ -106,18 +119,10 @@ SyncSection parseSync(core::ConfigTable const& t) {
 
 BalanceSection parseBalance(core::ConfigTable const& t) {
     BalanceSection s;
-    if (t.has("every")) {
-        bool const isAuto =
-            t.kindOf("every") == core::ConfigKind::String && t.getString("every") == "auto";
-        if (!isAuto) {
-            if (t.kindOf("every") != core::ConfigKind::Integer)
-                t.failExpected("every", "a number of steps >= 0 or \"auto\"");
-            s.every = t.getIf<std::int64_t>(
-                "every", [](std::int64_t n) { return n >= 0; },
-                "a number of steps >= 0 or \"auto\"");
-            s.everyAuto = false;
-        }
-    }
+    if (t.has("every"))
+        s.everyAuto =
+            isWordElseInteger(t, "every", "auto", 0, std::numeric_limits<std::int64_t>::max(),
+                              "a number of steps >= 0 or \"auto\"", s.every);
     s.threshold = t.getOrIf<double>(
         "threshold", s.threshold, [](double x) { return x >= 1.0 && std::isfinite(x); },
         "an imbalance (max / mean load) >= 1");
@@ -191,29 +196,14 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     s.accuracy = t.getOrIf<double>(
         "accuracy", s.accuracy, [](double a) { return a > 0.0 && a < 1.0; },
         "a relative force error in (0, 1)");
-    if (t.has("update_every")) {
-        char const* const expected = "a number of steps in [1, 1000000] or \"adaptive\"";
-        if (t.kindOf("update_every") == core::ConfigKind::String) {
-            if (t.getString("update_every") != "adaptive")
-                t.failExpected("update_every", expected);
-            s.updateEveryAdaptive = true;
-        } else {
-            if (t.kindOf("update_every") != core::ConfigKind::Integer)
-                t.failExpected("update_every", expected);
-            s.updateEvery = t.getIf<std::int64_t>(
-                "update_every", [](std::int64_t n) { return n >= 1 && n <= kMaxUpdateEvery; },
-                expected);
-        }
-    }
-    if (t.has("check_every") && !(t.kindOf("check_every") == core::ConfigKind::String &&
-                                  t.getString("check_every") == "auto")) {
-        char const* const expected = "a number of updates in [0, 1000000] (0: never) or \"auto\"";
-        if (t.kindOf("check_every") != core::ConfigKind::Integer)
-            t.failExpected("check_every", expected);
-        s.checkEvery = t.getIf<std::int64_t>(
-            "check_every", [](std::int64_t n) { return n >= 0 && n <= kMaxCheckEvery; }, expected);
-        s.checkEveryAuto = false;
-    }
+    if (t.has("update_every"))
+        s.updateEveryAdaptive =
+            isWordElseInteger(t, "update_every", "adaptive", 1, kMaxEvery,
+                              "a number of steps in [1, 1000000] or \"adaptive\"", s.updateEvery);
+    if (t.has("check_every"))
+        s.checkEveryAuto = isWordElseInteger(
+            t, "check_every", "auto", 0, kMaxEvery,
+            "a number of updates in [0, 1000000] (0: never) or \"auto\"", s.checkEvery);
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
     // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening
