@@ -113,15 +113,14 @@ void checkMeasuredGridAccuracy(coupling::SelfGravityForces const& gravity,
     if (gridErrorPoints(g.self).empty() || !g.accuracyGiven || periodic[0] || periodic[1] ||
         periodic[2])
         return;
-    auto const stats = gravity.sampledForceError(kAccuracySample);
-    if (!stats || stats->median <= g.accuracy)
+    auto const measured = gravity.sampledForceError(kAccuracySample);
+    if (!measured || measured->median <= g.accuracy)
         return;
-    auto const measured = &stats->median;
     throw core::InputError(fmt::format(
         "gravity.accuracy = {:g}: gravity.self = \"{}\" has a median force error of {:.2g} on "
         "this scene's grains at the start (about {} of them against the direct sum); {}, ask "
         "for a larger gravity.accuracy, or use \"tree\" or \"direct\"",
-        g.accuracy, toString(g.self), *measured, kAccuracySample,
+        g.accuracy, toString(g.self), measured->median, kAccuracySample,
         // P3M's error need not fall with finer cells (GridAccuracy.hpp's kP3mErrors).
         g.self == SelfGravity::P3m ? "raise gravity.p3m_cutoff or change domain.cells_per_block"
                                    : "refine domain.cells_per_block"));
