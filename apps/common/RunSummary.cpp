@@ -90,6 +90,14 @@ std::string toJson(RunSummary const& s) {
         .member("center_of_mass", s.conserved.centerOfMass)
         .member("mass", s.conserved.mass)
         .endObject();
+    w.key("walls").beginArray();
+    for (RunSummary::Wall const& wall : s.walls)
+        w.beginObject()
+            .member("force", wall.force)
+            .member("torque", wall.torque)
+            .member("work", wall.work)
+            .endObject();
+    w.endArray();
     w.member("checksum", s.checksum).endObject();
     return w.str();
 }

@@ -100,6 +100,15 @@ struct RunSummary {
         double mass = 0.0; ///< total mass of the masters (beyond the contract)
     } conserved;
 
+    /// What the grains did to each wall at the end and the work each wall did on them (JSON key
+    /// "walls", an array in [[walls]] order, beyond the contract's keys), over all ranks.
+    struct Wall {
+        core::Vec3 force = core::Vec3::Zero();  ///< contact force on the wall, last step
+        core::Vec3 torque = core::Vec3::Zero(); ///< about its axis point, last step
+        double work = 0.0;                      ///< done on the grains during this invocation
+    };
+    std::vector<Wall> walls;
+
     std::string checksum; ///< hex digest of the uid-sorted final state
 };
 

@@ -131,7 +131,7 @@ particles::AnyIntegrator makeIntegrator(SceneDescription const& scene) {
 particles::WallList makeWalls(SceneDescription const& scene) {
     particles::WallList walls;
     for (particles::Wall const& w : scene.walls)
-        walls.add(w.point, w.normal, w.type);
+        walls.add(w);
     return walls;
 }
 

@@ -24,6 +24,7 @@
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/SpeedChoices.hpp"
 #include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/WallLoads.hpp"
 #include "apps/scenarios/Scenarios.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
@@ -208,7 +209,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         dem.setBodyForces(
             [g = selfGravity.get()](particles::LocalParticles& l) { g->addForces(l); });
     if (restart) {
-        dem.resume(static_cast<std::uint64_t>(startStep));
+        dem.resume(static_cast<std::uint64_t>(startStep), start.time);
     } else {
         dem.setUp();
         checkOverlapsAcrossBlocks(world, local, dem.contacts(), scene.contact.initialOverlap);
@@ -227,29 +228,38 @@ int runSceneUnlocated(core::AppContext& ctx) {
         if (restart)
             options.keepEntriesBefore = start.time;
         options.writesGrid = gridFieldsOf(selfGravity.get()).has_value();
+        options.writesWalls = !dem.walls().empty();
         vtk.emplace(world, options);
-        vtk->write(startStep, start.time, local, gridFieldsOf(selfGravity.get()));
     }
+    // The grains, blocks, grid and walls of one output frame.
+    auto const writeVtk = [&](std::int64_t step) {
+        vtk->write(step, timeAt(step), local, gridFieldsOf(selfGravity.get()));
+        if (!dem.walls().empty())
+            vtk->writeWalls(step, timeAt(step), dem.walls(), forest.geometry().domain());
+    };
+    if (vtk)
+        writeVtk(startStep);
     ProgressLine progress(ProgressSettings{
         startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
         std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
         world.size(), scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
     // A rebalance moves the grains in place (BlockPlacement); what stands on the blocks'
     // assignment moves with them.
-    DynamicBalance balance(world, scene, placement, startStep, [&] {
+    auto const relocate = [&] {
         sync.relocate(*placement.particleForest);
         if (selfGravity)
             selfGravity->relocate(forest);
         dem.relocated();
         if (selfGravity && vtk) // the grid output until the next update (as on a restart)
             selfGravity->refreshGridFields(local);
-    });
+    };
+    DynamicBalance balance(world, scene, placement, startStep, relocate);
     auto const afterStep = [&](std::int64_t stepsDone) {
         if (checkpoints.due(stepsDone))
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
-            vtk->write(stepsDone, timeAt(stepsDone), local, gridFieldsOf(selfGravity.get()));
+            writeVtk(stepsDone);
         balance.afterStep(stepsDone);
         progress.setImbalance(balance.imbalance());
         if (selfGravity)
@@ -322,6 +332,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
         if (!warning.empty())
             core::log::warn("{}", warning);
     }
+    summary.walls = reduceWallLoads(world, dem.walls());
     summary.checksum = stateChecksumFrom(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);

@@ -1,6 +1,7 @@
 #include "apps/regolith/SceneSections.hpp"
 
 #include "apps/regolith/SceneKeyLocation.hpp"
+#include "apps/regolith/WallSection.hpp"
 #include "core/Error.hpp"
 #include "core/config/ValueChecks.hpp"
 #include "core/log/Log.hpp"
@@ -240,18 +241,6 @@ GravitySection parseGravity(core::ConfigTable const& t) {
     return s;
 }
 
-particles::Wall parseWall(core::ConfigTable const& t, std::size_t index) {
-    particles::Wall w;
-    w.point = t.getIf<core::Vec3>("point", isFiniteVec3, "an array of 3 finite numbers");
-    w.normal = t.getIf<core::Vec3>(
-        "normal", [](core::Vec3 const& n) { return isFiniteVec3(n) && n.norm() > 0.0; },
-        "a non-zero vector of 3 finite numbers");
-    w.normal.normalize();
-    w.type = parseMaterialType(t);
-    w.uid = particles::wallUid(index);
-    return w;
-}
-
 OutputSection parseOutput(core::ConfigTable const& t) {
     OutputSection s;
     s.dir = t.getOrIf<std::string>(
@@ -345,18 +334,8 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
         scene.walls.push_back(parseWall(walls[i], i));
     root.rejectUnknownKeys();
     requireGravityMatchesPeriodicity(root, scene);
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-        // A grain crossing the periodic face would come back on the wall's other side.
-        for (int a = 0; a < 3; ++a)
-            if (scene.forest.periodic[static_cast<std::size_t>(a)] &&
-                scene.walls[i].normal[a] != 0.0)
-                walls[i].fail("normal", fmt::format("the wall crosses the periodic axis {0} (its "
-                                                    "normal has a {0} component; domain.periodic): "
-                                                    "grains leaving through the periodic face "
-                                                    "would come back behind it; make the normal "
-                                                    "perpendicular to the periodic axes",
-                                                    "xyz"[a]));
-    }
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        requireRepeatsAlongPeriodicAxes(walls[i], scene.walls[i], scene.forest);
     // A lattice whose neighbours overlap more than the validation accepts would be refused
     // after generation, and a spacing far below the diameter generates (and compares) more
     // grains than memory holds first: refused here.

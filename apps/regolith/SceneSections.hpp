@@ -158,7 +158,7 @@ struct SceneDescription {
     /// The [[particles]] entries in scene order, checked with
     /// particles::validateParticleSpecs against [domain] (files are read only when generated).
     std::vector<particles::ParticleSpec> particles;
-    std::vector<particles::Wall> walls; ///< [[walls]], uid = particles::wallUid(index)
+    std::vector<particles::Wall> walls;         ///< [[walls]] (WallSection.hpp), at time 0
     OutputSection output;
 };
 
@@ -166,9 +166,6 @@ struct SceneDescription {
 [[nodiscard]] SyncSection parseSync(core::ConfigTable const& section);
 [[nodiscard]] ContactSection parseContact(core::ConfigTable const& section);
 [[nodiscard]] GravitySection parseGravity(core::ConfigTable const& section);
-/// One [[walls]] entry: point, normal (non-zero; unit length after parsing, pointing into the
-/// half-space where the grains are), type (material index, default 0); uid = wallUid(index).
-[[nodiscard]] particles::Wall parseWall(core::ConfigTable const& entry, std::size_t index);
 [[nodiscard]] BalanceSection parseBalance(core::ConfigTable const& section);
 [[nodiscard]] OutputSection parseOutput(core::ConfigTable const& section);
 /// One [[particles]] entry, read into the generators' input (particles/generators/

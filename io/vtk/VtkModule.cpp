@@ -2,6 +2,7 @@
 // callers' arrays are wrapped, not copied (VTK only reads them while writing).
 #include "io/vtk/VtkModule.hpp"
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
@@ -12,12 +13,15 @@
 #include <vtkObject.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLImageDataWriter.h>
+#include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 #include <vtkXMLWriter.h>
 
@@ -112,6 +116,35 @@ public:
         addColumns(grid->GetCellData(), cellData, count);
         vtkNew<vtkXMLUnstructuredGridWriter> writer;
         return write(writer, path, grid);
+    }
+
+    bool writePolygons(std::string const& path, std::size_t count, double const* xyz,
+                       std::vector<std::int64_t> const& offsets,
+                       std::vector<std::int64_t> const& connectivity,
+                       std::vector<Column> const& pointData,
+                       std::vector<Column> const& cellData) override {
+        vtkNew<vtkPoints> points;
+        points->SetDataTypeToDouble();
+        if (count > 0)
+            points->SetData(wrap({"Points", "Float64", 3}, xyz, count));
+        vtkNew<vtkTypeInt64Array> offsetArray, connectivityArray;
+        offsetArray->SetNumberOfValues(static_cast<vtkIdType>(offsets.size()));
+        for (std::size_t k = 0; k < offsets.size(); ++k)
+            offsetArray->SetValue(static_cast<vtkIdType>(k), offsets[k]);
+        connectivityArray->SetNumberOfValues(static_cast<vtkIdType>(connectivity.size()));
+        for (std::size_t k = 0; k < connectivity.size(); ++k)
+            connectivityArray->SetValue(static_cast<vtkIdType>(k), connectivity[k]);
+        vtkNew<vtkCellArray> polygons;
+        polygons->SetData(offsetArray, connectivityArray);
+        vtkNew<vtkPolyData> poly;
+        poly->SetPoints(points);
+        poly->SetPolys(polygons);
+        if (count > 0)
+            addColumns(poly->GetPointData(), pointData, count);
+        if (offsets.size() > 1)
+            addColumns(poly->GetCellData(), cellData, offsets.size() - 1);
+        vtkNew<vtkXMLPolyDataWriter> writer;
+        return write(writer, path, poly);
     }
 
     bool writeImage(std::string const& path, std::array<int, 3> cells, std::array<double, 3> origin,

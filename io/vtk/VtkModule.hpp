@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,15 @@ public:
     [[nodiscard]] virtual bool writeBoxes(std::string const& path, std::size_t count,
                                           double const* bounds,
                                           std::vector<Column> const& cellData) = 0;
+    /// Writes `count` points (`xyz`: 3 per point) and polygons (polygon k: the points
+    /// connectivity[offsets[k] .. offsets[k+1]), offsets starting with 0) with `pointData` and
+    /// `cellData`, as VTK XML polydata (.vtp), as writeVertices. False if VTK fails.
+    [[nodiscard]] virtual bool writePolygons(std::string const& path, std::size_t count,
+                                             double const* xyz,
+                                             std::vector<std::int64_t> const& offsets,
+                                             std::vector<std::int64_t> const& connectivity,
+                                             std::vector<Column> const& pointData,
+                                             std::vector<Column> const& cellData) = 0;
     /// Writes image data of `cells` cells per axis (the first axis fastest in `cellData`) with
     /// its lower corner at `origin` and cell size `spacing`, as writeVertices. False if VTK
     /// fails.

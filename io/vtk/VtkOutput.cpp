@@ -7,6 +7,7 @@
 #include "io/vtk/GridPieces.hpp"
 #include "io/vtk/VtkPieces.hpp"
 #include "io/vtk/VtkSeries.hpp"
+#include "io/vtk/WallPieces.hpp"
 
 #include <fmt/format.h>
 
@@ -95,7 +96,8 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
         };
         for (Series const& s : {Series{particleSeriesPath(), "particles", "pvtu", true},
                                 Series{blockSeriesPath(), "blocks", "pvtu", m_options.blocks},
-                                Series{gridSeriesPath(), "grid", "vtm", m_options.writesGrid}})
+                                Series{gridSeriesPath(), "grid", "vtm", m_options.writesGrid},
+                                Series{wallSeriesPath(), "walls", "vtp", m_options.writesWalls}})
             if (s.written && fs::exists(fs::symlink_status(s.path, ec)) &&
                 !isOwnSeries(s.path, s.kind, s.extension))
                 throw core::InputError(fmt::format(
@@ -108,6 +110,8 @@ VtkOutput::VtkOutput(core::Comm const& comm, VtkOptions options)
         // A restart writes no grid at its first step (the field is restored per grain, not
         // on the grid): the original run's entry of that step stays.
         m_gridSteps = keptEntries(gridSeriesPath(), m_options.keepEntriesBefore, true);
+        if (m_options.writesWalls)
+            m_wallSteps = keptEntries(wallSeriesPath(), m_options.keepEntriesBefore);
         bool const fresh = m_options.keepEntriesBefore == -std::numeric_limits<double>::infinity();
         if (fresh && !m_options.writesGrid && fs::exists(gridSeriesPath(), ec)) {
             if (!isOwnSeries(gridSeriesPath(), "grid", "vtm"))
@@ -135,6 +139,30 @@ std::string VtkOutput::blockSeriesPath() const {
 
 std::string VtkOutput::gridSeriesPath() const {
     return (fs::path(m_options.dir) / "grid.pvd").string();
+}
+
+std::string VtkOutput::wallSeriesPath() const {
+    return (fs::path(m_options.dir) / "walls.pvd").string();
+}
+
+void VtkOutput::writeWalls(std::int64_t step, double time, particles::WallList const& walls,
+                           core::AABB const& domain) {
+    core::agreeOnInputError(*m_comm, [&] {
+        if (m_comm->rank() != 0)
+            return;
+        std::string const file = fmt::format("walls_{:08d}.vtp", step);
+        try {
+            detail::WallMesh const mesh = detail::wallMesh(walls, domain);
+            core::replaceFile((fs::path(m_options.dir) / "vtk" / file).string(),
+                              [&](std::string const& tmp) { detail::writeWallPiece(tmp, mesh); });
+        } catch (core::InputError const&) {
+            throw;
+        } catch (core::Error const& e) {
+            throw core::InputError(e.what());
+        }
+        m_wallSteps.emplace_back(time, "vtk/" + file);
+        core::replaceFileWith(wallSeriesPath(), pvdText(m_wallSteps));
+    });
 }
 
 namespace {

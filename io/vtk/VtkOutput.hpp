@@ -7,6 +7,7 @@
 ///     <dir>/vtk/particles_<step>.pvtu, <dir>/vtk/particles_<step>_r<rank>.vtu
 ///     <dir>/vtk/blocks_<step>.pvtu,    <dir>/vtk/blocks_<step>_r<rank>.vtu
 ///     <dir>/grid.pvd                   with cell fields (write() given grid gravity's or others)
+///     <dir>/walls.pvd, <dir>/vtk/walls_<step>.vtp      with walls (writeWalls, rank 0)
 ///     <dir>/vtk/grid_<step>.vtm,       <dir>/vtk/grid_<step>_b<curve index>.vti
 ///
 /// Particles are points (one vertex cell each) with point data uid, radius, mass, velocity,
@@ -15,10 +16,13 @@
 /// Grid fields are one image data piece per block (interior cells, origin at the block's
 /// lower corner, spacing the cell size) with the fields as cell data (grid gravity's: density,
 /// potential and acceleration), and a multi-block .vtm per step naming every block's piece in
-/// curve order.
+/// curve order. Walls are polygons (io/vtk/WallPieces.hpp: infinite ones cut to the domain box)
+/// with point data velocity (of the wall's material) and cell data wall (index) and type.
 /// No VTK header is visible here: VTK is linked PRIVATE to regolith::io.
+#include "core/math/AABB.hpp"
 #include "core/mpi/Comm.hpp"
 #include "gravity/field/GridFieldsView.hpp"
+#include "particles/storage/WallList.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
@@ -44,6 +48,8 @@ struct VtkOptions {
     /// otherwise sit beside this run's series as if it belonged to it (its pieces stay). A
     /// grid.pvd that is not a grid series this program writes is left alone, with a warning.
     bool writesGrid = false;
+    /// Whether this run writes walls (writeWalls): its walls.pvd is checked like the others.
+    bool writesWalls = false;
 };
 
 class VtkOutput {
@@ -65,10 +71,17 @@ public:
     void write(std::int64_t step, double time, particles::LocalParticles const& local,
                std::optional<gravity::GridFieldsView> const& grid = std::nullopt);
 
+    /// Writes `walls` as they stand at step `step`, time `time`, cut to `domain`: rank 0 the
+    /// piece and the walls.pvd series. Throws core::InputError on every rank if a file cannot
+    /// be written. COLLECTIVE over the communicator.
+    void writeWalls(std::int64_t step, double time, particles::WallList const& walls,
+                    core::AABB const& domain);
+
     /// The .pvd files this object writes.
     [[nodiscard]] std::string particleSeriesPath() const;
     [[nodiscard]] std::string blockSeriesPath() const;
     [[nodiscard]] std::string gridSeriesPath() const;
+    [[nodiscard]] std::string wallSeriesPath() const;
 
 private:
     core::Comm const* m_comm;
@@ -76,6 +89,7 @@ private:
     std::vector<std::pair<double, std::string>> m_particleSteps; ///< (time, .pvtu) so far
     std::vector<std::pair<double, std::string>> m_blockSteps;
     std::vector<std::pair<double, std::string>> m_gridSteps;
+    std::vector<std::pair<double, std::string>> m_wallSteps;
     /// Every block's curve index in curve order (gathered at the first grid output).
     std::vector<std::uint64_t> m_gridBlocks;
     bool m_gridBlocksKnown = false;

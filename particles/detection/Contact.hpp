@@ -42,16 +42,17 @@ struct PairOverlap {
     [[nodiscard]] static PairOverlap of(Contact const& c) { return {c.i, c.j, c.shiftJ}; }
 };
 
-/// A sphere overlapping a wall; the wall plays the role of `i` (infinite mass, at rest).
+/// A sphere overlapping a wall; the wall plays the role of `i` (infinite mass, moved by its
+/// motion).
 struct WallContact {
     std::size_t particle = 0; ///< storage index of the sphere
     std::size_t wall = 0;     ///< index into the WallList
     /// Middle of the overlap, in the sphere's canonical frame (walls are not periodic):
     /// x - (r - penetration / 2) * normal [length].
     core::Vec3 point = core::Vec3::Zero();
-    /// The wall's outward normal: from the wall towards the sphere.
+    /// From the wall's nearest point towards the sphere (WallTouch::normal).
     core::Vec3 normal = core::Vec3::UnitZ();
-    /// r - (signed distance of the centre from the wall) > 0 [length].
+    /// r - (signed distance of the centre from the wall surface) > 0 [length].
     double penetration = 0.0;
 };
 

@@ -329,13 +329,13 @@ void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
         core::Vec3 const& x = ps.position(k);
         double const r = ps.radius(k);
         for (std::size_t w = 0; w < walls.size(); ++w) {
-            Wall const& wall = walls[w];
-            double const delta = r - wall.distance(x);
+            WallTouch const touch = walls[w].geometry.touch(x);
+            double const delta = r - touch.distance;
             if (!(delta > 0.0))
                 continue;
             ++m_stats.overlapsFound;
-            core::Vec3 const p = x - (r - 0.5 * delta) * wall.normal;
-            out.walls.push_back(WallContact{k, w, p, wall.normal, delta});
+            core::Vec3 const p = x - (r - 0.5 * delta) * touch.normal;
+            out.walls.push_back(WallContact{k, w, p, touch.normal, delta});
         }
     }
 }

@@ -7,15 +7,17 @@ namespace regolith::particles {
 
 ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallContact const& c) {
     std::size_t const k = c.particle;
+    Wall const& wall = walls[c.wall];
     core::Vec3 const r = c.point - ps.position(k);
     return ContactState{c.normal,
                         c.penetration,
-                        ps.velocity(k) + ps.angularVelocity(k).cross(r),
-                        ps.angularVelocity(k),
+                        ps.velocity(k) + ps.angularVelocity(k).cross(r) -
+                            wall.surfaceVelocity(c.point),
+                        ps.angularVelocity(k) - wall.motion.angularVelocity,
                         1.0 / ps.invMass(k),
                         ps.radius(k),
                         ps.invInertia(k),
-                        walls[c.wall].type,
+                        wall.type,
                         ps.type(k)};
 }
 

@@ -17,7 +17,8 @@
 
 namespace regolith::particles {
 
-/// The ContactState of the sphere–wall contact `c` (the wall is i).
+/// The ContactState of the sphere–wall contact `c` (the wall is i, moving with its surface
+/// velocity at the contact point).
 ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallContact const& c);
 
 /// j's centre in i's canonical frame: position(j) + shiftJ (Contact.hpp) [length].
@@ -101,17 +102,17 @@ void evaluateWallsWith(ParticleStorage& ps, WallList& walls, std::vector<WallCon
                         [&](auto& spring, auto& roll) { return model(s, spring, roll, dt); });
         sink(c.particle, wall, r.force,
              core::Vec3((c.point - ps.position(c.particle)).cross(r.force) + r.torque));
-        walls.force(c.wall) -= r.force;
+        walls.addReaction(c.wall, c.point, r.force, r.torque);
     }
 }
 
 /// The per-contact code both evaluations share: evaluates every contact of `contacts` with
 /// `model` and hands each participant's force and torque to `sink` -- for a pair first j's
 /// (partner uid(i)), then i's (partner uid(j)); for a wall contact the sphere's (partner the
-/// wall's uid) -- and subtracts the sphere's force from `walls.force`. A pair's tangential
-/// spring is the history entry on i keyed by uid(j); a wall contact's is on the sphere keyed by
-/// the wall's uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps, stamp)`
-/// afterwards drops the contacts that broke. Not collective.
+/// wall's uid) -- and adds the opposite to the wall's load (WallList::addReaction). A pair's
+/// tangential spring is the history entry on i keyed by uid(j); a wall contact's is on the sphere
+/// keyed by the wall's uid. Every entry used is stamped with `stamp`, so that `pruneHistory(ps,
+/// stamp)` afterwards drops the contacts that broke. Not collective.
 template <ContactModel M, ContactSink S>
 void evaluateContactsWith(ParticleStorage& ps, WallList& walls, ContactList const& contacts,
                           M const& model, double dt, std::uint32_t stamp, S&& sink) {

@@ -61,7 +61,7 @@ int DemStep::relocated() {
     if (m_kickPending)
         throw core::Error("DemStep::relocated: the last step ended Open (its half kick is due)");
     placeOnBlocks();
-    return resume(m_steps);
+    return resume(m_steps, time());
 }
 
 int DemStep::setUp() {
@@ -75,7 +75,9 @@ int DemStep::setUp() {
     }
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
+    m_startStep = m_steps;
     computeForces(0);
+    m_walls.restartWork();
     writeBackSprings();
     m_moved = 0.0;
     m_kickPending = false;
@@ -83,6 +85,10 @@ int DemStep::setUp() {
 }
 
 int DemStep::resume(std::uint64_t stepsDone) {
+    return resume(stepsDone, static_cast<double>(stepsDone) * m_config.dt);
+}
+
+int DemStep::resume(std::uint64_t stepsDone, double time) {
     m_sync->requireNnsApplicable(*m_local);
     int calls = 0;
     {
@@ -92,6 +98,12 @@ int DemStep::resume(std::uint64_t stepsDone) {
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", m_sync->config().skin);
     m_steps = stepsDone;
+    m_startStep = stepsDone;
+    m_startTime = time;
+    // The restored forces are those of the last evaluation; the walls' power before the next
+    // step is not kept, so the work counts from the first step's evaluation on.
+    m_walls.moveTo(time);
+    m_walls.resetForces();
     m_moved = std::numeric_limits<double>::infinity(); // the first detect compares positions
     m_kickPending = false;
     return calls;
@@ -175,6 +187,7 @@ void DemStep::step(StepEnd end) {
     syncParticles();
     ++m_steps;
     computeForces(static_cast<std::uint32_t>(m_steps));
+    m_walls.addWork(dt);
     m_kickPending = true;
     if (end == StepEnd::Complete)
         completeStep();
@@ -351,6 +364,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();
+        m_walls.moveTo(time());
         m_walls.resetForces();
         for (std::size_t b = 0; b < blocks.size(); ++b) {
             ParticleStorage& ps = blocks[b].particles;

@@ -97,8 +97,10 @@ struct DemStepConfig {
 /// they hold (postForce then changes the masters' velocities, not their shadows').
 ///
 /// Walls are global: every block tests its copies against every wall, and the detector keeps
-/// a sphere-wall contact only for the sphere's master, so exactly one block evaluates it. The
-/// walls' reaction forces (walls().force) are this rank's share of the last evaluation, not
+/// a sphere-wall contact only for the sphere's master, so exactly one block evaluates it.
+/// Before each force computation the moving walls are put where their motion has them at the
+/// step's time (time() after it). The walls' loads (walls().load) are this rank's share of the
+/// last evaluation and their work (walls().work) this rank's share since the start, not
 /// reduced over ranks.
 class DemStep {
 public:
@@ -138,6 +140,9 @@ public:
     /// contacts again would advance the tangential springs a second time. Returns the number
     /// of sync calls. COLLECTIVE.
     int resume(std::uint64_t stepsDone);
+    /// As resume(stepsDone), the checkpoint's step having been reached at simulated time
+    /// `time` (where the walls' motion stands; resume(stepsDone) takes stepsDone * dt).
+    int resume(std::uint64_t stepsDone, double time);
 
     /// After the grains were moved to other blocks or ranks between two steps (a
     /// rebalance: `local` and the synchronisation now stand on another assignment of the
@@ -177,6 +182,10 @@ public:
     /// before setUp(), so that the initial forces include them.
     void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
 
+    /// Simulated time after stepsDone() steps: the start's (0, or resume's) plus dt per step.
+    [[nodiscard]] double time() const {
+        return m_startTime + static_cast<double>(m_steps - m_startStep) * m_config.dt;
+    }
     /// Steps done: since construction, plus the checkpoint's steps after resume().
     [[nodiscard]] std::uint64_t stepsDone() const { return m_steps; }
     /// Masters this rank removed because they left an open domain, over all steps (set-up
@@ -258,6 +267,8 @@ private:
     std::vector<double> m_reachEdge;
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
+    std::uint64_t m_startStep = 0; ///< the step at m_startTime (set-up's or resume's)
+    double m_startTime = 0.0;
     std::uint64_t m_leftDomain = 0;
     WallCrossings m_wallCrossings;
     std::uint64_t m_listRebuilds = 0;

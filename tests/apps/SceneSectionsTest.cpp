@@ -88,7 +88,7 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(file.density, 2.5);
     EXPECT_EQ(s.particles[3].type, 2u);
     ASSERT_EQ(s.walls.size(), 1u);
-    EXPECT_EQ(s.walls[0].normal, core::Vec3(0, 0, 1)); // normalised
+    EXPECT_EQ(s.walls[0].geometry.normal, core::Vec3(0, 0, 1)); // normalised
     EXPECT_EQ(s.walls[0].type, 1u);
     EXPECT_EQ(s.walls[0].uid, particles::wallUid(0));
     EXPECT_EQ(s.output.dir, "results");

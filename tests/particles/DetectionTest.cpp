@@ -64,11 +64,12 @@ std::map<std::pair<Uid, std::size_t>, WallContact> bruteForceWalls(ParticleStora
         for (std::size_t w = 0; w < walls.size(); ++w) {
             if (ps.flags(k).isFixed() || ps.flags(k).isShadow())
                 continue;
-            double const dist = (ps.position(k) - walls[w].point).dot(walls[w].normal);
+            double const dist =
+                (ps.position(k) - walls[w].geometry.point).dot(walls[w].geometry.normal);
             double const delta = ps.radius(k) - dist;
-            Vec3 const p = ps.position(k) - (dist + delta / 2) * walls[w].normal;
+            Vec3 const p = ps.position(k) - (dist + delta / 2) * walls[w].geometry.normal;
             if (delta > 0.0)
-                out[{ps.uid(k), w}] = WallContact{k, w, p, walls[w].normal, delta};
+                out[{ps.uid(k), w}] = WallContact{k, w, p, walls[w].geometry.normal, delta};
         }
     return out;
 }

@@ -221,7 +221,7 @@ TEST(ParticleStorage, KeepsOrientationsOnlyOnceOneDiffersFromTheIdentity) {
 TEST(WallList, NormalisesAndRejectsBadNormals) {
     WallList walls;
     auto const k = walls.add(Vec3(0, 0, 1), Vec3(0, 0, 2));
-    EXPECT_EQ(walls[k].normal, Vec3::UnitZ());
+    EXPECT_EQ(walls[k].geometry.normal, Vec3::UnitZ());
     EXPECT_EQ(walls[k].uid, wallUid(0));
     EXPECT_DOUBLE_EQ(walls[k].distance(Vec3(5, 5, 3)), 2.0);
     EXPECT_THROW(walls.add(Vec3::Zero(), Vec3::Zero()), InputError);
