@@ -27,6 +27,7 @@ std::string toJson(RunSummary const& s) {
         .member("shadows", s.shadows)
         .member("left_domain", s.leftDomain)
         .member("left_through_walls", s.leftThroughWalls)
+        .member("inserted", s.inserted)
         .member("steps", s.steps)
         .member("wall_s", s.wallSeconds)
         .member("pupcs", pupcs(s))

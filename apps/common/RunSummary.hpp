@@ -27,6 +27,9 @@ struct RunSummary {
     /// Of those, the masters that passed through a wall, over all ranks (JSON key
     /// "left_through_walls", beyond the contract's keys).
     std::int64_t leftThroughWalls = 0;
+    /// Grains the [[insert]] entries added during this invocation, over all ranks (JSON key
+    /// "inserted", beyond the contract's keys).
+    std::int64_t inserted = 0;
     std::int64_t steps = 0;
     double wallSeconds = 0.0; ///< the time-step loop only (set-up and output excluded)
     std::uint64_t peakRssBytes = 0;

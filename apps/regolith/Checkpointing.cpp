@@ -108,7 +108,7 @@ std::vector<std::string> differingSections(std::string const& stored, std::strin
             for (char const* same : {"sync.skin=0", "sync.subdomains=\"merged\""})
                 table->applyOverride(same);
         std::vector<std::string> out;
-        for (char const* key : {"name", "domain", "particles", "walls", "contact",
+        for (char const* key : {"name", "domain", "particles", "walls", "insert", "contact",
                                 "gravity", "sync", "granular_gas", "dense_ramp", "bidisperse"})
             if (!a.sameValue(key, b))
                 out.emplace_back(key);

@@ -10,7 +10,8 @@ namespace regolith::apps {
 
 namespace {
 
-/// "walls[3].normal: ..." -> ("walls", 3) and the rest after "]"; nullopt if not an entry key.
+/// "walls[3].normal: ..." -> ("walls", 3) and the rest after "]"; nullopt if not an entry key
+/// of [[particles]], [[walls]] or [[insert]].
 struct EntryRef {
     std::string_view array;
     std::size_t index = 0;
@@ -18,7 +19,8 @@ struct EntryRef {
 };
 
 std::optional<EntryRef> parseEntryRef(std::string_view key) {
-    for (std::string_view const array : std::array<std::string_view, 2>{"particles", "walls"}) {
+    for (std::string_view const array :
+         std::array<std::string_view, 3>{"particles", "walls", "insert"}) {
         if (!key.starts_with(array) || key.size() <= array.size() || key[array.size()] != '[')
             continue;
         auto const digits = key.substr(array.size() + 1);

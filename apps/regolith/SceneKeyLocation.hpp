@@ -13,8 +13,8 @@ namespace regolith::apps {
 /// "--set particles.0.radius=-1") of the scene key it starts with, so that it reads like the
 /// scene reader's own errors: "scene.toml:14: particles[2].spacing: must be positive, got 0".
 ///
-/// Recognised: a message starting with "particles[i]" or "walls[i]", optionally followed by a
-/// dotted key path whose segments may carry an index ("particles[1].position[3]",
+/// Recognised: a message starting with "particles[i]", "walls[i]" or "insert[i]", optionally
+/// followed by a dotted key path whose segments may carry an index ("particles[1].position[3]",
 /// "particles[0].velocity.random"), then ": ". The deepest key of the path that exists in the
 /// scene gives the location; an absent key gives its table's. A message that does not start
 /// so, or names an entry the scene does not have, is returned unchanged. Not collective.

@@ -13,6 +13,7 @@
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/DynamicBalance.hpp"
+#include "apps/regolith/GrainPouring.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/InitialState.hpp"
@@ -243,8 +244,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
         startStep, start.time, scene.time.steps, scene.time.dt, counts.total,
         std::string(toString(scene.sync.method)), std::string(toString(scene.gravity.self)),
         world.size(), scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet});
-    // A rebalance moves the grains in place (BlockPlacement); what stands on the blocks'
-    // assignment moves with them.
+    // A rebalance or an insertion moves the grains in place (BlockPlacement); what stands on
+    // the blocks' assignment moves with them.
     auto const relocate = [&] {
         sync.relocate(*placement.particleForest);
         if (selfGravity)
@@ -254,7 +255,10 @@ int runSceneUnlocated(core::AppContext& ctx) {
             selfGravity->refreshGridFields(local);
     };
     DynamicBalance balance(world, scene, placement, startStep, relocate);
+    GrainPouring pouring(world, scene, local);
     auto const afterStep = [&](std::int64_t stepsDone) {
+        if (pouring.afterStep(stepsDone, placement, dem.walls()))
+            relocate();
         if (checkpoints.due(stepsDone))
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
@@ -272,7 +276,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // next step's first.
     auto const observes = [&](std::int64_t stepsDone) {
         return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0) ||
-               balance.due(stepsDone);
+               balance.due(stepsDone) || pouring.due(stepsDone);
     };
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);
@@ -333,6 +337,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
             core::log::warn("{}", warning);
     }
     summary.walls = reduceWallLoads(world, dem.walls());
+    summary.inserted = pouring.inserted();
     summary.checksum = stateChecksumFrom(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);
@@ -351,7 +356,9 @@ int runScene(core::AppContext& ctx) {
     } catch (core::InputError const& e) {
         // A check that compares several values names its key; say where the scene set it, as
         // the scene reader's own errors do (the same on every rank: so is the message).
-        throw core::InputError(locateSectionKey(ctx.scene, e.what()));
+        std::string const entryKey = locateSceneKey(ctx.scene, e.what());
+        throw core::InputError(entryKey != e.what() ? entryKey
+                                                    : locateSectionKey(ctx.scene, e.what()));
     }
 }
 

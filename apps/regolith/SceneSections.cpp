@@ -1,5 +1,6 @@
 #include "apps/regolith/SceneSections.hpp"
 
+#include "apps/regolith/InsertSection.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/WallSection.hpp"
 #include "core/Error.hpp"
@@ -332,6 +333,8 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     auto const walls = root.tableArray("walls");
     for (std::size_t i = 0; i < walls.size(); ++i)
         scene.walls.push_back(parseWall(walls[i], i));
+    for (auto const& entry : root.tableArray("insert"))
+        scene.inserts.push_back(parseInsert(entry, scene.forest));
     root.rejectUnknownKeys();
     requireGravityMatchesPeriodicity(root, scene);
     for (std::size_t i = 0; i < walls.size(); ++i)

@@ -14,6 +14,7 @@
 #include "domain/Block.hpp"
 #include "domain/ForestSpec.hpp"
 #include "particles/generators/GeneratorSpec.hpp"
+#include "particles/generators/InsertSpec.hpp"
 #include "particles/kernels/TangentialSpring.hpp"
 #include "particles/storage/WallList.hpp"
 #include "particles/sync/SyncMethod.hpp"
@@ -159,6 +160,7 @@ struct SceneDescription {
     /// particles::validateParticleSpecs against [domain] (files are read only when generated).
     std::vector<particles::ParticleSpec> particles;
     std::vector<particles::Wall> walls;         ///< [[walls]] (WallSection.hpp), at time 0
+    std::vector<particles::InsertSpec> inserts; ///< [[insert]] (InsertSection.hpp)
     OutputSection output;
 };
 
