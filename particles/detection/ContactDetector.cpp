@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -320,19 +321,22 @@ void ContactDetector::largePass(LocalPositions const& pos, ParticleStorage const
 void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls, ContactList& out) {
     if (walls.empty())
         return;
+    // A local view: its size is not reloaded after every push_back below.
+    std::span<Wall const> const all(walls.begin(), walls.end());
     for (Index k = 0, n = ps.size(); k < n; ++k) {
         Flags const flags = ps.flags(k);
         if (flags.isFixed())
-            continue; // walls are fixed too
+            continue; // a fixed grain takes no force, and a wall none either
         if (!flags.isMaster() || !isZero(ps.image(k)))
             continue; // the master, in exactly one block, evaluates the sphere's wall contacts
         core::Vec3 const& x = ps.position(k);
         double const r = ps.radius(k);
-        for (std::size_t w = 0; w < walls.size(); ++w) {
-            WallTouch const touch = walls[w].geometry.touch(x);
-            double const delta = r - touch.distance;
+        for (std::size_t w = 0; w < all.size(); ++w) {
+            WallGeometry const& surface = all[w].geometry;
+            double const delta = r - surface.distance(x);
             if (!(delta > 0.0))
                 continue;
+            WallTouch const touch = surface.touch(x);
             ++m_stats.overlapsFound;
             core::Vec3 const p = x - (r - 0.5 * delta) * touch.normal;
             out.walls.push_back(WallContact{k, w, p, touch.normal, delta});

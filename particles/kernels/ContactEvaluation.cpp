@@ -9,16 +9,14 @@ ContactState wallState(ParticleStorage const& ps, WallList const& walls, WallCon
     std::size_t const k = c.particle;
     Wall const& wall = walls[c.wall];
     core::Vec3 const r = c.point - ps.position(k);
-    return ContactState{c.normal,
-                        c.penetration,
-                        ps.velocity(k) + ps.angularVelocity(k).cross(r) -
-                            wall.surfaceVelocity(c.point),
-                        ps.angularVelocity(k) - wall.motion.angularVelocity,
-                        1.0 / ps.invMass(k),
-                        ps.radius(k),
-                        ps.invInertia(k),
-                        wall.type,
-                        ps.type(k)};
+    core::Vec3 velocity = ps.velocity(k) + ps.angularVelocity(k).cross(r);
+    core::Vec3 omega = ps.angularVelocity(k);
+    if (wall.moving) { // relative to the wall's material
+        velocity -= wall.surfaceVelocity(c.point);
+        omega -= wall.motion.angularVelocity;
+    }
+    return ContactState{c.normal,     c.penetration,    velocity,  omega,     1.0 / ps.invMass(k),
+                        ps.radius(k), ps.invInertia(k), wall.type, ps.type(k)};
 }
 
 bool recordOrder(ParticleStorage const& ps, ForceRecord const& a, ForceRecord const& b) {

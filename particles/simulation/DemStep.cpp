@@ -100,10 +100,9 @@ int DemStep::resume(std::uint64_t stepsDone, double time) {
     m_steps = stepsDone;
     m_startStep = stepsDone;
     m_startTime = time;
-    // The restored forces are those of the last evaluation; the walls' power before the next
-    // step is not kept, so the work counts from the first step's evaluation on.
+    // The walls' loads stay those of the last evaluation (a relocation keeps them; a restart's
+    // fresh walls start from none, so its work counts from the first step's power on).
     m_walls.moveTo(time);
-    m_walls.resetForces();
     m_moved = std::numeric_limits<double>::infinity(); // the first detect compares positions
     m_kickPending = false;
     return calls;

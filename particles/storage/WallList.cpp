@@ -61,7 +61,8 @@ std::size_t WallList::add(Wall wall) {
     wall.uid = wallUid(k);
     wall.centre = m.centre;
     wall.velocity = m.velocityAt(0.0);
-    m_moving = m_moving || m.moves();
+    wall.moving = m.moves();
+    m_moving = m_moving || wall.moving;
     m_start.push_back(g);
     m_walls.push_back(wall);
     m_load.emplace_back();
@@ -84,7 +85,7 @@ void WallList::moveTo(double t) {
         return;
     for (std::size_t k = 0; k < m_walls.size(); ++k) {
         Wall& w = m_walls[k];
-        if (!w.motion.moves())
+        if (!w.moving)
             continue;
         core::Vec3 const shift = w.motion.displacement(t);
         w.geometry = m_start[k].moved(w.motion.rotation(t), w.motion.centre, shift);

@@ -21,9 +21,10 @@ struct Wall {
     Uid uid = kInvalidUid;  ///< `wallUid(index)`: the key of its contacts' history
     core::Vec3 centre = core::Vec3::Zero();   ///< the rotation axis point now
     core::Vec3 velocity = core::Vec3::Zero(); ///< the translation velocity now
+    bool moving = false; ///< motion.moves(): a fixed wall's contacts skip the motion terms
 
     /// Signed distance of `x` from the wall surface, positive on the particle side.
-    [[nodiscard]] double distance(core::Vec3 const& x) const { return geometry.touch(x).distance; }
+    [[nodiscard]] double distance(core::Vec3 const& x) const { return geometry.distance(x); }
     /// The velocity of the wall's material at `x` (a point of the surface) [length/time].
     [[nodiscard]] core::Vec3 surfaceVelocity(core::Vec3 const& x) const {
         return velocity + motion.angularVelocity.cross(x - centre);
@@ -76,7 +77,9 @@ public:
         WallLoad& load = m_load[k];
         load.force -= force;
         load.torque -= (point - w.centre).cross(force) + couple;
-        load.power += force.dot(w.surfaceVelocity(point)) + couple.dot(w.motion.angularVelocity);
+        if (w.moving)
+            load.power +=
+                force.dot(w.surfaceVelocity(point)) + couple.dot(w.motion.angularVelocity);
     }
     /// What the grains did to wall `k` in the last evaluation (this rank's share).
     [[nodiscard]] WallLoad const& load(std::size_t k) const { return m_load[k]; }

@@ -6,8 +6,6 @@
 /// from the surface's nearest point towards x.
 #include "core/math/Vec3.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 
 namespace regolith::particles {
@@ -40,43 +38,21 @@ struct WallGeometry {
 
     /// Where `x` lies relative to the surface (see WallTouch). On a plate's mid-plane or a
     /// cylinder's axis, where the nearest point is not unique, the plate normal or the
-    /// direction of the first perpendicular axis is taken.
+    /// direction of the first perpendicular axis is taken. The plane inline (once per grain and
+    /// wall and step in the detection), the other shapes out of line.
     [[nodiscard]] WallTouch touch(core::Vec3 const& x) const {
-        core::Vec3 const d = x - point;
-        switch (shape) {
-        case WallShape::Plane:
-            return {d.dot(normal), normal};
-        case WallShape::Cylinder:
-            return cylinderTouch(d - d.dot(normal) * normal);
-        case WallShape::Rectangle:
-        case WallShape::Disc:
-            break;
-        }
-        double const h = d.dot(normal);
-        core::Vec3 inPlane = d - h * normal;
-        if (shape == WallShape::Rectangle) {
-            core::Vec3 const side = normal.cross(edge);
-            inPlane = std::clamp(inPlane.dot(edge), -halfSize[0], halfSize[0]) * edge +
-                      std::clamp(inPlane.dot(side), -halfSize[1], halfSize[1]) * side;
-        } else if (double const rho = inPlane.norm(); rho > radius) {
-            inPlane *= radius / rho;
-        }
-        core::Vec3 const away = d - inPlane; // from the plate's nearest point to x
-        double const dist = away.norm();
-        if (!(dist > 0.0))
-            return {0.0, normal};
-        return {dist, away / dist};
+        if (shape == WallShape::Plane)
+            return {(x - point).dot(normal), normal};
+        return touchOtherShape(x);
+    }
+    /// touch(x).distance, the same bits; for a plane without the normal (the detection asks
+    /// every grain, and only the few that touch for the normal).
+    [[nodiscard]] double distance(core::Vec3 const& x) const {
+        if (shape == WallShape::Plane)
+            return (x - point).dot(normal);
+        return touchOtherShape(x).distance;
     }
 
-private:
-    /// `radial`: x's offset from the axis, perpendicular to it.
-    [[nodiscard]] WallTouch cylinderTouch(core::Vec3 const& radial) const {
-        double const rho = radial.norm();
-        core::Vec3 const out = rho > 0.0 ? core::Vec3(radial / rho) : anyPerpendicular(normal);
-        return inner ? WallTouch{radius - rho, -out} : WallTouch{rho - radius, out};
-    }
-
-public:
     /// A unit vector perpendicular to the unit vector `n`: n crossed with the coordinate axis
     /// least aligned with it.
     [[nodiscard]] static core::Vec3 anyPerpendicular(core::Vec3 const& n) {
@@ -94,6 +70,9 @@ public:
         g.edge = rotation * edge;
         return g;
     }
+
+private:
+    [[nodiscard]] WallTouch touchOtherShape(core::Vec3 const& x) const;
 };
 
 } // namespace regolith::particles

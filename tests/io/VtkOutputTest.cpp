@@ -6,6 +6,7 @@
 
 #include "core/Error.hpp"
 #include "domain/BlockForest.hpp"
+#include "io/vtk/WallPieces.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
 #include <fmt/format.h>
@@ -14,10 +15,12 @@
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
 #include <vtkXMLPUnstructuredGridReader.h>
+#include <vtkXMLPolyDataReader.h>
 
 #include <array>
 #include <filesystem>
@@ -326,4 +329,69 @@ TEST(VtkOutput, OnlyItsOwnSeriesAreRemovedOrReplaced) {
     world.barrier();
     if (world.rank() == 0)
         fs::remove_all(dir);
+}
+
+// Walls as polygons: a plane cut to the box, a rectangle, a disc and a turning drum (48 sides
+// along the box), with the wall material's velocity; written by rank 0 and read back.
+TEST(VtkOutput, WallsReadBack) {
+    core::Comm const world;
+    particles::WallList walls;
+    walls.add(Vec3(0, 0, 2), Vec3(0, 0, 1)); // cuts the box [0, 10]^3 in a square
+    particles::Wall plate;
+    plate.geometry.shape = particles::WallShape::Rectangle;
+    plate.geometry.point = Vec3(5, 5, 5);
+    plate.geometry.normal = Vec3(1, 0, 0);
+    plate.geometry.edge = Vec3(0, 1, 0);
+    plate.geometry.halfSize[0] = 1.0;
+    plate.geometry.halfSize[1] = 2.0;
+    walls.add(plate);
+    particles::Wall disc = plate;
+    disc.geometry.shape = particles::WallShape::Disc;
+    disc.geometry.radius = 1.5;
+    walls.add(disc);
+    particles::Wall drum;
+    drum.geometry.shape = particles::WallShape::Cylinder;
+    drum.geometry.point = Vec3(5, 5, 0);
+    drum.geometry.normal = Vec3(0, 0, 1);
+    drum.geometry.radius = 4.0;
+    drum.motion.centre = drum.geometry.point;
+    drum.motion.angularVelocity = Vec3(0, 0, 0.5);
+    walls.add(drum);
+    walls.moveTo(1.0);
+    core::AABB const box{Vec3::Zero(), Vec3::Constant(10.0)};
+    io::detail::WallMesh const mesh = io::detail::wallMesh(walls, box);
+    ASSERT_EQ(mesh.wall.size(), 3u + io::detail::kCircleSides);
+    EXPECT_EQ(mesh.offsets[1], 4);                                          // the plane's square
+    EXPECT_EQ(mesh.offsets[3] - mesh.offsets[2], io::detail::kCircleSides); // the disc
+    for (std::int64_t k = mesh.offsets[0]; k < mesh.offsets[1]; ++k)
+        EXPECT_EQ(
+            mesh.xyz[3 * static_cast<std::size_t>(mesh.connectivity[static_cast<std::size_t>(k)]) +
+                     2],
+            2.0);
+
+    std::string const dir = fmt::format("vtk_walls_np{}", world.size());
+    io::VtkOptions options{dir, false, false};
+    options.writesWalls = true;
+    io::VtkOutput out(world, options);
+    out.writeWalls(7, 0.25, walls, box);
+    world.barrier();
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((fs::path(dir) / "vtk" / "walls_00000007.vtp").c_str());
+    reader->Update();
+    vtkPolyData* poly = reader->GetOutput();
+    ASSERT_EQ(poly->GetNumberOfPolys(), 3 + io::detail::kCircleSides);
+    vtkDataArray* velocity = poly->GetPointData()->GetArray("velocity");
+    ASSERT_NE(velocity, nullptr);
+    double range[2];
+    velocity->GetRange(range, -1); // the magnitude: 0 on the fixed walls, 0.5 x 4 on the drum
+    EXPECT_DOUBLE_EQ(range[0], 0.0);
+    EXPECT_NEAR(range[1], 2.0, 1e-12);
+    ASSERT_NE(poly->GetCellData()->GetArray("wall"), nullptr);
+    std::ifstream pvd(fs::path(dir) / "walls.pvd");
+    std::stringstream text;
+    text << pvd.rdbuf();
+    EXPECT_NE(
+        text.str().find("timestep=\"0.25\" group=\"\" part=\"0\" file=\"vtk/walls_00000007.vtp\""),
+        std::string::npos)
+        << text.str();
 }
