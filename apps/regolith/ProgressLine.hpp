@@ -44,6 +44,9 @@ public:
         m_forceError = error;
         m_forceChecks = checks;
     }
+    /// Grains added during the run (inserted), over all ranks: the line counts them from now
+    /// on. Not collective.
+    void addGrains(std::int64_t added) { m_settings.grains += added; }
     /// Ends the live line (a newline, so that what follows starts on its own line).
     void finish();
     /// Erases the live line before other output (a log line) is printed; the next

@@ -257,8 +257,13 @@ int runSceneUnlocated(core::AppContext& ctx) {
     DynamicBalance balance(world, scene, placement, startStep, relocate);
     GrainPouring pouring(world, scene, local);
     auto const afterStep = [&](std::int64_t stepsDone) {
-        if (pouring.afterStep(stepsDone, placement, dem.walls()))
-            relocate();
+        if (pouring.due(stepsDone)) {
+            progress.clear(); // a grain that found no place is warned about
+            std::int64_t const before = pouring.inserted();
+            if (pouring.afterStep(stepsDone, placement, dem.walls()))
+                relocate();
+            progress.addGrains(pouring.inserted() - before);
+        }
         if (checkpoints.due(stepsDone))
             progress.clear(); // the checkpoint's log line gets a line of its own
         checkpoints.afterStep(stepsDone);
