@@ -22,7 +22,8 @@ several joined by a trailing backslash; `build/default` in it stands for the bui
          test, or a table that names a label no block defines.
 
 A command whose requirement is missing (`lmp`: LAMMPS's executable on PATH; `matplotlib`, `vtk`:
-the Python modules matplotlib and vtkmodules) is skipped with a message, in both modes.
+the Python modules matplotlib and vtkmodules; `pvbatch`: ParaView's pvbatch and xvfb-run) is
+skipped with a message, in both modes.
 
 usage: results_commands.py {list,run,check} [--build build/default] [--page docs/results.md]
                            [--only c1 c7 ...] [--timeout 60]
@@ -40,7 +41,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LABEL = re.compile(r"^#\s*\[(c\d+)\]\s*(?:needs:\s*([a-z0-9 ]*?))?\s*(\(.*\))?\s*$")
-KNOWN_NEEDS = {"lmp", "matplotlib", "vtk"}
+KNOWN_NEEDS = {"lmp", "matplotlib", "vtk", "pvbatch"}
 
 # Small mode: arguments appended to a command, by the script's or executable's file name. Every
 # program a command of the page runs must be here (a missing one fails the check), so a new
@@ -70,6 +71,8 @@ SMALL = {
                           "--node-spacings", "2.5", "--thresholds", "1", "--samples", "100",
                           "--repeat", "1", "--no-docs", "--out", "{tmp}/bench/out"],
     "grid_bench": ["--min-cells", "16", "--max-cells", "16"],
+    "wall_work_check.py": [],
+    "drum_picture.py": ["--steps", "5000"],
     "grid_matched_bench": ["--min-cells", "16", "--max-cells", "16", "--rtols", "1e-3"],
     "grid_agglomerate_bench": ["--grains", "2000", "--cells", "16", "--cutoffs", "2",
                                "--repeat", "1"],
@@ -146,10 +149,24 @@ def parse(page):
     return commands, errors
 
 
+def pvbatch_works():
+    """Whether pvbatch runs a script that imports paraview.simple under xvfb-run (Debian's
+    python3-paraview may be missing: it conflicts with python3-vtk9)."""
+    if not (shutil.which("pvbatch") and shutil.which("xvfb-run")):
+        return False
+    with tempfile.NamedTemporaryFile("w", suffix=".py") as script:
+        script.write("import paraview.simple\n")
+        script.flush()
+        return subprocess.run(["xvfb-run", "-a", "pvbatch", script.name],
+                              capture_output=True, check=False).returncode == 0
+
+
 def missing_needs(needs):
     missing = []
     if "lmp" in needs and not shutil.which("lmp"):
         missing.append("lmp (LAMMPS)")
+    if "pvbatch" in needs and not pvbatch_works():
+        missing.append("pvbatch with its Python modules, and xvfb-run (ParaView, a display)")
     for module, name in (("matplotlib", "matplotlib"), ("vtk", "vtkmodules")):
         if module in needs and importlib.util.find_spec(name) is None:
             missing.append(f"{module} (Python module {name})")
@@ -157,13 +174,21 @@ def missing_needs(needs):
 
 
 def program_of(argv):
-    """The argv index of the program a command runs (past mpiexec and the interpreter)."""
+    """The argv index of the program a command runs (past xvfb-run, mpiexec and the
+    interpreter: python or ParaView's pvbatch)."""
     i = 0
+    if os.path.basename(argv[0]) == "xvfb-run":
+        i = 1
+        while i < len(argv) and argv[i].startswith("-"):
+            i += 1
+        argv = argv[i:]
+        return i + program_of(argv)
     if os.path.basename(argv[0]) == "mpiexec":
         i = 1
         while i < len(argv) and argv[i].startswith("-"):
             i += 2 if argv[i] in ("-n", "-np") else 1
-    if i < len(argv) and os.path.basename(argv[i]).startswith("python"):
+    if i < len(argv) and (os.path.basename(argv[i]).startswith("python") or
+                          os.path.basename(argv[i]) == "pvbatch"):
         i += 1
     return i
 
