@@ -22,7 +22,7 @@ build: configure
 
 run: build
 	mkdir -p out
-	$(MPIRUN) -n $(RANKS) $(BUILD)/bin/regolith $(SCENE) --output out --json out/summary.json
+	$(MPIRUN) -n $(RANKS) $(BUILD)/bin/regolith $(SCENE) --output out
 
 test: build
 	ctest --preset $(PRESET)

@@ -11,7 +11,8 @@ namespace regolith::apps {
 /// For solid homogeneous spheres (moment of inertia I = 2/5 m r^2):
 ///  - momentum             sum m v;
 ///  - angular_momentum     sum (x cross m v + I w), about the origin;
-///  - kinetic_energy       sum (1/2 m |v|^2 + 1/2 I |w|^2);
+///  - kinetic_energy       sum (1/2 m |v|^2 + 1/2 I |w|^2), of which the rotational part
+///                         sum 1/2 I |w|^2 (rotational_kinetic_energy);
 ///  - potential_energy     sum -m g.x in the uniform external field `gravity` (self-gravity
 ///                         energy is not included: it belongs to the gravity module);
 ///  - center_of_mass       sum m x / sum m (zero when there is no mass);

@@ -29,6 +29,7 @@ std::string toJson(RunSummary const& s) {
         .member("left_through_walls", s.leftThroughWalls)
         .member("inserted", s.inserted)
         .member("steps", s.steps)
+        .member("time", s.time)
         .member("wall_s", s.wallSeconds)
         .member("pupcs", pupcs(s))
         .member("peak_rss_bytes", s.peakRssBytes);
@@ -82,15 +83,20 @@ std::string toJson(RunSummary const& s) {
         .member("skin", s.neighbourList.skin)
         .member("rebuilds", s.neighbourList.rebuilds)
         .endObject();
-    w.key("conserved")
-        .beginObject()
-        .member("momentum", s.conserved.momentum)
-        .member("angular_momentum", s.conserved.angularMomentum)
-        .member("kinetic_energy", s.conserved.kineticEnergy)
-        .member("potential_energy", s.conserved.potentialEnergy)
-        .member("center_of_mass", s.conserved.centerOfMass)
-        .member("mass", s.conserved.mass)
-        .endObject();
+    auto const conserved = [&w](char const* key, RunSummary::Conserved const& c) {
+        w.key(key)
+            .beginObject()
+            .member("momentum", c.momentum)
+            .member("angular_momentum", c.angularMomentum)
+            .member("kinetic_energy", c.kineticEnergy)
+            .member("rotational_kinetic_energy", c.rotationalEnergy)
+            .member("potential_energy", c.potentialEnergy)
+            .member("center_of_mass", c.centerOfMass)
+            .member("mass", c.mass)
+            .endObject();
+    };
+    conserved("conserved", s.conserved);
+    conserved("conserved_initial", s.initialConserved);
     w.key("walls").beginArray();
     for (RunSummary::Wall const& wall : s.walls)
         w.beginObject()

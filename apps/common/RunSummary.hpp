@@ -97,11 +97,18 @@ struct RunSummary {
     struct Conserved {
         core::Vec3 momentum = core::Vec3::Zero();
         core::Vec3 angularMomentum = core::Vec3::Zero();
-        double kineticEnergy = 0.0;
+        double kineticEnergy = 0.0; ///< translational and rotational
+        /// Of kinetic_energy, the rotational part sum 1/2 I |w|^2 (JSON key
+        /// "rotational_kinetic_energy", beyond the contract).
+        double rotationalEnergy = 0.0;
         double potentialEnergy = 0.0;
         core::Vec3 centerOfMass = core::Vec3::Zero();
         double mass = 0.0; ///< total mass of the masters (beyond the contract)
     } conserved;
+    /// The same at the loop's start (JSON key "conserved_initial"; a restart's: the
+    /// checkpoint's state), and the simulated time at the end (JSON key "time").
+    Conserved initialConserved;
+    double time = 0.0;
 
     /// What the grains did to each wall at the end and the work each wall did on them (JSON key
     /// "walls", an array in [[walls]] order, beyond the contract's keys), over all ranks.

@@ -41,11 +41,16 @@ bool isCheckpointName(std::string const& name) {
     return digits.find_first_not_of("0123456789") == std::string::npos;
 }
 
-/// What the run writes under the name `path` in output.dir, or "".
-std::string writtenInOutputDir(std::string const& path, OutputSection const& output) {
+/// What the run writes under the name `path` in output.dir, or "" (`summaryThere`: the run
+/// summary goes to output.dir/summary.json).
+std::string writtenInOutputDir(std::string const& path, OutputSection const& output,
+                               bool summaryThere) {
     std::string const dir = folderOf(path);
     std::string const name = fs::path(path).filename().string();
     std::string const where = fmt::format("output.dir = \"{}\"", output.dir);
+    if (core::sameFile(dir, output.dir) && ((summaryThere && name == "summary.json") ||
+                                            (output.thermoEvery > 0 && name == "thermo.csv")))
+        return fmt::format("the {} file in {}", name, where);
     if (output.vtkEvery > 0) {
         if (core::sameFile(dir, (fs::path(output.dir) / "vtk").string()))
             return fmt::format("the VTK output's folder '{}/vtk'", output.dir);
@@ -59,6 +64,16 @@ std::string writtenInOutputDir(std::string const& path, OutputSection const& out
 }
 
 } // namespace
+
+std::string summaryPath(core::CliOptions const& options, SceneDescription const& scene) {
+    if (!options.jsonPath.empty())
+        return options.jsonPath;
+    return (fs::path(scene.output.dir) / "summary.json").string();
+}
+
+std::string thermoPath(SceneDescription const& scene) {
+    return (fs::path(scene.output.dir) / "thermo.csv").string();
+}
 
 void checkRunPaths(core::Comm const& world, core::CliOptions const& options,
                    SceneDescription const& scene) {
@@ -95,7 +110,9 @@ void checkRunPaths(core::Comm const& world, core::CliOptions const& options,
             for (std::size_t other = 0; other < o; ++other)
                 if (core::sameFile(path, outputs[other].path))
                     refuse(fmt::format("the {} file too", outputs[other].role));
-            if (std::string const what = writtenInOutputDir(path, scene.output); !what.empty())
+            if (std::string const what =
+                    writtenInOutputDir(path, scene.output, options.jsonPath.empty());
+                !what.empty())
                 refuse(what);
         }
     });

@@ -24,6 +24,7 @@
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/SpeedChoices.hpp"
+#include "apps/regolith/ThermoLog.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "apps/regolith/WallLoads.hpp"
 #include "apps/scenarios/Scenarios.hpp"
@@ -130,8 +131,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // Fail before the run, not after it, if an output file would overwrite an input or
     // another output, or cannot be written.
     checkRunPaths(world, ctx.options, scene);
-    if (!ctx.options.jsonPath.empty())
-        checkWritable(world, ctx.options.jsonPath, "--json");
+    std::string const summaryFile = summaryPath(ctx.options, scene);
+    checkWritable(world, summaryFile, ctx.options.jsonPath.empty() ? "the run summary" : "--json");
     if (!ctx.options.dumpPath.empty())
         checkWritable(world, ctx.options.dumpPath, "--dump");
 
@@ -218,6 +219,14 @@ int runSceneUnlocated(core::AppContext& ctx) {
             checkMeasuredGridAccuracy(*selfGravity, scene);
     }
 
+    // The conserved quantities at the loop's start (the summary's "conserved_initial").
+    auto const selfPotential = [&] {
+        return selfGravity ? selfGravity->stats().potentialEnergy : 0.0;
+    };
+    RunSummary::Conserved initial =
+        conservedQuantitiesFrom(world, masterSource(local), scene.gravity.external);
+    initial.potentialEnergy += selfPotential();
+
     // Output during the run: checkpoints, VTK files (the start state too), the progress line.
     CheckpointSchedule checkpoints(world, scene, text, local, timeAt);
     checkpoints.setSelfGravity(selfGravity.get());
@@ -256,7 +265,24 @@ int runSceneUnlocated(core::AppContext& ctx) {
     };
     DynamicBalance balance(world, scene, placement, startStep, relocate);
     GrainPouring pouring(world, scene, local);
+    ThermoLog thermo(world, {thermoPath(scene), scene.output.thermoEvery, startStep, restart,
+                             ctx.isRoot() && !ctx.options.quiet});
+    auto const writeThermo = [&](std::int64_t stepsDone) {
+        thermo.write(measureThermo(world, local, dem.contacts(),
+                                   {stepsDone, timeAt(stepsDone), scene.gravity.external,
+                                    selfPotential(), balance.imbalance()}));
+    };
+    if (!restart && thermo.due(startStep)) // a restart has the row of its step from before
+        writeThermo(startStep);
+    dem.setKeepContacts(thermo.due(startStep + 1)); // the contacts a row counts
     auto const afterStep = [&](std::int64_t stepsDone) {
+        // First: the step's contacts index the grains as they lie, before an insertion or a
+        // rebalance moves them.
+        if (thermo.due(stepsDone)) {
+            progress.clear(); // the row gets a line of its own
+            writeThermo(stepsDone);
+        }
+        dem.setKeepContacts(thermo.due(stepsDone + 1));
         if (pouring.due(stepsDone)) {
             progress.clear(); // a grain that found no place is warned about
             std::int64_t const before = pouring.inserted();
@@ -281,7 +307,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // next step's first.
     auto const observes = [&](std::int64_t stepsDone) {
         return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0) ||
-               balance.due(stepsDone) || pouring.due(stepsDone);
+               balance.due(stepsDone) || pouring.due(stepsDone) || thermo.due(stepsDone);
     };
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);
@@ -320,6 +346,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
     fillLoopSummary(world, loop, local, summary);
     summary.balance = balance.finish();
     summary.peakRssBytes = peakRssBytes(world);
+    summary.time = timeAt(scene.time.steps);
+    summary.initialConserved = initial;
     summary.conserved = conservedQuantitiesFrom(world, masters, scene.gravity.external);
     summary.gravity.method = std::string(toString(scene.gravity.self));
     for (AutoChoice const& c : choices)
@@ -346,8 +374,7 @@ int runSceneUnlocated(core::AppContext& ctx) {
     summary.checksum = stateChecksumFrom(world, masters);
     if (ctx.isRoot() && !ctx.options.quiet)
         printRunReport(summary, loop.leftDomain, loop.timers);
-    if (!ctx.options.jsonPath.empty())
-        tryWrite(ctx.options.jsonPath, [&] { return toJson(summary); });
+    tryWrite(summaryFile, [&] { return toJson(summary); });
     if (!outputFailures.empty())
         throw core::InputError(outputFailures);
     return 0;

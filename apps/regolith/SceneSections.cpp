@@ -255,6 +255,8 @@ OutputSection parseOutput(core::ConfigTable const& t) {
     s.progressSeconds = t.getOrIf<double>(
         "progress_seconds", s.progressSeconds,
         [](double v) { return std::isfinite(v) && v >= 0.0; }, "a non-negative number");
+    s.thermoEvery =
+        t.getOrIf<std::int64_t>("thermo_every", 0, isNonNegative, "a non-negative integer");
     return s;
 }
 

@@ -124,7 +124,8 @@ struct GravitySection {
 /// checkpoint_keep >= 0 (how many of the newest checkpoints this run wrote to keep; files it
 /// did not write are never touched; 0: all; default 2), vtk_shadows (also write the shadow
 /// copies, flagged; default false), progress_seconds (>= 0: interval of the progress lines
-/// when standard output is not a terminal; 0: none; default 10).
+/// when standard output is not a terminal; 0: none; default 10), thermo_every >= 0 (steps
+/// between two rows of thermo.csv and the thermo lines, ThermoLog.hpp; 0: none, the default).
 struct OutputSection {
     std::string dir = "out";
     std::int64_t vtkEvery = 0;
@@ -132,6 +133,7 @@ struct OutputSection {
     std::int64_t checkpointKeep = 2;
     bool vtkShadows = false;
     double progressSeconds = 10.0;
+    std::int64_t thermoEvery = 0;
 };
 
 /// [balance] every: steps between two measurements of the ranks' loads (the blocks' grains

@@ -178,6 +178,10 @@ public:
     /// Not collective.
     void releaseWorkspace();
 
+    /// Whether the following force computations keep their pair contacts for contacts()
+    /// (DemStepConfig::keepContacts), e.g. for the one step whose contacts are reported.
+    void setKeepContacts(bool keep) { m_config.keepContacts = keep; }
+
     /// Installs the body forces (see BodyForces); an empty function removes them. Call it
     /// before setUp(), so that the initial forces include them.
     void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
