@@ -197,7 +197,10 @@ void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& l
             worst = std::max(worst, m * m / (r * r * r));
     });
     worst = comm.allReduce(worst, core::ReduceOp::Max);
-    double const overlap = scene.gravity.G * worst / (4.0 * scene.contact.stiffness);
+    double stiffness = std::numeric_limits<double>::infinity(); // the softest material's
+    for (particles::MaterialProperties const& m : scene.materials.types)
+        stiffness = std::min(stiffness, m.stiffness);
+    double const overlap = scene.gravity.G * worst / (4.0 * stiffness);
     if (overlap > kSoftContactOverlap)
         core::log::warn(
             "contact.stiffness = {:g} is soft for the grains' own gravity: two touching "
@@ -206,7 +209,7 @@ void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& l
             "impact more; self-gravity treats overlapping grains as points, so deep "
             "overlaps are not resisted as they should be: raise contact.stiffness "
             "(and lower time.dt with it)",
-            scene.contact.stiffness, overlap);
+            stiffness, overlap);
 }
 
 void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,

@@ -4,6 +4,7 @@
 #include "core/log/Log.hpp"
 #include "particles/integration/TimeStepGuard.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
+#include "particles/kernels/MaterialMixing.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
 #include "particles/validation/ParticleValidation.hpp"
 
@@ -61,7 +62,10 @@ std::size_t materialTypeCount(SceneDescription const& scene) {
         maxType = std::max(maxType, spec.type);
     for (auto const& wall : scene.walls)
         maxType = std::max(maxType, wall.type);
-    return static_cast<std::size_t>(maxType) + 1;
+    for (auto const& insert : scene.inserts)
+        maxType = std::max(maxType, insert.type);
+    std::size_t const declared = scene.materials.perType ? scene.materials.types.size() : 0;
+    return std::max(static_cast<std::size_t>(maxType) + 1, declared);
 }
 
 namespace {
@@ -95,31 +99,15 @@ particles::ContactTimeEstimate contactTime(core::Comm const& comm,
 }
 
 particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
-    ContactSection const& c = scene.contact;
-    std::size_t const types = materialTypeCount(scene);
-    if (c.model == ContactModel::SpringDashpot) {
-        particles::LinearContactParams p;
-        p.stiffness = c.stiffness;
-        p.tangentialStiffness =
-            2.0 / 7.0 * c.stiffness; // keeps normal and tangential periods equal
-        p.restitution = c.restitution;
-        p.friction = c.friction;
-        p.rollingFriction = c.rollingFriction;
-        p.rollingSpring = c.rollingSpring;
-        return particles::SpringDashpot(
-            particles::MaterialTable<particles::LinearContactParams>(types, p));
-    }
-    // Hertz: contact.stiffness is the effective Young's modulus E*; G* follows for a
-    // Poisson ratio of 0.3 (G*/E* = (1 - nu) / (2 (2 - nu)) for like materials).
-    particles::HertzMindlinParams p;
-    p.effectiveYoungsModulus = c.stiffness;
-    p.effectiveShearModulus = c.stiffness * 0.7 / 3.4;
-    p.restitution = c.restitution;
-    p.friction = c.friction;
-    p.rollingFriction = c.rollingFriction;
-    p.rollingSpring = c.rollingSpring;
+    std::vector<particles::MaterialProperties> types(materialTypeCount(scene));
+    for (std::uint32_t t = 0; t < types.size(); ++t)
+        types[t] = scene.materials.of(t);
+    particles::RollingSpring const& rolling = scene.contact.rollingSpring;
+    if (scene.contact.model == ContactModel::SpringDashpot)
+        return particles::SpringDashpot(particles::mixedTable<particles::LinearContactParams>(
+            types, rolling, particles::mixLinear));
     return particles::HertzMindlin(
-        particles::MaterialTable<particles::HertzMindlinParams>(types, p));
+        particles::mixedTable<particles::HertzMindlinParams>(types, rolling, particles::mixHertz));
 }
 
 particles::AnyIntegrator makeIntegrator(SceneDescription const& scene) {
@@ -144,7 +132,10 @@ namespace {
 /// images shares one tangential spring"). COLLECTIVE.
 void warnTwoImageContacts(core::Comm const& comm, particles::ParticleStorage const& ps,
                           SceneDescription const& scene) {
-    if (!(scene.contact.friction > 0.0) && !(scene.contact.rollingFriction > 0.0))
+    auto const springs = [](particles::MaterialProperties const& m) {
+        return m.friction > 0.0 || m.rollingFriction > 0.0;
+    };
+    if (std::none_of(scene.materials.types.begin(), scene.materials.types.end(), springs))
         return;
     double largest = 0.0;
     for (std::size_t k = 0; k < ps.size(); ++k)

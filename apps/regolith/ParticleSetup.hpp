@@ -23,8 +23,9 @@ namespace regolith::apps {
                                                          particles::ParticleStorage const& ps,
                                                          SceneDescription const& scene);
 
-/// The material types the scene's [[particles]] and [[walls]] use: 0 to the largest type
-/// named, the size of the contact model's tables. Not collective.
+/// The material types of the scene: 0 to the largest type its [[particles]], [[walls]] and
+/// [[insert]] name or [[materials]] defines, the size of the contact model's tables. Not
+/// collective.
 [[nodiscard]] std::size_t materialTypeCount(SceneDescription const& scene);
 
 /// Appends `g` to `masters` as a master owned by (`rank`, the local block of `forest` that
@@ -61,10 +62,10 @@ void checkOverlapsAcrossBlocks(core::Comm const& comm, particles::LocalParticles
                                std::span<particles::ContactList const> contacts,
                                double overlapTolerance);
 
-/// The scene's contact model: contact.model with stiffness, restitution, friction and rolling
-/// friction for every pair of material types. Spring-dashpot: k_t = 2/7 k_n. Hertz:
-/// contact.stiffness is E*, and G* = E* (1 - nu) / (2 (2 - nu)) with nu = 0.3. Throws
-/// core::InputError for a parameter out of range. Not collective.
+/// The scene's contact model: contact.model with the parameters of every pair of material
+/// types mixed from the scene's materials (particles/kernels/MaterialMixing.hpp;
+/// spring-dashpot: k_t = 2/7 k_n; Hertz: E* and G* from E and nu). Throws core::InputError
+/// for a parameter out of range. Not collective.
 [[nodiscard]] particles::AnyContactModel makeContactModel(SceneDescription const& scene);
 
 /// time.integrator: velocity Verlet or semi-implicit Euler. Not collective.

@@ -134,15 +134,6 @@ BalanceSection parseBalance(core::ConfigTable const& t) {
 ContactSection parseContact(core::ConfigTable const& t) {
     ContactSection s;
     s.model = static_cast<ContactModel>(t.getChoiceOr("model", kContactNames, 0));
-    s.stiffness =
-        t.getOrIf<double>("stiffness", s.stiffness, isPositiveFinite, "a positive finite number");
-    s.restitution = t.getOrIf<double>(
-        "restitution", s.restitution, [](double e) { return e > 0.0 && e <= 1.0; },
-        "a number in (0, 1]");
-    s.friction = t.getOrIf<double>("friction", s.friction, isNonNegativeFinite,
-                                   "a non-negative finite number");
-    s.rollingFriction = t.getOrIf<double>("rolling_friction", s.rollingFriction,
-                                          isNonNegativeFinite, "a non-negative finite number");
     s.rollingSpring.enabled = t.getChoiceOr("rolling_model", kRollingNames, 0) == 1;
     for (char const* key : {"rolling_stiffness", "rolling_damping_ratio"})
         if (t.has(key) && !s.rollingSpring.enabled)
@@ -325,18 +316,25 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     scene.time = parseTime(root.table("time"));
     scene.sync = optionalSection<SyncSection>(root, "sync", parseSync);
     scene.contact = optionalSection<ContactSection>(root, "contact", parseContact);
+    scene.materials = parseMaterials(root, scene.contact.model);
     scene.gravity = optionalSection<GravitySection>(root, "gravity", parseGravity);
     scene.balance = optionalSection<BalanceSection>(root, "balance", parseBalance);
     scene.output = optionalSection<OutputSection>(root, "output", parseOutput);
     std::string const sceneDir = source.parent_path().string();
     auto const entries = root.tableArray("particles");
-    for (auto const& entry : entries)
+    for (auto const& entry : entries) {
         scene.particles.push_back(parseParticleSource(entry, scene.forest.domain, sceneDir));
+        requireMaterial(scene.materials, entry, scene.particles.back().type);
+    }
     auto const walls = root.tableArray("walls");
-    for (std::size_t i = 0; i < walls.size(); ++i)
+    for (std::size_t i = 0; i < walls.size(); ++i) {
         scene.walls.push_back(parseWall(walls[i], i));
-    for (auto const& entry : root.tableArray("insert"))
+        requireMaterial(scene.materials, walls[i], scene.walls.back().type);
+    }
+    for (auto const& entry : root.tableArray("insert")) {
         scene.inserts.push_back(parseInsert(entry, scene.forest));
+        requireMaterial(scene.materials, entry, scene.inserts.back().type);
+    }
     root.rejectUnknownKeys();
     requireGravityMatchesPeriodicity(root, scene);
     for (std::size_t i = 0; i < walls.size(); ++i)

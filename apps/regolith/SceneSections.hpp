@@ -9,6 +9,7 @@
 ///
 /// Every parse function throws core::InputError naming file, line and key; none is
 /// collective (every rank parses the same scene and gets the same result or error).
+#include "apps/regolith/MaterialSection.hpp"
 #include "core/config/ConfigTable.hpp"
 #include "core/math/AABB.hpp"
 #include "domain/Block.hpp"
@@ -56,25 +57,19 @@ struct SyncSection : particles::SyncConfig {
     domain::Subdomains subdomains = domain::Subdomains::RankBoxes;
 };
 
-enum class ContactModel { SpringDashpot, Hertz };
-
-/// [contact] model ("spring-dashpot" | "hertz"), stiffness (> 0; N/m for spring-dashpot,
-/// the effective modulus in Pa for Hertz), restitution in (0, 1], friction >= 0 (Coulomb
-/// coefficient), rolling_friction >= 0 (mu_r: the rolling couple is at most mu_r R_eff F_n),
-/// rolling_model ("constant": model A, a constant couple that cannot hold a grain at rest;
-/// "spring": model C, a spring-dashpot-slider that can, with rolling_stiffness >= 0, default
-/// 2.25 mu_r^2 k_n, and rolling_damping_ratio >= 0, default 0.3; TangentialSpring.hpp),
+/// [contact] model ("spring-dashpot" | "hertz"), the material keys when the scene has no
+/// [[materials]] (stiffness, youngs_modulus, poisson_ratio, restitution, friction,
+/// rolling_friction: MaterialSection.hpp; mu_r: the rolling couple is at most
+/// mu_r R_eff F_n), rolling_model ("constant": model A, a constant couple that cannot hold a grain
+/// at rest; "spring": model C, a spring-dashpot-slider that can, with rolling_stiffness >= 0,
+/// default 2.25 mu_r^2 k_n, and rolling_damping_ratio >= 0, default 0.3; TangentialSpring.hpp),
 /// initial_overlap (how far two grains may overlap at
 /// the start, as a fraction of the smaller radius: 0.5 for MESA-PD's GranularGas geometry),
 /// neighbour_skin (the Verlet list's skin, a length >= 0, LAMMPS's `neighbor` skin; 0: no
 /// list, linked cells every step; absent: a quarter of each block's small grains' radius).
-/// Defaults as in docs/guide/scene.md: 1e4, 0.9, 0.5, 0; initial_overlap 1e-6.
+/// Defaults as in docs/guide/scene.md; initial_overlap 1e-6.
 struct ContactSection {
     ContactModel model = ContactModel::SpringDashpot;
-    double stiffness = 1e4;
-    double restitution = 0.9;
-    double friction = 0.5;
-    double rollingFriction = 0.0;
     particles::RollingSpring rollingSpring; ///< model C if enabled
     double initialOverlap = 1e-6;
     std::optional<double> neighbourSkin;
@@ -156,6 +151,7 @@ struct SceneDescription {
     TimeSection time;
     SyncSection sync;
     ContactSection contact;
+    MaterialsSection materials; ///< [[materials]], or [contact]'s one material
     GravitySection gravity;
     BalanceSection balance;
     /// The [[particles]] entries in scene order, checked with

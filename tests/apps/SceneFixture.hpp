@@ -26,7 +26,8 @@ steps = 10
 method = "sos"
 [contact]
 model = "hertz"
-stiffness = 1e7
+youngs_modulus = 1.82e7
+poisson_ratio = 0.3
 restitution = 0.5
 friction = 0.3
 rolling_friction = 0.01

@@ -102,9 +102,9 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
     EXPECT_EQ(errorWith("contact.friction=-0.1"),
               "--set contact.friction=-0.1: contact.friction: expected a non-negative finite "
               "number, got -0.1");
-    EXPECT_EQ(errorWith("contact.stiffness=0"),
-              "--set contact.stiffness=0: contact.stiffness: expected a positive finite number, "
-              "got 0");
+    EXPECT_EQ(errorWith("contact.youngs_modulus=0"),
+              "--set contact.youngs_modulus=0: contact.youngs_modulus: expected a positive finite "
+              "Young's modulus (a pressure), required with contact.model = \"hertz\", got 0");
     EXPECT_EQ(errorWith("gravity.self=occupied_cells"),
               "--set gravity.self=occupied_cells: gravity.self: expected one of \"none\", "
               "\"direct\", \"tree\", \"pm\", \"p3m\", \"occupied-cells\", \"tree-nodes\", "
@@ -112,7 +112,7 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "\"occupied-cells\"?");
     // The sums over grains have no periodic images (the grid methods refuse a mixed one).
     EXPECT_EQ(errorWith("domain.periodic=[false,true,true]"),
-              "scenes/s.toml:21: gravity.self: \"tree\" sums the grains' gravity in free space, "
+              "scenes/s.toml:22: gravity.self: \"tree\" sums the grains' gravity in free space, "
               "without periodic images, but domain.periodic makes y, z periodic (grains across a "
               "periodic face would attract each other through the whole domain); use \"pm\" or "
               "\"p3m\" with every axis periodic, or an open domain");

@@ -44,7 +44,9 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_FALSE(s.sync.reproducible); // the default
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
-    EXPECT_EQ(s.contact.rollingFriction, 0.01);
+    EXPECT_EQ(s.materials.of(0).rollingFriction, 0.01);
+    EXPECT_EQ(s.materials.of(0).youngsModulus, 1.82e7);
+    EXPECT_EQ(s.materials.of(0).poissonRatio, 0.3);
     EXPECT_FALSE(s.contact.rollingSpring.enabled); // the default: model A
     auto const c = parse({"contact.rolling_model=\"spring\"", "contact.rolling_stiffness=40",
                           "contact.rolling_damping_ratio=0.5"})
@@ -104,7 +106,7 @@ TEST(SceneSections, DefaultsForOptionalSections) {
     EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid); // the scenes' default
     EXPECT_FALSE(s.sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
-    EXPECT_EQ(s.contact.stiffness, 1e4);
+    EXPECT_EQ(s.materials.of(0).stiffness, 1e4);
     EXPECT_EQ(s.gravity.self, apps::SelfGravity::None);
     EXPECT_TRUE(s.particles.empty());
     EXPECT_EQ(s.output.dir, "out");
@@ -166,15 +168,15 @@ TEST(SceneKeyLocation, DeepestWrittenKeyOfTheNamedEntry) {
     auto const at = [&](std::string_view m) { return apps::locateSceneKey(root, m); };
     // particles[0] starts on line 28 of kScene; its velocity table is written inline on 34.
     EXPECT_EQ(at("particles[0].spacing: must be positive, got 0"),
-              "s.toml:31: particles[0].spacing: must be positive, got 0");
+              "s.toml:32: particles[0].spacing: must be positive, got 0");
     EXPECT_EQ(at("particles[0].velocity.random: bad"),
-              "s.toml:34: particles[0].velocity.random: bad");
+              "s.toml:35: particles[0].velocity.random: bad");
     EXPECT_EQ(at("particles[1].position[1]: outside"),
-              "s.toml:38: particles[1].position[1]: outside");
+              "s.toml:39: particles[1].position[1]: outside");
     // A key the entry does not have: the entry's own line.
-    EXPECT_EQ(at("particles[0].region: outside"), "s.toml:28: particles[0].region: outside");
-    EXPECT_EQ(at("particles[2]: cannot pack"), "s.toml:40: particles[2]: cannot pack");
-    EXPECT_EQ(at("walls[0].normal: zero"), "s.toml:56: walls[0].normal: zero");
+    EXPECT_EQ(at("particles[0].region: outside"), "s.toml:29: particles[0].region: outside");
+    EXPECT_EQ(at("particles[2]: cannot pack"), "s.toml:41: particles[2]: cannot pack");
+    EXPECT_EQ(at("walls[0].normal: zero"), "s.toml:57: walls[0].normal: zero");
     // Not an entry of this scene, or not a key: unchanged.
     EXPECT_EQ(at("particles[9].radius: bad"), "particles[9].radius: bad");
     EXPECT_EQ(at("particles: too many entries"), "particles: too many entries");
