@@ -29,6 +29,7 @@ particles::ParticleInit particleOf(particles::GrainInit const& g) {
     p.radius = g.radius;
     p.mass = g.mass;
     p.type = g.type;
+    p.flags.set(particles::Flag::Fixed, g.fixed);
     return p;
 }
 

@@ -44,11 +44,28 @@ particles::VelocitySpec parseVelocity(core::ConfigTable const& t) {
     return t.get<core::Vec3>("velocity");
 }
 
+/// radius = { uniform = [min, max], seed = s }: a range drawn per grain.
+particles::RadiusRange parseRadiusRange(core::ConfigTable const& t) {
+    auto const table = t.table("radius");
+    auto const range = table.get<std::array<double, 2>>("uniform");
+    return {range[0], range[1], seedOr(table, "seed", 0)};
+}
+
 particles::LatticeSpec parseLattice(core::ConfigTable const& t, core::AABB const& domain) {
     particles::LatticeSpec s;
     s.lattice = static_cast<particles::LatticeKind>(t.getChoice("lattice", kLatticeNames));
     s.spacing = t.get<double>("spacing");
-    s.radius = t.get<double>("radius");
+    // radius = r, [min, max] or { uniform = [min, max], seed = s }; `radius` is the largest.
+    if (t.kindOf("radius") == core::ConfigKind::Table) {
+        s.radiusRange = parseRadiusRange(t);
+    } else if (t.kindOf("radius") == core::ConfigKind::Array) {
+        auto const range = t.get<std::array<double, 2>>("radius");
+        s.radiusRange = particles::RadiusRange{range[0], range[1], 0};
+    } else {
+        s.radius = t.get<double>("radius");
+    }
+    if (s.radiusRange)
+        s.radius = s.radiusRange->max;
     s.density = t.get<double>("density");
     s.region = domain;
     if (auto const region = t.findTable("region")) {
@@ -74,10 +91,14 @@ std::vector<core::Vec3> parseListVelocity(core::ConfigTable const& t) {
 particles::ListSpec parseList(core::ConfigTable const& t) {
     particles::ListSpec s;
     s.position = t.get<std::vector<core::Vec3>>("position");
-    if (t.kindOf("radius") == core::ConfigKind::Array)
+    if (t.kindOf("radius") == core::ConfigKind::Table) {
+        s.radiusRange = parseRadiusRange(t);
+        s.radius = {s.radiusRange->max};
+    } else if (t.kindOf("radius") == core::ConfigKind::Array) {
         s.radius = t.get<std::vector<double>>("radius");
-    else
+    } else {
         s.radius = {t.get<double>("radius")};
+    }
     s.velocity = parseListVelocity(t);
     s.density = t.get<double>("density");
     return s;
@@ -136,6 +157,9 @@ particles::ParticleSpec parseParticleSource(core::ConfigTable const& entry,
         break;
     }
     spec.type = parseMaterialType(entry);
+    if (entry.has("angular_velocity"))
+        spec.angularVelocity = entry.get<core::Vec3>("angular_velocity");
+    spec.fixed = entry.getOr<bool>("fixed", false);
     return spec;
 }
 

@@ -32,10 +32,10 @@ constexpr double kRsaJammingFraction = 0.38;
 
 } // namespace
 
-std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_t uidOffset,
-                                       std::uint32_t type, std::uint32_t entry,
-                                       GeneratorDomain const& domain, OverlapIndex const& obstacles,
-                                       std::string const& key) {
+std::vector<GrainInit> packAgglomerate(ParticleSpec const& entrySpec, std::uint64_t uidOffset,
+                                       std::uint32_t entry, GeneratorDomain const& domain,
+                                       OverlapIndex const& obstacles, std::string const& key) {
+    auto const& spec = std::get<AgglomerateSpec>(entrySpec.kind);
     auto const count = static_cast<std::size_t>(spec.count);
     // The grains' volume is at least count r_min^3: a count that cannot fit is refused before
     // the arrays for it are allocated (10^12 grains would end in std::bad_alloc).
@@ -67,8 +67,11 @@ std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_
         g.velocity = spec.velocity;
         g.density = spec.density;
         g.mass = sphereMass(g.radius, spec.density);
-        g.type = type;
+        g.type = entrySpec.type;
         g.entry = entry;
+        g.fixed = entrySpec.fixed;
+        if (entrySpec.angularVelocity)
+            g.angularVelocity = *entrySpec.angularVelocity;
         volumeSum += g.radius * g.radius * g.radius;
     }
     double const fraction = volumeSum / (spec.radius * spec.radius * spec.radius);
@@ -98,10 +101,13 @@ std::vector<GrainInit> packAgglomerate(AgglomerateSpec const& spec, std::uint64_
         double const freeRadius = spec.radius - g.radius;
         bool done = false;
         for (std::int64_t attempt = 0; attempt < spec.maxAttempts && !done; ++attempt) {
-            core::Vec3 const p = domain.wrap(spec.center + freeRadius * pointInUnitBall(rng[i]));
+            core::Vec3 const offset = freeRadius * pointInUnitBall(rng[i]);
+            core::Vec3 const p = domain.wrap(spec.center + offset);
             if (placed.overlaps(p, g.radius) || obstacles.overlaps(p, g.radius))
                 continue;
             g.position = p;
+            if (entrySpec.angularVelocity)
+                g.velocity += entrySpec.angularVelocity->cross(offset);
             placed.insert(p, g.radius);
             done = true;
         }

@@ -15,7 +15,8 @@
 
 namespace regolith::particles {
 
-/// Packs the agglomerate `spec` (validated). Grain i (0 <= i < count) gets uid
+/// Packs the agglomerate entry `entrySpec` (validated; its kind an AgglomerateSpec `spec`),
+/// the entry `entry` of the scene. Grain i (0 <= i < count) gets uid
 /// `uidOffset + i`, and draws everything from core::random::CounterRng(spec.seed, uid):
 /// first its radius (uniform in [grain_radius[0], grain_radius[1])), then, attempt after
 /// attempt, a point uniform in the unit ball (rejection from the cube, x, y, z in order),
@@ -24,13 +25,16 @@ namespace regolith::particles {
 /// domain on periodic axes and overlap is tested against periodic images. Deterministic for a
 /// seed and independent of the rank and block layout.
 ///
-/// Returns `count` grains in uid order with the bulk velocity, `type` and `entry`.
+/// Returns `count` grains in uid order with the entry's type, fixed flag and angular velocity
+/// w, and the velocity of a rigid body turning about the center, spec.velocity + w x (x - center)
+/// (before the wrap; the bulk velocity alone without w).
 /// Throws core::InputError naming `key` if sum r^3 / radius^3 >= 1 or a grain finds no free
 /// position within spec.maxAttempts attempts; the message states the requested packing
 /// fraction. Not collective.
-[[nodiscard]] std::vector<GrainInit>
-packAgglomerate(AgglomerateSpec const& spec, std::uint64_t uidOffset, std::uint32_t type,
-                std::uint32_t entry, GeneratorDomain const& domain, OverlapIndex const& obstacles,
-                std::string const& key);
+[[nodiscard]] std::vector<GrainInit> packAgglomerate(ParticleSpec const& entrySpec,
+                                                     std::uint64_t uidOffset, std::uint32_t entry,
+                                                     GeneratorDomain const& domain,
+                                                     OverlapIndex const& obstacles,
+                                                     std::string const& key);
 
 } // namespace regolith::particles

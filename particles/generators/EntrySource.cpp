@@ -31,6 +31,15 @@ core::Vec3 latticeVelocity(VelocitySpec const& velocity, std::uint64_t uid) {
     return {x, y, z};
 }
 
+/// What every grain of an entry takes from it: material type, spin, whether it is fixed.
+void applyEntryKeys(ParticleSpec const& spec, std::uint32_t entry, GrainInit& g) {
+    g.type = spec.type;
+    g.entry = entry;
+    g.fixed = spec.fixed;
+    if (spec.angularVelocity)
+        g.angularVelocity = *spec.angularVelocity;
+}
+
 } // namespace
 
 EntrySource::EntrySource(ParticleSpec const& spec, std::size_t index, GeneratorDomain const& domain)
@@ -69,8 +78,18 @@ void EntrySource::prepareFile(FileSpec const& file, GeneratorDomain const& domai
                                            m_key, file.path));
     std::uint64_t const uidLimit = kUidCounterMask; // uids must fit the counter field
     std::vector<std::pair<std::uint64_t, int>> uids;
+    if (m_spec->angularVelocity && m_table.hasAngularVelocity)
+        throw core::InputError(fmt::format("{}.angular_velocity: '{}' has angular velocity "
+                                           "columns (wx, wy, wz); give one or the other",
+                                           m_key, file.path));
     for (auto const& g : m_table.grains) {
         checkGrainPlacement(g.position, g.radius, domain, where(g));
+        if (m_spec->fixed &&
+            (g.velocity != core::Vec3::Zero() || g.angularVelocity != core::Vec3::Zero()))
+            throw core::InputError(fmt::format("{} (vx ... wz): a grain of a fixed entry is held "
+                                               "in place; its velocity and angular velocity "
+                                               "must be 0",
+                                               where(g)));
         if (m_table.hasDensity && !(g.density > 0.0))
             throw core::InputError(
                 fmt::format("{} (density): must be positive, got {}", where(g), g.density));
@@ -136,11 +155,10 @@ GrainInit EntrySource::latticeGrain(std::uint64_t site, core::Vec3 const& centre
     g.uid = uidBegin + site;
     g.position = centre;
     g.velocity = latticeVelocity(spec.velocity, g.uid);
-    g.radius = spec.radius;
+    g.radius = spec.radiusRange ? spec.radiusRange->draw(g.uid) : spec.radius;
     g.density = spec.density;
-    g.mass = sphereMass(spec.radius, spec.density);
-    g.type = m_spec->type;
-    g.entry = m_entry;
+    g.mass = sphereMass(g.radius, spec.density);
+    applyEntryKeys(*m_spec, m_entry, g);
     return g;
 }
 
@@ -177,13 +195,15 @@ void EntrySource::listCandidates(RegionSet const& region, std::uint64_t uidBegin
         GrainInit g;
         g.uid = uidBegin + i;
         g.position = spec.position[i];
-        g.radius = spec.radius.size() == 1 ? spec.radius[0] : spec.radius[i];
+        if (spec.radiusRange)
+            g.radius = spec.radiusRange->draw(g.uid);
+        else
+            g.radius = spec.radius.size() == 1 ? spec.radius[0] : spec.radius[i];
         if (!spec.velocity.empty())
             g.velocity = spec.velocity.size() == 1 ? spec.velocity[0] : spec.velocity[i];
         g.density = spec.density;
         g.mass = sphereMass(g.radius, spec.density);
-        g.type = m_spec->type;
-        g.entry = m_entry;
+        applyEntryKeys(*m_spec, m_entry, g);
         out.push_back(g);
     }
 }
@@ -208,8 +228,9 @@ void EntrySource::fileCandidates(RegionSet const& region, std::uint64_t uidBegin
             g.density = m_table.hasDensity ? c.density : *spec.density;
             g.mass = sphereMass(c.radius, g.density);
         }
-        g.type = m_table.hasType ? c.type : m_spec->type;
-        g.entry = m_entry;
+        applyEntryKeys(*m_spec, m_entry, g);
+        if (m_table.hasType)
+            g.type = c.type;
         out.push_back(g);
     }
     if (m_table.hasUid)

@@ -25,6 +25,20 @@ struct RandomVelocity {
 /// `velocity = [vx, vy, vz]` (one vector for every grain) or `velocity = { random = ... }`.
 using VelocitySpec = std::variant<core::Vec3, RandomVelocity>;
 
+/// `radius = [min, max]` (lattice) or `radius = { uniform = [min, max], seed = s }` (lattice,
+/// list): each grain's radius uniform in [min, max), drawn from core::random::CounterRng(seed,
+/// uid, kRadiusStream), the grain's own numbers, so the same on any number of ranks; min == max
+/// gives min.
+struct RadiusRange {
+    /// The stream of the radius draws (the velocity's is 0: a shared seed draws both apart).
+    static constexpr std::uint32_t kRadiusStream = 1;
+    double min = 0.0;
+    double max = 0.0;
+    std::uint64_t seed = 0;
+    /// The radius of the grain `uid`.
+    [[nodiscard]] double draw(std::uint64_t uid) const;
+};
+
 /// `lattice = "sc"` or `"hcp"`.
 enum class LatticeKind { SimpleCubic, HexagonalClosePacked };
 
@@ -46,21 +60,23 @@ enum class LatticeKind { SimpleCubic, HexagonalClosePacked };
 /// when the axis is not: a periodic lattice tiles across the boundary, and no grain crosses a
 /// wall. With spacing 1 and region [0, 80)^3 an sc lattice has exactly 80^3 sites.
 struct LatticeSpec {
-    LatticeKind lattice = LatticeKind::SimpleCubic;    ///< `lattice`
-    double spacing = 1.0;                              ///< `spacing` [length], > 0
-    double radius = 0.5;                               ///< `radius` [length], > 0
-    double density = 1.0;                              ///< `density` [mass/length^3], > 0
-    core::AABB region;                                 ///< `region = { min, max }`, in the domain
+    LatticeKind lattice = LatticeKind::SimpleCubic; ///< `lattice`
+    double spacing = 1.0;                           ///< `spacing` [length], > 0
+    double radius = 0.5;                    ///< `radius` [length], > 0; with radiusRange, its max
+    std::optional<RadiusRange> radiusRange; ///< `radius = [min, max]`
+    double density = 1.0;                   ///< `density` [mass/length^3], > 0
+    core::AABB region;                      ///< `region = { min, max }`, in the domain
     VelocitySpec velocity = core::Vec3(0.0, 0.0, 0.0); ///< `velocity`
 };
 
 /// `kind = "list"`: grains given one by one. `radius` and `velocity` hold either one value
 /// for every grain or one per position; `velocity` may be empty (at rest).
 struct ListSpec {
-    std::vector<double> radius;       ///< `radius` [length]
-    std::vector<core::Vec3> position; ///< `position`, centres inside the domain
-    std::vector<core::Vec3> velocity; ///< `velocity`, optional
-    double density = 1.0;             ///< `density`
+    std::vector<double> radius;             ///< `radius` [length]; with radiusRange, {its max}
+    std::optional<RadiusRange> radiusRange; ///< `radius = { uniform = [min, max], seed = s }`
+    std::vector<core::Vec3> position;       ///< `position`, centres inside the domain
+    std::vector<core::Vec3> velocity;       ///< `velocity`, optional
+    double density = 1.0;                   ///< `density`
 };
 
 /// `kind = "file"`: grains from a CSV file, one per line after a header line naming the
@@ -94,9 +110,17 @@ struct AgglomerateSpec {
 
 /// One `[[particles]]` entry.
 struct ParticleSpec {
-    std::variant<LatticeSpec, ListSpec, FileSpec, AgglomerateSpec> kind; ///< `kind`
+    using Kind = std::variant<LatticeSpec, ListSpec, FileSpec, AgglomerateSpec>;
+    Kind kind; ///< `kind`
     /// `type`: material index of the entry's grains (the contact model's MaterialTable).
     std::uint32_t type = 0;
+    /// `angular_velocity` [rad/time]: every grain's; an agglomerate's grains also move as a
+    /// rigid body turning about its center, velocity + angular_velocity x (x - center). A file
+    /// with wx, wy, wz columns may not have it.
+    std::optional<core::Vec3> angularVelocity;
+    /// `fixed`: the grains are held in place (Flag::Fixed: never moved, still touched by
+    /// others); their velocity and angular velocity must be 0.
+    bool fixed = false;
 };
 
 /// The scene name of the entry's kind: "lattice", "list", "file" or "agglomerate".

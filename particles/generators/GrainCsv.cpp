@@ -154,6 +154,8 @@ CsvGrainTable parseGrainCsv(std::istream& in, std::string const& fileName, std::
     table.hasMass = present[static_cast<std::size_t>(Column::Mass)];
     table.hasUid = present[static_cast<std::size_t>(Column::Uid)];
     table.hasType = present[static_cast<std::size_t>(Column::Type)];
+    for (auto const w : {Column::Wx, Column::Wy, Column::Wz})
+        table.hasAngularVelocity = table.hasAngularVelocity || present[static_cast<std::size_t>(w)];
     if (table.hasDensity && table.hasMass)
         throw core::InputError(
             fmt::format("{}: both a density and a mass column; give one of them", headerAt.str()));

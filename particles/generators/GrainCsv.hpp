@@ -31,6 +31,7 @@ struct CsvGrainTable {
     bool hasMass = false;
     bool hasUid = false;
     bool hasType = false;
+    bool hasAngularVelocity = false; ///< a wx, wy or wz column
 };
 
 /// The column names a grain CSV may use.

@@ -16,12 +16,13 @@ struct GrainInit {
     Uid uid = kInvalidUid;
     core::Vec3 position = core::Vec3::Zero();        ///< centre [length], inside the domain
     core::Vec3 velocity = core::Vec3::Zero();        ///< [length/time]
-    core::Vec3 angularVelocity = core::Vec3::Zero(); ///< [rad/time]; only files set it
+    core::Vec3 angularVelocity = core::Vec3::Zero(); ///< [rad/time]
     double radius = 0.0;                             ///< [length]
     double density = 0.0;                            ///< [mass/length^3]
     double mass = 0.0;                               ///< [mass], density * 4/3 pi r^3
     std::uint32_t type = 0;                          ///< material index (ParticleSpec::type)
     std::uint32_t entry = 0;                         ///< index of the [[particles]] entry
+    bool fixed = false;                              ///< held in place (ParticleSpec::fixed)
 };
 
 /// Receives generated grains one at a time (generateGrains, EntrySource): the grains go

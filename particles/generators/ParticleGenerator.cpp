@@ -143,9 +143,8 @@ std::vector<std::uint64_t> generateGrains(std::span<ParticleSpec const> specs,
         }
         std::vector<GrainInit> kept;
         if (entry.isAgglomerate()) {
-            kept =
-                packAgglomerate(std::get<AgglomerateSpec>(specs[k].kind), uidBegin, specs[k].type,
-                                static_cast<std::uint32_t>(k), domain, placed, entry.key());
+            kept = packAgglomerate(specs[k], uidBegin, static_cast<std::uint32_t>(k), domain,
+                                   placed, entry.key());
         } else {
             kept = entry.candidatesIn(needed, uidBegin);
             std::erase_if(

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -52,7 +53,42 @@ void validateVelocity(VelocitySpec const& velocity, std::string const& key) {
              fmt::format("expected [lo, hi] with lo <= hi, both finite, got [{}, {}]", r.lo, r.hi));
 }
 
+void validateRadiusRange(std::optional<RadiusRange> const& r, std::string const& key) {
+    if (r && !(std::isfinite(r->min) && std::isfinite(r->max) && r->min > 0.0 && r->min <= r->max))
+        fail(key,
+             fmt::format("expected [min, max] with 0 < min <= max, got [{}, {}]", r->min, r->max));
+}
+
+/// Whether the entry gives its grains a velocity or spin other than 0 (files: see
+/// EntrySource, which reads them).
+bool givesMotion(ParticleSpec const& s) {
+    auto const moving = [](core::Vec3 const& v) { return v != core::Vec3::Zero(); };
+    if (s.angularVelocity && moving(*s.angularVelocity))
+        return true;
+    if (auto const* lattice = std::get_if<LatticeSpec>(&s.kind)) {
+        if (auto const* fixed = std::get_if<core::Vec3>(&lattice->velocity))
+            return moving(*fixed);
+        auto const& r = std::get<RandomVelocity>(lattice->velocity);
+        return r.lo != 0.0 || r.hi != 0.0;
+    }
+    if (auto const* list = std::get_if<ListSpec>(&s.kind))
+        return std::any_of(list->velocity.begin(), list->velocity.end(), moving);
+    if (auto const* agglomerate = std::get_if<AgglomerateSpec>(&s.kind))
+        return moving(agglomerate->velocity);
+    return false;
+}
+
+/// The keys every kind has: angular_velocity finite, a fixed entry at rest.
+void validateEntryKeys(ParticleSpec const& s, std::string const& key) {
+    if (s.angularVelocity)
+        requireFinite(*s.angularVelocity, key + ".angular_velocity");
+    if (s.fixed && givesMotion(s))
+        fail(key + ".fixed", "a fixed grain is held in place: its entry may give it no velocity "
+                             "or angular_velocity other than 0");
+}
+
 void validateLattice(LatticeSpec const& s, std::string const& key, GeneratorDomain const& d) {
+    validateRadiusRange(s.radiusRange, key + ".radius");
     requirePositive(s.spacing, key + ".spacing");
     requirePositive(s.radius, key + ".radius");
     requirePositive(s.density, key + ".density");
@@ -84,6 +120,7 @@ void validateLattice(LatticeSpec const& s, std::string const& key, GeneratorDoma
 
 void validateList(ListSpec const& s, std::string const& key, GeneratorDomain const& d) {
     std::size_t const n = s.position.size();
+    validateRadiusRange(s.radiusRange, key + ".radius");
     requirePositive(s.density, key + ".density");
     if (n > 0 && s.radius.size() != 1 && s.radius.size() != n)
         fail(key + ".radius",
@@ -189,6 +226,7 @@ void validateParticleSpecs(std::span<ParticleSpec const> specs, GeneratorDomain 
             validateFile(*file, key);
         else
             validateAgglomerate(std::get<AgglomerateSpec>(kind), key, domain);
+        validateEntryKeys(specs[i], key);
     }
 }
 

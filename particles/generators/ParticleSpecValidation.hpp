@@ -26,7 +26,9 @@ namespace regolith::particles {
 ///    max_attempts >= 1, the center lies in the domain and, on non-periodic axes, the whole
 ///    sphere does;
 ///  - on a periodic axis every grain diameter is below the period (a grain must not touch
-///    its own image).
+///    its own image);
+///  - a radius range (lattice, list) has 0 < min <= max; angular_velocity is finite; a
+///    fixed entry gives no velocity or angular velocity other than 0.
 /// Also checks the domain itself (finite, min < max). Not collective.
 void validateParticleSpecs(std::span<ParticleSpec const> specs, GeneratorDomain const& domain);
 

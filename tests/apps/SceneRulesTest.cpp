@@ -206,7 +206,7 @@ TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
               "'seed'?");
     EXPECT_EQ(errorWith("particles.1.spacing=1.0"),
               "--set particles.1.spacing=1.0: unknown key 'particles[1].spacing' (known keys "
-              "here: density, kind, position, radius, type, velocity)");
+              "here: angular_velocity, density, fixed, kind, position, radius, type, velocity)");
     EXPECT_EQ(errorWith("gravity.petsc.option=\"-ksp_view\""),
               "--set gravity.petsc.option=\"-ksp_view\": unknown key 'gravity.petsc.option' "
               "\u2014 did you mean 'options'?");

@@ -37,7 +37,7 @@ ParticleSpec fileEntry(std::string const& path, std::optional<double> density = 
     particles::FileSpec f;
     f.path = path;
     f.density = density;
-    return {f, 6};
+    return withType(f, 6);
 }
 
 core::AABB const kDomain = box(Vec3::Zero(), Vec3(10, 10, 10));

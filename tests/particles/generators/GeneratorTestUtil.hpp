@@ -32,6 +32,14 @@ inline core::AABB box(core::Vec3 const& lo, core::Vec3 const& hi) {
     return {lo, hi};
 }
 
+/// The entry of kind `kind` with material type `type`.
+inline ParticleSpec withType(ParticleSpec::Kind kind, std::uint32_t type) {
+    ParticleSpec spec;
+    spec.kind = std::move(kind);
+    spec.type = type;
+    return spec;
+}
+
 inline ParticleSpec lattice(LatticeKind kind, double spacing, double radius,
                             core::AABB const& region,
                             particles::VelocitySpec velocity = core::Vec3(0.0, 0.0, 0.0)) {
@@ -42,7 +50,7 @@ inline ParticleSpec lattice(LatticeKind kind, double spacing, double radius,
     s.density = 2.5;
     s.region = region;
     s.velocity = velocity;
-    return {s, 0};
+    return withType(s, 0);
 }
 
 inline ParticleSpec sphereList(std::vector<core::Vec3> positions, std::vector<double> radii) {
@@ -50,7 +58,7 @@ inline ParticleSpec sphereList(std::vector<core::Vec3> positions, std::vector<do
     s.position = std::move(positions);
     s.radius = std::move(radii);
     s.density = 3.0;
-    return {s, 1};
+    return withType(s, 1);
 }
 
 inline ParticleSpec agglomerate(core::Vec3 const& centre, double radius, double rMin, double rMax,
@@ -64,7 +72,7 @@ inline ParticleSpec agglomerate(core::Vec3 const& centre, double radius, double 
     s.velocity = core::Vec3(0.0, 5.0, 0.0);
     s.density = 3000.0;
     s.seed = seed;
-    return {s, 2};
+    return withType(s, 2);
 }
 
 /// Minimum-image separation vector a - b (independent of the generators' image search).

@@ -42,7 +42,7 @@ struct Scene {
                                 box(Vec3(0, 0, 6), Vec3(16, 16, 12))));
         particles::FileSpec f;
         f.path = file.path();
-        specs.push_back({f, 4});
+        specs.push_back(withType(f, 4));
     }
 };
 

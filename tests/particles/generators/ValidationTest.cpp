@@ -44,7 +44,7 @@ TEST(Validation, EveryBadInputNamesEntryAndKey) {
     auto const agg = agglomerate(Vec3(5, 5, 5), 3.0, 0.2, 0.4, 10, 1);
     particles::FileSpec fs;
     fs.path = "x.csv";
-    ParticleSpec const file{fs, 0};
+    ParticleSpec const file = withType(fs, 0);
     std::vector<Case> const cases{
         {"spacing", [](auto& s) { asLattice(s).spacing = 0; }, lat,
          "particles[1].spacing: must be positive, got 0"},
@@ -116,6 +116,26 @@ TEST(Validation, EveryBadInputNamesEntryAndKey) {
          agg, "particles[1].density: must be positive, got inf"},
         {"agg velocity", [](auto& s) { asAgg(s).velocity = Vec3(kNan, 0, 0); }, agg,
          "particles[1].velocity: must be finite"},
+        {"radius range order",
+         [](auto& s) {
+             asLattice(s).radiusRange = particles::RadiusRange{0.4, 0.3, 0};
+         },
+         lat, "particles[1].radius: expected [min, max] with 0 < min <= max, got [0.4, 0.3]"},
+        {"list radius range zero",
+         [](auto& s) {
+             asList(s).radiusRange = particles::RadiusRange{0.0, 0.3, 0};
+         },
+         lst, "particles[1].radius: expected [min, max] with 0 < min <= max, got [0, 0.3]"},
+        {"angular velocity", [](auto& s) { s.angularVelocity = Vec3(0, kNan, 0); }, agg,
+         "particles[1].angular_velocity: must be finite"},
+        {"fixed and moving", [](auto& s) { s.fixed = true; }, agg,
+         "particles[1].fixed: a fixed grain is held in place"},
+        {"fixed and spinning",
+         [](auto& s) {
+             s.fixed = true;
+             s.angularVelocity = Vec3(0, 0, 1);
+         },
+         lat, "particles[1].fixed: a fixed grain is held in place"},
     };
     for (auto const& c : cases) {
         ParticleSpec bad = c.base;
