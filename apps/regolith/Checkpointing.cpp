@@ -290,7 +290,23 @@ void CheckpointSchedule::checkReplaced(std::int64_t firstStep, std::int64_t last
 }
 
 std::string CheckpointSchedule::write(std::int64_t stepsDone) {
-    io::CheckpointInfo info;
+    std::string const path = io::checkpointPath(m_output.dir, stepsDone);
+    double const start = MPI_Wtime();
+    Written const info = writeTo(path, stepsDone);
+    double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
+    if (m_comm->rank() == 0) {
+        m_written.push_back(path);
+        io::rotateCheckpoints(m_written, m_output.checkpointKeep);
+    }
+    core::log::info("checkpoint {}: {} grains, {} history entries, {:.3g} MB in {:.3g} s", path,
+                    info.grainCount, info.historyCount, static_cast<double>(info.bytes) * 1e-6,
+                    seconds);
+    return path;
+}
+
+CheckpointSchedule::Written CheckpointSchedule::writeTo(std::string const& path,
+                                                        std::int64_t stepsDone) {
+    Written info;
     info.step = stepsDone;
     info.time = m_timeAt(stepsDone);
     info.dt = m_dt;
@@ -298,8 +314,6 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
     info.periodic = m_forest.periodic;
     info.scene = m_text;
     info.stateChecksum = stateChecksumFrom(*m_comm, masterSource(*m_local));
-    std::string const path = io::checkpointPath(m_output.dir, stepsDone);
-    double const start = MPI_Wtime();
     auto grains = io::collectMasters(*m_local);
     if (m_gravity != nullptr) {
         coupling::SelfGravityState const s = m_gravity->state();
@@ -314,15 +328,8 @@ std::string CheckpointSchedule::write(std::int64_t stepsDone) {
                 g.gravitySlope = core::Vec3(r->slope[0], r->slope[1], r->slope[2]);
             }
     }
-    std::uint64_t const bytes = io::writeCheckpoint(*m_comm, path, info, grains);
-    double const seconds = MPI_Wtime() - start; // rank 0 renamed last: the whole write
-    if (m_comm->rank() == 0) {
-        m_written.push_back(path);
-        io::rotateCheckpoints(m_written, m_output.checkpointKeep);
-    }
-    core::log::info("checkpoint {}: {} grains, {} history entries, {:.3g} MB in {:.3g} s", path,
-                    info.grainCount, info.historyCount, static_cast<double>(bytes) * 1e-6, seconds);
-    return path;
+    info.bytes = io::writeCheckpoint(*m_comm, path, info, grains);
+    return info;
 }
 
 } // namespace regolith::apps

@@ -80,6 +80,13 @@ public:
     void afterStep(std::int64_t stepsDone);
     /// Writes the checkpoint of step `stepsDone` now; returns its path. COLLECTIVE.
     std::string write(std::int64_t stepsDone);
+    /// What writeTo wrote: the file's attributes and its size [bytes].
+    struct Written : io::CheckpointInfo {
+        std::uint64_t bytes = 0;
+    };
+    /// Writes the state after `stepsDone` steps in the checkpoint format to `path` (no
+    /// rotation, no log line: a particle snapshot too). COLLECTIVE.
+    Written writeTo(std::string const& path, std::int64_t stepsDone);
     /// Also store the state self-gravity keeps between updates (nullptr: none); `gravity`
     /// must outlive this object. Not collective.
     void setSelfGravity(coupling::SelfGravityForces const* gravity) { m_gravity = gravity; }

@@ -48,6 +48,8 @@ std::string writtenInOutputDir(std::string const& path, OutputSection const& out
     std::string const dir = folderOf(path);
     std::string const name = fs::path(path).filename().string();
     std::string const where = fmt::format("output.dir = \"{}\"", output.dir);
+    if (output.dumpEvery > 0 && core::sameFile(dir, (fs::path(output.dir) / "dumps").string()))
+        return fmt::format("the particle snapshots' folder '{}/dumps'", output.dir);
     if (core::sameFile(dir, output.dir) && ((summaryThere && name == "summary.json") ||
                                             (output.thermoEvery > 0 && name == "thermo.csv")))
         return fmt::format("the {} file in {}", name, where);

@@ -18,6 +18,7 @@
 #include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
+#include "apps/regolith/ParticleSnapshots.hpp"
 #include "apps/regolith/ProgressLine.hpp"
 #include "apps/regolith/RunPaths.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
@@ -231,6 +232,9 @@ int runSceneUnlocated(core::AppContext& ctx) {
     CheckpointSchedule checkpoints(world, scene, text, local, timeAt);
     checkpoints.setSelfGravity(selfGravity.get());
     checkpoints.checkReplaced(startStep, scene.time.steps);
+    ParticleSnapshots snapshots(world, scene.output, local, checkpoints);
+    if (!restart && snapshots.due(startStep))
+        snapshots.write(startStep);
     std::optional<io::VtkOutput> vtk;
     if (scene.output.vtkEvery > 0) {
         // A restart continues the series of the run it restarts (the entries before it).
@@ -295,6 +299,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
         checkpoints.afterStep(stepsDone);
         if (vtk && stepsDone % scene.output.vtkEvery == 0)
             writeVtk(stepsDone);
+        if (snapshots.due(stepsDone))
+            snapshots.write(stepsDone);
         balance.afterStep(stepsDone);
         progress.setImbalance(balance.imbalance());
         if (selfGravity)
@@ -307,7 +313,8 @@ int runSceneUnlocated(core::AppContext& ctx) {
     // next step's first.
     auto const observes = [&](std::int64_t stepsDone) {
         return checkpoints.due(stepsDone) || (vtk && stepsDone % scene.output.vtkEvery == 0) ||
-               balance.due(stepsDone) || pouring.due(stepsDone) || thermo.due(stepsDone);
+               balance.due(stepsDone) || pouring.due(stepsDone) || thermo.due(stepsDone) ||
+               snapshots.due(stepsDone);
     };
     LoopOutcome const loop =
         runTimeLoop(world, dem, sync, timers, scene.time.steps - startStep, afterStep, observes);

@@ -39,6 +39,9 @@ constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
                                 "pm"sv,         "p3m"sv,         "occupied-cells"sv,
                                 "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
+/// In the order of DumpFormat.
+constexpr std::array kDumpFormatNames{"csv"sv, "hdf5"sv};
+
 /// gravity.check_every and update_every above this are typos: a run has far fewer updates.
 constexpr std::int64_t kMaxEvery = 1000000;
 
@@ -248,6 +251,8 @@ OutputSection parseOutput(core::ConfigTable const& t) {
         [](double v) { return std::isfinite(v) && v >= 0.0; }, "a non-negative number");
     s.thermoEvery =
         t.getOrIf<std::int64_t>("thermo_every", 0, isNonNegative, "a non-negative integer");
+    s.dumpEvery = t.getOrIf<std::int64_t>("dump_every", 0, isNonNegative, "a non-negative integer");
+    s.dumpFormat = static_cast<DumpFormat>(t.getChoiceOr("dump_format", kDumpFormatNames, 0));
     return s;
 }
 

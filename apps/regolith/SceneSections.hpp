@@ -120,7 +120,10 @@ struct GravitySection {
 /// did not write are never touched; 0: all; default 2), vtk_shadows (also write the shadow
 /// copies, flagged; default false), progress_seconds (>= 0: interval of the progress lines
 /// when standard output is not a terminal; 0: none; default 10), thermo_every >= 0 (steps
-/// between two rows of thermo.csv and the thermo lines, ThermoLog.hpp; 0: none, the default).
+/// between two rows of thermo.csv and the thermo lines, ThermoLog.hpp; 0: none, the default),
+/// dump_every >= 0 (steps between two particle snapshots, ParticleSnapshots.hpp; 0: none) and
+/// dump_format ("csv", the default, or "hdf5").
+enum class DumpFormat { Csv, Hdf5 };
 struct OutputSection {
     std::string dir = "out";
     std::int64_t vtkEvery = 0;
@@ -129,6 +132,8 @@ struct OutputSection {
     bool vtkShadows = false;
     double progressSeconds = 10.0;
     std::int64_t thermoEvery = 0;
+    std::int64_t dumpEvery = 0;
+    DumpFormat dumpFormat = DumpFormat::Csv;
 };
 
 /// [balance] every: steps between two measurements of the ranks' loads (the blocks' grains

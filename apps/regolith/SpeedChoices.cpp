@@ -66,8 +66,10 @@ std::vector<AutoChoice> resolveSpeedChoices(core::Comm const& comm,
             time.orientation = true;
             out.push_back({"time.orientation", "true", "semi-implicit Euler integrates it"});
         } else {
+            OutputSection const& o = scene.output;
+            bool const hdf5Snapshots = o.dumpFormat == DumpFormat::Hdf5 && o.dumpEvery > 0;
             time.orientation =
-                scene.output.checkpointEvery > 0 && scene.output.checkpointEvery <= time.steps;
+                (o.checkpointEvery > 0 && o.checkpointEvery <= time.steps) || hdf5Snapshots;
             out.push_back({"time.orientation", time.orientation ? "true" : "false",
                            time.orientation ? "the checkpoints store the grains' orientation"
                                             : "spheres, and no output writes an orientation"});

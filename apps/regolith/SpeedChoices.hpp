@@ -23,7 +23,8 @@ inline constexpr double kAutoSyncSkinPerRadius = 0.25;
 ///  - balance.every: autoBalanceEvery(time.steps) on more than one rank (0 on one, or with
 ///    domain.balance = "blocks"); an explicit interval above 0 on one rank or with
 ///    domain.balance = "blocks" is refused (core::InputError, on every rank);
-///  - time.orientation: integrated where something reads it -- a checkpoint the run will
+///  - time.orientation: integrated where something reads it -- a checkpoint (or an HDF5
+///    particle snapshot, output.dump_format) the run will
 ///    write (it stores the orientation), or semi-implicit Euler (which always integrates it);
 ///    the grains are
 ///    spheres, whose orientation no contact and no other output reads;

@@ -59,6 +59,15 @@ void writeText(hid_t file, char const* name, std::string const& text, std::strin
     h5check(H5Awrite(attr.get(), type.get(), text.c_str()), context, name);
 }
 
+} // namespace
+
+void writeTextAttribute(hid_t object, char const* name, std::string const& text,
+                        std::string const& context) {
+    writeText(object, name, text, context);
+}
+
+namespace {
+
 /// Why a required attribute may be absent: the file is an HDF5 file, but another program's,
 /// or its metadata is damaged (one flipped byte there hides attributes).
 constexpr char const* kNotACheckpoint = " (not a Regolith checkpoint, or a damaged one)";

@@ -21,6 +21,11 @@ namespace regolith::io::detail {
 void writeInfoAttributes(hid_t file, CheckpointInfo const& info, std::uint64_t checksum,
                          std::string const& context);
 
+/// Writes the string attribute `name` = `text` on the object `object` (a dataset, a group).
+/// Throws core::InputError prefixed with `context` on an HDF5 failure.
+void writeTextAttribute(hid_t object, char const* name, std::string const& text,
+                        std::string const& context);
+
 /// Reads the format version alone (first, so that a file of another version is named as such
 /// rather than as damaged). Throws core::InputError prefixed with `context` if it is missing.
 [[nodiscard]] std::int64_t readFormatVersion(hid_t file, std::string const& context);

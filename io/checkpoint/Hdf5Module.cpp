@@ -28,6 +28,8 @@ void writeColumn(hid_t file, hid_t dxpl, ColumnView const& col, Slab const& slab
     H5Handle const set = h5own(H5Dcreate2(file, col.name, fileType(col.type), fileSpace.get(),
                                           H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                H5Dclose, context, col.name);
+    writeTextAttribute(set.get(), "units", col.units, context);
+    writeTextAttribute(set.get(), "description", col.description, context);
     if (slab.global == 0)
         return; // nothing to write anywhere: every rank skips alike
     H5Handle const memSpace =

@@ -23,13 +23,17 @@ namespace regolith::io::detail {
 enum class ColumnType { U64, U32, U8, F64 };
 
 /// One column seen untyped: dataset name, element type, values per row, data, whether it is
-/// a history column (H rows) or a grain column (N rows).
+/// a history column (H rows) or a grain column (N rows), and the dataset's `units` (in the
+/// scene's unit system: "length", "mass length/time^2", "1" for pure numbers) and
+/// `description` attributes.
 struct ColumnView {
     char const* name;
     ColumnType type;
     std::size_t width;
     void* data;
     bool history;
+    char const* units;
+    char const* description;
 };
 
 /// Rows of this rank and where they start in the file.

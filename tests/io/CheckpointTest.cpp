@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -190,6 +191,50 @@ TEST(Checkpoint, RoundTripIsBitwise) {
                                      [&](io::GrainState const& w) { return w.uid == g.uid; });
         ASSERT_NE(it, written.end());
         EXPECT_EQ(int{g.flags}, int{it->flags}) << "uid " << g.uid;
+    }
+}
+
+namespace {
+
+/// The string attribute `name` of dataset `set` in `path` ("" if absent).
+std::string datasetText(std::string const& path, char const* set, char const* name) {
+    hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t const data = H5Dopen2(file, set, H5P_DEFAULT);
+    std::string text;
+    if (H5Aexists(data, name) > 0) {
+        hid_t const attr = H5Aopen(data, name, H5P_DEFAULT);
+        hid_t const type = H5Aget_type(attr);
+        text.resize(H5Tget_size(type));
+        H5Aread(attr, type, text.data());
+        text.resize(std::strlen(text.c_str()));
+        H5Tclose(type);
+        H5Aclose(attr);
+    }
+    H5Dclose(data);
+    H5Fclose(file);
+    return text;
+}
+
+} // namespace
+
+TEST(Checkpoint, DatasetsCarryUnitsAndDescription) {
+    core::Comm const world;
+    std::string const path = fileName(world, "attributes");
+    writeSample(world, path);
+    world.barrier();
+    EXPECT_EQ(datasetText(path, "position", "units"), "length");
+    EXPECT_EQ(datasetText(path, "velocity", "units"), "length/time");
+    EXPECT_EQ(datasetText(path, "force", "units"), "mass length/time^2");
+    EXPECT_EQ(datasetText(path, "uid", "units"), "1");
+    EXPECT_EQ(datasetText(path, "mass", "description"), "mass");
+    // Every dataset has both (a file with grains and contact history: all columns written).
+    for (char const* set :
+         {"uid", "position", "velocity", "angular_velocity", "orientation", "force", "torque",
+          "radius", "mass", "type", "flags", "gravity_reference", "gravity_field", "gravity_slope",
+          "history_offset", "history_count", "history_partner", "history_spring",
+          "history_stamp"}) {
+        EXPECT_FALSE(datasetText(path, set, "units").empty()) << set;
+        EXPECT_FALSE(datasetText(path, set, "description").empty()) << set;
     }
 }
 
