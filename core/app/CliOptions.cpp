@@ -38,6 +38,7 @@ std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, st
     app->add_option("--restart", o.restartPath, "Start from this checkpoint")
         ->type_name("CHECKPOINT");
     app->add_flag("--quiet", o.quiet, "Print only warnings and errors");
+    app->add_flag("--version", o.version, "Print the version and exit");
     return app;
 }
 
@@ -68,6 +69,10 @@ std::int64_t parseSteps(std::string const& text) {
 }
 
 } // namespace
+
+std::string_view version() {
+    return REGOLITH_VERSION;
+}
 
 CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view appName) {
     CliOptions options;

@@ -23,7 +23,11 @@ struct CliOptions {
     std::optional<std::int64_t> steps;  ///< `--steps`: overrides time.steps
     bool quiet = false;                 ///< `--quiet`: only warnings and errors
     bool help = false;                  ///< `-h`/`--help` was given: print usage, exit 0
+    bool version = false;               ///< `--version` was given: print the version, exit 0
 };
+
+/// The program's version (the CMake project's), e.g. "0.1.0".
+[[nodiscard]] std::string_view version();
 
 /// Parses `argv[1..argc)`. Throws InputError naming the offending argument for an unknown
 /// option, a missing option value or a malformed number (the same on every rank, since every

@@ -66,9 +66,11 @@ int runApp(int argc, char** argv, std::string_view appName, std::string_view def
         Comm const world;
         rank = world.rank();
         CliOptions const options = parseCommandLine(argc, argv, appName);
-        if (options.help) {
+        if (options.help || options.version) {
             if (world.rank() == 0) {
-                std::fputs(usage(appName).c_str(), stdout);
+                std::string const text =
+                    options.help ? usage(appName) : fmt::format("{} {}\n", appName, version());
+                std::fputs(text.c_str(), stdout);
                 std::fflush(stdout);
             }
             return 0;
