@@ -19,8 +19,11 @@ SCHEMA = {
     "timing_s": {"sync": NUMBER, "contact": NUMBER, "gravity": NUMBER, "integrate": NUMBER},
     "comm": {"messages_per_step": NUMBER, "bytes_per_step": NUMBER, "max_peers": int},
     "neighbour_list": {"skin": NUMBER, "rebuilds": int},
+    "time": NUMBER,
     "conserved": {"momentum": list, "angular_momentum": list, "kinetic_energy": NUMBER,
                   "potential_energy": NUMBER, "center_of_mass": list},
+    "conserved_initial": {"momentum": list, "angular_momentum": list, "kinetic_energy": NUMBER,
+                          "potential_energy": NUMBER, "center_of_mass": list},
     "checksum": str,
 }
 
