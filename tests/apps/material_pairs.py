@@ -1,6 +1,7 @@
 """Two materials in one scene reproduce each pair's restitution and friction, on 1 and 2 ranks
 (tests/apps/scenes/two_materials.toml: three oblique collisions of equal spheres, types 0-0,
-0-1 and 1-1, e = 0.9 and 0.5, mu = 0.2 and 0.6; unlike pairs mix by the geometric mean).
+0-1 and 1-1, e = 0.9 and 0.5, mu = 0.2 and 0.6, and a grain of type 0 falling onto a floor of
+type 2, e = 0.3, mu = 0.4; unlike pairs mix by the geometric mean).
 
 usage: material_pairs.py --mpiexec M --app APP --scene SCENE --out DIR --np N
 
@@ -13,7 +14,7 @@ the repulsive part of the normal impulse to the whole, as the unclamped spring-d
 slightly attractive before the grains part and the friction limit is mu max(F_n, 0)
 (particles/kernels/SpringDashpot.hpp); that ratio follows from the damped oscillator
 delta(t) = e^(-gamma t) sin(omega t) of the pair's e. Both must match the pair's mixed values
-(0.5 % for e, 1 % for mu). Exit 1 with the reason if not.
+(1 % each: the contact ends within a step, 1/200 of its duration). Exit 1 with the reason if not.
 """
 import argparse
 import csv
@@ -24,7 +25,8 @@ import sys
 
 # (uid a, uid b, restitution, friction) of the three pairs.
 PAIRS = [(0, 1, 0.9, 0.2), (2, 3, math.sqrt(0.9 * 0.5), math.sqrt(0.2 * 0.6)), (4, 5, 0.5, 0.6)]
-APPROACH = 0.5  # each grain's initial |v_x|
+APPROACH = 0.5  # each grain's initial |v_x|, and the falling grain's |v_z|
+FLOOR = (6, math.sqrt(0.9 * 0.3), math.sqrt(0.2 * 0.4))  # (uid, restitution, friction)
 
 
 def repulsive_share(e):
@@ -64,11 +66,20 @@ def main():
             restitution = -sign * vx / APPROACH
             friction = abs(vy) / abs(vx - sign * APPROACH)
             mu = mu_pair * repulsive_share(e)
-            if abs(restitution - e) > 0.005 * e or abs(friction - mu) > 0.01 * mu:
+            if abs(restitution - e) > 0.01 * e or abs(friction - mu) > 0.01 * mu:
                 sys.exit(f"grain {uid} (pair {a}-{b}): restitution {restitution:.5f}, friction "
                          f"{friction:.5f}; expected {e:.5f} and {mu:.5f}")
             print(f"grain {uid}: e = {restitution:.5f} (expected {e:.5f}), "
                   f"mu = {friction:.5f} (expected {mu:.5f})")
+    uid, e, mu_pair = FLOOR  # the wall is at rest: the grain's own velocities
+    vy, vz = float(grains[uid]["vy"]), float(grains[uid]["vz"])
+    restitution, friction = vz / APPROACH, abs(vy) / abs(vz + APPROACH)
+    mu = mu_pair * repulsive_share(e)
+    if abs(restitution - e) > 0.01 * e or abs(friction - mu) > 0.01 * mu:
+        sys.exit(f"grain {uid} on the floor: restitution {restitution:.5f}, friction "
+                 f"{friction:.5f}; expected {e:.5f} and {mu:.5f}")
+    print(f"grain {uid} on the floor: e = {restitution:.5f} (expected {e:.5f}), "
+          f"mu = {friction:.5f} (expected {mu:.5f})")
 
 
 if __name__ == "__main__":
