@@ -270,11 +270,11 @@ int runSceneUnlocated(core::AppContext& ctx) {
     DynamicBalance balance(world, scene, placement, startStep, relocate);
     GrainPouring pouring(world, scene, local);
     ThermoLog thermo(world, {thermoPath(scene), scene.output.thermoEvery, startStep, restart,
-                             ctx.isRoot() && !ctx.options.quiet});
+                             ctx.isRoot() && !ctx.options.quiet, dem.walls().size()});
     auto const writeThermo = [&](std::int64_t stepsDone) {
         thermo.write(measureThermo(world, local, dem.contacts(),
                                    {stepsDone, timeAt(stepsDone), scene.gravity.external,
-                                    selfPotential(), balance.imbalance()}));
+                                    selfPotential(), balance.imbalance(), &dem.walls()}));
     };
     if (!restart && thermo.due(startStep)) // a restart has the row of its step from before
         writeThermo(startStep);

@@ -33,9 +33,11 @@ long long stepOf(std::string const& row) {
 }
 
 /// The file's header and the rows of an earlier run up to `lastStep`, from `path` if it
-/// holds thermo output with the same columns (else the header alone, with a warning).
-std::string keptRows(std::string const& path, std::int64_t lastStep) {
-    std::string const header = ThermoLog::header() + "\n";
+/// holds thermo output with the same columns, `headerLine` (else the header alone, with a
+/// warning).
+std::string keptRows(std::string const& path, std::int64_t lastStep,
+                     std::string const& headerLine) {
+    std::string const header = headerLine + "\n";
     if (!core::whyNotRegularFile(path).empty())
         return header;
     std::ifstream in(path);
@@ -57,9 +59,9 @@ std::string keptRows(std::string const& path, std::int64_t lastStep) {
 
 } // namespace
 
-std::string ThermoLog::header() {
+std::string ThermoLog::header() const {
     std::string h;
-    for (ThermoColumn const& c : thermoColumns()) {
+    for (ThermoColumn const& c : m_columns) {
         if (!h.empty())
             h += ',';
         h += c.name;
@@ -69,6 +71,7 @@ std::string ThermoLog::header() {
 
 ThermoLog::ThermoLog(core::Comm const& comm, ThermoSettings settings)
     : m_settings(std::move(settings))
+    , m_columns(thermoColumns(m_settings.walls))
     , m_root(comm.rank() == 0) {
     if (m_settings.every <= 0)
         return;
@@ -76,8 +79,9 @@ ThermoLog::ThermoLog(core::Comm const& comm, ThermoSettings settings)
         if (!m_root)
             return;
         std::string const& path = m_settings.path;
-        core::replaceFileWith(path, m_settings.restart ? keptRows(path, m_settings.firstStep)
-                                                       : header() + "\n");
+        core::replaceFileWith(path, m_settings.restart
+                                        ? keptRows(path, m_settings.firstStep, header())
+                                        : header() + "\n");
         m_file.open(path, std::ios::app);
         if (!m_file)
             throw core::InputError(fmt::format("cannot append to '{}'", path));
@@ -87,7 +91,7 @@ ThermoLog::ThermoLog(core::Comm const& comm, ThermoSettings settings)
 void ThermoLog::write(ThermoSample const& sample) {
     if (!m_root || m_settings.every <= 0)
         return;
-    auto const columns = thermoColumns();
+    auto const& columns = m_columns;
     if (m_file.is_open()) {
         std::string row;
         for (ThermoColumn const& c : columns) {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -19,6 +20,7 @@ struct ThermoSettings {
     std::int64_t firstStep = 0; ///< the loop's first step (a restart's checkpoint step)
     bool restart = false;       ///< keep the rows of an existing file up to firstStep
     bool print = true;          ///< standard output too (rank 0 without --quiet)
+    std::size_t walls = 0;      ///< the run's walls: a force column triple each
 };
 
 class ThermoLog {
@@ -35,10 +37,11 @@ public:
     /// the file's rows). Not collective.
     void write(ThermoSample const& sample);
     /// The header line of thermo.csv (the column names, comma-separated, no newline).
-    [[nodiscard]] static std::string header();
+    [[nodiscard]] std::string header() const;
 
 private:
     ThermoSettings m_settings;
+    std::vector<ThermoColumn> m_columns;
     bool m_root = false;
     bool m_headingPrinted = false;
     std::ofstream m_file;

@@ -2,6 +2,9 @@
 
 #include "apps/common/ConservedQuantities.hpp"
 #include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/WallLoads.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -52,12 +55,15 @@ ThermoSample measureThermo(core::Comm const& comm, particles::LocalParticles con
     s.maxOverlap = comm.allReduce(overlap, core::ReduceOp::Max);
     s.grains = counts[1];
     s.imbalance = context.imbalance;
+    if (context.walls != nullptr)
+        for (RunSummary::Wall const& w : reduceWallLoads(comm, *context.walls))
+            s.wallForces.push_back(w.force);
     return s;
 }
 
-std::span<ThermoColumn const> thermoColumns() {
+std::vector<ThermoColumn> thermoColumns(std::size_t walls) {
     using S = ThermoSample const&;
-    static constexpr std::array columns{
+    std::vector<ThermoColumn> columns{
         ThermoColumn{"step", "steps done", true, [](S s) { return double(s.step); }},
         ThermoColumn{"time", "simulated time", false, [](S s) { return s.time; }},
         ThermoColumn{"ke_trans", "translational kinetic energy, sum 1/2 m |v|^2", false,
@@ -83,6 +89,13 @@ std::span<ThermoColumn const> thermoColumns() {
         ThermoColumn{"imbalance", "the ranks' last measured load imbalance, max / mean", false,
                      [](S s) { return s.imbalance; }},
     };
+    for (std::size_t k = 0; k < walls; ++k)
+        for (int a = 0; a < 3; ++a)
+            columns.push_back(
+                {fmt::format("wall{}_f{}", k, "xyz"[a]),
+                 fmt::format("force of the grains on wall {} ([[walls]] order), {}", k, "xyz"[a]),
+                 false,
+                 [k, a](S s) { return k < s.wallForces.size() ? s.wallForces[k][a] : 0.0; }});
     return columns;
 }
 

@@ -1,17 +1,20 @@
 #pragma once
 /// The run's physics every output.thermo_every steps, as LAMMPS's `thermo` prints it: energies,
-/// momenta, contacts and the largest overlap, measured over all ranks, and the table of the
-/// columns thermo.csv and the standard-output lines show (one row per column: its name, what
-/// it is, how it is printed and where its value comes from; a new quantity is one more field
-/// and one more row).
+/// momenta, contacts, the largest overlap and the walls' forces, measured over all ranks, and
+/// the table of the columns thermo.csv and the standard-output lines show (one row per column:
+/// its name, what it is, how it is printed and where its value comes from; a new quantity is
+/// one more field and one more row).
 #include "core/math/Vec3.hpp"
 #include "core/mpi/Comm.hpp"
 #include "particles/detection/Contact.hpp"
+#include "particles/storage/WallList.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <span>
-#include <string_view>
+#include <string>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -29,6 +32,8 @@ struct ThermoSample {
     double maxOverlap = 0.0; ///< largest penetration / smaller radius (a wall's: / radius)
     std::int64_t grains = 0;
     double imbalance = 1.0; ///< the last measured max / mean load of the ranks
+    /// Per wall ([[walls]] order): the force the grains exert on it in the last evaluation.
+    std::vector<core::Vec3> wallForces;
 };
 
 /// What is measured besides the grains: where, gravity and the self-gravity energy.
@@ -38,6 +43,7 @@ struct ThermoContext {
     core::Vec3 gravity = core::Vec3::Zero(); ///< gravity.external
     double selfPotential = 0.0;
     double imbalance = 1.0;
+    particles::WallList const* walls = nullptr; ///< the run's walls (none: no wall columns)
 };
 
 /// Measures the masters of `local` and the contacts of the last force computation
@@ -52,13 +58,14 @@ struct ThermoContext {
 /// One column of thermo.csv: its header name, a description (docs/guide/run-summary.md) and
 /// its value; integer columns are printed without a fraction.
 struct ThermoColumn {
-    std::string_view name;
-    std::string_view description;
+    std::string name;
+    std::string description;
     bool integer = false;
-    double (*value)(ThermoSample const&) = nullptr;
+    std::function<double(ThermoSample const&)> value;
 };
 
-/// The columns in order.
-[[nodiscard]] std::span<ThermoColumn const> thermoColumns();
+/// The columns in order: the run's quantities, then wall<k>_fx, _fy, _fz for each of `walls`
+/// walls.
+[[nodiscard]] std::vector<ThermoColumn> thermoColumns(std::size_t walls);
 
 } // namespace regolith::apps

@@ -10,6 +10,7 @@ Checks, in order (exit 1 with the reason on the first failure):
     momentum are the summary's initial ones, the last row's its final ones (to 1e-12 of the
     largest energy); standard output shows the heading and one line per row;
  2. the rows of 1 and 2 ranks agree (contacts and grains exactly, the rest to 1e-9 relative;
+    the last row's wall force is the summary's, and the floor carries the grains' weight;
     the imbalance excepted), and grains touch at the end (contacts > 0, max_overlap > 0); the
     run without thermo output ends in the same state (checksum): measuring changes nothing;
  3. a run of 20 steps writing checkpoints at steps 10 and 20 and a row every 5 steps,
@@ -26,7 +27,8 @@ import subprocess
 import sys
 
 HEADER = ["step", "time", "ke_trans", "ke_rot", "pe_external", "pe_self", "px", "py", "pz",
-          "lx", "ly", "lz", "contacts", "max_overlap", "grains", "imbalance"]
+          "lx", "ly", "lz", "contacts", "max_overlap", "grains", "imbalance",
+          "wall0_fx", "wall0_fy", "wall0_fz"]  # the scene's one wall, the floor
 
 
 def fail(message):
@@ -67,6 +69,13 @@ def same_conserved(row, conserved, where):
             fail(f"{where}: thermo's {what} {mine!r}, the summary's {theirs!r}")
 
 
+def same_wall_force(row, summary, where):
+    force = summary["walls"][0]["force"]
+    for a, key in enumerate(("wall0_fx", "wall0_fy", "wall0_fz")):
+        if abs(row[key] - force[a]) > 1e-12 * max(abs(force[a]), 1e-300):
+            fail(f"{where}: thermo's {key} {row[key]!r}, the summary's {force[a]!r}")
+
+
 def close(a, b, where):
     for key in HEADER:
         if key == "imbalance":
@@ -96,6 +105,7 @@ def main():
             fail(f"np {np}: final time {summary['time']} / {rows[np][-1]['time']}, expected 0.4")
         same_conserved(rows[np][0], summary["conserved_initial"], f"np {np}, step 0")
         same_conserved(rows[np][-1], summary["conserved"], f"np {np}, step 40")
+        same_wall_force(rows[np][-1], summary, f"np {np}, step 40")
         lines = [l for l in stdout.splitlines() if l.split()[:3] == ["step", "time", "ke_trans"]]
         if len(lines) != 1 or sum(1 for l in stdout.splitlines()
                                   if l.split() and l.split()[0] in ("0", "10", "20", "30", "40")
@@ -105,6 +115,8 @@ def main():
         close(a, b, f"step {a['step']:.0f} on 1 and 2 ranks")
     if not (rows[1][-1]["contacts"] > 0 and rows[1][-1]["max_overlap"] > 0):
         fail(f"no contacts at step 40: {rows[1][-1]}")
+    if not rows[1][-1]["wall0_fz"] < 0:  # grains resting on the floor push it down
+        fail(f"the floor carries no load at step 40: {rows[1][-1]}")
     plain = os.path.join(out, "plain")
     run(args, 2, ["--quiet", "--output", plain])
     if summary_of(plain)["checksum"] != summary_of(os.path.join(out, "np2"))["checksum"]:
