@@ -68,7 +68,8 @@ public:
     /// time): may read every master and change velocities; `Simulation::step*()` tell which.
     using Observer = std::function<void(Simulation&)>;
 
-    /// Checks the settings (core::InputError: dt not positive, ...). COLLECTIVE.
+    /// Keeps the settings, refusing (core::InputError) a missing contact model and a dt that is
+    /// not positive. Not collective; `comm` must outlive the object.
     Simulation(core::Comm const& comm, SimulationSetup setup);
     ~Simulation();
     Simulation(Simulation const&) = delete;
