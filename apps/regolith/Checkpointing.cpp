@@ -1,6 +1,7 @@
 #include "apps/regolith/Checkpointing.hpp"
 
 #include "apps/common/StateChecksum.hpp"
+#include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
 #include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
@@ -10,6 +11,7 @@
 #include "io/checkpoint/CheckpointSeries.hpp"
 #include "io/checkpoint/CheckpointWriter.hpp"
 #include "io/checkpoint/GrainState.hpp"
+#include "io/checkpoint/RestoreGrains.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -330,6 +332,26 @@ CheckpointSchedule::Written CheckpointSchedule::writeTo(std::string const& path,
     }
     info.bytes = io::writeCheckpoint(*m_comm, path, info, grains);
     return info;
+}
+
+RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
+                      std::string const& text, io::CheckpointSlice slice, double started,
+                      particles::LocalParticles& local) {
+    std::string const& path = ctx.options.restartPath;
+    checkRestart(ctx.world, path, slice, scene, text);
+    io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
+    std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
+    if (restored != slice.info.stateChecksum)
+        throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
+                                           "the checkpoint says {}",
+                                           path, restored, slice.info.stateChecksum));
+    warnSelfGravityParameters(ctx.world, local, scene); // a restart may change G, dt, k ...
+    double const seconds = ctx.world.allReduce(MPI_Wtime() - started, core::ReduceOp::Max);
+    core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
+                    "entries, read and distributed in {:.3g} s",
+                    path, slice.info.step, slice.info.time, slice.info.grainCount,
+                    slice.info.historyCount, seconds);
+    return {slice.info.step, slice.info.time, std::move(slice)};
 }
 
 } // namespace regolith::apps

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,22 @@ reuseAutoChoices(core::AppContext& ctx, SceneDescription& scene, std::string con
 /// COLLECTIVE over `comm`.
 void checkRestart(core::Comm const& comm, std::string const& path, io::CheckpointSlice const& slice,
                   SceneDescription const& scene, std::string const& sceneText);
+
+/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time (and
+/// the checkpoint, for the self-gravity state restored once that exists).
+struct RunStart {
+    std::int64_t step = 0;
+    double time = 0.0;
+    std::optional<io::CheckpointSlice> checkpoint;
+};
+
+/// The masters of a restarted run into `local`, from the checkpoint `slice` of --restart FILE
+/// (any rank count; read from `started`, an MPI_Wtime, for the log line), checked with
+/// checkRestart and against the state checksum the writer stored. Returns the checkpoint's
+/// step and time. COLLECTIVE.
+[[nodiscard]] RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
+                                    std::string const& text, io::CheckpointSlice slice,
+                                    double started, particles::LocalParticles& local);
 
 /// Hands the self-gravity state of a checkpoint (this rank's slice of the per-grain records,
 /// and the run-wide state) to `selfGravity`, which brings each record to its grain's rank at

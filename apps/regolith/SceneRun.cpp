@@ -33,7 +33,6 @@
 #include "core/log/Log.hpp"
 #include "core/timing/TimerTree.hpp"
 #include "domain/BlockForest.hpp"
-#include "io/checkpoint/RestoreGrains.hpp"
 #include "io/vtk/VtkOutput.hpp"
 #include "particles/simulation/DemStep.hpp"
 #include "particles/sync/BlockParticles.hpp"
@@ -88,41 +87,6 @@ void requireSkinBelowBlockEdges(core::Comm const& world, domain::BlockForest con
 std::optional<gravity::GridFieldsView> gridFieldsOf(coupling::SelfGravityForces const* gravity) {
     return gravity != nullptr ? gravity->gridFields() : std::nullopt;
 }
-
-/// Where the time-step loop starts: step 0 at time 0, or a checkpoint's step and time (and
-/// the checkpoint, for the self-gravity state restored once that exists).
-struct RunStart {
-    std::int64_t step = 0;
-    double time = 0.0;
-    std::optional<io::CheckpointSlice> checkpoint;
-};
-
-/// The masters of a restarted run, from the checkpoint `slice` of --restart FILE (any rank
-/// count), checked against the state checksum the writer stored. Returns the checkpoint's
-/// step and time. COLLECTIVE.
-RunStart restoreState(core::AppContext const& ctx, SceneDescription const& scene,
-                      std::string const& text, io::CheckpointSlice slice, double started,
-                      particles::LocalParticles& local) {
-    std::string const& path = ctx.options.restartPath;
-    checkRestart(ctx.world, path, slice, scene, text);
-    io::restoreGrains(ctx.world, local, slice.grains, "--restart " + path);
-    std::string const restored = stateChecksumFrom(ctx.world, masterSource(local));
-    if (restored != slice.info.stateChecksum)
-        throw core::InputError(fmt::format("--restart {}: the restored state has checksum {}, "
-                                           "the checkpoint says {}",
-                                           path, restored, slice.info.stateChecksum));
-    warnSelfGravityParameters(ctx.world, local, scene); // a restart may change G, dt, k ...
-    double const seconds = ctx.world.allReduce(MPI_Wtime() - started, core::ReduceOp::Max);
-    core::log::info("restarting from {} at step {} (time {}): {} grains, {} contact-history "
-                    "entries, read and distributed in {:.3g} s",
-                    path, slice.info.step, slice.info.time, slice.info.grainCount,
-                    slice.info.historyCount, seconds);
-    return {slice.info.step, slice.info.time, std::move(slice)};
-}
-
-} // namespace
-
-namespace {
 
 int runSceneUnlocated(core::AppContext& ctx) {
     core::Comm const& world = ctx.world;
