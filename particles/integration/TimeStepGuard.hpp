@@ -43,6 +43,10 @@ ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, HertzMindlin 
 /// A contact law of one's own: as above with ContactLaw::contactTime for every pair of the
 /// types present. Not collective.
 ContactTimeEstimate estimateContactTime(ParticleStorage const& ps, ContactLaw const& law);
+inline ContactTimeEstimate estimateContactTime(ParticleStorage const& ps,
+                                               CustomContact const& model) {
+    return estimateContactTime(ps, model.law());
+}
 
 /// The shortest of every rank's `local` estimate (ties: smaller uid), identical on every
 /// rank. COLLECTIVE over `comm`.
