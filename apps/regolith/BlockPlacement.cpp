@@ -20,22 +20,10 @@ bool sameBlocks(domain::BlockForest const& a, domain::BlockForest const& b) {
                       [](domain::Block const& x, domain::Block const& y) { return x.id == y.id; });
 }
 
-/// The forest and the particles' cut of it, for block weights `weight`.
-void placeForests(core::Comm const& comm, SceneDescription const& scene,
-                  domain::BlockWeight const& weight, BlockPlacement& p) {
-    auto [blocks, subdomains] =
-        domain::BlockForest::blocksAnd(comm, scene.forest, weight, scene.sync.subdomains);
-    p.forest = std::make_unique<domain::BlockForest>(std::move(blocks));
-    p.particleForest = std::make_unique<domain::BlockForest>(std::move(subdomains));
-}
-
 } // namespace
 
-BlockPlacement uniformPlacement(core::Comm const& comm, SceneDescription const& scene) {
-    BlockPlacement p;
-    placeForests(comm, scene, {}, p);
-    p.local = std::make_unique<particles::LocalParticles>(*p.particleForest);
-    return p;
+coupling::Placement uniformPlacement(core::Comm const& comm, SceneDescription const& scene) {
+    return coupling::placeBlocks(comm, scene.forest, {}, scene.sync.subdomains);
 }
 
 coupling::BlockLoadModel loadModel(SceneDescription const& scene) {
@@ -45,14 +33,14 @@ coupling::BlockLoadModel loadModel(SceneDescription const& scene) {
     return model;
 }
 
-bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
-                   WorthMoving const& worthMoving) {
+bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
+                   coupling::Placement& placement, WorthMoving const& worthMoving) {
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
     domain::BlockWeight const weight =
         coupling::grainAndCellWeights(comm, *placement.local, loadModel(scene));
-    BlockPlacement balanced;
-    placeForests(comm, scene, weight, balanced);
+    coupling::Placement balanced =
+        coupling::placeBlocks(comm, scene.forest, weight, scene.sync.subdomains);
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;
     if (worthMoving) {

@@ -7,27 +7,15 @@
 #include "apps/regolith/SceneSections.hpp"
 #include "core/mpi/Comm.hpp"
 #include "coupling/balance/BlockWeights.hpp"
-#include "domain/BlockForest.hpp"
-#include "particles/sync/BlockParticles.hpp"
+#include "coupling/simulation/Placement.hpp"
 
 #include <functional>
-#include <memory>
 
 namespace regolith::apps {
 
-/// The forest of the run and this rank's particles on it (the particles refer to the forest,
-/// so both move together). The particles see the same assignment cut into their own
-/// subdomains (sync.subdomains: by default each rank's blocks merged into cuboids, so that
-/// the blocks of one rank share no face the synchronisation must cross).
-struct BlockPlacement {
-    std::unique_ptr<domain::BlockForest> forest;         ///< one block per leaf: grid, output
-    std::unique_ptr<domain::BlockForest> particleForest; ///< the particles' subdomains
-    std::unique_ptr<particles::LocalParticles> local;    ///< on particleForest
-};
-
 /// The forest of `scene` with equal block weights and no particles. Not collective.
-[[nodiscard]] BlockPlacement uniformPlacement(core::Comm const& comm,
-                                              SceneDescription const& scene);
+[[nodiscard]] coupling::Placement uniformPlacement(core::Comm const& comm,
+                                                   SceneDescription const& scene);
 
 /// The blocks' load model of `scene`: grains, and cells when its gravity uses a grid.
 [[nodiscard]] coupling::BlockLoadModel loadModel(SceneDescription const& scene);
@@ -43,7 +31,7 @@ using WorthMoving = std::function<bool(double after)>;
 /// the synchronisation, DemStep's lists, a grid, must be relocated). Keeps `placement` when
 /// the assignment does not change (equal loads, or domain.balance = "blocks") or
 /// `worthMoving` (if given) says no. Returns whether the blocks moved. COLLECTIVE.
-bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
-                   WorthMoving const& worthMoving = {});
+bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
+                   coupling::Placement& placement, WorthMoving const& worthMoving = {});
 
 } // namespace regolith::apps

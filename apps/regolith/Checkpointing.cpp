@@ -2,8 +2,8 @@
 
 #include "apps/common/StateChecksum.hpp"
 #include "apps/regolith/GravitySetup.hpp"
+#include "apps/regolith/LoopSummary.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
-#include "apps/regolith/TimeLoop.hpp"
 #include "core/Error.hpp"
 #include "core/config/ConfigTable.hpp"
 #include "core/log/Log.hpp"

@@ -10,7 +10,8 @@
 namespace regolith::apps {
 
 DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
-                               BlockPlacement& placement, std::int64_t stepsDone, Relocate relocate)
+                               coupling::Placement& placement, std::int64_t stepsDone,
+                               Relocate relocate)
     : m_comm(&comm)
     , m_scene(&scene)
     , m_placement(&placement)

@@ -43,8 +43,8 @@ public:
 
     /// `placement` is the run's (its objects are replaced in place when the blocks move);
     /// the run starts after `stepsDone` steps.
-    DynamicBalance(core::Comm const& comm, SceneDescription const& scene, BlockPlacement& placement,
-                   std::int64_t stepsDone, Relocate relocate);
+    DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
+                   coupling::Placement& placement, std::int64_t stepsDone, Relocate relocate);
 
     /// Whether the loads are measured after the step that leaves `stepsDone` steps done: that
     /// step must end Complete (the grains may move to other ranks after it).
@@ -64,7 +64,7 @@ private:
 
     core::Comm const* m_comm;
     SceneDescription const* m_scene;
-    BlockPlacement* m_placement;
+    coupling::Placement* m_placement;
     Relocate m_relocate;
     std::int64_t m_longest;  ///< balance.every, or the interval of the measurements
     std::int64_t m_interval; ///< the current one (below m_longest with "auto" after a move)

@@ -66,7 +66,7 @@ bool nearBox(core::Vec3 const& x, double r, core::AABB const& box, double reach,
 
 } // namespace
 
-bool GrainPouring::afterStep(std::int64_t stepsDone, BlockPlacement& placement,
+bool GrainPouring::afterStep(std::int64_t stepsDone, coupling::Placement& placement,
                              particles::WallList const& walls) {
     if (!due(stepsDone))
         return false;

@@ -30,7 +30,7 @@ public:
     /// the `walls` as they stand, and makes the new grains masters (every master moves to a
     /// fresh LocalParticles, as in a rebalance: the synchronisation and DemStep must then be
     /// relocated). Returns whether any grain was added. COLLECTIVE.
-    bool afterStep(std::int64_t stepsDone, BlockPlacement& placement,
+    bool afterStep(std::int64_t stepsDone, coupling::Placement& placement,
                    particles::WallList const& walls);
 
     /// Grains inserted by this invocation, over all ranks.

@@ -1,7 +1,7 @@
 #include "apps/regolith/GravitySetup.hpp"
 
 #include "apps/regolith/AutoChoices.hpp"
-#include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/LoopSummary.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
 #include "gravity/update/UpdatePolicy.hpp"
@@ -76,14 +76,12 @@ coupling::ForceCheckSchedule forceCheckSchedule(SceneDescription const& scene) {
     return s;
 }
 
-std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& comm,
-                                                             domain::BlockForest const& forest,
-                                                             SceneDescription const& scene) {
+std::optional<coupling::SelfGravityConfig> selfGravityConfig(SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
     coupling::SelfGravityConfig c;
     switch (g.self) {
     case SelfGravity::None:
-        return nullptr;
+        return std::nullopt;
     case SelfGravity::Direct:
         c.method = coupling::GrainGravityMethod::Direct;
         break;
@@ -129,7 +127,7 @@ std::unique_ptr<coupling::SelfGravityForces> makeSelfGravity(core::Comm const& c
     c.interval = updateInterval(scene);
     c.reproducible = scene.sync.reproducible;
     c.check = forceCheckSchedule(scene);
-    return std::make_unique<coupling::SelfGravityForces>(comm, forest, c);
+    return c;
 }
 
 std::string measuredErrorWarning(coupling::ForceErrorMonitor const& measured,

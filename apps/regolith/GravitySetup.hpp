@@ -10,6 +10,7 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 
 namespace regolith::apps {
@@ -50,12 +51,12 @@ inline constexpr std::int64_t kAutoChecksPerRun = 8;
 
 inline constexpr double kMeasuredErrorTolerance = 2.0;
 
-/// The self-gravity of `scene` on the grains, or nullptr for self = "none". Throws
-/// core::InputError naming gravity.self for a method the time step cannot use yet, and the
-/// gravity.* key of a bad parameter (theta, G, softening, update_threshold). COLLECTIVE.
-[[nodiscard]] std::unique_ptr<coupling::SelfGravityForces>
-makeSelfGravity(core::Comm const& comm, domain::BlockForest const& forest,
-                SceneDescription const& scene);
+/// The self-gravity of `scene` on the grains, or none for self = "none". Throws
+/// core::InputError naming gravity.self for a method the time step cannot use yet; the
+/// SelfGravityForces built from it name the gravity.* key of a bad parameter (theta, G,
+/// softening, update_threshold). Not collective.
+[[nodiscard]] std::optional<coupling::SelfGravityConfig>
+selfGravityConfig(SceneDescription const& scene);
 
 /// The warnings below about the self-gravity parameters against the grains, for a new run's
 /// masters and for a restart's (which may change G, contact.stiffness, time.dt or

@@ -2,7 +2,7 @@
 
 #include "apps/common/OutputFile.hpp"
 #include "apps/common/StateDump.hpp"
-#include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/LoopSummary.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 #include "apps/regolith/ThermoSample.hpp"
 
 #include "apps/common/ConservedQuantities.hpp"
-#include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/LoopSummary.hpp"
 #include "apps/regolith/WallLoads.hpp"
 
 #include <fmt/format.h>

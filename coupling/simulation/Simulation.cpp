@@ -8,6 +8,9 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <span>
 #include <utility>
 #include <variant>
 
@@ -35,11 +38,17 @@ Simulation::Simulation(core::Comm const& comm, SimulationSetup setup)
         m_setup.domain.cellsPerBlock = m_setup.selfGravity->cellsPerBlock;
 }
 
+Simulation::Simulation(core::Comm const& comm, SimulationSetup setup, Placement placed)
+    : Simulation(comm, std::move(setup)) {
+    m_placed = std::move(placed);
+    m_placedByCaller = true;
+}
+
 Simulation::~Simulation() = default;
 
 void Simulation::addGrain(particles::ParticleInit const& grain) {
-    if (m_dem)
-        throw core::Error("Simulation::addGrain after start()");
+    if (m_dem || m_placedByCaller)
+        throw core::Error("Simulation::addGrain after start() or with a Placement");
     m_pending.push_back(grain);
 }
 
@@ -51,22 +60,22 @@ void Simulation::addObserver(std::int64_t every, Observer observer) {
     if (every < 1)
         throw core::InputError(
             fmt::format("Simulation::addObserver: every {}: expected >= 1", every));
-    m_observers.push_back({every, std::move(observer)});
+    addObserver([every](std::int64_t step) { return step % every == 0; }, std::move(observer), {});
+}
+
+void Simulation::addObserver(Due due, Observer observer, ObserverNeeds needs) {
+    m_observers.push_back({std::move(due), std::move(observer), needs});
 }
 
 void Simulation::place(domain::BlockWeight const& weight) {
-    auto [blocks, subdomains] =
-        domain::BlockForest::blocksAnd(*m_comm, m_setup.domain, weight, m_setup.subdomains);
-    m_forest = std::make_unique<domain::BlockForest>(std::move(blocks));
-    m_particleForest = std::make_unique<domain::BlockForest>(std::move(subdomains));
-    m_local = std::make_unique<particles::LocalParticles>(*m_particleForest);
+    m_placed = placeBlocks(*m_comm, m_setup.domain, weight, m_setup.subdomains);
     for (particles::ParticleInit const& p : m_pending)
-        (void)m_local->addMaster(p); // false: another rank's
+        (void)m_placed.local->addMaster(p); // false: another rank's
 }
 
 void Simulation::checkTimeStep() const {
     particles::ContactTimeEstimate shortest;
-    for (particles::BlockParticles const& block : m_local->blocks()) {
+    for (particles::BlockParticles const& block : m_placed.local->blocks()) {
         particles::ContactTimeEstimate const e = std::visit(
             [&](auto const& model) -> particles::ContactTimeEstimate {
                 // Hertz-Mindlin's contact time needs an impact speed: not guarded here.
@@ -85,35 +94,54 @@ void Simulation::checkTimeStep() const {
 
 void Simulation::start() {
     if (m_dem)
-        throw core::Error("Simulation::start called twice");
-    // Every rank was given the same grains: each keeps its own, and together they keep all.
-    auto const given = static_cast<long long>(m_pending.size());
-    if (m_comm->allReduce(given, core::ReduceOp::Min) !=
-        m_comm->allReduce(given, core::ReduceOp::Max))
-        throw core::InputError("Simulation::start: the ranks were given different numbers of "
-                               "grains (addGrain: every rank gives every grain)");
-    place({});
-    BlockLoadModel load;
-    if (usesGrid(m_setup.selfGravity))
-        load = {m_setup.domain.cellsPerBlock, m_setup.domain.cellWeight};
-    place(grainAndCellWeights(*m_comm, *m_local, load)); // the grains' load, along the curve
-    m_pending.clear();
-    m_pending.shrink_to_fit();
-    auto const kept =
-        m_comm->allReduce(static_cast<long long>(m_local->countMasters()), core::ReduceOp::Sum);
-    if (kept != given)
-        throw core::InputError(fmt::format("Simulation::start: {} of {} grains lie outside the "
-                                           "domain or were given twice",
-                                           given - kept, given));
+        throw core::Error("Simulation::start or resume called twice");
+    if (!m_placedByCaller) {
+        // Every rank was given the same grains: each keeps its own, and together they keep all.
+        auto const given = static_cast<long long>(m_pending.size());
+        if (m_comm->allReduce(given, core::ReduceOp::Min) !=
+            m_comm->allReduce(given, core::ReduceOp::Max))
+            throw core::InputError("Simulation::start: the ranks were given different numbers "
+                                   "of grains (addGrain: every rank gives every grain)");
+        place({});
+        BlockLoadModel load;
+        if (usesGrid(m_setup.selfGravity))
+            load = {m_setup.domain.cellsPerBlock, m_setup.domain.cellWeight};
+        place(grainAndCellWeights(*m_comm, *m_placed.local, load)); // the grains' load
+        m_pending.clear();
+        m_pending.shrink_to_fit();
+        auto const kept = m_comm->allReduce(static_cast<long long>(m_placed.local->countMasters()),
+                                            core::ReduceOp::Sum);
+        if (kept != given)
+            throw core::InputError(fmt::format("Simulation::start: {} of {} grains lie outside "
+                                               "the domain or were given twice",
+                                               given - kept, given));
+        checkTimeStep();
+    }
+    assemble();
+    m_dem->setUp();
+    m_steps = 0;
+}
 
-    checkTimeStep();
+void Simulation::resume(std::int64_t stepsDone, double time) {
+    if (m_dem)
+        throw core::Error("Simulation::start or resume called twice");
+    if (!m_placedByCaller)
+        throw core::Error("Simulation::resume: the restored grains come as a Placement");
+    assemble();
+    m_dem->resume(static_cast<std::uint64_t>(stepsDone), time);
+    m_steps = stepsDone;
+}
 
-    m_sync = std::make_unique<particles::ParticleSync>(*m_comm, *m_particleForest, m_setup.sync);
+void Simulation::assemble() {
+    m_sync =
+        std::make_unique<particles::ParticleSync>(*m_comm, *m_placed.particleForest, m_setup.sync);
     if (m_setup.selfGravity)
-        m_gravity = std::make_unique<SelfGravityForces>(*m_comm, *m_forest, *m_setup.selfGravity);
-    m_dem = std::make_unique<particles::DemStep>(*m_comm, *m_sync, *m_local, *m_setup.contact,
-                                                 m_setup.integrator, m_setup.walls, m_setup.dem,
-                                                 m_timers);
+        m_gravity =
+            std::make_unique<SelfGravityForces>(*m_comm, *m_placed.forest, *m_setup.selfGravity);
+    m_dem = std::make_unique<particles::DemStep>(*m_comm, *m_sync, *m_placed.local,
+                                                 *m_setup.contact, m_setup.integrator,
+                                                 m_setup.walls, m_setup.dem, m_timers);
+    // Self-gravity first, then the program's own (after the contacts and their reduction).
     if (m_gravity || !m_bodyForces.empty())
         m_dem->setBodyForces([this](particles::LocalParticles& local) {
             if (m_gravity)
@@ -121,28 +149,77 @@ void Simulation::start() {
             for (BodyForces const& f : m_bodyForces)
                 f(local);
         });
-    m_dem->setUp();
 }
 
-bool Simulation::observed(std::int64_t step) const {
+double Simulation::time() const {
+    return m_dem ? m_dem->time() : 0.0;
+}
+
+void Simulation::relocated() {
+    m_sync->relocate(*m_placed.particleForest);
+    if (m_gravity)
+        m_gravity->relocate(*m_placed.forest);
+    m_dem->relocated();
+}
+
+bool Simulation::needed(std::int64_t step, bool ObserverNeeds::*need) const {
     return std::any_of(m_observers.begin(), m_observers.end(),
-                       [step](Watch const& w) { return step % w.every == 0; });
+                       [&](Watch const& w) { return w.needs.*need && w.due(step); });
 }
 
-void Simulation::run(std::int64_t steps) {
+RunStats Simulation::run(std::int64_t steps) {
     if (!m_dem)
-        throw core::Error("Simulation::run before start()");
+        throw core::Error("Simulation::run before start() or resume()");
     using StepEnd = particles::DemStep::StepEnd;
+    particles::DemStep& dem = *m_dem;
+    m_timers.reset();
+    m_sync->resetCounters();
+    std::uint64_t const leftBefore = dem.leftDomain();
+    std::uint64_t const crossedBefore = dem.wallCrossings().count;
+    std::uint64_t const rebuildsBefore = dem.listRebuilds();
+    m_comm->barrier(); // every rank starts the clock together
+    double const started = MPI_Wtime();
     for (std::int64_t n = 0; n < steps; ++n) {
         std::int64_t const next = m_steps + 1;
-        // A step nobody looks at ends open: its last half kick is merged into the next step's.
-        bool const complete = n + 1 == steps || observed(next);
-        m_dem->step(complete ? StepEnd::Complete : StepEnd::Open);
+        dem.setKeepContacts(m_setup.dem.keepContacts || needed(next, &ObserverNeeds::contacts));
+        // A step no observer looks at ends open: its last half kick merged into the next's.
+        bool const complete = n + 1 == steps || needed(next, &ObserverNeeds::completeGrains);
+        dem.step(complete ? StepEnd::Complete : StepEnd::Open);
         m_steps = next;
         for (Watch const& w : m_observers)
-            if (m_steps % w.every == 0)
+            if (w.due(m_steps))
                 w.observer(*this);
     }
+    double const elapsed = MPI_Wtime() - started;
+
+    RunStats out;
+    out.steps = steps;
+    out.wallSeconds = m_comm->allReduce(elapsed, core::ReduceOp::Max);
+    out.timers = m_timers.reduce(*m_comm);
+    out.comm = m_sync->counters().reduce(*m_comm);
+    auto const& crossings = dem.wallCrossings();
+    std::array<long long, 3> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
+                                    static_cast<long long>(dem.listRebuilds() - rebuildsBefore),
+                                    static_cast<long long>(crossings.count - crossedBefore)};
+    m_comm->allReduceInPlace(std::span<long long>(counts), core::ReduceOp::Sum);
+    out.leftDomain = counts[0];
+    out.listRebuilds = counts[1];
+    out.leftThroughWalls = counts[2];
+    if (out.leftThroughWalls > 0) { // the earliest step's, lowest uid's (every rank is here)
+        bool const mine = crossings.count > crossedBefore;
+        auto const when = m_comm->allGather<std::uint64_t>(
+            mine ? crossings.firstStep : std::numeric_limits<std::uint64_t>::max());
+        auto const uids = m_comm->allGather<std::uint64_t>(crossings.firstUid);
+        auto const walls = m_comm->allGather<std::uint64_t>(crossings.firstWall);
+        std::size_t first = 0;
+        for (std::size_t r = 1; r < when.size(); ++r)
+            if (when[r] < when[first] || (when[r] == when[first] && uids[r] < uids[first]))
+                first = r;
+        out.firstWallCrossing = fmt::format("particle uid {} at step {} through walls[{}]",
+                                            uids[first], when[first], walls[first]);
+    }
+    out.listSkin = m_comm->allReduce(dem.listSkin(), core::ReduceOp::Max);
+    return out;
 }
 
 } // namespace regolith::coupling

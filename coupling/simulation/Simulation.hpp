@@ -12,14 +12,17 @@
 ///                                               observer looks at the grains in between
 ///     observers due at this step                read the grains, may change their velocities
 ///
-/// The grains are given on every rank alike (addGrain); each rank keeps those in its blocks.
-/// The blocks are assigned to the ranks by the load of those grains along the Hilbert curve,
-/// and the particles run on each rank's blocks merged into cuboids (sync.subdomains
-/// "merged"), so the block count is chosen for the grid and the balance, not the speed.
+/// The grains are given on every rank alike (addGrain), and the blocks are then assigned to
+/// the ranks by the load of those grains along the Hilbert curve; or each rank gives its own,
+/// already placed (a Placement: generated in parallel, or read from a checkpoint). The
+/// particles run on each rank's blocks merged into cuboids (sync.subdomains "merged"), so the
+/// block count is chosen for the grid and the balance, not the speed.
 #include "core/math/Vec3.hpp"
 #include "core/mpi/Comm.hpp"
 #include "core/timing/TimerTree.hpp"
 #include "coupling/gravity/SelfGravityForces.hpp"
+#include "coupling/simulation/Placement.hpp"
+#include "coupling/simulation/RunStats.hpp"
 #include "domain/BlockForest.hpp"
 #include "domain/ForestSpec.hpp"
 #include "particles/simulation/DemStep.hpp"
@@ -38,9 +41,9 @@ namespace regolith::coupling {
 struct SimulationSetup {
     domain::ForestSpec domain;  ///< box, periodic axes, root blocks (several per rank is fine)
     particles::SyncConfig sync; ///< NNS / SOS / hybrid, reproducible mode, shadow skin
-    /// dt (required), uniform external gravity, list skin; the pair contacts are not kept
-    /// for dem().contacts() after each step unless keepContacts is set (as in the driver: it
-    /// costs a copy of every contact every step).
+    /// dt (required), uniform external gravity, list skin; the pair contacts are kept for
+    /// dem().contacts() after every step only with keepContacts (it costs a copy of every
+    /// contact every step), else after the steps of observers that ask for them.
     particles::DemStepConfig dem = [] {
         particles::DemStepConfig c;
         c.keepContacts = false;
@@ -64,13 +67,28 @@ public:
     /// Forces or torques of one's own, added to the masters after contacts and self-gravity
     /// in every force computation (ParticleStorage::force / torque of each master).
     using BodyForces = std::function<void(particles::LocalParticles&)>;
-    /// Called after a step with the grains complete (positions and velocities of the same
-    /// time): may read every master and change velocities; `Simulation::step*()` tell which.
+    /// Called after a step (see ObserverNeeds): may read every master and change velocities;
+    /// `Simulation::stepsDone()` and `time()` tell which step.
     using Observer = std::function<void(Simulation&)>;
+    /// Whether an observer is due after the step that leaves `stepsDone` steps done; the same
+    /// answer on every rank.
+    using Due = std::function<bool(std::int64_t stepsDone)>;
+    /// What an observer needs when it is due.
+    struct ObserverNeeds {
+        /// The grains complete (positions and velocities of the same time). false: they may
+        /// be half a kick behind (a progress line, counters), and the step stays open.
+        bool completeGrains = true;
+        /// The step's pair contacts in dem().contacts() (they are kept only where asked).
+        bool contacts = false;
+    };
 
     /// Keeps the settings, refusing (core::InputError) a missing contact model and a dt that is
     /// not positive. Not collective; `comm` must outlive the object.
     Simulation(core::Comm const& comm, SimulationSetup setup);
+    /// The same with the grains already on their ranks, each rank its own masters in
+    /// `placed.local` (setup.domain and setup.subdomains are then those of `placed`). The
+    /// caller has checked them (inside the domain, the time step). Not collective.
+    Simulation(core::Comm const& comm, SimulationSetup setup, Placement placed);
     ~Simulation();
     Simulation(Simulation const&) = delete;
     Simulation& operator=(Simulation const&) = delete;
@@ -80,50 +98,73 @@ public:
     void addBodyForces(BodyForces forces);
     /// `observer` runs after every step whose number is a multiple of `every` (>= 1).
     void addObserver(std::int64_t every, Observer observer);
+    /// `observer` runs after the steps `due` names, in the order the observers were added.
+    void addObserver(Due due, Observer observer, ObserverNeeds needs);
 
-    /// Places the grains on the ranks by their load, creates the shadows and computes the
-    /// initial forces. Throws core::InputError on every rank if the ranks were given different
-    /// grains, a grain lies outside the domain, or dt exceeds a tenth of the shortest contact
-    /// time (unless allowUnstable). COLLECTIVE.
+    /// Places the grains given by addGrain on the ranks by their load (unless the Simulation
+    /// was given a Placement), creates the shadows and computes the initial forces. Throws
+    /// core::InputError on every rank if the ranks were given different grains, a grain lies
+    /// outside the domain, or dt exceeds a tenth of the shortest contact time (unless
+    /// allowUnstable). COLLECTIVE.
     void start();
-    /// `steps` time steps (start() first); the grains are complete on return. COLLECTIVE.
-    void run(std::int64_t steps);
+    /// Instead of start(), for grains restored from a checkpoint with their forces, torques
+    /// and contact histories: creates the shadows and continues after `stepsDone` steps at
+    /// simulated time `time`, computing no forces (DemStep::resume). COLLECTIVE.
+    void resume(std::int64_t stepsDone, double time);
+    /// `steps` time steps (start() or resume() first); the grains are complete on return.
+    /// The timers and traffic counters cover these steps only. COLLECTIVE.
+    RunStats run(std::int64_t steps);
+    /// After the grains moved between ranks (the Placement's contents replaced, e.g. by a
+    /// rebalance or an insertion): rebuilds what stands on the old assignment (the
+    /// synchronisation's plans, the contact lists, the gravity grid). COLLECTIVE.
+    void relocated();
 
     [[nodiscard]] std::int64_t stepsDone() const { return m_steps; }
-    [[nodiscard]] double time() const { return static_cast<double>(m_steps) * m_setup.dem.dt; }
+    /// Simulated time after stepsDone(): the start's (0, or resume's) plus dt per step.
+    [[nodiscard]] double time() const;
     [[nodiscard]] core::Comm const& comm() const { return *m_comm; }
+    [[nodiscard]] SimulationSetup const& setup() const { return m_setup; }
     /// The forest of blocks (grid fields, output) and the grains on its ranks' subdomains.
-    [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
-    [[nodiscard]] particles::LocalParticles& grains() { return *m_local; }
-    [[nodiscard]] particles::LocalParticles const& grains() const { return *m_local; }
+    [[nodiscard]] domain::BlockForest const& forest() const { return *m_placed.forest; }
+    [[nodiscard]] particles::LocalParticles& grains() { return *m_placed.local; }
+    [[nodiscard]] particles::LocalParticles const& grains() const { return *m_placed.local; }
+    /// The forests and the grains, for what moves grains between ranks (then relocated()).
+    [[nodiscard]] Placement& placement() { return m_placed; }
     /// Calls `f(storage, i)` for every master of this rank.
     template <class F>
     void forEachGrain(F&& f) {
-        for (particles::BlockParticles& block : m_local->blocks())
+        for (particles::BlockParticles& block : m_placed.local->blocks())
             block.particles.forEachMaster([&](std::size_t i) { f(block.particles, i); });
     }
+    /// After start() or resume():
+    [[nodiscard]] particles::DemStep& dem() { return *m_dem; }
     [[nodiscard]] particles::DemStep const& dem() const { return *m_dem; }
+    [[nodiscard]] particles::ParticleSync& sync() { return *m_sync; }
+    [[nodiscard]] SelfGravityForces* selfGravity() { return m_gravity.get(); }
     [[nodiscard]] SelfGravityForces const* selfGravity() const { return m_gravity.get(); }
     /// Time per phase ("integrate", "sync", "contact", "gravity", ...), this rank's.
     [[nodiscard]] core::TimerTree const& timers() const { return m_timers; }
 
 private:
     struct Watch {
-        std::int64_t every;
+        Due due;
         Observer observer;
+        ObserverNeeds needs;
     };
     void place(domain::BlockWeight const& weight);
     void checkTimeStep() const;
-    [[nodiscard]] bool observed(std::int64_t step) const;
+    /// The synchronisation, self-gravity and the DEM step on the placed grains.
+    void assemble();
+    /// Whether an observer due after step `step` needs what `need` selects.
+    [[nodiscard]] bool needed(std::int64_t step, bool ObserverNeeds::*need) const;
 
     core::Comm const* m_comm;
     SimulationSetup m_setup;
     std::vector<particles::ParticleInit> m_pending; ///< the grains until start()
+    bool m_placedByCaller = false;
     std::vector<BodyForces> m_bodyForces;
     std::vector<Watch> m_observers;
-    std::unique_ptr<domain::BlockForest> m_forest;
-    std::unique_ptr<domain::BlockForest> m_particleForest;
-    std::unique_ptr<particles::LocalParticles> m_local;
+    Placement m_placed;
     std::unique_ptr<particles::ParticleSync> m_sync;
     std::unique_ptr<SelfGravityForces> m_gravity;
     core::TimerTree m_timers;

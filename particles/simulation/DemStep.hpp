@@ -161,7 +161,7 @@ public:
     /// may still be kept beside its Verlet list (ContactDetector, "Springs kept beside the
     /// list"; a Complete step writes them back), so nothing may read the grains' state or change it
     /// before the next step() or completeStep(): a time loop ends a step Open only when no output,
-    /// checkpoint or other observer follows it (apps/regolith/TimeLoop.hpp).
+    /// checkpoint or other observer follows it (coupling/simulation/Simulation.hpp).
     enum class StepEnd { Complete, Open };
 
     /// One time step (see the class comment); the step number (stamp) is stepsDone() + 1.

@@ -1,7 +1,7 @@
 // coupling::Simulation, the run as a library object: the same bits on any number of ranks
-// and blocks (reproducible mode), its hooks (a body force of one's own, observers at the steps
-// they ask for, velocities changed by an observer), and its refusals (no contact model, dt not
-// positive, grains outside the domain or different on the ranks).
+// and blocks (reproducible mode), grains placed by the caller, its hooks (a body force of one's
+// own, observers at the steps they ask for, velocities changed by an observer), and its refusals
+// (no contact model, dt not positive, grains outside the domain or different on the ranks).
 #include "coupling/simulation/Simulation.hpp"
 
 #include "core/Error.hpp"
@@ -147,6 +147,49 @@ TEST(Simulation, SameBitsOnAnyRanksAndBlocksAsOneBlockOnOneRank) {
                 EXPECT_EQ(run[k].v, reference[k].v) << "uid " << k;
             }
         }
+    }
+}
+
+TEST(Simulation, GrainsPlacedByTheCallerGiveTheBitsOfGrainsGivenAlike) {
+    core::Comm const world;
+    core::Comm const self(MPI_COMM_SELF);
+    std::vector<Final> const reference = runOn(self, {1, 1, 1}, true);
+    coupling::SimulationSetup setup = boxSetup({3, 3, 2}, true);
+    setup.dem.keepContacts = false;
+    // Each rank keeps its own grains, on blocks of equal weight (not balanced by the grains).
+    coupling::Placement placed = coupling::placeBlocks(world, setup.domain, {}, setup.subdomains);
+    coupling::Simulation given(self, boxSetup({1, 1, 1}, true));
+    addGrains(given); // only to read the grains back below
+    coupling::Simulation sim(world, setup, std::move(placed));
+    EXPECT_THROW(sim.addGrain(particles::ParticleInit{}), core::Error);
+    given.start();
+    given.forEachGrain([&](particles::ParticleStorage const& g, std::size_t i) {
+        particles::ParticleInit p;
+        p.uid = g.uid(i);
+        p.position = g.position(i);
+        p.velocity = g.velocity(i);
+        p.radius = g.radius(i);
+        p.mass = g.mass(i);
+        (void)sim.placement().local->addMaster(p);
+    });
+    // The contacts are kept for the observer that asks for them, at its steps only.
+    std::vector<std::size_t> pairsSeen;
+    sim.addObserver([](std::int64_t step) { return step % 200 == 0; },
+                    [&](coupling::Simulation& s) {
+                        std::size_t pairs = 0;
+                        for (particles::ContactList const& list : s.dem().contacts())
+                            pairs += list.pairs.size();
+                        pairsSeen.push_back(world.allReduce(pairs, core::ReduceOp::Sum));
+                    },
+                    {.completeGrains = true, .contacts = true});
+    sim.start();
+    sim.run(400);
+    ASSERT_EQ(pairsSeen.size(), 2u);
+    EXPECT_GT(pairsSeen[1], 0u);
+    std::vector<Final> const run = finalState(sim);
+    for (std::size_t k = 0; k < reference.size(); ++k) {
+        EXPECT_EQ(run[k].x, reference[k].x) << "uid " << k;
+        EXPECT_EQ(run[k].v, reference[k].v) << "uid " << k;
     }
 }
 
