@@ -80,11 +80,11 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                                            SceneDescription& scene) {
     std::vector<AutoChoice> out;
     GravitySection& g = scene.gravity;
-    if (!(g.self == SelfGravity::Auto || g.thresholdAuto || scene.time.dtAuto))
+    if (!(g.self == "auto" || g.thresholdAuto || scene.time.dtAuto))
         return out;
     GrainExtremes const e = extremes(comm, masters);
     auto const& periodic = scene.forest.periodic;
-    if (g.self == SelfGravity::Auto && (periodic[0] || periodic[1] || periodic[2])) {
+    if (g.self == "auto" && (periodic[0] || periodic[1] || periodic[2])) {
         // Only the grid methods are periodic (SceneSections: requireGravityMatchesPeriodicity).
         auto const p3m = p3mExpectedError(scene, e);
         if (g.poisson == "fft")
@@ -97,7 +97,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                 "gravity.self = \"auto\": the domain is periodic, and only the grid methods (pm, "
                 "p3m) have periodic images; they need every axis periodic, domain.cells_per_block "
                 "and no refinement: give those, an open domain, or gravity.self");
-        g.self = SelfGravity::P3m;
+        g.self = "p3m";
         out.push_back(
             {"gravity.self", "p3m",
              fmt::format("{} grains in a periodic domain, where only the grid methods "
@@ -105,7 +105,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                          "{} accuracy {:g}",
                          e.count, *p3m, *p3m <= g.accuracy ? "meets" : "misses", g.accuracy)});
     }
-    if (g.self == SelfGravity::Auto) {
+    if (g.self == "auto") {
         auto const* point = std::min_element(std::begin(kTreeErrors), std::end(kTreeErrors),
                                              [&](TreeErrorPoint const& a, TreeErrorPoint const& b) {
                                                  return treeCostPerStep(a, g.accuracy) <
@@ -114,7 +114,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
         if (!std::isfinite(treeCostPerStep(*point, g.accuracy)))
             point = std::end(kTreeErrors);
         if (e.count <= kDirectSumMaxGrains || point == std::end(kTreeErrors)) {
-            g.self = SelfGravity::Direct;
+            g.self = "direct";
             out.push_back({"gravity.self", "direct",
                            e.count <= kDirectSumMaxGrains
                                ? fmt::format("{} grains: the exact sum is as cheap as the tree "
@@ -125,14 +125,14 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
                                              g.accuracy)});
         } else if (auto const p3m = p3mExpectedError(scene, e);
                    p3m && *p3m <= g.accuracy && kP3mSecondsPerGrain < kTreeSecondsPerGrain) {
-            g.self = SelfGravity::P3m;
+            g.self = "p3m";
             out.push_back({"gravity.self", "p3m",
                            fmt::format("{} grains; its measured median force error on this grid "
                                        "({:.2g}) meets accuracy {:g} and it is cheaper than the "
                                        "tree",
                                        e.count, *p3m, g.accuracy)});
         } else {
-            g.self = SelfGravity::Tree;
+            g.self = "tree";
             g.theta = point->theta;
             std::string reason = fmt::format(
                 "{} grains; with the update interval, the least cost per step: its median force "
@@ -172,7 +172,7 @@ std::vector<AutoChoice> resolveAutoChoices(core::Comm const& comm,
         double const tc = contactTime(comm, masters, scene).contactTime;
         double dt = tc / 20.0;
         std::string reason = fmt::format("contact time {:.6g} / 20", tc);
-        if (g.self != SelfGravity::None && e.maxDensity > 0.0) {
+        if (g.self != "none" && e.maxDensity > 0.0) {
             double const orbit = touchingOrbitPeriod(g.G, e.maxDensity);
             if (orbit / 200.0 < dt) {
                 dt = orbit / 200.0;

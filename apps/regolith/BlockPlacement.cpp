@@ -1,9 +1,11 @@
 #include "apps/regolith/BlockPlacement.hpp"
 
+#include "coupling/gravity/GravityMethod.hpp"
 #include "io/checkpoint/GrainState.hpp"
 #include "io/checkpoint/RestoreGrains.hpp"
 
 #include <algorithm>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -11,8 +13,9 @@ namespace regolith::apps {
 
 namespace {
 
-bool usesGrid(SelfGravity method) {
-    return method == SelfGravity::Pm || method == SelfGravity::P3m;
+bool usesGrid(std::string const& method) {
+    coupling::GravityMethodEntry const* entry = coupling::findGravityMethod(method);
+    return entry && entry->usesGrid;
 }
 
 bool sameBlocks(domain::BlockForest const& a, domain::BlockForest const& b) {

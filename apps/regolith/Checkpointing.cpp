@@ -148,7 +148,7 @@ std::vector<AutoChoice> reuseAutoChoices(core::AppContext& ctx, SceneDescription
     std::vector<std::string> keys;
     if (scene.time.dtAuto)
         keys.emplace_back("time.dt");
-    if (scene.gravity.self == SelfGravity::Auto)
+    if (scene.gravity.self == "auto")
         keys.insert(keys.end(), {"gravity.self", "gravity.theta"});
     if (scene.gravity.thresholdAuto)
         keys.insert(keys.end(), {"gravity.update_threshold", "gravity.update_every"});

@@ -4,6 +4,7 @@
 #include "apps/regolith/LoopSummary.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
 #include "gravity/update/UpdatePolicy.hpp"
 
 #include <fmt/format.h>
@@ -25,9 +26,9 @@ double extrapolationBudget(double accuracy, double methodError) {
 
 double extrapolationBudget(GravitySection const& g) {
     double methodError = 0.5 * kErrorTarget * g.accuracy;
-    if (g.self == SelfGravity::Direct) {
+    if (g.self == "direct") {
         methodError = 0.0;
-    } else if (g.self == SelfGravity::Tree) {
+    } else if (g.self == "tree") {
         // kTreeErrors runs from large to small θ: log-linear between the two around g.theta.
         auto const& t = kTreeErrors;
         std::size_t const n = std::size(t);
@@ -78,47 +79,20 @@ coupling::ForceCheckSchedule forceCheckSchedule(SceneDescription const& scene) {
 
 std::optional<coupling::SelfGravityConfig> selfGravityConfig(SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
-    coupling::SelfGravityConfig c;
-    switch (g.self) {
-    case SelfGravity::None:
+    if (g.self == "none")
         return std::nullopt;
-    case SelfGravity::Direct:
-        c.method = coupling::GrainGravityMethod::Direct;
-        break;
-    case SelfGravity::Tree:
-        c.method = coupling::GrainGravityMethod::Tree;
-        break;
-    case SelfGravity::MutualTree:
-        c.method = coupling::GrainGravityMethod::MutualTree;
-        break;
-    case SelfGravity::Pm:
-    case SelfGravity::P3m:
-        c.method = g.self == SelfGravity::Pm ? coupling::GrainGravityMethod::Mesh
-                                             : coupling::GrainGravityMethod::P3m;
-        c.cellsPerBlock = scene.forest.cellsPerBlock;
-        c.petscOptions = g.petscOptions;
-        c.poisson = gravity::parsePoissonMethod(g.poisson);
-        c.gradientOrder = g.gradientOrder;
-        c.p3mCutoffCells = g.p3mCutoff;
-        break;
-    case SelfGravity::OccupiedCells:
-    case SelfGravity::TreeNodes:
-        c.method = g.self == SelfGravity::OccupiedCells
-                       ? coupling::GrainGravityMethod::OccupiedCells
-                       : coupling::GrainGravityMethod::TreeNodes;
-        if (!(g.gridSpacing > 0.0))
-            throw core::InputError(fmt::format(
-                "gravity.grid_spacing: required with gravity.self = \"{}\" (the node distance; "
-                "the paper uses 2.5 x the largest grain diameter)",
-                toString(g.self)));
-        c.gridSpacing = g.gridSpacing;
-        c.neighbourhood = g.neighbourhood >= 0.0 ? g.neighbourhood : g.gridSpacing;
-        break;
-    default:
-        // "auto" is resolved before (AutoChoices); nothing else is left.
-        throw core::InputError(fmt::format(
-            "gravity.self = \"{}\": not resolved to a method before the run", toString(g.self)));
-    }
+    if (g.self == "auto") // resolved before (AutoChoices)
+        throw core::InputError("gravity.self = \"auto\": not resolved to a method before the run");
+    coupling::SelfGravityConfig c;
+    c.method = g.self;
+    c.options = g.methodOptions;
+    c.cellsPerBlock = scene.forest.cellsPerBlock;
+    c.petscOptions = g.petscOptions;
+    c.poisson = gravity::parsePoissonMethod(g.poisson);
+    c.gradientOrder = g.gradientOrder;
+    c.p3mCutoffCells = g.p3mCutoff;
+    c.gridSpacing = g.gridSpacing;
+    c.neighbourhood = g.neighbourhood;
     c.G = g.G;
     c.softening = g.softening;
     c.theta = g.theta;
@@ -148,12 +122,11 @@ std::string measuredErrorWarning(coupling::ForceErrorMonitor const& measured,
         updates < steps
             ? fmt::format("the field was reused between updates ({} updates in {} steps): {}",
                           updates, steps, reuse)
-        : g.self == SelfGravity::Tree || g.self == SelfGravity::MutualTree ||
-                g.self == SelfGravity::TreeNodes
+        : coupling::gravityMethod(g.self).usesTheta
             ? fmt::format("the field was new every step: lower gravity.theta (now {:g})", g.theta)
             : fmt::format("the field was new every step: choose a more accurate gravity.self than "
                           "\"{}\" (or refine its grid)",
-                          toString(g.self));
+                          g.self);
     return fmt::format(
         "gravity.accuracy = {:g}: the measured median force error over the run is "
         "{:.2g} (p99 {:.2g}; {} checks of about {} grains against the direct sum), more "
@@ -172,7 +145,7 @@ void warnSelfGravityParameters(core::Comm const& comm, particles::LocalParticles
 void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles const& local,
                              SceneDescription const& scene) {
     GravitySection const& g = scene.gravity;
-    if (g.self == SelfGravity::None || !(g.updateThreshold > 0.0))
+    if (g.self == "none" || !(g.updateThreshold > 0.0))
         return;
     double smallest = std::numeric_limits<double>::infinity();
     masterSource(local)([&](MasterRecord const& m) { smallest = std::min(smallest, m.radius); });
@@ -185,8 +158,7 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles c
 
 void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& local,
                       SceneDescription const& scene) {
-    if (scene.gravity.self == SelfGravity::None ||
-        scene.contact.model != ContactModel::SpringDashpot)
+    if (scene.gravity.self == "none" || scene.contact.model != ContactModel::SpringDashpot)
         return;
     double worst = 0.0; // m² / r³
     masterSource(local)([&](MasterRecord const& g) {
@@ -212,7 +184,7 @@ void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& l
 
 void warnCoarseOrbitStep(core::Comm const& comm, particles::LocalParticles const& local,
                          SceneDescription const& scene) {
-    if (scene.gravity.self == SelfGravity::None)
+    if (scene.gravity.self == "none")
         return;
     double density = 0.0;
     masterSource(local)([&](MasterRecord const& m) {

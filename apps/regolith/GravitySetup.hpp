@@ -51,10 +51,10 @@ inline constexpr std::int64_t kAutoChecksPerRun = 8;
 
 inline constexpr double kMeasuredErrorTolerance = 2.0;
 
-/// The self-gravity of `scene` on the grains, or none for self = "none". Throws
-/// core::InputError naming gravity.self for a method the time step cannot use yet; the
-/// SelfGravityForces built from it name the gravity.* key of a bad parameter (theta, G,
-/// softening, update_threshold). Not collective.
+/// The self-gravity of `scene` on the grains (its registered method, coupling/gravity/
+/// GravityMethod.hpp), or none for self = "none". Throws core::InputError naming gravity.self
+/// for "auto" not resolved yet; the SelfGravityForces built from it name the gravity.* key of
+/// a bad parameter (theta, G, softening, update_threshold, the method's own). Not collective.
 [[nodiscard]] std::optional<coupling::SelfGravityConfig>
 selfGravityConfig(SceneDescription const& scene);
 

@@ -10,15 +10,12 @@
 
 namespace regolith::apps {
 
-std::span<GridErrorPoint const> gridErrorPoints(SelfGravity method) {
-    switch (method) {
-    case SelfGravity::Pm:
+std::span<GridErrorPoint const> gridErrorPoints(std::string_view method) {
+    if (method == "pm")
         return kMeshErrors;
-    case SelfGravity::P3m:
+    if (method == "p3m")
         return kP3mErrors;
-    default:
-        return {};
-    }
+    return {};
 }
 
 double expectedGridError(std::span<GridErrorPoint const> points, double cellsAcross) {
@@ -71,7 +68,7 @@ void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const&
     double const expected = expectedGridError(points, across);
     if (expected <= g.accuracy)
         return;
-    auto const name = toString(g.self);
+    std::string const& name = g.self;
     // The measured point that meets the accuracy nearest to this grid (in log cells).
     GridErrorPoint const* meets = nullptr;
     GridErrorPoint const* best = &points.front();
@@ -89,7 +86,7 @@ void checkGridAccuracy(core::Comm const& comm, particles::ParticleStorage const&
             "at best ({:g} cells across the body, measured on the 38,358-grain agglomerate); "
             "ask for a larger gravity.accuracy or use {}\"tree\" or \"direct\"",
             g.accuracy, name, best->medianError, best->cellsAcrossBody,
-            g.self == SelfGravity::Pm ? "\"p3m\", " : ""));
+            g.self == "pm" ? "\"p3m\", " : ""));
     // Cells per block that put meets->cellsAcrossBody cells across the body.
     double const hNeeded = extent / meets->cellsAcrossBody;
     std::array<int, 3> needed{};
@@ -120,10 +117,10 @@ void checkMeasuredGridAccuracy(coupling::SelfGravityForces const& gravity,
         "gravity.accuracy = {:g}: gravity.self = \"{}\" has a median force error of {:.2g} on "
         "this scene's grains at the start (about {} of them against the direct sum); {}, ask "
         "for a larger gravity.accuracy, or use \"tree\" or \"direct\"",
-        g.accuracy, toString(g.self), measured->median, kAccuracySample,
+        g.accuracy, g.self, measured->median, kAccuracySample,
         // P3M's error need not fall with finer cells (GridAccuracy.hpp's kP3mErrors).
-        g.self == SelfGravity::P3m ? "raise gravity.p3m_cutoff or change domain.cells_per_block"
-                                   : "refine domain.cells_per_block"));
+        g.self == "p3m" ? "raise gravity.p3m_cutoff or change domain.cells_per_block"
+                        : "refine domain.cells_per_block"));
 }
 
 } // namespace regolith::apps

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <span>
+#include <string_view>
 
 namespace regolith::apps {
 
@@ -32,7 +33,7 @@ inline constexpr GridErrorPoint kMeshErrors[] = {{26.7, 1.85e-2}, {53.3, 1.12e-2
 inline constexpr GridErrorPoint kP3mErrors[] = {{26.7, 7.3e-4}, {53.3, 1.9e-3}, {106.7, 1.1e-3}};
 
 /// The measured points of `method` (pm or p3m), empty for the other methods.
-[[nodiscard]] std::span<GridErrorPoint const> gridErrorPoints(SelfGravity method);
+[[nodiscard]] std::span<GridErrorPoint const> gridErrorPoints(std::string_view method);
 
 /// The median error expected at `cellsAcross` from `points`: log-log interpolation between
 /// them; coarser than the first point, the first segment's trend but at least the first

@@ -28,7 +28,7 @@ RunOutputs::RunOutputs(core::AppContext const& ctx, SceneDescription const& scen
     , m_snapshots(ctx.world, scene.output, sim.grains(), m_checkpoints)
     , m_progress(ProgressSettings{origin.step, origin.time, scene.time.steps, scene.time.dt,
                                   origin.grains, std::string(toString(scene.sync.method)),
-                                  std::string(toString(scene.gravity.self)), ctx.world.size(),
+                                  scene.gravity.self, ctx.world.size(),
                                   scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet})
     , m_balance(ctx.world, scene, sim.placement(), origin.step, [this] { relocate(); })
     , m_pouring(ctx.world, scene, sim.grains())

@@ -1,6 +1,7 @@
 #include "apps/regolith/SceneReport.hpp"
 
 #include "core/log/Printable.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +14,8 @@ namespace {
 
 /// " (poisson fft)" for a mesh method that solves with the FFT; empty otherwise.
 std::string poissonNote(GravitySection const& g) {
-    bool const mesh = g.self == SelfGravity::Pm || g.self == SelfGravity::P3m;
+    coupling::GravityMethodEntry const* method = coupling::findGravityMethod(g.self);
+    bool const mesh = method && method->usesGrid;
     return mesh && g.poisson != "petsc" ? " (poisson " + g.poisson + ")" : std::string();
 }
 
@@ -61,7 +63,7 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
                     "{} walls\n",
                     steps, scene.time.dt, toString(scene.sync.method),
                     scene.sync.reproducible ? " (reproducible)" : "", toString(scene.contact.model),
-                    toString(scene.gravity.self), poissonNote(scene.gravity), scene.walls.size());
+                    scene.gravity.self, poissonNote(scene.gravity), scene.walls.size());
     text += startStep > 0
                 ? fmt::format("  {} particles from the checkpoint ({} to {} per rank)\n",
                               particles.total, particles.minPerRank, particles.maxPerRank)

@@ -262,7 +262,7 @@ void writeRunOutcome(core::AppContext const& ctx, PreparedRun const& run, coupli
     summary.peakRssBytes = peakRssBytes(world);
     summary.time = sim.time();
     summary.conserved = conservedNow(sim, scene);
-    summary.gravity.method = std::string(toString(scene.gravity.self));
+    summary.gravity.method = scene.gravity.self;
     for (AutoChoice const& c : run.choices)
         summary.autoChoices.push_back({c.key, c.value, c.reason});
     if (sim.selfGravity())

@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "core/config/ValueChecks.hpp"
 #include "core/log/Log.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
 #include "domain/ForestConfig.hpp"
 #include "particles/generators/LatticeSites.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
@@ -35,9 +36,6 @@ constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kSubdomainNames{"blocks"sv, "merged"sv};
 constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
 constexpr std::array kRollingNames{"constant"sv, "spring"sv};
-constexpr std::array kSelfNames{"none"sv,       "direct"sv,      "tree"sv,
-                                "pm"sv,         "p3m"sv,         "occupied-cells"sv,
-                                "tree-nodes"sv, "mutual-tree"sv, "auto"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
 /// In the order of DumpFormat.
 constexpr std::array kDumpFormatNames{"csv"sv, "hdf5"sv};
@@ -165,17 +163,42 @@ bool supersededBySetMethod(core::ConfigTable const& t, std::string_view key) {
     return !t.location(key).starts_with("--set") && t.location("self").starts_with("--set");
 }
 
+/// gravity.self's words: "none", the registered methods, "auto".
+std::vector<std::string_view> selfNames(std::vector<std::string> const& methods) {
+    std::vector<std::string_view> names{"none"};
+    names.insert(names.end(), methods.begin(), methods.end());
+    names.push_back("auto");
+    return names;
+}
+
+/// The registered methods a Plummer length applies to, as a message lists them.
+std::string softeningMethods() {
+    std::vector<std::string> names;
+    for (std::string const& name : coupling::gravityMethodNames())
+        if (coupling::gravityMethod(name).softens)
+            names.push_back(fmt::format("\"{}\"", name));
+    std::string out;
+    for (std::size_t k = 0; k < names.size(); ++k)
+        out += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+    return out;
+}
+
 } // namespace
 
 GravitySection parseGravity(core::ConfigTable const& t) {
     GravitySection s;
     s.external =
         t.getOrIf<core::Vec3>("external", s.external, isFiniteVec3, "an array of 3 finite numbers");
-    s.self = static_cast<SelfGravity>(t.getChoiceOr("self", kSelfNames, 0));
+    std::vector<std::string> const methods = coupling::gravityMethodNames();
+    std::vector<std::string_view> const choices = selfNames(methods);
+    s.self = std::string(choices[t.getChoiceOr("self", choices, 0)]);
+    coupling::GravityMethodEntry const* method = coupling::findGravityMethod(s.self);
+    if (method && method->readKeys)
+        s.methodOptions = method->readKeys(t);
     s.G = t.getOrIf<double>("G", s.G, isPositiveFinite, "a positive finite number");
     s.theta = t.getOrIf<double>("theta", s.theta, isPositiveFinite, "a positive finite number");
     // With "auto", a theta would be replaced without a word.
-    if (s.self == SelfGravity::Auto && t.has("theta") && !supersededBySetMethod(t, "theta"))
+    if (s.self == "auto" && t.has("theta") && !supersededBySetMethod(t, "theta"))
         t.fail("theta", "is chosen by gravity.self = \"auto\" (the largest opening angle that "
                         "meets gravity.accuracy); set gravity.self = \"tree\" to use this one, "
                         "or leave it out");
@@ -202,20 +225,19 @@ GravitySection parseGravity(core::ConfigTable const& t) {
             "a number of updates in [0, 1000000] (0: never) or \"auto\"", s.checkEvery);
     s.softening = t.getOrIf<double>("softening", s.softening, isNonNegativeFinite,
                                     "a non-negative finite number");
-    // pm's mesh and the node methods' node-to-node sums have no Plummer length: a softening
-    // with them is refused, or dropped with a warning where a --set of the method supersedes
-    // the file's (the measured-accuracy check must not compare with a softened sum either).
-    if (s.softening > 0.0 && (s.self == SelfGravity::Pm || s.self == SelfGravity::OccupiedCells ||
-                              s.self == SelfGravity::TreeNodes)) {
+    // A method without a Plummer length (pm's mesh, the node methods' node-to-node sums) with
+    // a softening is refused, or the softening dropped with a warning where a --set of the
+    // method supersedes the file's (the measured-accuracy check must not compare with a
+    // softened sum either).
+    if (s.softening > 0.0 && method && !method->softens) {
         if (!supersededBySetMethod(t, "softening"))
             t.fail("softening",
                    fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
-                               "applies to \"direct\", \"tree\", \"mutual-tree\" and "
-                               "\"p3m\" (its near pairs); use one of those, or 0",
-                               toString(s.self)));
+                               "applies to {}; use one of those, or 0",
+                               s.self, softeningMethods()));
         core::log::warn("{}: gravity.softening = {:g} does not apply to gravity.self = \"{}\" "
                         "({}), which does not soften: ignored",
-                        t.location("softening"), s.softening, toString(s.self), t.location("self"));
+                        t.location("softening"), s.softening, s.self, t.location("self"));
         s.softening = 0.0;
     }
     s.allowLargeTheta = t.getOr<bool>("allow_large_theta", false);
@@ -269,9 +291,9 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
     for (std::size_t a = 0; a < 3; ++a)
         if (periodic[a])
             axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
-    SelfGravity const self = scene.gravity.self;
-    bool const freeSpace = self != SelfGravity::None && self != SelfGravity::Pm &&
-                           self != SelfGravity::P3m && self != SelfGravity::Auto;
+    std::string const& self = scene.gravity.self;
+    coupling::GravityMethodEntry const* method = coupling::findGravityMethod(self);
+    bool const freeSpace = method && !method->periodic;
     if (axes.empty() || !freeSpace)
         return;
     // Not the default (none): the key was written, so the section exists.
@@ -280,7 +302,7 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
                             "images, but domain.periodic makes {} periodic (grains across a "
                             "periodic face would attract each other through the whole domain); "
                             "use \"pm\" or \"p3m\" with every axis periodic, or an open domain",
-                            toString(self), axes));
+                            self, axes));
 }
 
 /// Warns where a lattice entry fills a periodic axis whose extent is not a multiple of the
@@ -378,9 +400,6 @@ std::string_view toString(particles::SyncMethod m) {
 }
 std::string_view toString(ContactModel m) {
     return kContactNames[static_cast<std::size_t>(m)];
-}
-std::string_view toString(SelfGravity g) {
-    return kSelfNames[static_cast<std::size_t>(g)];
 }
 std::string_view toString(Integrator i) {
     return kIntegratorNames[static_cast<std::size_t>(i)];

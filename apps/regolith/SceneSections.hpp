@@ -20,6 +20,7 @@
 #include "particles/storage/WallList.hpp"
 #include "particles/sync/SyncMethod.hpp"
 
+#include <any>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -75,10 +76,10 @@ struct ContactSection {
     std::optional<double> neighbourSkin;
 };
 
-enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, MutualTree, Auto };
-
-/// [gravity] external (acceleration, finite), self (none | direct | tree | pm | p3m |
-/// occupied-cells | tree-nodes | mutual-tree | auto), accuracy (target median relative force
+/// [gravity] external (acceleration, finite), self ("none", a method of the registry,
+/// coupling::gravityMethodNames(): direct | tree | pm | p3m | occupied-cells | tree-nodes |
+/// mutual-tree and those a program registered, or "auto"), the method's own keys
+/// (coupling::GravityMethodEntry::readKeys), accuracy (target median relative force
 /// error of "auto", default 1e-3), G > 0, theta > 0 (Barnes–Hut opening angle;
 /// above 1 only with allow_large_theta = true),
 /// update_threshold >= 0 (displacement that triggers a recomputation), softening >= 0 (a
@@ -88,7 +89,8 @@ enum class SelfGravity { None, Direct, Tree, Pm, P3m, OccupiedCells, TreeNodes, 
 /// grid_spacing).
 struct GravitySection {
     core::Vec3 external = core::Vec3::Zero();
-    SelfGravity self = SelfGravity::None;
+    std::string self = "none"; ///< "none", "auto" (until AutoChoices) or a registered method
+    std::any methodOptions;    ///< what the method's readKeys read (SelfGravityConfig::options)
     double G = 6.674e-11;
     double theta = 0.5;
     double updateThreshold = 0.0;
@@ -198,7 +200,6 @@ struct SceneDescription {
 
 [[nodiscard]] std::string_view toString(particles::SyncMethod m);
 [[nodiscard]] std::string_view toString(ContactModel m);
-[[nodiscard]] std::string_view toString(SelfGravity g);
 [[nodiscard]] std::string_view toString(Integrator i);
 
 } // namespace regolith::apps

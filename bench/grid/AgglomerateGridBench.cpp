@@ -238,7 +238,7 @@ int main(int argc, char** argv) {
         }
         for (double cutoff : numbers(cutoffs)) {
             coupling::SelfGravityConfig c;
-            c.method = coupling::GrainGravityMethod::P3m;
+            c.method = "p3m";
             c.cellsPerBlock = spec.cellsPerBlock;
             c.gradientOrder = order;
             c.petscOptions = petscOptions;

@@ -1,176 +1,14 @@
 #include "coupling/gravity/SelfGravityForces.hpp"
 
-#include "coupling/gravity/P3mGravity.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
 #include "coupling/gravity/SampledForceError.hpp"
-#include "gravity/GridGravity.hpp"
-#include "gravity/MeshPotentialTable.hpp"
-#include "gravity/baselines/GridMethods.hpp"
 #include "gravity/common/PointMasses.hpp"
-#include "gravity/direct/DirectSum.hpp"
-#include "gravity/petsc/PetscSession.hpp"
-#include "gravity/tree/BarnesHut.hpp"
-#include "gravity/tree/MutualTree.hpp"
-#include "gravity/tree/TreeOptions.hpp"
 
 #include <algorithm>
 #include <array>
 #include <numeric>
-#include <variant>
 
 namespace regolith::coupling {
-
-namespace {
-
-/// The particle-mesh method with the PETSc session it needs (nested: an app that opened one
-/// keeps it). Its energy leaves out each grain's mesh self-energy, as P3M's does (measured
-/// with the same table, out to P3M's default cut-off of 4 cells for the regular part).
-class MeshGravity {
-public:
-    MeshGravity(core::Comm const& comm, domain::BlockForest const& forest,
-                SelfGravityConfig const& c)
-        : m_session(m_argc, m_argv)
-        , m_comm(comm.duplicate())
-        , m_grid(comm, forest, c.cellsPerBlock, gridGravityOptions(c))
-        , m_self(comm, m_grid, 4.0 * m_grid.layout().spacing().minCoeff()) {}
-
-    double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) {
-        m_position.resize(grains.size());
-        for (std::size_t k = 0; k < grains.size(); ++k)
-            m_position[k] = core::Vec3(grains.x[k], grains.y[k], grains.z[k]);
-        gravity::Grains const g{m_position, grains.r, grains.m};
-        m_grid.update(g);
-        m_acceleration.resize(grains.size());
-        m_grid.accelerations(g, m_acceleration);
-        for (std::size_t k = 0; k < grains.size(); ++k) {
-            out.ax[k] = m_acceleration[k].x();
-            out.ay[k] = m_acceleration[k].y();
-            out.az[k] = m_acceleration[k].z();
-        }
-        double self = 0.0;
-        for (std::size_t k = 0; k < grains.size(); ++k)
-            self += 0.5 * grains.m[k] * grains.m[k] *
-                    (grains.r.empty() ? m_self.selfPotential(m_position[k])
-                                      : m_self.selfPotential(m_position[k], grains.r[k]));
-        return m_grid.potentialEnergy(g) - m_comm.allReduce(self, core::ReduceOp::Sum);
-    }
-
-    [[nodiscard]] gravity::GridFieldsView fields() const { return m_grid.fields(); }
-    void resetInitialGuess() { m_grid.resetInitialGuess(); }
-
-private:
-    int m_argc = 0;
-    char** m_argv = nullptr;
-    gravity::PetscSession m_session;
-    core::Comm m_comm;
-    gravity::GridGravity m_grid;
-    gravity::MeshPotentialTable m_self;
-    std::vector<core::Vec3> m_position, m_acceleration;
-};
-
-} // namespace
-
-} // namespace regolith::coupling
-
-namespace regolith::coupling {
-
-/// The chosen evaluator, behind one call.
-class SelfGravityForces::Method {
-public:
-    Method(core::Comm const& comm, domain::BlockForest const& forest, SelfGravityConfig const& c) {
-        gravity::tree::TreeOptions tree;
-        tree.G = c.G;
-        tree.softening = c.softening;
-        tree.theta = c.theta;
-        tree.allowLargeTheta = c.allowLargeTheta;
-        switch (c.method) {
-        case GrainGravityMethod::Direct:
-            m_eval = std::make_unique<gravity::direct::DirectSum>(
-                comm, gravity::direct::DirectOptions{c.G, c.softening});
-            break;
-        case GrainGravityMethod::Tree:
-            m_eval = std::make_unique<gravity::tree::BarnesHut>(comm, tree);
-            break;
-        case GrainGravityMethod::MutualTree:
-            m_eval = std::make_unique<gravity::tree::MutualTree>(tree);
-            break;
-        case GrainGravityMethod::Mesh:
-            m_eval = std::make_unique<MeshGravity>(comm, forest, c);
-            break;
-        case GrainGravityMethod::P3m:
-            m_eval = std::make_unique<P3mGravity>(comm, forest, c);
-            break;
-        case GrainGravityMethod::OccupiedCells:
-            m_eval = std::make_unique<gravity::baselines::OccupiedCells>(nodeOptions(forest, c));
-            break;
-        case GrainGravityMethod::TreeNodes:
-            m_eval = std::make_unique<gravity::baselines::TreeAtNodes>(nodeOptions(forest, c));
-            break;
-        }
-        for (domain::Block const& b : forest.blocks())
-            m_boxes.push_back(b.aabb);
-    }
-
-    /// Field at the local grains; returns ½ Σ m φ over all ranks. COLLECTIVE.
-    double evaluate(core::Comm const& comm, gravity::PointMasses const& grains,
-                    gravity::FieldOut out) {
-        return std::visit(
-            [&](auto& e) -> double {
-                using E = std::decay_t<decltype(*e)>;
-                if constexpr (std::is_same_v<E, gravity::tree::BarnesHut>)
-                    return e->evaluate(grains, out, m_boxes);
-                else if constexpr (std::is_same_v<E, gravity::tree::MutualTree>)
-                    return e->evaluateGathered(comm, grains, out);
-                else if constexpr (std::is_same_v<E, gravity::baselines::OccupiedCells> ||
-                                   std::is_same_v<E, gravity::baselines::TreeAtNodes>)
-                    return e->evaluate(comm, grains, out);
-                else if constexpr (std::is_same_v<E, MeshGravity>)
-                    return e->evaluate(grains, out);
-                else
-                    return e->evaluate(grains, out);
-            },
-            m_eval);
-    }
-
-    /// A grid method's next solve starts from zero (nothing for the others). Not collective.
-    void resetInitialGuess() {
-        if (auto const* mesh = std::get_if<std::unique_ptr<MeshGravity>>(&m_eval))
-            (*mesh)->resetInitialGuess();
-        if (auto const* p3m = std::get_if<std::unique_ptr<P3mGravity>>(&m_eval))
-            (*p3m)->resetInitialGuess();
-    }
-
-    /// The grid fields of a grid method, else nullopt.
-    [[nodiscard]] std::optional<gravity::GridFieldsView> gridFields() const {
-        if (auto const* mesh = std::get_if<std::unique_ptr<MeshGravity>>(&m_eval))
-            return (*mesh)->fields();
-        if (auto const* p3m = std::get_if<std::unique_ptr<P3mGravity>>(&m_eval))
-            return (*p3m)->grid().fields(); // the mesh part (points deposited)
-        return std::nullopt;
-    }
-
-private:
-    /// The node methods' options: the lattice from the domain's minimum corner (validated by
-    /// the methods: InputError naming gravity.grid_spacing, gravity.theta, ...).
-    static gravity::baselines::GridMethodOptions nodeOptions(domain::BlockForest const& forest,
-                                                             SelfGravityConfig const& c) {
-        gravity::baselines::GridMethodOptions o;
-        o.G = c.G;
-        o.grid.origin = forest.domain().min;
-        o.grid.spacing = c.gridSpacing;
-        o.theta = c.theta;
-        o.allowLargeTheta = c.allowLargeTheta;
-        o.neighbourhood = c.neighbourhood;
-        return o;
-    }
-
-    std::variant<std::unique_ptr<gravity::direct::DirectSum>,
-                 std::unique_ptr<gravity::tree::BarnesHut>,
-                 std::unique_ptr<gravity::tree::MutualTree>, std::unique_ptr<MeshGravity>,
-                 std::unique_ptr<P3mGravity>, std::unique_ptr<gravity::baselines::OccupiedCells>,
-                 std::unique_ptr<gravity::baselines::TreeAtNodes>>
-        m_eval;
-    std::vector<core::AABB> m_boxes; ///< this rank's blocks (sharpen the tree's pruning)
-};
 
 namespace {
 
@@ -189,7 +27,7 @@ SelfGravityForces::SelfGravityForces(core::Comm const& comm, domain::BlockForest
                                      SelfGravityConfig const& config)
     : m_comm(&comm)
     , m_config(config)
-    , m_method(std::make_unique<Method>(comm, forest, config))
+    , m_method(gravityMethod(config.method).make({comm, forest, m_config}))
     , m_policy(config.updateThreshold, periodicExtent(forest), config.interval)
     , m_monitor(config.check) {}
 
@@ -197,7 +35,7 @@ SelfGravityForces::~SelfGravityForces() = default;
 
 void SelfGravityForces::relocate(domain::BlockForest const& forest) {
     m_method.reset(); // its grid and communicators go before the new ones are made
-    m_method = std::make_unique<Method>(*m_comm, forest, m_config);
+    m_method = gravityMethod(m_config.method).make({*m_comm, forest, m_config});
     m_gridRefreshed = false;
     m_lastUpdated = false;
 }
@@ -267,7 +105,7 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
         m_ay.assign(n, 0.0);
         m_az.assign(n, 0.0);
         gravity::PointMasses const grains{m_x, m_y, m_z, m_m, m_r};
-        m_stats.potentialEnergy = m_method->evaluate(*m_comm, grains, {m_ax, m_ay, m_az});
+        m_stats.potentialEnergy = m_method->evaluate(grains, {m_ax, m_ay, m_az});
         // The policy keeps the field per uid for the steps until the next update.
         m_policy.markUpdated(m_uid, m_x, m_y, m_z, m_ax, m_ay, m_az);
         m_policy.adaptInterval(*m_comm);
@@ -336,7 +174,7 @@ void SelfGravityForces::refreshGridFields(particles::LocalParticles const& local
     m_ax.assign(n, 0.0);
     m_ay.assign(n, 0.0);
     m_az.assign(n, 0.0);
-    (void)m_method->evaluate(*m_comm, {m_x, m_y, m_z, m_m, m_r}, {m_ax, m_ay, m_az});
+    (void)m_method->evaluate({m_x, m_y, m_z, m_m, m_r}, {m_ax, m_ay, m_az});
     // The next update solves as it would have without this one (from zero, as after any
     // restart); the forces, the records and the statistics are untouched.
     m_method->resetInitialGuess();

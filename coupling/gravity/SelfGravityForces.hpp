@@ -1,10 +1,10 @@
 #pragma once
 /// Self-gravity on the DEM grains (docs/design.md, "The time step": "body forces:
 /// self-gravity if due"): gathers the masters of the local blocks, asks the update policy whether
-/// the field must be recomputed, evaluates it with the chosen method (direct sum, Barnes–Hut, the
-/// mutual tree, the mesh, P3M or the second paper's node methods) and adds m g to every
-/// master's force. Installed into
-/// particles::DemStep as its body forces.
+/// the field must be recomputed, evaluates it with the method of the registry named in the
+/// configuration (GravityMethod.hpp: direct sum, Barnes–Hut, the mutual tree, the mesh, P3M,
+/// the second paper's node methods, or one a program registered) and adds m g to every
+/// master's force. Installed into particles::DemStep as its body forces.
 #include "core/mpi/Comm.hpp"
 #include "coupling/gravity/ForceErrorMonitor.hpp"
 #include "domain/BlockForest.hpp"
@@ -14,6 +14,7 @@
 #include "particles/storage/Uid.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
+#include <any>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -24,19 +25,11 @@
 
 namespace regolith::coupling {
 
-/// The self-gravity methods the time step can use on the grains themselves.
-enum class GrainGravityMethod {
-    Direct,        ///< exact pairwise sum over all ranks (gravity/direct)
-    Tree,          ///< parallel Barnes–Hut with locally essential trees (gravity/tree)
-    MutualTree,    ///< momentum-conserving dual-tree walk, grains gathered on every rank
-    Mesh,          ///< particle-mesh: deposit, PETSc Poisson solve, interpolate (gravity/)
-    P3m,           ///< the mesh plus the short-range pair correction (P3mGravity.hpp)
-    OccupiedCells, ///< the second paper's nodes around occupied cells (gravity/baselines)
-    TreeNodes,     ///< the second paper's Barnes–Hut tree evaluated at those nodes
-};
+class GravityMethod;
 
 struct SelfGravityConfig {
-    GrainGravityMethod method = GrainGravityMethod::Direct;
+    /// gravity.self: a registered method's name (gravityMethodNames() in GravityMethod.hpp).
+    std::string method = "direct";
     double G = 6.674e-11;             ///< gravity.G [m^3 kg^-1 s^-2]
     double softening = 0.0;           ///< gravity.softening, Plummer length [m]
     double theta = 0.5;               ///< gravity.theta (tree methods)
@@ -47,7 +40,7 @@ struct SelfGravityConfig {
     /// each Poisson solve from zero, so that the field depends on the grains only, not on
     /// their storage order or the last solve: a restart, which has neither, repeats the bits.
     bool reproducible = false;
-    // Mesh only:
+    // The grid methods only (GravityMethodEntry::usesGrid):
     std::array<int, 3> cellsPerBlock{0, 0, 0};                      ///< domain.cells_per_block
     std::string petscOptions;                                       ///< gravity.petsc.options
     gravity::PoissonMethod poisson = gravity::PoissonMethod::Petsc; ///< gravity.poisson
@@ -55,9 +48,12 @@ struct SelfGravityConfig {
     double p3mCutoffCells = 4.0; ///< gravity.p3m_cutoff [cells] (P3M only)
     // Node methods (occupied-cells, tree-nodes) only; the node lattice starts at the domain's
     // minimum corner:
-    double gridSpacing = 0.0;   ///< gravity.grid_spacing, node distance [m] (> 0)
-    double neighbourhood = 0.0; ///< gravity.neighbourhood [m] (tree-nodes; >= 0)
-    ForceCheckSchedule check;   ///< gravity.check_every: the run's measured error
+    double gridSpacing = 0.0;    ///< gravity.grid_spacing, node distance [m] (> 0)
+    double neighbourhood = -1.0; ///< gravity.neighbourhood [m] (tree-nodes; < 0: grid_spacing)
+    ForceCheckSchedule check;    ///< gravity.check_every: the run's measured error
+    /// A registered method's own settings (GravityMethodEntry::readKeys reads them from the
+    /// scene; a program sets them itself); empty for the built-in methods.
+    std::any options;
 };
 
 /// What the run summary reports about self-gravity.
@@ -78,8 +74,9 @@ struct SelfGravityState {
 
 class SelfGravityForces {
 public:
-    /// Validates the options (core::InputError naming the gravity.* key, on every rank).
-    /// COLLECTIVE over `comm` (the methods duplicate it).
+    /// Validates the options (core::InputError naming the gravity.* key, on every rank; for an
+    /// unknown config.method, listing the registered ones). COLLECTIVE over `comm` (the
+    /// methods duplicate it); `comm` outlives the object.
     SelfGravityForces(core::Comm const& comm, domain::BlockForest const& forest,
                       SelfGravityConfig const& config);
     ~SelfGravityForces();
@@ -134,7 +131,6 @@ public:
     [[nodiscard]] long long updateInterval() const { return m_policy.interval(); }
 
 private:
-    class Method;
     /// The local masters' uids, and with `state` their positions, masses and radii.
     void gather(particles::LocalParticles const& local, bool state);
     /// The grains of a step and the field the integrator gave them (a check's input).
@@ -146,7 +142,7 @@ private:
 
     core::Comm const* m_comm;
     SelfGravityConfig m_config; ///< reproducible: each update from the masters in uid order
-    std::unique_ptr<Method> m_method;
+    std::unique_ptr<GravityMethod> m_method;
     gravity::UpdatePolicy m_policy;
     SelfGravityStats m_stats;
     bool m_gridRefreshed = false; ///< refreshGridFields computed the grid fields

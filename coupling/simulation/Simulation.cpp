@@ -2,6 +2,7 @@
 
 #include "core/Error.hpp"
 #include "coupling/balance/BlockWeights.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
 #include "particles/integration/TimeStepGuard.hpp"
 
 #include <fmt/format.h>
@@ -19,8 +20,7 @@ namespace regolith::coupling {
 namespace {
 
 bool usesGrid(std::optional<SelfGravityConfig> const& gravity) {
-    return gravity && (gravity->method == GrainGravityMethod::Mesh ||
-                       gravity->method == GrainGravityMethod::P3m);
+    return gravity && gravityMethod(gravity->method).usesGrid;
 }
 
 } // namespace

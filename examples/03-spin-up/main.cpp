@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
         particles::MaterialTable<particles::LinearContactParams>(1, contact));
     setup.dem.dt = 1e-3; // t_c / 25
     coupling::SelfGravityConfig gravity;
-    gravity.method = coupling::GrainGravityMethod::Tree;
+    gravity.method = "tree";
     gravity.G = kG;
     gravity.theta = 0.5;
     gravity.softening = kRadius;

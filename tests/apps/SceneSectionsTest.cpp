@@ -57,7 +57,7 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_FALSE(s.contact.neighbourSkin); // the default: relative to the radius
     EXPECT_EQ(parse({"contact.neighbour_skin=0.2"}).contact.neighbourSkin, 0.2);
     EXPECT_EQ(parse({"contact.neighbour_skin=0"}).contact.neighbourSkin, 0.0);
-    EXPECT_EQ(s.gravity.self, apps::SelfGravity::Tree);
+    EXPECT_EQ(s.gravity.self, "tree");
     EXPECT_EQ(s.gravity.external, core::Vec3(0, 0, -9.81));
     EXPECT_EQ(s.gravity.petscOptions, "-pc_type gamg");
     ASSERT_EQ(s.particles.size(), 4u);
@@ -107,7 +107,7 @@ TEST(SceneSections, DefaultsForOptionalSections) {
     EXPECT_FALSE(s.sync.reproducible);
     EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
     EXPECT_EQ(s.materials.of(0).stiffness, 1e4);
-    EXPECT_EQ(s.gravity.self, apps::SelfGravity::None);
+    EXPECT_EQ(s.gravity.self, "none");
     EXPECT_TRUE(s.particles.empty());
     EXPECT_EQ(s.output.dir, "out");
 }
@@ -119,7 +119,7 @@ TEST(SceneSections, DefaultSceneFileIsValid) {
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{4, 3, 2}));
     EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid);
     // The coupled default leaves the gravity method, its update threshold and dt to the driver.
-    EXPECT_EQ(s.gravity.self, apps::SelfGravity::Auto);
+    EXPECT_EQ(s.gravity.self, "auto");
     EXPECT_TRUE(s.gravity.thresholdAuto);
     EXPECT_TRUE(s.time.dtAuto);
     EXPECT_GT(s.output.vtkEvery, 0);

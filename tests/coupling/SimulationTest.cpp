@@ -43,7 +43,7 @@ coupling::SimulationSetup boxSetup(std::array<int, 3> blocks, bool selfGravity) 
     s.walls.add(Vec3::Zero(), Vec3::UnitZ());
     if (selfGravity) {
         coupling::SelfGravityConfig g;
-        g.method = coupling::GrainGravityMethod::Direct;
+        g.method = "direct";
         g.G = 0.5;
         g.reproducible = true;
         s.selfGravity = g;
