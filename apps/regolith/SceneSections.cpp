@@ -171,15 +171,21 @@ std::vector<std::string_view> selfNames(std::vector<std::string> const& methods)
     return names;
 }
 
-/// The registered methods a Plummer length applies to, as a message lists them.
-std::string softeningMethods() {
+/// The registered methods with `property`, quoted, the last after `conjunction`: "\"pm\" or
+/// \"p3m\"".
+std::string methodsWith(bool coupling::GravityMethodEntry::*property,
+                        std::string_view conjunction) {
     std::vector<std::string> names;
     for (std::string const& name : coupling::gravityMethodNames())
-        if (coupling::gravityMethod(name).softens)
+        if (coupling::gravityMethod(name).*property)
             names.push_back(fmt::format("\"{}\"", name));
     std::string out;
     for (std::size_t k = 0; k < names.size(); ++k)
-        out += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+        out += fmt::format("{}{}",
+                           k == 0                  ? ""
+                           : k + 1 == names.size() ? conjunction
+                                                   : ", ",
+                           names[k]);
     return out;
 }
 
@@ -234,7 +240,8 @@ GravitySection parseGravity(core::ConfigTable const& t) {
             t.fail("softening",
                    fmt::format("gravity.self = \"{}\" does not soften: a Plummer length "
                                "applies to {}; use one of those, or 0",
-                               s.self, softeningMethods()));
+                               s.self,
+                               methodsWith(&coupling::GravityMethodEntry::softens, " and ")));
         core::log::warn("{}: gravity.softening = {:g} does not apply to gravity.self = \"{}\" "
                         "({}), which does not soften: ignored",
                         t.location("softening"), s.softening, s.self, t.location("self"));
@@ -298,11 +305,12 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
         return;
     // Not the default (none): the key was written, so the section exists.
     root.findTable("gravity")->fail(
-        "self", fmt::format("\"{}\" sums the grains' gravity in free space, without periodic "
-                            "images, but domain.periodic makes {} periodic (grains across a "
-                            "periodic face would attract each other through the whole domain); "
-                            "use \"pm\" or \"p3m\" with every axis periodic, or an open domain",
-                            self, axes));
+        "self",
+        fmt::format("\"{}\" sums the grains' gravity in free space, without periodic "
+                    "images, but domain.periodic makes {} periodic (grains across a "
+                    "periodic face would attract each other through the whole domain); "
+                    "use {} with every axis periodic, or an open domain",
+                    self, axes, methodsWith(&coupling::GravityMethodEntry::periodic, " or ")));
 }
 
 /// Warns where a lattice entry fills a periodic axis whose extent is not a multiple of the

@@ -82,8 +82,9 @@ public:
         bool contacts = false;
     };
 
-    /// Keeps the settings, refusing (core::InputError) a missing contact model and a dt that is
-    /// not positive. Not collective; `comm` must outlive the object.
+    /// Keeps the settings, refusing (core::InputError) a missing contact model, a dt that is
+    /// not positive and a self-gravity method nobody registered (GravityMethod.hpp). Not
+    /// collective; `comm` must outlive the object.
     Simulation(core::Comm const& comm, SimulationSetup setup);
     /// The same with the grains already on their ranks, each rank its own masters in
     /// `placed.local` (setup.domain and setup.subdomains are then those of `placed`). The
