@@ -71,6 +71,13 @@ struct GravityMethodEntry {
     std::function<std::unique_ptr<GravityMethod>(GravityMethodInput const& input)> make;
 };
 
+/// GravityMethodEntry::make for a method built from the input alone:
+/// `.make = makeGravityMethod<MySum>`.
+template <class Method>
+[[nodiscard]] std::unique_ptr<GravityMethod> makeGravityMethod(GravityMethodInput const& input) {
+    return std::make_unique<Method>(input);
+}
+
 /// Adds a method to the registry, after the built-in ones. Throws core::Error for a name that
 /// is empty, "none", "auto" or registered already, or an entry without `make`. Call it alike
 /// on every rank, before the runs that use the method. Not collective.

@@ -25,7 +25,7 @@ GravityMethodEntry directSumMethod() {
     e.name = "direct";
     e.description = "exact pairwise sum over all ranks, O(N^2)";
     e.softens = true;
-    e.make = [](GravityMethodInput const& in) { return std::make_unique<DirectSumMethod>(in); };
+    e.make = makeGravityMethod<DirectSumMethod>;
     return e;
 }
 

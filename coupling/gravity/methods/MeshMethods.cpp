@@ -85,7 +85,7 @@ GravityMethodEntry particleMeshMethod() {
     e.description = "particle-mesh on the blocks' grid: deposit, Poisson solve, interpolate";
     e.usesGrid = true;
     e.periodic = true;
-    e.make = [](GravityMethodInput const& in) { return std::make_unique<ParticleMeshMethod>(in); };
+    e.make = makeGravityMethod<ParticleMeshMethod>;
     return e;
 }
 
@@ -96,7 +96,7 @@ GravityMethodEntry p3mMethod() {
     e.usesGrid = true;
     e.periodic = true;
     e.softens = true; // its near pairs
-    e.make = [](GravityMethodInput const& in) { return std::make_unique<P3mMethod>(in); };
+    e.make = makeGravityMethod<P3mMethod>;
     return e;
 }
 

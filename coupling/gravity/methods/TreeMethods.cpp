@@ -58,7 +58,7 @@ GravityMethodEntry barnesHutMethod() {
     e.description = "parallel Barnes-Hut with quadrupoles and locally essential trees";
     e.softens = true;
     e.usesTheta = true;
-    e.make = [](GravityMethodInput const& in) { return std::make_unique<BarnesHutMethod>(in); };
+    e.make = makeGravityMethod<BarnesHutMethod>;
     return e;
 }
 
@@ -68,7 +68,7 @@ GravityMethodEntry mutualTreeMethod() {
     e.description = "momentum-conserving dual-tree walk, grains gathered on every rank";
     e.softens = true;
     e.usesTheta = true;
-    e.make = [](GravityMethodInput const& in) { return std::make_unique<MutualTreeMethod>(in); };
+    e.make = makeGravityMethod<MutualTreeMethod>;
     return e;
 }
 
