@@ -52,8 +52,7 @@ public:
 
 /// A method as the registry knows it.
 struct GravityMethodEntry {
-    std::string name;        ///< its `gravity.self` value ("none" and "auto" are taken)
-    std::string description; ///< one line for the list of methods
+    std::string name; ///< its `gravity.self` value ("none" and "auto" are taken)
     /// It works on the blocks' cells (domain.cells_per_block, given in the config): their
     /// count weighs in the load balance and the run writes its grid fields.
     bool usesGrid = false;
@@ -72,7 +71,7 @@ struct GravityMethodEntry {
 };
 
 /// GravityMethodEntry::make for a method built from the input alone:
-/// `.make = makeGravityMethod<MySum>`.
+/// `e.make = makeGravityMethod<MySum>`.
 template <class Method>
 [[nodiscard]] std::unique_ptr<GravityMethod> makeGravityMethod(GravityMethodInput const& input) {
     return std::make_unique<Method>(input);

@@ -20,7 +20,6 @@ namespace {
 coupling::GravityMethodEntry sweepsMethod() {
     coupling::GravityMethodEntry e;
     e.name = "sweeps";
-    e.description = "a method of the test's own";
     e.softens = true;
     e.readKeys = [](core::ConfigTable const& gravity) -> std::any {
         return gravity.getOrIf<std::int64_t>(

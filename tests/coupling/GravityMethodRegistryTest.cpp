@@ -88,7 +88,6 @@ private:
 coupling::GravityMethodEntry pairwiseSumMethod() {
     coupling::GravityMethodEntry e;
     e.name = "pairwise-sum";
-    e.description = "every pair summed over the grains gathered on every rank (a test's own)";
     e.readKeys = [](core::ConfigTable const& gravity) -> std::any {
         PairwiseOptions o;
         o.batch = gravity.getOrIf<std::int64_t>(

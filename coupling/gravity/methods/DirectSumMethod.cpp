@@ -23,7 +23,6 @@ private:
 GravityMethodEntry directSumMethod() {
     GravityMethodEntry e;
     e.name = "direct";
-    e.description = "exact pairwise sum over all ranks, O(N^2)";
     e.softens = true;
     e.make = makeGravityMethod<DirectSumMethod>;
     return e;

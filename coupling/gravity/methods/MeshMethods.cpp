@@ -82,7 +82,6 @@ private:
 GravityMethodEntry particleMeshMethod() {
     GravityMethodEntry e;
     e.name = "pm";
-    e.description = "particle-mesh on the blocks' grid: deposit, Poisson solve, interpolate";
     e.usesGrid = true;
     e.periodic = true;
     e.make = makeGravityMethod<ParticleMeshMethod>;
@@ -92,7 +91,6 @@ GravityMethodEntry particleMeshMethod() {
 GravityMethodEntry p3mMethod() {
     GravityMethodEntry e;
     e.name = "p3m";
-    e.description = "the mesh plus the exact force of pairs within gravity.p3m_cutoff cells";
     e.usesGrid = true;
     e.periodic = true;
     e.softens = true; // its near pairs

@@ -9,7 +9,6 @@
 
 #include <string>
 #include <type_traits>
-#include <utility>
 
 namespace regolith::coupling {
 
@@ -53,10 +52,9 @@ private:
 };
 
 template <class Baseline>
-GravityMethodEntry nodeMethod(std::string name, std::string description) {
+GravityMethodEntry nodeMethod(std::string const& name) {
     GravityMethodEntry e;
     e.name = name;
-    e.description = std::move(description);
     e.usesTheta = std::is_same_v<Baseline, gravity::baselines::TreeAtNodes>;
     e.make = [name](GravityMethodInput const& in) {
         return std::make_unique<NodeMethod<Baseline>>(in, name);
@@ -67,13 +65,11 @@ GravityMethodEntry nodeMethod(std::string name, std::string description) {
 } // namespace
 
 GravityMethodEntry occupiedCellsMethod() {
-    return nodeMethod<gravity::baselines::OccupiedCells>(
-        "occupied-cells", "every grain summed at the nodes around the occupied cells");
+    return nodeMethod<gravity::baselines::OccupiedCells>("occupied-cells"); // every grain summed
 }
 
 GravityMethodEntry treeNodesMethod() {
-    return nodeMethod<gravity::baselines::TreeAtNodes>(
-        "tree-nodes", "a Barnes-Hut tree walked from the nodes around the occupied cells");
+    return nodeMethod<gravity::baselines::TreeAtNodes>("tree-nodes"); // a tree walked per node
 }
 
 } // namespace regolith::coupling

@@ -55,7 +55,6 @@ private:
 GravityMethodEntry barnesHutMethod() {
     GravityMethodEntry e;
     e.name = "tree";
-    e.description = "parallel Barnes-Hut with quadrupoles and locally essential trees";
     e.softens = true;
     e.usesTheta = true;
     e.make = makeGravityMethod<BarnesHutMethod>;
@@ -65,7 +64,6 @@ GravityMethodEntry barnesHutMethod() {
 GravityMethodEntry mutualTreeMethod() {
     GravityMethodEntry e;
     e.name = "mutual-tree";
-    e.description = "momentum-conserving dual-tree walk, grains gathered on every rank";
     e.softens = true;
     e.usesTheta = true;
     e.make = makeGravityMethod<MutualTreeMethod>;
