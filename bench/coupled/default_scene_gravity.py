@@ -13,7 +13,10 @@ machine is shared: the figures are medians over --repeats, with their range):
 usage: default_scene_gravity.py [--build build/default] [--out bench/out] [--ranks 1 2]
                                 [--repeats 3] [--steps 4000] [--stale 0.002 0.004 0.008]
                                 [--every 10 20 40] [--baseline-app PATH] [--only NAME ...]
-                                [--csv default_scene_gravity.csv]
+                                [--vtk] [--csv default_scene_gravity.csv]
+--vtk keeps the scene's VTK output (every 100 steps, as `make run` writes it); without it the
+runs write none. Each row has the time steps' wall time (the run summary's wall_s) and the
+whole process's (start-up and output included, process_s).
 Writes <out>/default_scene_gravity.csv (one row per run) and prints the medians.
 """
 import argparse
@@ -21,6 +24,7 @@ import csv
 import os
 import statistics
 import sys
+import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 from run_summary import run_app  # noqa: E402
@@ -51,19 +55,23 @@ def main():
     p.add_argument("--every", nargs="*", default=["10", "20", "40"])
     p.add_argument("--baseline-app", default="")
     p.add_argument("--only", nargs="*", default=[], help="run only these configurations")
+    p.add_argument("--vtk", action="store_true", help="keep the scene's VTK output")
     p.add_argument("--csv", default="default_scene_gravity.csv")
     args = p.parse_args()
     app = os.path.join(args.build, "bin", "regolith")
-    common = ["--steps", str(args.steps), "--set", "output.vtk_every=0"]
+    common = ["--steps", str(args.steps)] + ([] if args.vtk else ["--set", "output.vtk_every=0"])
     rows = []
     for repeat in range(args.repeats):
         for np in args.ranks:
             for name, exe, extra in configurations(args, app):
+                start = time.monotonic()
                 s = run_app(exe, np, [*common, *extra, "--output", os.path.join(args.out, "scene")])
+                process = time.monotonic() - start
                 g = s["gravity"]
                 error = g.get("error", {})
                 rows.append({"config": name, "ranks": np, "repeat": repeat,
-                             "wall_s": s["wall_s"], "gravity_s": s["timing_s"]["gravity"],
+                             "wall_s": s["wall_s"], "process_s": process,
+                             "gravity_s": s["timing_s"]["gravity"],
                              "gravity_share": s["timing_s"]["gravity"] / s["wall_s"],
                              "updates": g["updates"], "interval": g.get("interval", 0),
                              "error_median": error.get("median", float("nan")),
@@ -83,8 +91,10 @@ def main():
         for np in args.ranks:
             mine = [r for r in rows if r["config"] == name and r["ranks"] == np]
             wall = [r["wall_s"] for r in mine]
+            process = [r["process_s"] for r in mine]
             print(f"{name:11s} np{np}: wall {statistics.median(wall):.2f} s ({min(wall):.2f}-"
-                  f"{max(wall):.2f}), gravity "
+                  f"{max(wall):.2f}), process {statistics.median(process):.2f} s "
+                  f"({min(process):.2f}-{max(process):.2f}), gravity "
                   f"{100 * statistics.median(r['gravity_share'] for r in mine):.0f} %, updates "
                   f"{statistics.median(r['updates'] for r in mine):.0f}, median error "
                   f"{statistics.median(r['error_median'] for r in mine):.2g}, p99 "

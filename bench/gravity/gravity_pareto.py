@@ -11,7 +11,9 @@ diameter, particle-mesh
 (PETSc Poisson) at each cell spacing, and the update threshold (the tree's field kept until
 the fastest grain moved the threshold: error just before the update against the time per
 step, amortised). Extra points of the same shape (CSV with columns
-method,param,median_err,p99_err,time_s, e.g. P3M) join the Pareto chart with --extra.
+method,param,median_err,p99_err,time_s, e.g. P3M) join the Pareto chart with --extra; a method
+named "run: <policy>" is a whole coupled run (bench/coupled/agglomerates_policies.py): its
+error measured during the run, its time the gravity time per step, amortised (hollow).
 
 usage: gravity_pareto.py [--build build/default] [--out bench/out] [--instance agg11100|agg38358]
                          [--thetas ...] [--spacings ...] [--thresholds ...] [--target 1e-2]
@@ -43,6 +45,12 @@ STYLE = {
     "stale-tree": ("update threshold, tree (per step)", "P", "tab:purple", "δ/r"),
 }
 AMORTISED = ("stale-tree",)  # time per step, not per evaluation: not on the Pareto front
+
+
+def amortised(method):
+    """Whether a series' time is per step, amortised over updates (the update threshold, and
+    whole coupled runs from --extra, method "run: <policy>"), not per evaluation."""
+    return method in AMORTISED or method.startswith("run:")
 
 
 def error_floor(rows, key):
@@ -161,13 +169,13 @@ def chart_pareto(a, rows, plt):
             ax.plot(xs, ys, marker=marker, color=colour,
                     linestyle=line if len(g) > 1 and not labelled else "",
                     label=label, markersize=6,
-                    markerfacecolor="none" if method in AMORTISED else None)
+                    markerfacecolor="none" if amortised(method) else None)
             for r, x, y in zip(g, xs, ys):
                 if pname:
                     ax.annotate(param_text(r["param"]), (x, y), textcoords="offset points",
                                 xytext=(4, 3), fontsize=6.5, color=colour or "black")
         front = pareto_front([(r[a.time_key], max(r[key], floor)) for r in rows
-                              if r["method"] not in AMORTISED])
+                              if not amortised(r["method"])])
         if front:
             fx, fy = zip(*front)
             ax.step(fx, fy, where="post", color="grey", alpha=0.4, linewidth=4,
@@ -178,8 +186,8 @@ def chart_pareto(a, rows, plt):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(title)
-        ax.set_xlabel(f"{'CPU' if a.cpu else 'wall'} time per evaluation [s]; update threshold "
-                      "(hollow): per step, amortised", fontsize=8.5)
+        ax.set_xlabel(f"{'CPU' if a.cpu else 'wall'} time per evaluation [s]; hollow (update "
+                      "threshold, whole runs): per step, amortised", fontsize=8.5)
         ax.grid(True, which="both", alpha=0.25)
     axes[0].set_ylabel("relative force error against the direct sum")
     handles, labels = axes[0].get_legend_handles_labels()

@@ -154,8 +154,18 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
         sortByUid(ps, out);
 }
 
-void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
-                                 PeriodicFrame const& frame) {
+ContactDetector::ListOutlook ContactDetector::prepareList(ParticleStorage& ps,
+                                                          core::AABB const& region,
+                                                          PeriodicFrame const& frame) {
+    if (!listed() || m_config.sortByUid)
+        return {}; // detect uses no list
+    decideRebuild(ps, region, frame, kHalfway);
+    m_prepared = true;
+    return {m_rebuildDue, m_rebuildDue || m_list.moved() >= kHalfway * m_list.budget()};
+}
+
+void ContactDetector::decideRebuild(ParticleStorage& ps, core::AABB const& region,
+                                    PeriodicFrame const& frame, double share) {
     // The settled pairs (classifyListed) hold for one region and frame only.
     bool const sameFrame = region.min == m_listRegion.min && region.max == m_listRegion.max &&
                            frame.domain.min == m_listFrame.domain.min &&
@@ -166,17 +176,24 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
     if (!follows && m_springsLive)
         throw core::Error("contact detection: the storage changed beyond the Verlet list's "
                           "trace while it kept springs that were not written back");
-    std::size_t const listedBefore = m_list.numPairs();
+    m_listedBefore = m_list.numPairs();
     if (follows)
         forgetDeadFaceTwins(ps);
-    bool rebuild = !sameFrame || !follows ||
+    m_rebuildDue = !sameFrame || !follows ||
                    m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
-                   m_list.movedTooFar(ps, moved) || !addArrivals(ps, region, frame);
+                   m_list.movedTooFar(ps, moved, share) || !addArrivals(ps, region, frame);
+}
+
+void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
+                                 PeriodicFrame const& frame) {
+    if (!std::exchange(m_prepared, false))
+        decideRebuild(ps, region, frame, 1.0);
+    bool const rebuild = m_rebuildDue;
     if (rebuild) {
         writeBackSprings(ps); // while the list still follows the storage
         rebuildList(ps, region, frame);
     }
-    m_fillFrom = m_springsLive && !rebuild ? listedBefore : 0;
+    m_fillFrom = m_springsLive && !rebuild ? m_listedBefore : 0;
     m_stats.rebuilt = rebuild;
     m_stats.arrivals = rebuild ? 0 : m_fresh.size();
     m_stats.overlapsFound = 0;

@@ -175,6 +175,23 @@ public:
     /// a note the positions are compared. The bound must hold, or contacts go missing.
     void noteMotion(double distance) { m_movedAtMost = distance; }
 
+    /// Where the Verlet list stands before the next mutable detect (prepareList).
+    struct ListOutlook {
+        bool due = false;     ///< that detect rebuilds the list (the rules of the class comment)
+        bool halfway = false; ///< due, or some copy moved half the way to a rebuild
+    };
+    /// Optional, between noteMotion and the next mutable detect on `particles` (the same
+    /// region and frame): follows the storage's changes and decides whether that detect
+    /// rebuilds the list, which it then does; rebuildNext() makes it rebuild in any case. So
+    /// that the ranks can agree to rebuild their lists in the same step (DemStep): a rebuild
+    /// costs as much as ten steps of the list, and a rank that rebuilds alone keeps the others
+    /// waiting at the next exchange. Without a list (no skin, sortByUid) nothing is decided
+    /// ({false, false}). Not collective.
+    ListOutlook prepareList(ParticleStorage& particles, core::AABB const& evaluationRegion,
+                            PeriodicFrame const& frame);
+    /// After prepareList: the next detect rebuilds the list (the contacts are the same).
+    void rebuildNext() { m_rebuildDue = m_prepared; }
+
     /// Before a synchronisation after which noteMotion(movedAtMost) will be called: writes the
     /// kept springs back to the histories of `particles` if a copy may then have moved skin / 2
     /// (it may migrate or wrap in that synchronisation). Not collective.
@@ -214,9 +231,16 @@ private:
     };
 
     [[nodiscard]] bool listed() const { return m_config.skin > 0.0 || m_config.relativeSkin > 0.0; }
-    /// Follows the storage's changes, adds the arrivals' pairs or rebuilds the list.
+    /// Follows the storage's changes, adds the arrivals' pairs or rebuilds the list (as
+    /// prepareList decided, if it was called).
     void updateList(ParticleStorage& particles, core::AABB const& region,
                     PeriodicFrame const& frame);
+    /// updateList's decision: follows the storage, adds the arrivals' pairs, sets m_rebuildDue;
+    /// the positions are compared from `share` x the skin budget on (VerletList::movedTooFar).
+    void decideRebuild(ParticleStorage& particles, core::AABB const& region,
+                       PeriodicFrame const& frame, double share);
+    /// prepareList's "halfway": a copy moved this share of the way to a rebuild.
+    static constexpr double kHalfway = 0.5;
     /// Settles the listed pairs from the `first`-th on (see the class comment).
     void classifyListed(ParticleStorage const& particles, core::AABB const& region,
                         PeriodicFrame const& frame, std::size_t first);
@@ -314,11 +338,14 @@ private:
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)
     double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect
-    core::AABB m_listRegion;    ///< the region the list's pairs were settled for
-    PeriodicFrame m_listFrame;  ///< and the frame
-    bool m_springsLive = false; ///< the kept springs hold what the histories lack
-    std::size_t m_fillFrom = 0; ///< the first pair whose kept spring the next pass fills
-    std::uint32_t m_pass = 0;   ///< the pass of the last detect that kept springs
+    bool m_prepared = false;        ///< prepareList decided for the next detect
+    bool m_rebuildDue = false;      ///< the next (or this) detect rebuilds the list
+    std::size_t m_listedBefore = 0; ///< pairs listed before this detect's arrivals
+    core::AABB m_listRegion;        ///< the region the list's pairs were settled for
+    PeriodicFrame m_listFrame;      ///< and the frame
+    bool m_springsLive = false;     ///< the kept springs hold what the histories lack
+    std::size_t m_fillFrom = 0;     ///< the first pair whose kept spring the next pass fills
+    std::uint32_t m_pass = 0;       ///< the pass of the last detect that kept springs
 };
 
 // ---- templates ------------------------------------------------------------------------------

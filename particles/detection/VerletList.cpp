@@ -102,20 +102,20 @@ double boundAfter(double moved, double movedAtMost) {
 }
 } // namespace
 
-bool VerletList::mayMoveTooFar(double movedAtMost) const {
+bool VerletList::mayMoveTooFar(double movedAtMost, double share) const {
     // Within skin / 2 of the true reference if within skin / 2 - slack of the stored one.
-    double const half = 0.5 * m_skin - m_referenceSlack;
+    double const half = budget();
     // The bound is on the true positions; the slack also covers a shadow's rounding when its
     // master's position is shifted by a period (a few ulps, not growing with the steps), and
     // the relative 1e-9 the rounding of the sum.
-    return !(half > 0.0) || !(boundAfter(m_moved, movedAtMost) * (1.0 + 1e-9) < half);
+    return !(half > 0.0) || !(boundAfter(m_moved, movedAtMost) * (1.0 + 1e-9) < share * half);
 }
 
-bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost) {
-    double const half = 0.5 * m_skin - m_referenceSlack;
+bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost, double share) {
+    double const half = budget();
     if (!(half > 0.0))
         return true;
-    bool const compare = mayMoveTooFar(movedAtMost);
+    bool const compare = mayMoveTooFar(movedAtMost, share);
     m_moved = boundAfter(m_moved, movedAtMost);
     if (!compare)
         return false;

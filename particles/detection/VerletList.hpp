@@ -129,12 +129,19 @@ public:
     /// not finite): the list may then miss a pair and must be rebuilt. `movedAtMost` bounds
     /// every copy's displacement since the last call (+inf if unknown): the bounds add up
     /// (triangle inequality), and only once their sum reaches skin / 2 are the positions
-    /// compared, O(N), which resets the sum to the largest displacement found. Pre: follow()
-    /// true.
-    [[nodiscard]] bool movedTooFar(ParticleStorage const& ps, double movedAtMost);
+    /// compared, O(N), which resets the sum to the largest displacement found. With `share`
+    /// < 1 they are compared once the sum reaches share x skin / 2 (so that moved() tells how
+    /// far the list has used its skin). Pre: follow() true.
+    [[nodiscard]] bool movedTooFar(ParticleStorage const& ps, double movedAtMost,
+                                   double share = 1.0);
     /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
     /// may then be skin / 2 or more from its reference position.
-    [[nodiscard]] bool mayMoveTooFar(double movedAtMost) const;
+    [[nodiscard]] bool mayMoveTooFar(double movedAtMost, double share = 1.0) const;
+    /// The bound on every copy's distance from its reference after the last movedTooFar (the
+    /// largest distance found if it compared the positions) [length].
+    [[nodiscard]] double moved() const { return m_moved; }
+    /// The distance at which movedTooFar reports a rebuild: skin / 2 less the reference slack.
+    [[nodiscard]] double budget() const { return 0.5 * m_skin - m_referenceSlack; }
 
     [[nodiscard]] static Id idOf(ParticleStorage const& ps, std::size_t index) {
         return ps.traceTag(index);

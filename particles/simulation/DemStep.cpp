@@ -332,6 +332,25 @@ void DemStep::syncParticles() {
                               "DemStep step " + std::to_string(m_steps + 1), m_sync->config().skin);
 }
 
+void DemStep::agreeOnListRebuilds() {
+    if (m_comm->size() == 1)
+        return;
+    auto blocks = m_local->blocks();
+    int due = 0;
+    m_listHalfway.assign(blocks.size(), 0);
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        auto const outlook =
+            m_detectors[b].prepareList(blocks[b].particles, blocks[b].block->aabb, m_frame);
+        due = std::max(due, outlook.due ? 1 : 0);
+        m_listHalfway[b] = outlook.halfway ? 1 : 0;
+    }
+    if (m_comm->allReduce(due, core::ReduceOp::Max) == 0)
+        return;
+    for (std::size_t b = 0; b < blocks.size(); ++b)
+        if (m_listHalfway[b] != 0)
+            m_detectors[b].rebuildNext();
+}
+
 template <class Model, class Sink>
 void DemStep::evaluateBlock(std::size_t b, Model const& model, std::uint32_t stamp, bool keepPairs,
                             Sink&& sink) {
@@ -363,6 +382,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();
+        agreeOnListRebuilds();
         m_walls.moveTo(time());
         m_walls.resetForces();
         for (std::size_t b = 0; b < blocks.size(); ++b) {

@@ -240,6 +240,12 @@ private:
     void writeBackSprings();
     /// Detection, evaluation and reduction with stamp `stamp`. COLLECTIVE.
     void computeForces(std::uint32_t stamp);
+    /// On several ranks, before the detections: when some block's Verlet list is due for a
+    /// rebuild on some rank, every block whose list has used half its skin rebuilds it in this
+    /// step too (ContactDetector::prepareList). Lists that rebuild at their own steps keep
+    /// the other ranks waiting, in turns, at the force reduction; moving bodies use their
+    /// skins at similar rates, so after one common rebuild they stay in step. COLLECTIVE.
+    void agreeOnListRebuilds();
     /// Detection and evaluation of block b's contacts with `model`, each participant's share
     /// handed to `sink` (ContactSink). Not collective.
     template <class Model, class Sink>
@@ -256,6 +262,7 @@ private:
     core::TimerTree* m_timers;
     PeriodicFrame m_frame;
     std::vector<ContactDetector> m_detectors;        ///< one per local block
+    std::vector<char> m_listHalfway;                 ///< agreeOnListRebuilds, per block
     std::vector<ContactList> m_contacts;             ///< one per local block
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
     std::unique_ptr<SpringDashpotBatch> m_batch;     ///< the spring-dashpot lanes, reused

@@ -371,3 +371,72 @@ TEST(DemStep, RejectsABadTimeStep) {
                      core::Error);
     }
 }
+
+namespace {
+
+/// Grains of radius 0.2 at {1, 3, 5, 7}^3 in a periodic [0, 8]^3 of 2 x 2 x 2 blocks, moving
+/// along y at speed(rank that holds them) for 150 steps (at most 0.3: none leaves its block, no
+/// contacts); `rebuilt(step, yes)` is called after every step with whether this rank's lists
+/// were rebuilt in it. Returns this rank's list rebuilds after the set-up's. COLLECTIVE.
+template <class Speed, class OnStep>
+std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& rebuilt) {
+    domain::ForestSpec spec;
+    spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
+    spec.rootBlocks = {2, 2, 2};
+    spec.periodic = {true, true, true};
+    domain::BlockForest const forest(comm, spec);
+    LocalParticles local(forest);
+    Uid uid = 0;
+    for (double x = 1.0; x < 8.0; x += 2.0)
+        for (double y = 1.0; y < 8.0; y += 2.0)
+            for (double z = 1.0; z < 8.0; z += 2.0)
+                local.addMaster(grain(uid++, {x, y, z}, {0.0, speed(comm.rank()), 0.0}, 0.2));
+    ParticleSync sync(comm, forest, SyncConfig{});
+    core::TimerTree timers;
+    DemStepConfig c;
+    c.dt = kDt;
+    DemStep dem(comm, sync, local, model(), VelocityVerlet{}, WallList{}, c, timers);
+    dem.setUp();
+    std::uint64_t const setUp = dem.listRebuilds();
+    for (int n = 0; n < 150; ++n) {
+        std::uint64_t const before = dem.listRebuilds();
+        dem.step();
+        rebuilt(n + 1, dem.listRebuilds() > before);
+    }
+    return dem.listRebuilds() - setUp;
+}
+
+} // namespace
+
+TEST(DemStep, ListsOfMovingBodiesRebuildInTheSameStep) {
+    // Each rank's grains move at their own speed (1 or 0.75): the slower lists have used three
+    // quarters of their skin when the faster are due, so every rank rebuilds in that step
+    // (DemStep::agreeOnListRebuilds), not in turns that keep the others waiting.
+    core::Comm const world;
+    int disagreements = 0;
+    std::uint64_t const rebuilds = runMovingLattice(
+        world, [](int rank) { return rank % 2 == 0 ? 1.0 : 0.75; },
+        [&](int step, bool rebuilt) {
+            int const here = rebuilt ? 1 : 0;
+            if (world.allReduce(here, core::ReduceOp::Min) !=
+                world.allReduce(here, core::ReduceOp::Max)) {
+                ++disagreements;
+                ADD_FAILURE() << "step " << step << ": rank " << world.rank() << " rebuilt "
+                              << rebuilt;
+            }
+        });
+    EXPECT_EQ(disagreements, 0);
+    EXPECT_GE(rebuilds, 2u) << "the lists must be rebuilt while moving for the test to mean much";
+}
+
+TEST(DemStep, ListsAtRestAreNotRebuiltForOthers) {
+    // Only rank 0's grains move: the other ranks' lists, which used none of their skin, keep
+    // their set-up's list however often rank 0 rebuilds.
+    core::Comm const world;
+    std::uint64_t const rebuilds = runMovingLattice(
+        world, [](int rank) { return rank == 0 ? 1.0 : 0.0; }, [](int, bool) {});
+    if (world.rank() == 0)
+        EXPECT_GE(rebuilds, 2u);
+    else
+        EXPECT_EQ(rebuilds, 0u);
+}
