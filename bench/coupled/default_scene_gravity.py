@@ -74,6 +74,7 @@ def main():
                              "gravity_s": s["timing_s"]["gravity"],
                              "gravity_share": s["timing_s"]["gravity"] / s["wall_s"],
                              "updates": g["updates"], "interval": g.get("interval", 0),
+                             "list_rebuilds": s["neighbour_list"]["rebuilds"],
                              "error_median": error.get("median", float("nan")),
                              "error_p99": error.get("p99", float("nan"))})
                 r = rows[-1]
