@@ -184,7 +184,7 @@ public:
     /// region and frame): follows the storage's changes and decides whether that detect
     /// rebuilds the list, which it then does; rebuildNext() makes it rebuild in any case. So
     /// that the ranks can agree to rebuild their lists in the same step (DemStep): a rebuild
-    /// costs as much as ten steps of the list, and a rank that rebuilds alone keeps the others
+    /// costs about eight steps of the list, and a rank that rebuilds alone keeps the others
     /// waiting at the next exchange. Without a list (no skin, sortByUid) nothing is decided
     /// ({false, false}). Not collective.
     ListOutlook prepareList(ParticleStorage& particles, core::AABB const& evaluationRegion,
