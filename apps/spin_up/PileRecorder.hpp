@@ -1,0 +1,89 @@
+#pragma once
+/// What the rubble-pile app adds to a run: the body forces of [spin_up] and [flyby] and an
+/// observer recording the pile to a CSV file ([pile]). The pile's scales (its mass, centre,
+/// bulk radius and critical spin omega_c) are measured in the first force computation, from
+/// the grains gathered in uid order, so the same bits feed the forces on any rank count.
+///
+/// CSV columns: time, spin (about the spin-up axis, z without [spin_up]) and spin / omega_c,
+/// the equivalent ellipsoid's semi-axes a >= b >= c, the fraction of the initial mass shed
+/// (beyond pile.radius initial bulk radii of the pile's centre, or gone from the domain), the
+/// largest remnant's fraction and the number of clusters (friends-of-friends), and with
+/// [flyby] the perturber's distance in Roche radii.
+#include "apps/spin_up/RubblePileSections.hpp"
+#include "apps/spin_up/TidalFlyby.hpp"
+#include "core/mpi/Comm.hpp"
+#include "particles/sync/BlockParticles.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+namespace regolith::apps {
+
+/// The pile's scales at the start.
+struct PileReference {
+    double mass = 0.0;
+    core::Vec3 centre = core::Vec3::Zero();
+    double bulkRadius = 0.0;
+    double omegaC = 0.0; ///< sqrt(4 pi G rho_bulk / 3)
+    double spin = 0.0;   ///< about the axis [rad/time]
+    double meanGrainRadius = 0.0;
+};
+
+/// One record of the pile.
+struct PileRecord {
+    double time = 0.0;
+    double spin = 0.0;
+    std::array<double, 3> axes{0.0, 0.0, 0.0};
+    double shedFraction = 0.0;
+    double remnantFraction = 0.0;
+    std::size_t clusters = 0;
+};
+
+class PileRecorder {
+public:
+    /// `G` the self-gravity's constant, `dt` the time step. Opens nothing yet.
+    PileRecorder(core::Comm const& comm, RubblePileScene scene, double G, double dt);
+    ~PileRecorder();
+    PileRecorder(PileRecorder const&) = delete;
+    PileRecorder& operator=(PileRecorder const&) = delete;
+
+    /// The body forces at the next force computation (the first measures the pile, checks the
+    /// spin-up rate and opens the CSV: COLLECTIVE, InputError on every rank).
+    void addForces(particles::LocalParticles& grains);
+    /// Measures and records the pile at `time` (rank 0 writes the row). COLLECTIVE.
+    PileRecord record(particles::LocalParticles const& grains, double time);
+
+    [[nodiscard]] std::int64_t recordEvery() const { return m_scene.pile.recordEvery; }
+    [[nodiscard]] PileReference const& reference() const { return m_reference; }
+    /// The spin / omega_c at the first record with mass shed; nullopt before.
+    [[nodiscard]] std::optional<double> sheddingOnset() const { return m_onset; }
+    /// The failure spin / omega_c: the highest spin recorded, once the spin has fallen 2 %
+    /// below it (a pile spun up by a steady torque turns slower only when its mass moves
+    /// outwards: it deforms or sheds); nullopt before.
+    [[nodiscard]] std::optional<double> failureSpin() const;
+    /// The fly-by's pass, once the pile is measured (with [flyby]).
+    [[nodiscard]] HyperbolicPass const* pass() const { return m_pass.get(); }
+
+private:
+    void measureReference(particles::LocalParticles const& grains);
+    [[nodiscard]] core::Vec3 axis() const;
+
+    core::Comm const* m_comm;
+    RubblePileScene m_scene;
+    double m_G;
+    double m_dt;
+    std::int64_t m_forceCalls = 0; ///< force computations so far: the time is calls * dt
+    PileReference m_reference;
+    core::Vec3 m_centre = core::Vec3::Zero(); ///< the pile's, at the last record
+    double m_rocheRadius = 0.0;
+    double m_flybyGM = 0.0;
+    std::unique_ptr<HyperbolicPass> m_pass;
+    std::optional<double> m_onset;
+    double m_peakSpin = 0.0; ///< the highest spin / omega_c recorded
+    bool m_fellFromPeak = false;
+    std::FILE* m_csv = nullptr;
+};
+
+} // namespace regolith::apps
