@@ -76,10 +76,16 @@ void PileRecorder::measureReference(particles::LocalParticles const& grains) {
     }
 }
 
+double PileRecorder::time() const {
+    return static_cast<double>(m_forceCalls - 1 - m_scene.pile.settleSteps) * m_dt;
+}
+
 void PileRecorder::addForces(particles::LocalParticles& grains) {
-    if (m_forceCalls == 0)
+    if (m_forceCalls++ < m_scene.pile.settleSteps)
+        return;
+    if (m_reference.mass == 0.0)
         measureReference(grains);
-    double const time = static_cast<double>(m_forceCalls++) * m_dt;
+    double const time = this->time();
     double const reach = m_scene.pile.radius * m_reference.bulkRadius;
     if (m_scene.spinUp) {
         SpinUpSection const& s = *m_scene.spinUp;
@@ -96,7 +102,10 @@ std::optional<double> PileRecorder::failureSpin() const {
     return m_fellFromPeak ? std::optional<double>(m_peakSpin) : std::nullopt;
 }
 
-PileRecord PileRecorder::record(particles::LocalParticles const& grains, double time) {
+std::optional<PileRecord> PileRecorder::record(particles::LocalParticles const& grains) {
+    if (m_reference.mass == 0.0)
+        return std::nullopt;
+    double const time = this->time();
     std::vector<MasterRecord> const all = gatherMastersByUid(*m_comm, grains);
     double const radius = m_scene.pile.radius * m_reference.bulkRadius;
     PileMeasures const p = measurePile(all, m_centre, radius, axis());

@@ -49,11 +49,13 @@ public:
     PileRecorder(PileRecorder const&) = delete;
     PileRecorder& operator=(PileRecorder const&) = delete;
 
-    /// The body forces at the next force computation (the first measures the pile, checks the
-    /// spin-up rate and opens the CSV: COLLECTIVE, InputError on every rank).
+    /// The body forces at the next force computation (none while the pile settles; the first
+    /// after it measures the pile, checks the spin-up rate and opens the CSV: COLLECTIVE,
+    /// InputError on every rank).
     void addForces(particles::LocalParticles& grains);
-    /// Measures and records the pile at `time` (rank 0 writes the row). COLLECTIVE.
-    PileRecord record(particles::LocalParticles const& grains, double time);
+    /// Measures and records the pile (rank 0 writes the row); nullopt while it settles.
+    /// COLLECTIVE.
+    std::optional<PileRecord> record(particles::LocalParticles const& grains);
 
     [[nodiscard]] std::int64_t recordEvery() const { return m_scene.pile.recordEvery; }
     [[nodiscard]] PileReference const& reference() const { return m_reference; }
@@ -74,7 +76,8 @@ private:
     RubblePileScene m_scene;
     double m_G;
     double m_dt;
-    std::int64_t m_forceCalls = 0; ///< force computations so far: the time is calls * dt
+    std::int64_t m_forceCalls = 0;     ///< force computations so far (the first at time 0)
+    [[nodiscard]] double time() const; ///< of the last force computation, from the settling
     PileReference m_reference;
     core::Vec3 m_centre = core::Vec3::Zero(); ///< the pile's, at the last record
     double m_rocheRadius = 0.0;

@@ -26,6 +26,8 @@ PileSection parsePile(core::ConfigTable const& t) {
         "a finite number of initial bulk radii above 1");
     s.linkGap = t.getOrIf<double>("link_gap", s.linkGap, core::isNonNegativeFinite,
                                   "a non-negative finite number of mean grain radii");
+    s.settleSteps = t.getOrIf<std::int64_t>("settle_steps", s.settleSteps, core::isNonNegative,
+                                            "a non-negative number of steps");
     return s;
 }
 

@@ -18,6 +18,9 @@ struct PileSection {
     std::int64_t recordEvery = 100;       ///< pile.record_every [steps]
     double radius = 1.5;                  ///< pile.radius [initial bulk radii]: beyond it, shed
     double linkGap = 0.5; ///< pile.link_gap [mean grain radii]: friends-of-friends gap
+    /// pile.settle_steps: steps the pile settles under its own gravity before it is measured
+    /// and the spin-up or fly-by begins (time 0 of the record).
+    std::int64_t settleSteps = 0;
 };
 
 struct SpinUpSection {

@@ -99,7 +99,7 @@ SpinUpOutcome spinUp(int n, double rate, std::int64_t steps) {
     SpinUpOutcome out;
     sim.addBodyForces([&](particles::LocalParticles& g) { recorder.addForces(g); });
     sim.addObserver(recorder.recordEvery(), [&](coupling::Simulation& s) {
-        out.last = recorder.record(s.grains(), s.time());
+        out.last = recorder.record(s.grains()).value();
     });
     sim.start();
     sim.run(steps);
