@@ -1,0 +1,168 @@
+#!/usr/bin/python3
+"""Rubble-pile figures from the app spin_up (docs/guide/rubble-piles.md):
+
+  chart CSV [CSV ...]  draws a record of spin_up (pile.file): spin / omega_c, the equivalent
+                       ellipsoid's axes, the mass shed and the largest remnant against time,
+                       to CSV's name with .png
+  spin-up              runs scenes/spin-up.toml (or --scene) at each --rates, --repeats times,
+                       and prints the failure spin (the peak spin over omega_c) and the spin
+                       at which mass was first shed; writes <out>/spin_up_rates.csv and the
+                       first run's chart
+  flyby                runs scenes/flyby.toml at each --periapses (Roche radii) and draws the
+                       mass lost (1 - largest remnant) and the mass shed against periapsis:
+                       <out>/flyby.csv and <out>/flyby.png
+
+usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] |
+       flyby [--periapses 0.4 0.6 0.8 1.0 1.5]
+       [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MPI_ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def read_record(path):
+    """The record's header values (# key=value ...) and its rows as dicts of floats."""
+    with open(path, encoding="utf-8") as f:
+        header = dict(kv.split("=") for kv in f.readline()[1:].split())
+        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+    return {k: float(v) for k, v in header.items()}, rows
+
+
+def chart(path, title=None):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    header, rows = read_record(path)
+    t = [r["time"] for r in rows]
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=(6.4, 6.0))
+    top.plot(t, [r["spin_over_omega_c"] for r in rows], label="spin / omega_c")
+    top.axhline(1.0, color="grey", lw=0.8, ls="--")
+    if "perturber_distance" in rows[0]:
+        top.plot(t, [r["perturber_distance"] for r in rows], label="perturber distance [Roche radii]")
+    top.set_ylabel("spin / omega_c")
+    top.legend(loc="best")
+    twin = top.twinx()
+    for key, style in (("axis_a", "-"), ("axis_b", "--"), ("axis_c", ":")):
+        twin.plot(t, [r[key] / header["bulk_radius"] for r in rows], "k" + style, lw=0.8,
+                  label=key.replace("axis_", "") + " / R0")
+    twin.set_ylabel("semi-axes / initial bulk radius")
+    twin.legend(loc="lower right")
+    bottom.plot(t, [r["shed_fraction"] for r in rows], label="mass shed")
+    bottom.plot(t, [1.0 - r["remnant_fraction"] for r in rows], label="1 - largest remnant")
+    bottom.set_xlabel("time (from the end of the settling)")
+    bottom.set_ylabel("fraction of the initial mass")
+    bottom.legend(loc="best")
+    fig.suptitle(title or os.path.basename(path))
+    fig.tight_layout()
+    png = os.path.splitext(path)[0] + ".png"
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return png
+
+
+def run_app(args, scene, out, sets):
+    program = os.path.join(os.path.abspath(args.build), "bin", "spin_up")
+    if not os.path.exists(program):
+        sys.exit(f"{program} is missing: build first (make build)")
+    os.makedirs(out, exist_ok=True)
+    cmd = ["mpiexec", "--oversubscribe", "-n", str(args.ranks), program, scene, "--output", out]
+    for s in list(sets) + list(args.set):
+        cmd += ["--set", s]
+    result = subprocess.run(cmd, cwd=ROOT, env=MPI_ENV, capture_output=True, text=True,
+                            check=False)
+    open(os.path.join(out, "spin_up.log"), "w", encoding="utf-8").write(result.stdout +
+                                                                       result.stderr)
+    if result.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed:\n{result.stdout}{result.stderr}")
+    return result.stdout
+
+
+def spin(text, what):
+    m = re.search(what + r": ([0-9.]+) omega_c", text)
+    return float(m.group(1)) if m else float("nan")
+
+
+def spin_up(args):
+    scene = args.scene or os.path.join(ROOT, "scenes", "spin-up.toml")
+    rows = []
+    for rate in args.rates:
+        for k in range(args.repeats):
+            out = os.path.join(args.out, f"spin_up_rate{rate}_{k}")
+            text = run_app(args, scene, out, [f"spin_up.rate={rate}", "pile.file=spin_up.csv"])
+            rows.append({"rate": rate, "repeat": k,
+                         "failure_spin": spin(text, r"failure \(peak spin\)"),
+                         "shedding_spin": spin(text, "mass shed from")})
+            print(rows[-1], flush=True)
+            if args.chart:
+                chart(os.path.join(out, "spin_up.csv"), f"spin-up at {rate} omega_c^2")
+    with open(os.path.join(args.out, "spin_up_rates.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+def flyby(args):
+    scene = args.scene or os.path.join(ROOT, "scenes", "flyby.toml")
+    rows = []
+    for q in args.periapses:
+        out = os.path.join(args.out, f"flyby_q{q}")
+        run_app(args, scene, out, [f"flyby.periapsis={q}", "pile.file=flyby.csv"])
+        _, record = read_record(os.path.join(out, "flyby.csv"))
+        last = record[-1]
+        rows.append({"periapsis": q, "mass_lost": 1.0 - last["remnant_fraction"],
+                     "shed": last["shed_fraction"], "clusters": int(last["clusters"]),
+                     "final_distance": last["perturber_distance"]})
+        print(rows[-1], flush=True)
+    with open(os.path.join(args.out, "flyby.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    if args.chart:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(5.6, 3.8))
+        q = [r["periapsis"] for r in rows]
+        ax.plot(q, [r["mass_lost"] for r in rows], "o-", label="1 - largest remnant")
+        ax.plot(q, [r["shed"] for r in rows], "s--", label="beyond pile.radius")
+        ax.set_xlabel("periapsis [Roche radii]")
+        ax.set_ylabel("fraction of the pile's mass")
+        ax.set_title("rubble pile passing a point mass (scenes/flyby.toml)")
+        ax.legend(loc="best")
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, "flyby.png"), dpi=110)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("what", choices=["chart", "spin-up", "flyby"])
+    p.add_argument("csv", nargs="*", help="chart: the records to draw")
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "rubble_piles"))
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--scene")
+    p.add_argument("--rates", type=float, nargs="+", default=[0.02, 0.05])
+    p.add_argument("--repeats", type=int, default=1)
+    p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0, 1.5])
+    p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
+    p.add_argument("--no-chart", dest="chart", action="store_false")
+    args = p.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    if args.what == "chart":
+        for path in args.csv:
+            print(chart(path))
+    elif args.what == "spin-up":
+        spin_up(args)
+    else:
+        flyby(args)
+
+
+if __name__ == "__main__":
+    main()
