@@ -37,8 +37,11 @@ SpinUpSection parseSpinUp(core::ConfigTable const& t) {
         "axis", s.axis, [](core::Vec3 const& a) { return core::isFiniteVec3(a) && a.norm() > 0; },
         "a non-zero vector");
     s.axis = axis.normalized();
-    s.rate = t.getOrIf<double>("rate", s.rate, core::isPositiveFinite,
-                               "a positive finite spin-up rate [omega_c^2]");
+    s.rate = t.getOrIf<double>(
+        "rate", s.rate, [](double r) { return r > 0.0 && r <= kMaxRate; },
+        fmt::format("a spin-up rate in (0, {:g}] omega_c per dynamical time 1 / omega_c (faster, "
+                    "the pile is kicked rather than spun up)",
+                    kMaxRate));
     s.finalSpin = t.getOrIf<double>("final_spin", s.finalSpin, core::isPositiveFinite,
                                     "a positive finite spin [omega_c]");
     return s;

@@ -104,8 +104,9 @@ int runRubblePile(core::AppContext& ctx) {
         auto const spin = [](std::optional<double> s) {
             return s ? fmt::format("{:.3f} omega_c", *s) : std::string("not reached");
         };
-        fmt::print("failure (peak spin): {}; mass shed from: {}\n", spin(recorder.failureSpin()),
-                   spin(recorder.sheddingOnset()));
+        if (piles.spinUp)
+            fmt::print("failure (peak spin): {}; mass shed from: {}\n",
+                       spin(recorder.failureSpin()), spin(recorder.sheddingOnset()));
         fmt::print("at t = {:.6g}: spin {:.3f} omega_c, shed {:.4f}, largest remnant {:.4f} "
                    "({} clusters); record: {}\n",
                    last.time, last.spin / ref.omegaC, last.shedFraction, last.remnantFraction,

@@ -4,8 +4,10 @@
 #include "apps/spin_up/PileMeasures.hpp"
 #include "apps/spin_up/Remnants.hpp"
 #include "apps/spin_up/RubblePileSections.hpp"
+#include "apps/spin_up/SpinUpTorque.hpp"
 #include "apps/spin_up/TidalFlyby.hpp"
 #include "core/Error.hpp"
+#include "domain/BlockForest.hpp"
 
 #include <gtest/gtest.h>
 
@@ -28,6 +30,34 @@ MasterRecord grain(std::uint64_t uid, Vec3 const& x, double radius = 0.0, double
     g.mass = mass;
     return g;
 }
+
+/// Grains of mass 2 at `positions` as masters of a one-block forest, on this rank alone.
+struct OneBlock {
+    core::Comm comm{MPI_COMM_SELF};
+    domain::BlockForest forest;
+    particles::LocalParticles local;
+    explicit OneBlock(std::vector<Vec3> const& positions)
+        : forest(comm,
+                 [] {
+                     domain::ForestSpec s;
+                     s.domain = core::AABB{Vec3::Constant(-10.0), Vec3::Constant(10.0)};
+                     return s;
+                 }())
+        , local(forest) {
+        for (std::size_t k = 0; k < positions.size(); ++k) {
+            particles::ParticleInit p;
+            p.uid = k;
+            p.position = positions[k];
+            p.radius = 0.1;
+            p.mass = 2.0;
+            (void)local.addMaster(p);
+        }
+    }
+    Vec3 force(std::size_t k) const {
+        particles::ParticleStorage const& g = local.blocks()[0].particles;
+        return g.force(g.find(k));
+    }
+};
 
 } // namespace
 
@@ -102,29 +132,39 @@ TEST(TidalFlyby, RocheRadiusOfAFluidBody) {
 }
 
 TEST(SpinUpSection, ARateTheRunCannotFollowIsRefusedNamingTheKey) {
-    auto const root = core::ConfigTable::fromString(
-        "[spin_up]\nrate = 0.5\nfinal_spin = 1.2\n[flyby]\nmass = 1.0\n", "s.toml");
-    apps::RubblePileScene const scene = apps::parseRubblePileScene(root);
-    ASSERT_TRUE(scene.spinUp && scene.flyby);
+    auto const fast = core::ConfigTable::fromString("[spin_up]\nrate = 0.5\n", "s.toml");
     try {
-        apps::checkSpinUpRate(*scene.spinUp, 1.45, 1e-3);
+        (void)apps::parseRubblePileScene(fast);
         FAIL() << "a rate of 0.5 omega_c^2 was accepted";
     } catch (core::InputError const& e) {
         EXPECT_EQ(std::string(e.what()),
-                  "s.toml:2: spin_up.rate: 0.5 omega_c per dynamical time 1 / omega_c = 0.6897 "
-                  "is too fast for the pile to follow; expected at most 0.1");
+                  "s.toml:2: spin_up.rate: expected a spin-up rate in (0, 0.1] omega_c per "
+                  "dynamical time 1 / omega_c (faster, the pile is kicked rather than spun up), "
+                  "got 0.5");
     }
-    apps::SpinUpSection s = *scene.spinUp;
-    s.rate = 0.02;
-    EXPECT_NO_THROW(apps::checkSpinUpRate(s, 1.45, 1e-3));
+    auto const root = core::ConfigTable::fromString(
+        "[spin_up]\nrate = 0.02\nfinal_spin = 1.2\n[flyby]\nmass = 1.0\n", "s.toml");
+    apps::RubblePileScene const scene = apps::parseRubblePileScene(root);
+    ASSERT_TRUE(scene.spinUp && scene.flyby);
+    EXPECT_NO_THROW(apps::checkSpinUpRate(*scene.spinUp, 1.45, 1e-3));
     try {
-        apps::checkSpinUpRate(s, 1.45, 0.1);
+        apps::checkSpinUpRate(*scene.spinUp, 1.45, 0.1);
         FAIL() << "a turn of 0.17 rad per step was accepted";
     } catch (core::InputError const& e) {
         EXPECT_EQ(std::string(e.what()),
                   "s.toml:3: spin_up.final_spin: at 1.2 omega_c (omega_c = 1.45) the pile turns "
                   "0.174 rad per step of time.dt = 0.1, too coarse for its grains' orbits; "
                   "expected at most 0.02 rad per step: lower time.dt or the spin");
+    }
+    apps::SpinUpSection inCode; // made in code: the key without a location
+    inCode.rate = 0.5;
+    try {
+        apps::checkSpinUpRate(inCode, 1.45, 1e-3);
+        FAIL() << "a rate of 0.5 omega_c^2 was accepted";
+    } catch (core::InputError const& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "spin_up.rate: 0.5 omega_c per dynamical time 1 / omega_c = 0.6897 is too fast "
+                  "for the pile to follow; expected at most 0.1");
     }
 }
 
@@ -134,4 +174,28 @@ TEST(SpinUpSection, ASceneWithNothingDoneToThePileIsRefused) {
     auto const bad =
         core::ConfigTable::fromString("[flyby]\nmass = 1.0\neccentricity = 0.5\n", "s.toml");
     EXPECT_THROW((void)apps::parseRubblePileScene(bad), core::InputError);
+}
+
+TEST(TidalFlyby, TheFieldVanishesAtTheCentreAndStretchesAlongTheLineToThePerturber) {
+    // A perturber at distance D along x: to first order in d / D the tidal acceleration is
+    // G M (2 d_x, -d_y, -d_z) / D^3 (the quadrupole term).
+    Vec3 const c(1.0, -2.0, 0.5);
+    double const D = 1000.0, gm = 3.0e6, d = 0.5;
+    OneBlock pile({c, c + Vec3(d, 0, 0), c + Vec3(0, d, 0), c + Vec3(0, 0, -d)});
+    apps::addTidalForce(pile.local, c, c + Vec3(D, 0, 0), gm);
+    double const k = 2.0 * gm / (D * D * D); // mass 2 times G M / D^3
+    EXPECT_NEAR(pile.force(0).norm(), 0.0, 1e-12 * k);
+    EXPECT_NEAR(pile.force(1).x(), 2.0 * k * d, 2e-3 * k * d);
+    EXPECT_NEAR(pile.force(2).y(), -k * d, 2e-3 * k * d);
+    EXPECT_NEAR(pile.force(3).z(), k * d, 2e-3 * k * d);
+}
+
+TEST(SpinUpTorque, TurnsAboutTheAxisThroughTheCentreWithinTheReachOnly) {
+    Vec3 const c(1.0, 1.0, 1.0);
+    OneBlock pile({c + Vec3(2, 0, 0), c + Vec3(0, 0, 3), c + Vec3(0, -1, 0), c + Vec3(5, 0, 0)});
+    apps::addSpinUpTorque(pile.local, c, Vec3::UnitZ(), 0.5, 4.0);
+    EXPECT_NEAR((pile.force(0) - Vec3(0, 2.0 * 0.5 * 2, 0)).norm(), 0.0, 1e-15); // m alpha z x r
+    EXPECT_NEAR(pile.force(1).norm(), 0.0, 1e-15);                               // on the axis
+    EXPECT_NEAR((pile.force(2) - Vec3(2.0 * 0.5, 0, 0)).norm(), 0.0, 1e-15);
+    EXPECT_EQ(pile.force(3), Vec3::Zero()); // beyond the reach: shed, left alone
 }
