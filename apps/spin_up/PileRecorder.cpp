@@ -16,6 +16,13 @@ namespace regolith::apps {
 
 using core::Vec3;
 
+namespace {
+
+/// The drop below the peak spin [omega_c] that marks the peak as the failure spin.
+constexpr double kFailureDrop = 0.02;
+
+} // namespace
+
 PileRecorder::PileRecorder(core::Comm const& comm, RubblePileScene scene, double G, double dt)
     : m_comm(&comm)
     , m_scene(std::move(scene))
@@ -124,7 +131,7 @@ std::optional<PileRecord> PileRecorder::record(particles::LocalParticles const& 
         m_onset = spin;
     if (!m_fellFromPeak) {
         m_peakSpin = std::max(m_peakSpin, spin);
-        m_fellFromPeak = spin < 0.98 * m_peakSpin;
+        m_fellFromPeak = spin < m_peakSpin - kFailureDrop;
     }
     if (m_csv) {
         std::fprintf(m_csv, "%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu", r.time, r.spin,

@@ -61,8 +61,8 @@ public:
     [[nodiscard]] PileReference const& reference() const { return m_reference; }
     /// The spin / omega_c at the first record with mass shed; nullopt before.
     [[nodiscard]] std::optional<double> sheddingOnset() const { return m_onset; }
-    /// The failure spin / omega_c: the highest spin recorded, once the spin has fallen 2 %
-    /// below it (a pile spun up by a steady torque turns slower only when its mass moves
+    /// The failure spin / omega_c: the highest spin recorded, once the spin has fallen 0.02
+    /// omega_c below it (a pile spun up by a steady torque turns slower only when its mass moves
     /// outwards: it deforms or sheds); nullopt before.
     [[nodiscard]] std::optional<double> failureSpin() const;
     /// The fly-by's pass, once the pile is measured (with [flyby]).
