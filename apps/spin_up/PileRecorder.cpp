@@ -1,6 +1,7 @@
 #include "apps/spin_up/PileRecorder.hpp"
 
 #include "apps/spin_up/PileMeasures.hpp"
+#include "apps/spin_up/PileRecordFile.hpp"
 #include "apps/spin_up/PileRecords.hpp"
 #include "apps/spin_up/Remnants.hpp"
 #include "apps/spin_up/SpinUpTorque.hpp"
@@ -10,6 +11,8 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <string>
 #include <utility>
 
 namespace regolith::apps {
@@ -54,33 +57,72 @@ void PileRecorder::measureReference(particles::LocalParticles const& grains) {
         radii += g.radius;
     m_reference.meanGrainRadius = radii / static_cast<double>(all.size());
     m_centre = pile.centre;
+    adoptReference();
+    openRecord("w");
+    if (m_csv) {
+        PileReference const& r = m_reference;
+        std::fprintf(m_csv,
+                     "# mass=%.17g bulk_radius=%.17g omega_c=%.17g spin=%.17g centre_x=%.17g "
+                     "centre_y=%.17g centre_z=%.17g mean_grain_radius=%.17g\n"
+                     "time,spin,spin_over_omega_c,axis_a,axis_b,axis_c,shed_fraction,"
+                     "remnant_fraction,clusters,centre_x,centre_y,centre_z%s\n",
+                     r.mass, r.bulkRadius, r.omegaC, r.spin, r.centre.x(), r.centre.y(),
+                     r.centre.z(), r.meanGrainRadius, m_pass ? ",perturber_distance" : "");
+        std::fflush(m_csv);
+    }
+}
+
+void PileRecorder::adoptReference() {
     if (m_scene.spinUp)
         checkSpinUpRate(*m_scene.spinUp, m_reference.omegaC, m_dt);
     if (m_scene.flyby) {
         FlybySection const& f = *m_scene.flyby;
-        m_rocheRadius = rocheRadius(f.mass, pile.bulkDensity());
+        double const density =
+            m_reference.mass / (4.0 / 3.0 * std::numbers::pi * std::pow(m_reference.bulkRadius, 3));
+        m_rocheRadius = rocheRadius(f.mass, density);
         m_flybyGM = m_G * f.mass;
-        m_pass = std::make_unique<HyperbolicPass>(m_G * (f.mass + pile.mass),
+        m_pass = std::make_unique<HyperbolicPass>(m_G * (f.mass + m_reference.mass),
                                                   f.periapsis * m_rocheRadius, f.eccentricity,
                                                   f.startDistance * m_rocheRadius);
     }
+}
+
+void PileRecorder::openRecord(char const* mode) {
     bool opened = true;
     if (m_comm->rank() == 0) {
-        m_csv = std::fopen(m_scene.pile.file.c_str(), "w");
+        m_csv = std::fopen(m_scene.pile.file.c_str(), mode);
         opened = m_csv != nullptr;
     }
     if (!m_comm->allTrue(opened))
         throw core::InputError(
-            fmt::format("pile.file = \"{}\": cannot create the file", m_scene.pile.file));
-    if (m_csv) {
-        std::fprintf(m_csv,
-                     "# mass=%.17g bulk_radius=%.17g omega_c=%.17g roche_radius=%.17g\n"
-                     "time,spin,spin_over_omega_c,axis_a,axis_b,axis_c,shed_fraction,"
-                     "remnant_fraction,clusters%s\n",
-                     m_reference.mass, m_reference.bulkRadius, m_reference.omegaC, m_rocheRadius,
-                     m_pass ? ",perturber_distance" : "");
-        std::fflush(m_csv);
+            fmt::format("pile.file = \"{}\": cannot write the file", m_scene.pile.file));
+}
+
+void PileRecorder::resume(std::int64_t stepsDone) {
+    m_forceCalls = stepsDone + 1; // the next force computation is the next step's
+    if (stepsDone < m_scene.pile.settleSteps)
+        return;
+    // The record so far, from rank 0: the reference from its first line, the rows up to the
+    // checkpoint kept (the rest is written again), the last one's pile centre.
+    std::string text;
+    if (m_comm->rank() == 0)
+        text = readPileRecord(m_scene.pile.file);
+    m_comm->broadcast(text, 0);
+    double const until = static_cast<double>(stepsDone - m_scene.pile.settleSteps) * m_dt;
+    ResumedRecord const resumed = resumeRecord(text, until, m_scene.pile.file);
+    m_reference = resumed.reference;
+    m_centre = resumed.centre;
+    for (double spin : resumed.spins)
+        track(spin);
+    adoptReference();
+    if (m_comm->rank() == 0) {
+        std::FILE* out = std::fopen(m_scene.pile.file.c_str(), "w");
+        if (out) {
+            std::fputs(resumed.kept.c_str(), out);
+            std::fclose(out);
+        }
     }
+    openRecord("a");
 }
 
 double PileRecorder::time() const {
@@ -105,6 +147,20 @@ void PileRecorder::addForces(particles::LocalParticles& grains) {
                       m_flybyGM);
 }
 
+void PileRecorder::requireStep(std::int64_t stepsDone) const {
+    if (m_forceCalls != stepsDone + 1)
+        throw core::Error(fmt::format("the rubble-pile recorder counted {} force computations "
+                                      "after {} steps: its clock is off",
+                                      m_forceCalls, stepsDone));
+}
+
+void PileRecorder::track(double spin) {
+    if (m_fellFromPeak)
+        return;
+    m_peakSpin = std::max(m_peakSpin, spin);
+    m_fellFromPeak = spin < m_peakSpin - kFailureDrop;
+}
+
 std::optional<double> PileRecorder::failureSpin() const {
     return m_fellFromPeak ? std::optional<double>(m_peakSpin) : std::nullopt;
 }
@@ -126,17 +182,14 @@ std::optional<PileRecord> PileRecorder::record(particles::LocalParticles const& 
     r.shedFraction = std::max(0.0, 1.0 - p.mass / m_reference.mass);
     r.remnantFraction = remnant.mass / m_reference.mass;
     r.clusters = remnant.clusters;
-    double const spin = r.spin / m_reference.omegaC;
     if (!m_onset && r.shedFraction > 0.0)
-        m_onset = spin;
-    if (!m_fellFromPeak) {
-        m_peakSpin = std::max(m_peakSpin, spin);
-        m_fellFromPeak = spin < m_peakSpin - kFailureDrop;
-    }
+        m_onset = r.spin / m_reference.omegaC;
+    track(r.spin / m_reference.omegaC);
     if (m_csv) {
-        std::fprintf(m_csv, "%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu", r.time, r.spin,
-                     r.spin / m_reference.omegaC, r.axes[0], r.axes[1], r.axes[2], r.shedFraction,
-                     r.remnantFraction, r.clusters);
+        std::fprintf(m_csv, "%.9g,%.9g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.17g,%.17g,%.17g", r.time,
+                     r.spin, r.spin / m_reference.omegaC, r.axes[0], r.axes[1], r.axes[2],
+                     r.shedFraction, r.remnantFraction, r.clusters, m_centre.x(), m_centre.y(),
+                     m_centre.z());
         if (m_pass)
             std::fprintf(m_csv, ",%.6g",
                          (m_pass->position(time) - (m_centre - m_reference.centre)).norm() /
@@ -144,6 +197,7 @@ std::optional<PileRecord> PileRecorder::record(particles::LocalParticles const& 
         std::fprintf(m_csv, "\n");
         std::fflush(m_csv); // a long run can be watched
     }
+    m_last = r;
     return r;
 }
 

@@ -4,11 +4,13 @@
 /// bulk radius and critical spin omega_c) are measured in the first force computation, from
 /// the grains gathered in uid order, so the same bits feed the forces on any rank count.
 ///
-/// CSV columns: time, spin (about the spin-up axis, z without [spin_up]) and spin / omega_c,
-/// the equivalent ellipsoid's semi-axes a >= b >= c, the fraction of the initial mass shed
-/// (beyond pile.radius initial bulk radii of the pile's centre, or gone from the domain), the
-/// largest remnant's fraction and the number of clusters (friends-of-friends), and with
-/// [flyby] the perturber's distance in Roche radii.
+/// CSV (PileRecordFile.hpp): a first line with the reference, then the columns time, spin
+/// (about the spin-up axis, z without [spin_up]) and spin / omega_c, the equivalent
+/// ellipsoid's semi-axes a >= b >= c, the fraction of the initial mass shed (beyond
+/// pile.radius initial bulk radii of the pile's centre, or gone from the domain), the largest
+/// remnant's fraction and the number of clusters (friends-of-friends), the pile's centre, and
+/// with [flyby] the perturber's distance in Roche radii.
+#include "apps/spin_up/PileRecordFile.hpp"
 #include "apps/spin_up/RubblePileSections.hpp"
 #include "apps/spin_up/TidalFlyby.hpp"
 #include "core/mpi/Comm.hpp"
@@ -20,16 +22,6 @@
 #include <optional>
 
 namespace regolith::apps {
-
-/// The pile's scales at the start.
-struct PileReference {
-    double mass = 0.0;
-    core::Vec3 centre = core::Vec3::Zero();
-    double bulkRadius = 0.0;
-    double omegaC = 0.0; ///< sqrt(4 pi G rho_bulk / 3)
-    double spin = 0.0;   ///< about the axis [rad/time]
-    double meanGrainRadius = 0.0;
-};
 
 /// One record of the pile.
 struct PileRecord {
@@ -56,7 +48,17 @@ public:
     /// Measures and records the pile (rank 0 writes the row); nullopt while it settles.
     /// COLLECTIVE.
     std::optional<PileRecord> record(particles::LocalParticles const& grains);
+    /// Instead of the first force computation's measure, on a restart after `stepsDone` steps:
+    /// the pile's scales, centre and peak spin from the record written so far (pile.file),
+    /// whose rows after the checkpoint are dropped, to be written again. InputError (every
+    /// rank) if the record is missing or unreadable. COLLECTIVE.
+    void resume(std::int64_t stepsDone);
 
+    /// Throws core::Error unless the force computations counted so far are those of
+    /// `stepsDone` steps (the recorder's clock: time = force computations x dt).
+    void requireStep(std::int64_t stepsDone) const;
+    /// The last record made, if any.
+    [[nodiscard]] std::optional<PileRecord> const& lastRecord() const { return m_last; }
     [[nodiscard]] std::int64_t recordEvery() const { return m_scene.pile.recordEvery; }
     [[nodiscard]] PileReference const& reference() const { return m_reference; }
     /// The spin / omega_c at the first record with mass shed; nullopt before.
@@ -70,6 +72,12 @@ public:
 
 private:
     void measureReference(particles::LocalParticles const& grains);
+    /// What follows from the reference: the spin-up check, the fly-by's pass.
+    void adoptReference();
+    /// Opens pile.file on rank 0 ("w" or "a"); InputError on every rank if it cannot.
+    void openRecord(char const* mode);
+    /// Follows the peak spin (failureSpin).
+    void track(double spin);
     [[nodiscard]] core::Vec3 axis() const;
 
     core::Comm const* m_comm;
@@ -86,6 +94,7 @@ private:
     std::optional<double> m_onset;
     double m_peakSpin = 0.0; ///< the highest spin / omega_c recorded
     bool m_fellFromPeak = false;
+    std::optional<PileRecord> m_last;
     std::FILE* m_csv = nullptr;
 };
 

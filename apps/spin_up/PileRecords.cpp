@@ -1,6 +1,6 @@
 #include "apps/spin_up/PileRecords.hpp"
 
-#include "apps/regolith/TimeLoop.hpp"
+#include "apps/regolith/LoopSummary.hpp"
 
 #include <algorithm>
 #include <bit>

@@ -42,3 +42,13 @@ spin_up_app_test(unknown_key ARGS ${spin_up_scene} --set spin_up.rat=0.01 FAIL
 spin_up_app_test(flyby_small ARGS ${PROJECT_SOURCE_DIR}/scenes/flyby.toml
   --set particles.0.count=60 --set particles.0.radius=3.5 --set pile.settle_steps=100
   --set time.steps=300 STDOUT_HAS "fly-by: the pass takes" "largest remnant")
+# The record and the state continue bit for bit across a restart on another rank count.
+if(Python3_Interpreter_FOUND)
+  add_test(NAME spin_up.restart_equality
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/spin_up_restart.py
+                   --mpiexec ${REGOLITH_MPIEXEC} --app $<TARGET_FILE:spin_up>
+                   --scene ${PROJECT_SOURCE_DIR}/scenes/flyby.toml
+                   --out ${app_test_out}/spin_up_restart)
+  set_tests_properties(spin_up.restart_equality PROPERTIES ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                       LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+endif()
