@@ -92,6 +92,9 @@ SMALL = {
     "tutorial_figures.py": ["--pull-steps", "2000", "--spin-sites", "6", "--spin-steps", "600",
                             "--out", "{tmp}/bench/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
+    "rubble_piles.py": ["--ranks", "1", "--rates", "0.05", "--steps", "400", "--periapses", "1.0",
+                        "--set", "time.steps=400", "--set", "pile.settle_steps=100",
+                        "--set", "particles[0].count=60", "--out", "{tmp}/bench/out"],
 }
 # Options a program refuses to see twice (CLI11): small mode replaces their value in place.
 SMALL_REPLACE = {"regolith": {"--steps": "2"}}

@@ -12,7 +12,7 @@
                        mass lost (1 - largest remnant) and the mass shed against periapsis:
                        <out>/flyby.csv and <out>/flyby.png
 
-usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] |
+usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] [--steps N] |
        flyby [--periapses 0.4 0.6 0.8 1.0 1.5]
        [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
 """
@@ -85,7 +85,7 @@ def run_app(args, scene, out, sets):
 
 
 def spin(text, what):
-    m = re.search(what + r": ([0-9.]+) omega_c", text)
+    m = re.search(what + r" ([0-9.]+) omega_c", text)
     return float(m.group(1)) if m else float("nan")
 
 
@@ -95,10 +95,14 @@ def spin_up(args):
     for rate in args.rates:
         for k in range(args.repeats):
             out = os.path.join(args.out, f"spin_up_rate{rate}_{k}")
-            text = run_app(args, scene, out, [f"spin_up.rate={rate}", "pile.file=spin_up.csv"])
+            sets = [f"spin_up.rate={rate}", "pile.file=spin_up.csv"]
+            if args.steps:
+                sets.append(f"time.steps={args.steps}")
+            text = run_app(args, scene, out, sets)
             rows.append({"rate": rate, "repeat": k,
                          "failure_spin": spin(text, r"failure \(peak spin\)"),
-                         "shedding_spin": spin(text, "mass shed from")})
+                         "shedding_spin": spin(text, "mass shed from"),
+                         "omega_c": float(re.search(r"omega_c ([0-9.]+)", text).group(1))})
             print(rows[-1], flush=True)
             if args.chart:
                 chart(os.path.join(out, "spin_up.csv"), f"spin-up at {rate} omega_c^2")
@@ -150,6 +154,7 @@ def main():
     p.add_argument("--scene")
     p.add_argument("--rates", type=float, nargs="+", default=[0.02, 0.05])
     p.add_argument("--repeats", type=int, default=1)
+    p.add_argument("--steps", type=int, help="spin-up: time.steps (the scene's by default)")
     p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0, 1.5])
     p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
     p.add_argument("--no-chart", dest="chart", action="store_false")
