@@ -93,6 +93,7 @@ SMALL = {
                             "--out", "{tmp}/bench/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
     "rubble_piles.py": ["--ranks", "1", "--rates", "0.05", "--steps", "400", "--periapses", "1.0",
+                        "--grains", "100", "--cost-steps", "20", "40", "--repeats", "1",
                         "--set", "time.steps=400", "--set", "pile.settle_steps=100",
                         "--set", "particles[0].count=60", "--out", "{tmp}/bench/out"],
 }

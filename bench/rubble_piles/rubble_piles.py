@@ -8,11 +8,18 @@
                        and prints the failure spin (the peak spin over omega_c) and the spin
                        at which mass was first shed; writes <out>/spin_up_rates.csv and the
                        first run's chart
+  cost                 the CPU time per step of scenes/spin-up.toml scaled to --grains grains
+                       (a sphere packed to 0.24: radius 22.1 for 20,000), from runs of
+                       --cost-steps steps (the difference of a long and a short run, so the
+                       packing and set-up cancel), alternated --repeats times; prints the
+                       median and range, and the hours a spin-up of --estimate-steps takes at
+                       that cost on 2 cores
   flyby                runs scenes/flyby.toml at each --periapses (Roche radii) and draws the
                        mass lost (1 - largest remnant) and the mass shed against periapsis:
                        <out>/flyby.csv and <out>/flyby.png
 
 usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] [--steps N] |
+       cost [--grains 20000] [--cost-steps 200 600] [--estimate-steps 18000] |
        flyby [--periapses 0.4 0.6 0.8 1.0 1.5]
        [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
 """
@@ -20,6 +27,8 @@ import argparse
 import csv
 import os
 import re
+import resource
+import statistics
 import subprocess
 import sys
 
@@ -112,6 +121,36 @@ def spin_up(args):
         w.writerows(rows)
 
 
+def cpu_seconds(args, scene, out, sets):
+    """CPU time (user + system) of one run of the app, its ranks' summed."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    run_app(args, scene, out, sets)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def cost(args):
+    scene = args.scene or os.path.join(ROOT, "scenes", "spin-up.toml")
+    # Grains of radius 0.4-0.6 (mean r^3 = 0.13) at packing 0.24: 22.1 for 20,000.
+    radius = (args.grains * 0.13 / 0.24) ** (1.0 / 3.0)
+    edge = 4.0 * radius
+    base = [f"particles[0].count={args.grains}", f"particles[0].radius={radius:.6g}",
+            f"domain.min=[{-edge:.6g},{-edge:.6g},{-edge:.6g}]",
+            f"domain.max=[{edge:.6g},{edge:.6g},{edge:.6g}]", "pile.settle_steps=100",
+            "pile.record_every=100"]
+    short, long = args.cost_steps
+    per_step = []
+    for k in range(args.repeats):
+        cpu = {n: cpu_seconds(args, scene, os.path.join(args.out, f"cost{n}"),
+                              base + [f"time.steps={n}"]) for n in (short, long)}
+        per_step.append((cpu[long] - cpu[short]) / (long - short))
+        print(f"run {k}: {cpu}: {per_step[-1]:.4g} CPU-s per step", flush=True)
+    med = statistics.median(per_step)
+    print(f"{args.grains} grains, {args.ranks} ranks: {med:.4g} CPU-s per step (range "
+          f"{min(per_step):.4g}-{max(per_step):.4g}, {len(per_step)} pairs); "
+          f"{args.estimate_steps} steps on 2 cores: {args.estimate_steps * med / 2 / 3600:.3g} h")
+
+
 def flyby(args):
     scene = args.scene or os.path.join(ROOT, "scenes", "flyby.toml")
     rows = []
@@ -146,7 +185,7 @@ def flyby(args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("what", choices=["chart", "spin-up", "flyby"])
+    p.add_argument("what", choices=["chart", "spin-up", "cost", "flyby"])
     p.add_argument("csv", nargs="*", help="chart: the records to draw")
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "rubble_piles"))
@@ -155,6 +194,9 @@ def main():
     p.add_argument("--rates", type=float, nargs="+", default=[0.02, 0.05])
     p.add_argument("--repeats", type=int, default=1)
     p.add_argument("--steps", type=int, help="spin-up: time.steps (the scene's by default)")
+    p.add_argument("--grains", type=int, default=20000)
+    p.add_argument("--cost-steps", type=int, nargs=2, default=[200, 600])
+    p.add_argument("--estimate-steps", type=int, default=18000)
     p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0, 1.5])
     p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
     p.add_argument("--no-chart", dest="chart", action="store_false")
@@ -165,6 +207,8 @@ def main():
             print(chart(path))
     elif args.what == "spin-up":
         spin_up(args)
+    elif args.what == "cost":
+        cost(args)
     else:
         flyby(args)
 
