@@ -22,12 +22,14 @@ usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] 
        cost [--grains 20000] [--cost-steps 200 600] [--estimate-steps 18000] |
        flyby [--periapses 0.4 0.6 0.8 1.0 1.5]
        [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
+       [--images docs/images] [--no-chart]
 """
 import argparse
 import csv
 import os
 import re
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -114,7 +116,9 @@ def spin_up(args):
                          "omega_c": float(re.search(r"omega_c ([0-9.]+)", text).group(1))})
             print(rows[-1], flush=True)
             if args.chart:
-                chart(os.path.join(out, "spin_up.csv"), f"spin-up at {rate} omega_c^2")
+                png = chart(os.path.join(out, "spin_up.csv"), f"spin-up at {rate} omega_c^2")
+                if args.images and k == 0:
+                    shutil.copy(png, os.path.join(args.images, f"spin_up_rate{rate}.png"))
     with open(os.path.join(args.out, "spin_up_rates.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -181,6 +185,9 @@ def flyby(args):
         ax.legend(loc="best")
         fig.tight_layout()
         fig.savefig(os.path.join(args.out, "flyby.png"), dpi=110)
+        if args.images:
+            shutil.copy(os.path.join(args.out, "flyby.png"),
+                        os.path.join(args.images, "flyby_mass_lost.png"))
 
 
 def main():
@@ -200,8 +207,11 @@ def main():
     p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0, 1.5])
     p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
     p.add_argument("--no-chart", dest="chart", action="store_false")
+    p.add_argument("--images", help="a folder the charts are copied to too (docs/images)")
     args = p.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if args.images:
+        os.makedirs(args.images, exist_ok=True)
     if args.what == "chart":
         for path in args.csv:
             print(chart(path))
