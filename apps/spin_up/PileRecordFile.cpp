@@ -83,6 +83,7 @@ ResumedRecord resumeRecord(std::string_view text, double until, std::string cons
         return static_cast<std::size_t>(it - names.begin());
     };
     std::size_t const time = column("time"), spin = column("spin_over_omega_c");
+    std::size_t const shed = column("shed_fraction");
     std::size_t const cx = column("centre_x"), cy = column("centre_y"), cz = column("centre_z");
     out.kept = header + "\n" + columns + "\n";
     double const last = until * (1.0 + 1e-8) + 1e-12; // the rows' times have 9 digits
@@ -94,6 +95,8 @@ ResumedRecord resumeRecord(std::string_view text, double until, std::string cons
         if (number(cells[time], bad) > last)
             break;
         out.spins.push_back(number(cells[spin], bad));
+        if (!out.onset && number(cells[shed], bad) > 0.0)
+            out.onset = out.spins.back();
         out.centre =
             core::Vec3(number(cells[cx], bad), number(cells[cy], bad), number(cells[cz], bad));
         out.kept += line + "\n";

@@ -6,6 +6,7 @@
 /// (centre_x, centre_y, centre_z) among the columns.
 #include "core/math/Vec3.hpp"
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,7 @@ struct ResumedRecord {
     PileReference reference;
     core::Vec3 centre = core::Vec3::Zero(); ///< the pile's, at the last row kept
     std::vector<double> spins;              ///< spin / omega_c of the rows kept
+    std::optional<double> onset;            ///< that of the first kept row with mass shed
     std::string kept;                       ///< the header lines and the rows kept
 };
 

@@ -114,6 +114,7 @@ void PileRecorder::resume(std::int64_t stepsDone) {
     m_centre = resumed.centre;
     for (double spin : resumed.spins)
         track(spin);
+    m_onset = resumed.onset;
     adoptReference();
     if (m_comm->rank() == 0) {
         std::FILE* out = std::fopen(m_scene.pile.file.c_str(), "w");

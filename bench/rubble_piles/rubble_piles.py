@@ -20,7 +20,7 @@
 
 usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] [--steps N] |
        cost [--grains 20000] [--cost-steps 200 600] [--estimate-steps 18000] |
-       flyby [--periapses 0.4 0.6 0.8 1.0 1.5]
+       flyby [--periapses 0.4 0.6 0.8 1.0]
        [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
        [--images docs/images] [--no-chart]
 """
@@ -204,7 +204,7 @@ def main():
     p.add_argument("--grains", type=int, default=20000)
     p.add_argument("--cost-steps", type=int, nargs=2, default=[200, 600])
     p.add_argument("--estimate-steps", type=int, default=18000)
-    p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0, 1.5])
+    p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0])
     p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
     p.add_argument("--no-chart", dest="chart", action="store_false")
     p.add_argument("--images", help="a folder the charts are copied to too (docs/images)")

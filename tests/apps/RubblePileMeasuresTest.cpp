@@ -2,6 +2,7 @@
 // the friends-of-friends remnant, the hyperbolic pass, the tidal field and the spin-up
 // torque, and the spin-up rate's refusal.
 #include "apps/spin_up/PileMeasures.hpp"
+#include "apps/spin_up/PileRecordFile.hpp"
 #include "apps/spin_up/Remnants.hpp"
 #include "apps/spin_up/RubblePileSections.hpp"
 #include "apps/spin_up/SpinUpTorque.hpp"
@@ -198,4 +199,22 @@ TEST(SpinUpTorque, TurnsAboutTheAxisThroughTheCentreWithinTheReachOnly) {
     EXPECT_NEAR(pile.force(1).norm(), 0.0, 1e-15);                               // on the axis
     EXPECT_NEAR((pile.force(2) - Vec3(2.0 * 0.5, 0, 0)).norm(), 0.0, 1e-15);
     EXPECT_EQ(pile.force(3), Vec3::Zero()); // beyond the reach: shed, left alone
+}
+
+TEST(PileRecordFile, ARestartKeepsTheRowsUpToItsCheckpointAndTheReference) {
+    std::string const head = "# mass=2.5 bulk_radius=3 omega_c=1.25 spin=0.5 centre_x=1 centre_y=2 "
+                             "centre_z=3 mean_grain_radius=0.5\n"
+                             "time,spin_over_omega_c,shed_fraction,centre_x,centre_y,centre_z\n";
+    std::string const rows = "0,0.4,0,1,2,3\n0.5,0.6,0.01,1.5,2,3\n1,0.5,0.02,2,2,3\n";
+    apps::ResumedRecord const r = apps::resumeRecord(head + rows, 0.5, "p.csv");
+    EXPECT_EQ(r.reference.mass, 2.5);
+    EXPECT_EQ(r.reference.omegaC, 1.25);
+    EXPECT_EQ(r.reference.centre, Vec3(1, 2, 3));
+    EXPECT_EQ(r.reference.meanGrainRadius, 0.5);
+    EXPECT_EQ(r.centre, Vec3(1.5, 2, 3)); // the last kept row's
+    EXPECT_EQ(r.spins, (std::vector<double>{0.4, 0.6}));
+    EXPECT_EQ(r.onset, 0.6);
+    EXPECT_EQ(r.kept, head + "0,0.4,0,1,2,3\n0.5,0.6,0.01,1.5,2,3\n");
+    EXPECT_THROW((void)apps::resumeRecord("", 1.0, "p.csv"), core::InputError);
+    EXPECT_THROW((void)apps::resumeRecord("# mass=2\ntime\n", 1.0, "p.csv"), core::InputError);
 }
