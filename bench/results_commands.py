@@ -92,10 +92,11 @@ SMALL = {
     "tutorial_figures.py": ["--pull-steps", "2000", "--spin-sites", "6", "--spin-steps", "600",
                             "--out", "{tmp}/bench/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
-    "rubble_piles.py": ["--ranks", "1", "--rates", "0.05", "--steps", "400", "--periapses", "1.0",
-                        "--grains", "100", "--cost-steps", "20", "40", "--repeats", "1",
-                        "--set", "time.steps=400", "--set", "pile.settle_steps=100",
-                        "--set", "particles[0].count=60", "--out", "{tmp}/bench/out"],
+    "rubble_piles.py": ["--ranks", "1", "--rates", "0.05", "--steps", "150", "--periapses", "1.0",
+                        "--grains", "50", "--cost-steps", "10", "20", "--repeats", "1",
+                        "--set", "time.steps=150", "--set", "pile.settle_steps=50",
+                        "--set", "pile.record_every=50",
+                        "--set", "particles[0].count=30", "--out", "{tmp}/bench/out"],
 }
 # Options a program refuses to see twice (CLI11): small mode replaces their value in place.
 SMALL_REPLACE = {"regolith": {"--steps": "2"}}

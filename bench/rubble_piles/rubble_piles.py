@@ -18,9 +18,9 @@
                        mass lost (1 - largest remnant) and the mass shed against periapsis:
                        <out>/flyby.csv and <out>/flyby.png
 
-usage: rubble_piles.py chart CSV... | spin-up [--rates 0.02 0.05] [--repeats 1] [--steps N] |
+usage: rubble_piles.py chart CSV... | spin-up [--rates 0.05] [--repeats 1] [--steps N] |
        cost [--grains 20000] [--cost-steps 200 600] [--estimate-steps 18000] |
-       flyby [--periapses 0.4 0.6 0.8 1.0]
+       flyby [--periapses 0.4 0.5 0.6 0.8 1.0]
        [--build build/default] [--ranks 2] [--out bench/out/rubble_piles] [--set KEY=VALUE ...]
        [--images docs/images] [--no-chart]
 """
@@ -198,13 +198,13 @@ def main():
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "rubble_piles"))
     p.add_argument("--ranks", type=int, default=2)
     p.add_argument("--scene")
-    p.add_argument("--rates", type=float, nargs="+", default=[0.02, 0.05])
+    p.add_argument("--rates", type=float, nargs="+", default=[0.05])
     p.add_argument("--repeats", type=int, default=1)
     p.add_argument("--steps", type=int, help="spin-up: time.steps (the scene's by default)")
     p.add_argument("--grains", type=int, default=20000)
     p.add_argument("--cost-steps", type=int, nargs=2, default=[200, 600])
     p.add_argument("--estimate-steps", type=int, default=18000)
-    p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.6, 0.8, 1.0])
+    p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.5, 0.6, 0.8, 1.0])
     p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
     p.add_argument("--no-chart", dest="chart", action="store_false")
     p.add_argument("--images", help="a folder the charts are copied to too (docs/images)")
