@@ -1,8 +1,11 @@
 #pragma once
 /// What the rubble-pile app adds to a run: the body forces of [spin_up] and [flyby] and an
 /// observer recording the pile to a CSV file ([pile]). The pile's scales (its mass, centre,
-/// bulk radius and critical spin omega_c) are measured in the first force computation, from
-/// the grains gathered in uid order, so the same bits feed the forces on any rank count.
+/// bulk radius and critical spin omega_c) are measured in the first force computation after
+/// pile.settle_steps steps, from the grains gathered in uid order, so the same bits feed the
+/// forces on any rank count; a restart reads them back from the record (resume). The
+/// recorder's clock counts the force computations (one at the start, one a step): the time
+/// of the spin-up and of the fly-by's pass.
 ///
 /// CSV (PileRecordFile.hpp): a first line with the reference, then the columns time, spin
 /// (about the spin-up axis, z without [spin_up]) and spin / omega_c, the equivalent
