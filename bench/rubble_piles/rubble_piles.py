@@ -58,13 +58,13 @@ def chart(path, title=None):
     if "perturber_distance" in rows[0]:
         top.plot(t, [r["perturber_distance"] for r in rows], label="perturber distance [Roche radii]")
     top.set_ylabel("spin / omega_c")
-    top.legend(loc="best")
+    top.legend(loc="upper left")
     twin = top.twinx()
     for key, style in (("axis_a", "-"), ("axis_b", "--"), ("axis_c", ":")):
         twin.plot(t, [r[key] / header["bulk_radius"] for r in rows], "k" + style, lw=0.8,
                   label=key.replace("axis_", "") + " / R0")
     twin.set_ylabel("semi-axes / initial bulk radius")
-    twin.legend(loc="lower right")
+    twin.legend(loc="center left")
     bottom.plot(t, [r["shed_fraction"] for r in rows], label="mass shed")
     bottom.plot(t, [1.0 - r["remnant_fraction"] for r in rows], label="1 - largest remnant")
     bottom.set_xlabel("time (from the end of the settling)")
