@@ -45,7 +45,7 @@ coupling::SimulationSetup pileSetup(int n) {
         particles::MaterialTable<particles::LinearContactParams>(1, contact));
     setup.dem.dt = 1e-3; // t_c / 25
     coupling::SelfGravityConfig gravity;
-    gravity.method = coupling::GrainGravityMethod::Direct; // the same bits on any ranks
+    gravity.method = "direct"; // the same bits on any ranks
     gravity.G = 1.0;
     gravity.softening = kGrainRadius;
     gravity.reproducible = true;
