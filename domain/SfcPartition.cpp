@@ -11,23 +11,122 @@ namespace regolith::domain {
 
 namespace {
 
-/// Moves single elements across the cuts of `owner` while that relieves a part: the boundary
-/// element of the heavier of two neighbouring parts goes to the lighter one when the lighter
-/// then still weighs less than the heavier did. Each move lowers the sum of squared loads, and
-/// neither raises the largest load nor lowers the smallest, so the bound of partitionCurve
-/// holds; the moves stop where no single element can move (a local optimum of the cut).
-void relieveHeaviest(std::span<double const> weights, int parts, std::vector<int>& owner) {
+/// Sums of the weights over index ranges [s, e), from prefix sums: every range's load is
+/// computed the same way, so comparisons against a load taken from it are exact.
+class PrefixLoads {
+public:
+    explicit PrefixLoads(std::span<double const> weights)
+        : m_prefix(weights.size() + 1, 0.0) {
+        for (std::size_t i = 0; i < weights.size(); ++i)
+            m_prefix[i + 1] = m_prefix[i] + weights[i];
+    }
+    [[nodiscard]] std::size_t size() const { return m_prefix.size() - 1; }
+    [[nodiscard]] double load(std::size_t s, std::size_t e) const {
+        return m_prefix[e] - m_prefix[s];
+    }
+    /// The largest e >= s with load(s, e) <= bound (the load grows with e).
+    [[nodiscard]] std::size_t reach(std::size_t s, double bound) const {
+        std::size_t lo = s, hi = size(); // load(s, lo) <= bound holds for lo = s
+        while (lo < hi) {
+            std::size_t const mid = hi - (hi - lo) / 2;
+            if (load(s, mid) <= bound)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        return lo;
+    }
+    /// Whether [s, size()) splits into `parts` contiguous pieces each loading at most `bound`
+    /// (each piece as long as the bound allows: the greedy probe).
+    [[nodiscard]] bool fits(std::size_t s, std::size_t parts, double bound) const {
+        for (std::size_t k = 0; k < parts && s < size(); ++k)
+            s = reach(s, bound);
+        return s == size();
+    }
+
+private:
+    std::vector<double> m_prefix;
+};
+
+/// The least largest load of any cut of the sequence into `parts` contiguous pieces: Nicol's
+/// algorithm for chains-on-chains partitioning (D. M. Nicol, "Rectilinear partitioning of
+/// irregular data parallel computations", J. Parallel Distrib. Comput. 23, 1994; as stated by
+/// Pinar & Aykanat, J. Parallel Distrib. Comput. 64, 2004, Fig. 5). Piece p either is the
+/// shortest whose load lets the rest fit (then that load is a candidate) or one element
+/// shorter (then the bottleneck lies further on). O(parts^2 log^2 n).
+double leastBottleneck(PrefixLoads const& loads, int parts) {
+    std::size_t const n = loads.size();
     auto const P = static_cast<std::size_t>(parts);
-    std::vector<std::size_t> begin(P + 1, weights.size()); // part r: [begin[r], begin[r + 1])
-    std::vector<double> load(P, 0.0);
+    double best = loads.load(0, n);
+    std::size_t s = 0;
+    for (std::size_t p = 0; p + 1 < P && s < n; ++p) {
+        // The smallest e in (s, n] whose load lets [s, n) fit in the P - p pieces left.
+        std::size_t lo = s + 1, hi = n;
+        while (lo < hi) {
+            std::size_t const mid = lo + (hi - lo) / 2;
+            if (loads.fits(s, P - p, loads.load(s, mid)))
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        best = std::min(best, loads.load(s, lo));
+        s = lo - 1;
+        if (p + 2 == P) // the last piece
+            best = std::min(best, loads.load(s, n));
+    }
+    return best;
+}
+
+/// The start of every part of a contiguous `owner` (part r: [begin[r], begin[r + 1])).
+std::vector<std::size_t> beginsOf(std::vector<int> const& owner, int parts) {
+    auto const P = static_cast<std::size_t>(parts);
+    std::vector<std::size_t> begin(P + 1, owner.size());
     std::size_t i = 0;
     for (std::size_t r = 0; r < P; ++r) { // the first element of owner >= r
-        while (i < weights.size() && static_cast<std::size_t>(owner[i]) < r)
+        while (i < owner.size() && static_cast<std::size_t>(owner[i]) < r)
             ++i;
         begin[r] = i;
     }
-    for (std::size_t k = 0; k < weights.size(); ++k)
-        load[static_cast<std::size_t>(owner[k])] += weights[k];
+    return begin;
+}
+
+/// Cuts whose largest load is at most `bound` (which some cut reaches), each as near as the
+/// bound allows to the cut of `wanted`: cut r lies between the earliest start from which the
+/// parts after it fit and the farthest the part before it reaches. Where `wanted` already
+/// keeps to the bound it is returned unchanged.
+std::vector<std::size_t> cutsNear(PrefixLoads const& loads, double bound,
+                                  std::vector<std::size_t> const& wanted) {
+    if (wanted.size() < 3) // one part: nothing to cut
+        return wanted;
+    std::size_t const P = wanted.size() - 1;
+    std::size_t const n = loads.size();
+    std::vector<std::size_t> earliest(P + 1, n); // from the end: part r may start here
+    for (std::size_t r = P - 1; r > 0; --r) {
+        std::size_t s = earliest[r + 1];
+        while (s > 0 && loads.load(s - 1, earliest[r + 1]) <= bound)
+            --s;
+        earliest[r] = s;
+    }
+    std::vector<std::size_t> cut = wanted; // cut[0] = 0 and cut[P] = n stay
+    for (std::size_t r = 1; r < P; ++r) {
+        std::size_t const lo = std::max(earliest[r], cut[r - 1]);
+        std::size_t const hi = std::max(lo, loads.reach(cut[r - 1], bound));
+        cut[r] = std::clamp(wanted[r], lo, hi);
+    }
+    return cut;
+}
+
+/// Moves single elements across the cuts `begin` while that relieves a part: the boundary
+/// element of the heavier of two neighbouring parts goes to the lighter one when the lighter
+/// then still weighs less than the heavier did. Each move lowers the sum of squared loads, and
+/// neither raises the largest load nor lowers the smallest; the moves stop where no single
+/// element can move (a local optimum of the cut).
+void relieveHeaviest(std::span<double const> weights, std::vector<std::size_t>& begin) {
+    std::size_t const P = begin.size() - 1;
+    std::vector<double> load(P, 0.0);
+    for (std::size_t r = 0; r < P; ++r)
+        for (std::size_t k = begin[r]; k < begin[r + 1]; ++k)
+            load[r] += weights[k];
     // Each pass visits every cut; a bound on the passes keeps rounding from cycling.
     for (std::size_t pass = 0; pass < 4 * weights.size() + 4; ++pass) {
         bool moved = false;
@@ -54,9 +153,6 @@ void relieveHeaviest(std::span<double const> weights, int parts, std::vector<int
         if (!moved)
             break;
     }
-    for (std::size_t r = 0; r < P; ++r)
-        for (std::size_t k = begin[r]; k < begin[r + 1]; ++k)
-            owner[k] = static_cast<int>(r);
 }
 
 } // namespace
@@ -91,8 +187,17 @@ std::vector<int> partitionCurve(std::span<double const> weights, int parts) {
             owner[i] = std::max(owner[i], owner[i - 1]);
         prefix += w;
     }
-    if (!counted)
-        relieveHeaviest(weights, parts, owner);
+    if (counted)
+        return owner;
+    PrefixLoads const loads(weights);
+    std::vector<std::size_t> begin = beginsOf(owner, parts);
+    double const bound = leastBottleneck(loads, parts);
+    if (loads.fits(0, begin.size() - 1, bound)) // always; guards the cut against rounding
+        begin = cutsNear(loads, bound, begin);
+    relieveHeaviest(weights, begin);
+    for (std::size_t r = 0; r + 1 < begin.size(); ++r)
+        for (std::size_t k = begin[r]; k < begin[r + 1]; ++k)
+            owner[k] = static_cast<int>(r);
     return owner;
 }
 
