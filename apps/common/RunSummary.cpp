@@ -61,7 +61,8 @@ std::string toJson(RunSummary const& s) {
         .member("rebalances", s.balance.rebalances)
         .member("seconds", s.balance.seconds)
         .member("mean_imbalance", s.balance.meanImbalance)
-        .member("final_imbalance", s.balance.finalImbalance);
+        .member("final_imbalance", s.balance.finalImbalance)
+        .member("block_floor", s.balance.blockFloor);
     w.key("history")
         .beginObject()
         .member("step", std::span<double const>(s.balance.steps))

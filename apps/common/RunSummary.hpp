@@ -69,6 +69,9 @@ struct RunSummary {
         double seconds = 0.0;
         double meanImbalance = 1.0;
         double finalImbalance = 1.0;
+        /// The heaviest block over a rank's mean load, the largest measured: no cut of whole
+        /// blocks brings the imbalance below it.
+        double blockFloor = 1.0;
         std::vector<double> steps;
         std::vector<double> imbalances;
     } balance;

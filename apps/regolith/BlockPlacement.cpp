@@ -29,10 +29,20 @@ coupling::Placement uniformPlacement(core::Comm const& comm, SceneDescription co
     return coupling::placeBlocks(comm, scene.forest, {}, scene.sync.subdomains);
 }
 
-coupling::BlockLoadModel loadModel(SceneDescription const& scene) {
+coupling::BlockLoadModel loadModel(core::Comm const& comm, SceneDescription const& scene,
+                                   particles::LocalParticles const& local) {
     coupling::BlockLoadModel model;
-    if (usesGrid(scene.gravity.self))
+    GravitySection const& g = scene.gravity;
+    if (usesGrid(g.self))
         model = {scene.forest.cellsPerBlock, scene.forest.cellWeight};
+    // The direct sum's work is known when its updates keep a fixed schedule.
+    bool const fixedSchedule = g.updateThreshold <= 0.0 && !g.updateEveryAdaptive;
+    if (g.self == SelfGravity::Direct && fixedSchedule) {
+        auto const grains =
+            comm.allReduce(static_cast<double>(local.countMasters()), core::ReduceOp::Sum);
+        model.grainWeight =
+            coupling::directGravityWeight(grains, static_cast<double>(g.updateEvery));
+    }
     return model;
 }
 
@@ -40,8 +50,8 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
                    coupling::Placement& placement, WorthMoving const& worthMoving) {
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
-    domain::BlockWeight const weight =
-        coupling::grainAndCellWeights(comm, *placement.local, loadModel(scene));
+    domain::BlockWeight const weight = coupling::grainAndCellWeights(
+        comm, *placement.local, loadModel(comm, scene, *placement.local));
     coupling::Placement balanced =
         coupling::placeBlocks(comm, scene.forest, weight, scene.sync.subdomains);
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))

@@ -17,8 +17,12 @@ namespace regolith::apps {
 [[nodiscard]] coupling::Placement uniformPlacement(core::Comm const& comm,
                                                    SceneDescription const& scene);
 
-/// The blocks' load model of `scene`: grains, and cells when its gravity uses a grid.
-[[nodiscard]] coupling::BlockLoadModel loadModel(SceneDescription const& scene);
+/// The blocks' load model of `scene`: grains and their contacts, cells when its gravity uses
+/// a grid, and the direct sum's pairs when it updates on a fixed schedule (it then costs
+/// most of a step: coupling::directGravityWeight). COLLECTIVE (counts the run's grains).
+[[nodiscard]] coupling::BlockLoadModel loadModel(core::Comm const& comm,
+                                                 SceneDescription const& scene,
+                                                 particles::LocalParticles const& local);
 
 /// Whether a new cut is worth moving the grains, from the imbalance of the ranks' loads
 /// (max / mean) it would give.

@@ -1,6 +1,6 @@
 #include "apps/regolith/DynamicBalance.hpp"
 
-#include "coupling/balance/BlockWeights.hpp"
+#include "core/log/Log.hpp"
 
 #include <mpi.h>
 
@@ -36,18 +36,28 @@ bool DynamicBalance::afterStep(std::int64_t stepsDone) {
     return moved;
 }
 
-double DynamicBalance::measure() const {
-    return coupling::loadImbalance(*m_comm,
-                                   coupling::rankLoad(*m_placement->local, loadModel(*m_scene)));
+coupling::LoadSpread DynamicBalance::measure() const {
+    particles::LocalParticles const& local = *m_placement->local;
+    return coupling::loadSpread(*m_comm, local, loadModel(*m_comm, *m_scene, local));
 }
 
 bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
-    m_last = measure();
+    coupling::LoadSpread const spread = measure();
+    m_last = spread.imbalance;
+    m_floor = std::max(m_floor, spread.blockFloor);
     m_steps.push_back(static_cast<double>(stepsDone));
     m_imbalances.push_back(m_last);
     BalanceSection const& balance = m_scene->balance;
     if (balance.every == 0 || !(m_last > balance.threshold))
         return false;
+    if (spread.blockFloor > balance.threshold && !m_warned) {
+        m_warned = true; // once a run: the blocks are what the scene gave
+        core::log::warn("balance: at step {} the heaviest block weighs {:.2f} times a rank's "
+                        "mean load, above balance.threshold = {}: no cut of whole blocks evens "
+                        "the loads. A finer domain.blocks, or a [[domain.refine]] box where the "
+                        "grains gather, does (docs/balance.md)",
+                        stepsDone, spread.blockFloor, balance.threshold);
+    }
     double const started = MPI_Wtime();
     double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
     bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement,
@@ -66,7 +76,9 @@ RunSummary::Balance DynamicBalance::finish() {
     out.threshold = m_scene->balance.threshold;
     out.rebalances = m_rebalances;
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
-    out.finalImbalance = measure();
+    coupling::LoadSpread const last = measure();
+    out.finalImbalance = last.imbalance;
+    out.blockFloor = std::max(m_floor, last.blockFloor);
     // The time average: each measurement stands for the steps since the one before it (with
     // "auto" they are closer while the blocks move).
     out.meanImbalance = out.finalImbalance;

@@ -13,6 +13,7 @@
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "core/mpi/Comm.hpp"
+#include "coupling/balance/BlockWeights.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -58,8 +59,8 @@ public:
     [[nodiscard]] RunSummary::Balance finish();
 
 private:
-    /// The imbalance of the ranks' loads now. COLLECTIVE.
-    [[nodiscard]] double measure() const;
+    /// The spread of the ranks' loads now. COLLECTIVE.
+    [[nodiscard]] coupling::LoadSpread measure() const;
     bool measureAndMove(std::int64_t stepsDone);
 
     core::Comm const* m_comm;
@@ -71,6 +72,8 @@ private:
     std::int64_t m_next;     ///< the step after which the next measurement comes
     std::int64_t m_start;    ///< steps done when the run started
     double m_last = 1.0;
+    double m_floor = 1.0; ///< the largest LoadSpread::blockFloor measured
+    bool m_warned = false;
     double m_seconds = 0.0;
     long long m_rebalances = 0;
     std::vector<double> m_steps, m_imbalances; ///< the measurements

@@ -1,5 +1,7 @@
 #include "coupling/balance/BlockWeights.hpp"
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -20,22 +22,35 @@ BlockKey keyOf(core::AABB const& box, int level) {
 double BlockLoadModel::weight(particles::LocalParticles::LeafLoad const& load) const {
     double const cells =
         static_cast<double>(cellsPerBlock[0]) * cellsPerBlock[1] * cellsPerBlock[2];
-    return 1.0 + static_cast<double>(load.grains) +
+    return 1.0 + grainWeight * static_cast<double>(load.grains) +
            contactWeight * static_cast<double>(load.contacts) + cellWeight * cells;
 }
 
-double rankLoad(particles::LocalParticles const& local, BlockLoadModel const& model) {
-    double load = 0.0;
-    for (std::size_t b = 0; b < local.blocks().size(); ++b)
-        for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b))
-            load += model.weight(leaf);
-    return load;
+double directGravityWeight(double grains, double updateEvery) {
+    return 1.0 + BlockLoadModel::kDirectPairWeight * grains / std::max(updateEvery, 1.0);
 }
 
 double loadImbalance(core::Comm const& comm, double load) {
     double const most = comm.allReduce(load, core::ReduceOp::Max);
     double const total = comm.allReduce(load, core::ReduceOp::Sum);
     return total > 0.0 ? most * comm.size() / total : 1.0;
+}
+
+LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
+                      BlockLoadModel const& model) {
+    std::array<double, 2> most{0.0, 0.0}; // this rank's load, its heaviest block
+    for (std::size_t b = 0; b < local.blocks().size(); ++b)
+        for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b)) {
+            double const w = model.weight(leaf);
+            most[0] += w;
+            most[1] = std::max(most[1], w);
+        }
+    double const total = comm.allReduce(most[0], core::ReduceOp::Sum);
+    comm.allReduceInPlace(std::span<double>(most), core::ReduceOp::Max);
+    if (!(total > 0.0))
+        return {};
+    double const mean = total / comm.size();
+    return {most[0] / mean, std::max(1.0, most[1] / mean)};
 }
 
 domain::BlockWeight grainAndCellWeights(core::Comm const& comm,

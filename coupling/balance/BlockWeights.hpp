@@ -4,13 +4,14 @@
 /// a block grows with its grains and their contacts, the grid module's with its cells, so a block
 /// weighs
 ///
-///     w_b = 1 + grains_b + contactWeight * contacts_b + cellWeight * cells_b
+///     w_b = 1 + grainWeight * grains_b + contactWeight * contacts_b + cellWeight * cells_b
 ///
 /// where contactWeight is the cost of a contact per step relative to a grain's without one
 /// (measured: docs/balance.md), cellWeight that of one cell (docs/results.md, "Coupled runs"),
-/// and the 1 spreads empty blocks evenly over the ranks. The contacts are those of the grains'
-/// histories (none before the first step). With
-/// equal counts in every block the weights are equal and the assignment is the uniform one.
+/// grainWeight 1 plus the self-gravity work a grain's rank does for it when that is known
+/// (directGravityWeight), and the 1 spreads empty blocks evenly over the ranks. The contacts are
+/// those of the grains' histories (none before the first step). With equal counts in every block
+/// the weights are equal and the assignment is the uniform one.
 #include "core/mpi/Comm.hpp"
 #include "domain/Block.hpp"
 #include "particles/sync/BlockParticles.hpp"
@@ -24,22 +25,40 @@ struct BlockLoadModel {
     std::array<int, 3> cellsPerBlock{0, 0, 0}; ///< 0: the run has no grid field
     double cellWeight = 0.0;                   ///< cost of a cell relative to a grain
     double contactWeight = kContactWeight;     ///< cost of a contact relative to a grain
+    double grainWeight = 1.0; ///< cost of a grain, with the self-gravity attributed to it
 
     /// A settled pile's step costs 7.2-8.1x a falling gas's per grain with 2.5 contacts per
     /// grain (scenes/settling-gas.toml on one rank; docs/balance.md).
     static constexpr double kContactWeight = 2.5;
+    /// One pair of the direct self-gravity sum (double-double, gravity/direct) costs 0.04 of
+    /// a falling grain's step (scenes/cold-collapse.toml against scenes/settling-gas.toml on
+    /// one rank; docs/balance.md).
+    static constexpr double kDirectPairWeight = 0.04;
 
     /// w_b of a block holding `load`.
     [[nodiscard]] double weight(particles::LocalParticles::LeafLoad const& load) const;
 };
 
-/// The load of this rank: the weights of the forest blocks (leaves) its particle blocks
-/// cover, summed. Local.
-[[nodiscard]] double rankLoad(particles::LocalParticles const& local, BlockLoadModel const& model);
+/// grainWeight when the direct sum evaluates the field of all `grains` of the run at each
+/// grain every `updateEvery` steps: its rank's work for a grain is grains / updateEvery
+/// pairs per step (the ring pass: O(N^2 / P) per rank, gravity/direct/DirectSum.hpp).
+[[nodiscard]] double directGravityWeight(double grains, double updateEvery);
 
 /// The imbalance of the ranks' loads, max / mean (1: even; 1 also when there is no load).
 /// COLLECTIVE.
 [[nodiscard]] double loadImbalance(core::Comm const& comm, double load);
+
+/// How even the ranks' loads are, and how even whole blocks can make them.
+struct LoadSpread {
+    double imbalance = 1.0; ///< max / mean of the ranks' loads
+    /// The heaviest block over the mean load of a rank: no assignment of whole blocks reaches
+    /// an imbalance below it (1 when there is no load).
+    double blockFloor = 1.0;
+};
+
+/// The spread of the loads of the blocks `local` holds. COLLECTIVE (two all-reductions).
+[[nodiscard]] LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
+                                    BlockLoadModel const& model);
 
 /// The weight function of every block of `local`'s forest, from the masters (and their
 /// contacts) each block holds now. Blocks are matched by (box, level), which the same forest

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -63,6 +64,18 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
         EXPECT_DOUBLE_EQ(grainsOnly(box, 0), load) << "block " << b;
         EXPECT_DOUBLE_EQ(withCells(box, 0), load + 0.25 * 16.0) << "block " << b;
     }
+    // The direct sum's pairs make a grain weigh more than its contacts; the crowded block
+    // (70 grains, 141 units) bounds the imbalance any cut of whole blocks reaches.
+    coupling::BlockLoadModel direct;
+    direct.grainWeight = coupling::directGravityWeight(140.0, 1.0);
+    EXPECT_DOUBLE_EQ(direct.grainWeight, 1.0 + 0.04 * 140.0);
+    domain::BlockWeight const withGravity = coupling::grainAndCellWeights(world, local, direct);
+    EXPECT_DOUBLE_EQ(withGravity({Vec3(1, 0, 0), Vec3(2, 1, 1)}, 0),
+                     1.0 + 10.0 * direct.grainWeight);
+    coupling::LoadSpread const spread = coupling::loadSpread(world, local, {});
+    double const total = 71.0 + 6 * 11.0 + 11.0 + perContact * 20.0;
+    EXPECT_DOUBLE_EQ(spread.blockFloor, std::max(1.0, 71.0 / (total / world.size())));
+    EXPECT_GE(spread.imbalance, spread.blockFloor);
 }
 
 INSTANTIATE_TEST_SUITE_P(Subdomains, BlockWeightsOn,
