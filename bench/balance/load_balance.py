@@ -1,19 +1,25 @@
 """Dynamic load balance ([balance]) on the scenes whose load moves, static against rebalanced.
 
-usage: load_balance.py [imbalance] [wall] [--build build/default] [--out bench/out/balance]
-                       [--ranks 8 27]
-                       [--repeats N] [--chart FILE] [--steps N]
+usage: load_balance.py [imbalance] [layouts] [wall] [--build build/default]
+                       [--out bench/out/balance] [--ranks 8 27] [--blocks 12 16 24]
+                       [--cases NAME ...] [--repeats N] [--chart FILE] [--steps N]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
   assigned at the start only (balance.every = 0, the loads still measured) and once with the
   defaults (balance.every = "auto"); the time-averaged and final imbalance max / mean of the
   ranks' loads in work units (a block weighs 1 + its grains [+ its cells for grid gravity],
   coupling/balance), so the figure holds on any machine; the rebalances and their cost in
-  steps' time. Writes load_balance_imbalance.csv and, with --chart, imbalance against step.
-wall: the settling gas (8 times the grains) and the default scene on 2 ranks, static and
-  rebalanced alternately
-  (--repeats pairs): the wall time of the loop, the ratio's median and range. Writes
-  load_balance_wall.csv.
+  steps' time; the block floor (the heaviest block over a rank's mean load, the largest
+  measured: no cut of whole blocks goes below it). Writes load_balance_imbalance.csv and,
+  with --chart, imbalance against step.
+layouts: the cold collapse rebalanced on the largest of --ranks with n x n x n blocks for
+  each n of --blocks: how fine the forest must be for whole blocks to even its collapsed
+  core. Writes load_balance_layouts.csv.
+wall: on 2 ranks, static and rebalanced alternately (--repeats pairs), the wall time of the
+  loop, the ratio's median and range, for the --cases: "settling" (the settling gas at 8
+  times its grains), "default" (the default scene: its piles start on one rank each),
+  "target-at-rest" (the default scene seen from its second pile: the first hits it at 1.0,
+  and the merged pile drifts into one rank's half). Writes load_balance_wall.csv.
 Block layouts: tens of blocks per rank, as a user who balances chooses them (a block holds
 at most a fraction of a rank's share of the load; the scene's own layout on 2 ranks).
 """
@@ -63,6 +69,18 @@ def write_csv(path, rows):
         writer.writerows(rows)
 
 
+def summary_row(name, np, mode, s):
+    b = s["balance"]
+    step_seconds = s["wall_s"] / max(s["steps"], 1)
+    cost = b["seconds"] / b["rebalances"] / step_seconds if b["rebalances"] else 0.0
+    return {"scene": name, "ranks": np, "blocks": s["blocks"], "mode": mode,
+            "every": b["every"], "steps": s["steps"],
+            "mean_imbalance": round(b["mean_imbalance"], 3),
+            "final_imbalance": round(b["final_imbalance"], 3),
+            "block_floor": round(b.get("block_floor", 1.0), 3),
+            "rebalances": b["rebalances"], "steps_per_rebalance": round(cost, 2)}
+
+
 def imbalance(args):
     rows, histories = [], {}
     for np in args.ranks:
@@ -73,14 +91,7 @@ def imbalance(args):
                 s = run(args.build, np, scene,
                         [*extra, "--set", f"domain.blocks={blocks}", *every], path, args.steps)
                 b = s["balance"]
-                step_seconds = s["wall_s"] / max(s["steps"], 1)
-                cost = b["seconds"] / b["rebalances"] / step_seconds if b["rebalances"] else 0.0
-                rows.append({"scene": name, "ranks": np, "blocks": s["blocks"], "mode": mode,
-                             "every": b["every"], "steps": s["steps"],
-                             "mean_imbalance": round(b["mean_imbalance"], 3),
-                             "final_imbalance": round(b["final_imbalance"], 3),
-                             "rebalances": b["rebalances"],
-                             "steps_per_rebalance": round(cost, 2)})
+                rows.append(summary_row(name, np, mode, s))
                 histories[(name, np, mode)] = (b["history"]["step"], b["history"]["imbalance"])
                 print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
     write_csv(os.path.join(args.out, "load_balance_imbalance.csv"), rows)
@@ -109,37 +120,69 @@ def chart(histories, ranks, path):
     print(f"chart: {path}")
 
 
-def wall(args):
+def layouts(args):
     rows = []
+    np = max(args.ranks)
+    for n in args.blocks:
+        path = os.path.join(args.out, f"balance_layout_{n}_{np}.json")
+        s = run(args.build, np, "cold-collapse.toml", ["--set", f"domain.blocks=[{n},{n},{n}]"],
+                path, args.steps)
+        rows.append(summary_row("cold collapse", np, "rebalanced", s))
+        print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
+    write_csv(os.path.join(args.out, "load_balance_layouts.csv"), rows)
+
+
+# name: (label, scene file, extra arguments)
+WALL_CASES = {
     # The settling gas at 8 times its grains (a 20 x 20 x 40 box): at 1,024 grains its two
     # ranks wait on each other's messages more than they compute.
-    big = ["--set", "domain.max=[20,20,40]", "--set", "domain.blocks=[8,8,16]",
-           "--set", "walls[1].point=[0.0,0.0,40.0]"]
-    for name, scene, extra in (("settling gas, 8,192 grains", "settling-gas.toml", big),
-                               ("default (two piles merge)", "default.toml", [])):
+    "settling": ("settling gas, 8,192 grains", "settling-gas.toml",
+                 ["--set", "domain.max=[20,20,40]", "--set", "domain.blocks=[8,8,16]",
+                  "--set", "walls[1].point=[0.0,0.0,40.0]"]),
+    "default": ("default (two piles merge)", "default.toml", []),
+    # The same collision seen from the second pile (a Galilean boost by 0.5 along x): the
+    # merged pile drifts at 0.5 into rank 1's half, so the start's even cut does not last.
+    "target-at-rest": ("default seen from the second pile", "default.toml",
+                       ["--set", "particles[0].velocity=[1.0,0.0,0.0]",
+                        "--set", "particles[1].velocity=[0.0,0.0,0.0]"]),
+}
+
+
+def wall(args):
+    rows = []
+    for case in args.cases:
+        name, scene, extra = WALL_CASES[case]
         times = {"static": [], "rebalanced": []}
+        imbalances = {"static": [], "rebalanced": []}
         for k in range(args.repeats):
             for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
-                path = os.path.join(args.out, f"balance_wall_{scene}_{mode}.json")
+                path = os.path.join(args.out, f"balance_wall_{case}_{mode}.json")
                 s = run(args.build, 2, scene, [*extra, *every], path, args.steps)
                 times[mode].append(s["wall_s"])
+                imbalances[mode].append(s["balance"]["mean_imbalance"])
         ratios = [r / s for r, s in zip(times["rebalanced"], times["static"])]
         rows.append({"scene": name, "ranks": 2,
                      "static_s": round(statistics.median(times["static"]), 3),
                      "rebalanced_s": round(statistics.median(times["rebalanced"]), 3),
                      "ratio_median": round(statistics.median(ratios), 3),
                      "ratio_min": round(min(ratios), 3), "ratio_max": round(max(ratios), 3),
+                     "static_imbalance": round(statistics.median(imbalances["static"]), 3),
+                     "rebalanced_imbalance": round(statistics.median(imbalances["rebalanced"]), 3),
                      "repeats": args.repeats})
         print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
-    write_csv(os.path.join(args.out, "load_balance_wall.csv"), rows)
+    suffix = "" if args.cases == ["settling", "default"] else "_" + "_".join(args.cases)
+    write_csv(os.path.join(args.out, f"load_balance_wall{suffix}.csv"), rows)
 
 
 def main():
     parser = argparse.ArgumentParser()
-    parser.add_argument("parts", nargs="*", default=["imbalance", "wall"])
+    parser.add_argument("parts", nargs="*", default=["imbalance", "layouts", "wall"])
     parser.add_argument("--build", default="build/default")
     parser.add_argument("--out", default="bench/out/balance")
     parser.add_argument("--ranks", type=int, nargs="*", default=[8, 27])
+    parser.add_argument("--blocks", type=int, nargs="*", default=[12, 16, 24])
+    parser.add_argument("--cases", nargs="*", default=["settling", "default"],
+                        choices=list(WALL_CASES))
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--chart")
     parser.add_argument("--steps", type=int, help="time.steps of every run (the scenes' own)")
@@ -148,6 +191,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     if "imbalance" in args.parts:
         imbalance(args)
+    if "layouts" in args.parts:
+        layouts(args)
     if "wall" in args.parts:
         wall(args)
 
