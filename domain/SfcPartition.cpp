@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace regolith::domain {
 
@@ -36,45 +37,51 @@ public:
         }
         return lo;
     }
-    /// Whether [s, size()) splits into `parts` contiguous pieces each loading at most `bound`
-    /// (each piece as long as the bound allows: the greedy probe).
-    [[nodiscard]] bool fits(std::size_t s, std::size_t parts, double bound) const {
-        for (std::size_t k = 0; k < parts && s < size(); ++k)
-            s = reach(s, bound);
-        return s == size();
+    /// The largest load of the cut of [0, size()) into at most `parts` contiguous pieces, each
+    /// as long as `bound` allows (the greedy probe), or infinity if they do not reach the end.
+    [[nodiscard]] double probe(std::size_t parts, double bound) const {
+        double largest = 0.0;
+        std::size_t s = 0;
+        for (std::size_t k = 0; k < parts && s < size(); ++k) {
+            std::size_t const e = reach(s, bound);
+            largest = std::max(largest, load(s, e));
+            s = e;
+        }
+        return s == size() ? largest : std::numeric_limits<double>::infinity();
     }
 
 private:
     std::vector<double> m_prefix;
 };
 
-/// The least largest load of any cut of the sequence into `parts` contiguous pieces: Nicol's
-/// algorithm for chains-on-chains partitioning (D. M. Nicol, "Rectilinear partitioning of
-/// irregular data parallel computations", J. Parallel Distrib. Comput. 23, 1994; as stated by
-/// Pinar & Aykanat, J. Parallel Distrib. Comput. 64, 2004, Fig. 5). Piece p either is the
-/// shortest whose load lets the rest fit (then that load is a candidate) or one element
-/// shorter (then the bottleneck lies further on). O(parts^2 log^2 n).
-double leastBottleneck(PrefixLoads const& loads, int parts) {
-    std::size_t const n = loads.size();
+/// The least largest load of any cut of the sequence into `parts` contiguous pieces
+/// (chains-on-chains partitioning), by bisection on that load with the greedy probe (Pinar &
+/// Aykanat, "Fast optimal load balancing algorithms for 1D partitioning", J. Parallel Distrib.
+/// Comput. 64, 2004): it lies between the larger of the mean and the heaviest element, and
+/// `reached`, the largest load of a known cut; a bound that fits lowers the upper end to the
+/// largest load its cut reaches, one that does not raises the lower end. The ends meet at the
+/// least largest load within a few dozen probes of O(parts log n) each.
+double leastBottleneck(PrefixLoads const& loads, std::span<double const> weights, int parts,
+                       double reached) {
     auto const P = static_cast<std::size_t>(parts);
-    double best = loads.load(0, n);
-    std::size_t s = 0;
-    for (std::size_t p = 0; p + 1 < P && s < n; ++p) {
-        // The smallest e in (s, n] whose load lets [s, n) fit in the P - p pieces left.
-        std::size_t lo = s + 1, hi = n;
-        while (lo < hi) {
-            std::size_t const mid = lo + (hi - lo) / 2;
-            if (loads.fits(s, P - p, loads.load(s, mid)))
-                hi = mid;
-            else
-                lo = mid + 1;
-        }
-        best = std::min(best, loads.load(s, lo));
-        s = lo - 1;
-        if (p + 2 == P) // the last piece
-            best = std::min(best, loads.load(s, n));
+    double lo = loads.load(0, loads.size()) / static_cast<double>(parts);
+    for (double const w : weights)
+        lo = std::max(lo, w);
+    double hi = reached;
+    if (loads.probe(P, lo) <= lo) // the lower bound is reached
+        return lo;
+    // lo never fits, hi always does; each probe halves the interval at least.
+    for (int k = 0; k < 200 && lo < hi; ++k) {
+        double const mid = lo + 0.5 * (hi - lo);
+        if (!(mid > lo && mid < hi))
+            break;
+        double const largest = loads.probe(P, mid);
+        if (largest <= mid)
+            hi = largest;
+        else
+            lo = mid;
     }
-    return best;
+    return hi;
 }
 
 /// The start of every part of a contiguous `owner` (part r: [begin[r], begin[r + 1])).
@@ -191,9 +198,10 @@ std::vector<int> partitionCurve(std::span<double const> weights, int parts) {
         return owner;
     PrefixLoads const loads(weights);
     std::vector<std::size_t> begin = beginsOf(owner, parts);
-    double const bound = leastBottleneck(loads, parts);
-    if (loads.fits(0, begin.size() - 1, bound)) // always; guards the cut against rounding
-        begin = cutsNear(loads, bound, begin);
+    double reached = 0.0; // the midpoint cut's largest load
+    for (std::size_t r = 0; r + 1 < begin.size(); ++r)
+        reached = std::max(reached, loads.load(begin[r], begin[r + 1]));
+    begin = cutsNear(loads, leastBottleneck(loads, weights, parts, reached), begin);
     relieveHeaviest(weights, begin);
     for (std::size_t r = 0; r + 1 < begin.size(); ++r)
         for (std::size_t k = begin[r]; k < begin[r + 1]; ++k)
