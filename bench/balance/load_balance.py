@@ -1,7 +1,7 @@
 """Dynamic load balance ([balance]) on the scenes whose load moves, static against rebalanced.
 
 usage: load_balance.py [imbalance] [layouts] [wall] [--build build/default]
-                       [--out bench/out/balance] [--ranks 8 27] [--blocks 12 16 24]
+                       [--out bench/out/balance] [--ranks 8 27] [--blocks 12 16 24 32 12r]
                        [--cases NAME ...] [--repeats N] [--chart FILE] [--steps N]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
@@ -13,8 +13,9 @@ imbalance: each scene on each rank count of --ranks (oversubscribed), once with 
   measured: no cut of whole blocks goes below it). Writes load_balance_imbalance.csv and,
   with --chart, imbalance against step.
 layouts: the cold collapse rebalanced on the largest of --ranks with n x n x n blocks for
-  each n of --blocks: how fine the forest must be for whole blocks to even its collapsed
-  core. Writes load_balance_layouts.csv.
+  each n of --blocks ("12r": 12 x 12 x 12 with the blocks of the box |x|, |y|, |z| <= 0.7,
+  where the cloud collapses to by the end, refined once): how fine the forest must be for
+  whole blocks to even its collapsed core. Writes load_balance_layouts.csv.
 wall: on 2 ranks, static and rebalanced alternately (--repeats pairs), the wall time of the
   loop, the ratio's median and range, for the --cases: "settling" (the settling gas at 8
   times its grains), "default" (the default scene: its piles start on one rank each),
@@ -123,10 +124,13 @@ def chart(histories, ranks, path):
 def layouts(args):
     rows = []
     np = max(args.ranks)
-    for n in args.blocks:
-        path = os.path.join(args.out, f"balance_layout_{n}_{np}.json")
-        s = run(args.build, np, "cold-collapse.toml", ["--set", f"domain.blocks=[{n},{n},{n}]"],
-                path, args.steps)
+    for layout in args.blocks:
+        n = layout.rstrip("r")
+        extra = ["--set", f"domain.blocks=[{n},{n},{n}]"]
+        if layout.endswith("r"):
+            extra += ["--set", "domain.refine=[{min=[-0.7,-0.7,-0.7],max=[0.7,0.7,0.7],level=1}]"]
+        path = os.path.join(args.out, f"balance_layout_{layout}_{np}.json")
+        s = run(args.build, np, "cold-collapse.toml", extra, path, args.steps)
         rows.append(summary_row("cold collapse", np, "rebalanced", s))
         print(", ".join(f"{k} {v}" for k, v in rows[-1].items()), flush=True)
     write_csv(os.path.join(args.out, "load_balance_layouts.csv"), rows)
@@ -180,7 +184,7 @@ def main():
     parser.add_argument("--build", default="build/default")
     parser.add_argument("--out", default="bench/out/balance")
     parser.add_argument("--ranks", type=int, nargs="*", default=[8, 27])
-    parser.add_argument("--blocks", type=int, nargs="*", default=[12, 16, 24])
+    parser.add_argument("--blocks", nargs="*", default=["12", "16", "24", "32", "12r"])
     parser.add_argument("--cases", nargs="*", default=["settling", "default"],
                         choices=list(WALL_CASES))
     parser.add_argument("--repeats", type=int, default=5)
