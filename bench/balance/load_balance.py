@@ -2,7 +2,7 @@
 
 usage: load_balance.py [imbalance] [layouts] [wall] [--build build/default]
                        [--out bench/out/balance] [--ranks 8 27] [--blocks 12 16 24 32 12r]
-                       [--cases NAME ...] [--repeats N] [--chart FILE] [--steps N]
+                       [--cases NAME ...] [--repeats N] [--chart FILE] [--steps N] [--reuse]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
   assigned at the start only (balance.every = 0, the loads still measured) and once with the
@@ -89,8 +89,13 @@ def imbalance(args):
             blocks = blocks8 if np <= 8 else blocks27
             for mode, every in (("static", ["--set", "balance.every=0"]), ("rebalanced", [])):
                 path = os.path.join(args.out, f"balance_{scene}_{np}_{mode}.json")
-                s = run(args.build, np, scene,
-                        [*extra, "--set", f"domain.blocks={blocks}", *every], path, args.steps)
+                if args.reuse and os.path.exists(path):
+                    with open(path, encoding="utf-8") as f:
+                        s = json.load(f)
+                else:
+                    s = run(args.build, np, scene,
+                            [*extra, "--set", f"domain.blocks={blocks}", *every], path,
+                            args.steps)
                 b = s["balance"]
                 rows.append(summary_row(name, np, mode, s))
                 histories[(name, np, mode)] = (b["history"]["step"], b["history"]["imbalance"])
@@ -189,6 +194,8 @@ def main():
                         choices=list(WALL_CASES))
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--chart")
+    parser.add_argument("--reuse", action="store_true",
+                        help="imbalance: take a run's summary from --out where it exists")
     parser.add_argument("--steps", type=int, help="time.steps of every run (the scenes' own)")
     args = parser.parse_args()
     args.build = os.path.abspath(args.build)
