@@ -37,7 +37,7 @@ coupling::BlockLoadModel loadModel(core::Comm const& comm, SceneDescription cons
         model = {scene.forest.cellsPerBlock, scene.forest.cellWeight};
     // The direct sum's work is known when its updates keep a fixed schedule.
     bool const fixedSchedule = g.updateThreshold <= 0.0 && !g.updateEveryAdaptive;
-    if (g.self == SelfGravity::Direct && fixedSchedule) {
+    if (g.self == "direct" && fixedSchedule) { // the registered name of gravity/direct
         auto const grains =
             comm.allReduce(static_cast<double>(local.countMasters()), core::ReduceOp::Sum);
         model.grainWeight =
