@@ -158,7 +158,7 @@ void warnLazyUpdateThreshold(core::Comm const& comm, particles::LocalParticles c
 
 void warnSoftContacts(core::Comm const& comm, particles::LocalParticles const& local,
                       SceneDescription const& scene) {
-    if (scene.gravity.self == "none" || scene.contact.model != ContactModel::SpringDashpot)
+    if (scene.gravity.self == "none" || scene.contact.elasticity != particles::Elasticity::Linear)
         return;
     double worst = 0.0; // m² / r³
     masterSource(local)([&](MasterRecord const& g) {

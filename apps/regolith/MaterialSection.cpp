@@ -20,9 +20,10 @@ constexpr std::array kMaterialKeys{"stiffness"sv,   "youngs_modulus"sv, "poisson
 
 } // namespace
 
-particles::MaterialProperties parseMaterialKeys(core::ConfigTable const& t, ContactModel model) {
+particles::MaterialProperties parseMaterialKeys(core::ConfigTable const& t,
+                                                particles::Elasticity elasticity) {
     particles::MaterialProperties m;
-    if (model == ContactModel::SpringDashpot) {
+    if (elasticity == particles::Elasticity::Linear) {
         for (char const* key : {"youngs_modulus", "poisson_ratio"})
             if (t.has(key))
                 t.fail(key, "applies to contact.model = \"hertz\"; the spring-dashpot model's "
@@ -64,14 +65,14 @@ particles::MaterialProperties parseMaterialKeys(core::ConfigTable const& t, Cont
     return m;
 }
 
-MaterialsSection parseMaterials(core::ConfigTable const& root, ContactModel model) {
+MaterialsSection parseMaterials(core::ConfigTable const& root, particles::Elasticity elasticity) {
     auto const entries = root.tableArray("materials");
     std::optional<core::ConfigTable> const contact = root.findTable("contact");
     MaterialsSection s;
     if (entries.empty()) {
-        s.types.push_back(contact
-                              ? parseMaterialKeys(*contact, model)
-                              : parseMaterialKeys(core::ConfigTable::fromString("", ""), model));
+        s.types.push_back(
+            contact ? parseMaterialKeys(*contact, elasticity)
+                    : parseMaterialKeys(core::ConfigTable::fromString("", ""), elasticity));
         return s;
     }
     if (contact)
@@ -92,7 +93,7 @@ MaterialsSection parseMaterials(core::ConfigTable const& root, ContactModel mode
             entries[k].fail("type",
                             fmt::format("type {} is already materials[{}]'s", type, given[at]));
         given[at] = static_cast<int>(k);
-        s.types[at] = parseMaterialKeys(entries[k], model);
+        s.types[at] = parseMaterialKeys(entries[k], elasticity);
     }
     return s;
 }

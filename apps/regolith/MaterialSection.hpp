@@ -13,8 +13,6 @@
 
 namespace regolith::apps {
 
-enum class ContactModel { SpringDashpot, Hertz };
-
 struct MaterialsSection {
     /// [[materials]] in type order (entry k is type k unless it says `type`), or the [contact]
     /// material alone.
@@ -26,18 +24,19 @@ struct MaterialsSection {
     }
 };
 
-/// The material keys of one table ([contact] or a [[materials]] entry) for `model`: stiffness
-/// (> 0, default 1e4) with spring-dashpot, youngs_modulus (> 0) and poisson_ratio (in
-/// (-1, 0.5]) required with Hertz (the keys of the other model refused, naming the right ones),
-/// restitution in (0, 1] (0.9), friction >= 0 (0.5), rolling_friction >= 0 (0). Throws
-/// core::InputError naming the key. Not collective.
+/// The material keys of one table ([contact] or a [[materials]] entry) for a contact model of
+/// `elasticity`: stiffness (> 0, default 1e4) with Linear (spring-dashpot, vdw), youngs_modulus
+/// (> 0) and poisson_ratio (in (-1, 0.5]) required with Hertz (hertz, dmt) (the keys of the other
+/// model refused, naming the right ones), restitution in (0, 1] (0.9), friction >= 0 (0.5),
+/// rolling_friction >= 0 (0). Throws core::InputError naming the key. Not collective.
 [[nodiscard]] particles::MaterialProperties parseMaterialKeys(core::ConfigTable const& t,
-                                                              ContactModel model);
+                                                              particles::Elasticity elasticity);
 
 /// The scene's materials from `root`'s [[materials]] (an optional `type` per entry: the types
 /// 0 to n-1, each once; the material keys of [contact] are then refused) or [contact].
 /// Not collective.
-[[nodiscard]] MaterialsSection parseMaterials(core::ConfigTable const& root, ContactModel model);
+[[nodiscard]] MaterialsSection parseMaterials(core::ConfigTable const& root,
+                                              particles::Elasticity elasticity);
 
 /// Refuses a `type` of a [[particles]] or [[walls]] entry (`entry`, whose parsed type is
 /// `type`) that no [[materials]] entry defines. Not collective.

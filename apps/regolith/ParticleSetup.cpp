@@ -6,6 +6,7 @@
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/MaterialMixing.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
+#include "particles/simulation/ContactModelRegistry.hpp"
 #include "particles/validation/ParticleValidation.hpp"
 
 #include <fmt/format.h>
@@ -91,24 +92,22 @@ double impactVelocityEstimate(core::Comm const& comm, particles::ParticleStorage
 particles::ContactTimeEstimate contactTime(core::Comm const& comm,
                                            particles::ParticleStorage const& ps,
                                            SceneDescription const& scene) {
-    auto const model = makeContactModel(scene);
-    if (auto const* linear = std::get_if<particles::SpringDashpot>(&model))
-        return particles::shortestContactTime(comm, particles::estimateContactTime(ps, *linear));
-    double const v = impactVelocityEstimate(comm, ps, scene);
     return particles::shortestContactTime(
-        comm, particles::estimateContactTime(ps, std::get<particles::HertzMindlin>(model), v));
+        comm, makeContactModel(scene).contactTime(ps, impactVelocityEstimate(comm, ps, scene)));
 }
 
 particles::AnyContactModel makeContactModel(SceneDescription const& scene) {
     std::vector<particles::MaterialProperties> types(materialTypeCount(scene));
     for (std::uint32_t t = 0; t < types.size(); ++t)
         types[t] = scene.materials.of(t);
-    particles::RollingSpring const& rolling = scene.contact.rollingSpring;
-    if (scene.contact.model == ContactModel::SpringDashpot)
-        return particles::SpringDashpot(particles::mixedTable<particles::LinearContactParams>(
-            types, rolling, particles::mixLinear));
-    return particles::HertzMindlin(
-        particles::mixedTable<particles::HertzMindlinParams>(types, rolling, particles::mixHertz));
+    core::ConfigTable const contact =
+        scene.contact.table ? *scene.contact.table : core::ConfigTable::fromString("", "");
+    particles::ContactModelEntry const* entry =
+        particles::contactModels().find(scene.contact.model);
+    if (entry == nullptr)
+        throw core::InputError("contact.model: no contact model \"" + scene.contact.model +
+                               "\" is registered");
+    return entry->make({contact, types, scene.contact.rollingSpring});
 }
 
 particles::AnyIntegrator makeIntegrator(SceneDescription const& scene) {

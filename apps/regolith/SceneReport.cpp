@@ -62,7 +62,7 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
         fmt::format("  {} of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
                     "{} walls\n",
                     steps, scene.time.dt, toString(scene.sync.method),
-                    scene.sync.reproducible ? " (reproducible)" : "", toString(scene.contact.model),
+                    scene.sync.reproducible ? " (reproducible)" : "", scene.contact.model,
                     scene.gravity.self, poissonNote(scene.gravity), scene.walls.size());
     text += startStep > 0
                 ? fmt::format("  {} particles from the checkpoint ({} to {} per rank)\n",

@@ -10,6 +10,7 @@
 #include "domain/ForestConfig.hpp"
 #include "particles/generators/LatticeSites.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
+#include "particles/simulation/ContactModelRegistry.hpp"
 
 #include <fmt/format.h>
 
@@ -34,7 +35,6 @@ using namespace std::string_view_literals;
 constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 /// In the order of domain::Subdomains (Blocks, RankBoxes).
 constexpr std::array kSubdomainNames{"blocks"sv, "merged"sv};
-constexpr std::array kContactNames{"spring-dashpot"sv, "hertz"sv};
 constexpr std::array kRollingNames{"constant"sv, "spring"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
 /// In the order of DumpFormat.
@@ -134,7 +134,12 @@ BalanceSection parseBalance(core::ConfigTable const& t) {
 
 ContactSection parseContact(core::ConfigTable const& t) {
     ContactSection s;
-    s.model = static_cast<ContactModel>(t.getChoiceOr("model", kContactNames, 0));
+    particles::ContactModelEntry const& entry = particles::contactModelEntry(t);
+    s.model = entry.name;
+    s.elasticity = entry.elasticity;
+    if (entry.checkKeys)
+        entry.checkKeys(t);
+    s.table = t;
     s.rollingSpring.enabled = t.getChoiceOr("rolling_model", kRollingNames, 0) == 1;
     for (char const* key : {"rolling_stiffness", "rolling_damping_ratio"})
         if (t.has(key) && !s.rollingSpring.enabled)
@@ -351,7 +356,7 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     scene.time = parseTime(root.table("time"));
     scene.sync = optionalSection<SyncSection>(root, "sync", parseSync);
     scene.contact = optionalSection<ContactSection>(root, "contact", parseContact);
-    scene.materials = parseMaterials(root, scene.contact.model);
+    scene.materials = parseMaterials(root, scene.contact.elasticity);
     scene.gravity = optionalSection<GravitySection>(root, "gravity", parseGravity);
     scene.balance = optionalSection<BalanceSection>(root, "balance", parseBalance);
     scene.output = optionalSection<OutputSection>(root, "output", parseOutput);
@@ -405,9 +410,6 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
 
 std::string_view toString(particles::SyncMethod m) {
     return particles::syncMethodName(m);
-}
-std::string_view toString(ContactModel m) {
-    return kContactNames[static_cast<std::size_t>(m)];
 }
 std::string_view toString(Integrator i) {
     return kIntegratorNames[static_cast<std::size_t>(i)];

@@ -58,7 +58,9 @@ struct SyncSection : particles::SyncConfig {
     domain::Subdomains subdomains = domain::Subdomains::RankBoxes;
 };
 
-/// [contact] model ("spring-dashpot" | "hertz"), the material keys when the scene has no
+/// [contact] model (a name in the contact model registry, ContactModelRegistry.hpp:
+/// "spring-dashpot", "hertz", "vdw", "dmt", or one a program registered; the model's own keys are
+/// checked by its entry), the material keys when the scene has no
 /// [[materials]] (stiffness, youngs_modulus, poisson_ratio, restitution, friction,
 /// rolling_friction: MaterialSection.hpp; mu_r: the rolling couple is at most
 /// mu_r R_eff F_n), rolling_model ("constant": model A, a constant couple that cannot hold a grain
@@ -70,7 +72,10 @@ struct SyncSection : particles::SyncConfig {
 /// list, linked cells every step; absent: a quarter of each block's small grains' radius).
 /// Defaults as in docs/guide/scene.md; initial_overlap 1e-6.
 struct ContactSection {
-    ContactModel model = ContactModel::SpringDashpot;
+    std::string model = "spring-dashpot";
+    particles::Elasticity elasticity = particles::Elasticity::Linear; ///< the model's materials
+    /// The [contact] table, whose keys the model's factory reads (none: no [contact]).
+    std::optional<core::ConfigTable> table;
     particles::RollingSpring rollingSpring; ///< model C if enabled
     double initialOverlap = 1e-6;
     std::optional<double> neighbourSkin;
@@ -199,7 +204,6 @@ struct SceneDescription {
                                           std::string const& scenePath);
 
 [[nodiscard]] std::string_view toString(particles::SyncMethod m);
-[[nodiscard]] std::string_view toString(ContactModel m);
 [[nodiscard]] std::string_view toString(Integrator i);
 
 } // namespace regolith::apps

@@ -24,9 +24,11 @@ core::AABB everywhere() {
 
 ContactDetector::ContactDetector(DetectorConfig config)
     : m_config(config) {
-    if (!(m_config.skin >= 0.0) || !(m_config.largeRadius >= 0.0) || !(m_config.largeFactor >= 1.0))
-        throw core::InputError("contact detection: skin and large_radius must be >= 0 and "
-                               "large_factor >= 1");
+    if (!(m_config.skin >= 0.0) || !(m_config.largeRadius >= 0.0) ||
+        !(m_config.largeFactor >= 1.0) || !(m_config.range >= 0.0) ||
+        !std::isfinite(m_config.range))
+        throw core::InputError("contact detection: skin and large_radius must be >= 0, "
+                               "large_factor >= 1 and the interaction range finite and >= 0");
 }
 
 double ContactDetector::largeThreshold(ParticleStorage const& ps) {
@@ -99,12 +101,14 @@ LocalPositions ContactDetector::bin(ParticleStorage const& ps, PeriodicFrame con
     m_stats.skin = skin;
     m_listScale = scale;
 
-    double edge = 2.0 * rSmallMax + skin;
+    // The candidates reach the model's interaction range beyond the radii too.
+    double const range = m_config.range;
+    double edge = 2.0 * rSmallMax + skin + range;
     if (!(edge > 0.0)) // only zero radii: any positive edge is right
         edge = 1.0;
     m_cells.build(positions, ps.radii(), m_small, edge + 2.0 * slack,
                   m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1),
-                  slack + skin);
+                  slack + skin + range);
     // The cells hold the small spheres now (their members): the list's 4 bytes per copy
     // would only add to the peak while the Verlet list is built next.
     std::vector<std::uint32_t>().swap(m_small);
@@ -129,10 +133,10 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
         return;
     }
     LocalPositions const positions = bin(ps, frame, 0.0);
-    PairRule const rule(ps, region, frame, m_stats);
+    PairRule const rule(ps, region, frame, m_stats, m_config.range);
     auto emit = [&](std::size_t a, std::size_t b) { rule(a, b, out.pairs); };
     m_cells.forEachOverlap(emit);
-    largePass(positions, ps, m_stats.slack, emit);
+    largePass(positions, ps, m_stats.slack + m_config.range, emit);
     wallPass(ps, walls, out);
 
     if (m_config.sortByUid)
@@ -242,14 +246,14 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     double const slack = m_stats.slack;
     auto const add = [&](std::size_t a, std::size_t b) {
         if (m_listSkin < binned) {
-            double const reach = ps.radius(a) + ps.radius(b) + m_listSkin + slack;
+            double const reach = ps.radius(a) + ps.radius(b) + m_listSkin + m_config.range + slack;
             if (!((positions[a] - positions[b]).squaredNorm() < reach * reach))
                 return;
         }
         m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
     };
     m_cells.forEachOverlap(add);
-    largePass(positions, ps, slack + binned, add);
+    largePass(positions, ps, slack + binned + m_config.range, add);
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
     classifyListed(ps, region, frame, 0);
@@ -259,7 +263,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
                                   PeriodicFrame const& frame) {
     core::Vec3 const period = frame.period();
     std::size_t const firstPair = m_list.numPairs();
-    double const reachSlack = m_stats.slack + m_listSkin + m_list.referenceSlack();
+    double const reachSlack = m_stats.slack + m_listSkin + m_list.referenceSlack() + m_config.range;
     auto const arrivals = m_list.arrivals();
     std::size_t const firstNew = arrivals.size() - m_fresh.size();
     // Local reference position and radius of a live id (its image is that of its copy now).

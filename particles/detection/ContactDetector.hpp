@@ -378,7 +378,7 @@ template <class OnPair>
 void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& region,
                                  PeriodicFrame const& frame, ContactList& out, OnPair&& onPair,
                                  bool keepPairs) {
-    detection_detail::PairRule const rule(ps, region, frame, m_stats);
+    detection_detail::PairRule const rule(ps, region, frame, m_stats, m_config.range);
     core::Vec3 const& period = rule.period();
     double const slack = m_stats.slack;
     auto const& x = ps.positions();
@@ -418,7 +418,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             }
         }
         if (mode != PairMode::Check) {
-            if (!detection_detail::overlapGeometry(ps, a, b, period, c))
+            if (!detection_detail::overlapGeometry(ps, a, b, period, c, m_config.range))
                 return;
             ++overlaps;
         } else {
@@ -428,7 +428,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             if (!sameImage(ps.image(a), ps.image(b)))
                 d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a)),
                                  period);
-            double const reach = ps.radius(a) + ps.radius(b) + slack;
+            double const reach = ps.radius(a) + ps.radius(b) + m_config.range + slack;
             if (!(d.squaredNorm() < reach * reach) || !rule(a, b, c))
                 return;
         }

@@ -36,6 +36,12 @@ struct DetectorConfig {
     /// copies (one wherever a ball overlaps a block, at every image), which a storage filled
     /// otherwise need not hold: set by DemStep, whose storages are the synchronisation's.
     bool settleFaceTwins = false;
+    /// The contact model's interaction range [length] (AnyContactModel::interactionRange):
+    /// pairs up to this gap apart are contacts too (penetration -gap), for a model that acts
+    /// before grains touch (cohesion). Every candidate search, the Verlet list and the
+    /// ownership settled for a list's life reach this much beyond r_a + r_b. Wall contacts
+    /// stay overlaps. 0: overlaps only.
+    double range = 0.0;
 };
 
 /// What the last `detect` call did (for tests and benchmarks).

@@ -25,7 +25,7 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
         // i's master: the one copy of i that nothing but a wrap replaces.
         if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))
             return;
-        if (!oneImageInstance(ps.radius(ka) + ps.radius(kb), frame, rounding))
+        if (!oneImageInstance(ps.radius(ka) + ps.radius(kb) + m_config.range, frame, rounding))
             return;
         // j's copy at its image exists while the list holds: its ball reaches into the
         // block by more than the motion (the synchronisation keeps a copy wherever a ball

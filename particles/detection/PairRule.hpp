@@ -43,32 +43,36 @@ separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 c
     return s;
 }
 
-/// The overlap decision of the canonical geometry: sqrt(d2) < reach, with sqrt correctly
+/// The overlap decision of the canonical geometry: sqrt(d2) < reach + range (`range`: the
+/// contact model's interaction range beyond touching, DetectorConfig::range), with sqrt correctly
 /// rounded. The root is needed only in a thin band around contact: below reach^2 (1 - 1e-12)
 /// the rounded root is certainly below reach, above reach^2 (1 + 1e-12) certainly not (the
 /// margin dwarfs the few ulps by which reach * reach and the product can be off). Same answer
 /// as the root everywhere, NaN included (false); the fused loop runs it on every listed pair
 /// and step, and a root there is a long latency on the loop's path.
-[[nodiscard, gnu::always_inline]] inline bool overlapping(PairSeparation const& s) {
-    double const r2 = s.reach * s.reach;
+[[nodiscard, gnu::always_inline]] inline bool overlapping(PairSeparation const& s,
+                                                          double range = 0.0) {
+    double const reach = s.reach + range;
+    double const r2 = reach * reach;
     if (s.d2 < r2 * (1.0 - 1e-12))
         return true;
     if (!(s.d2 <= r2 * (1.0 + 1e-12)))
         return false; // most listed pairs end here (and NaN)
-    return std::sqrt(s.d2) < s.reach;
+    return std::sqrt(s.d2) < reach;
 }
 
 /// The canonical geometry of copies i, j (uid(i) < uid(j)): if |x_j + shiftJ - x_i| < r_i +
-/// r_j, fills c (i, j, point, normal, penetration, shiftJ) and returns true. The one place these
+/// r_j + range, fills c (i, j, point, normal, penetration, shiftJ; the penetration negative,
+/// minus the gap, for a pair within the range apart) and returns true. The one place these
 /// bits are computed, so that every path (full rule, fused Verlet loop) agrees; a consumer of
 /// PairOverlap that computes them itself (SpringDashpotBatch) follows these operations.
 /// Always inlined: it runs once per listed pair and step.
 [[nodiscard, gnu::always_inline]] inline bool overlapGeometry(ParticleStorage const& ps,
                                                               std::size_t i, std::size_t j,
-                                                              core::Vec3 const& period,
-                                                              Contact& c) {
+                                                              core::Vec3 const& period, Contact& c,
+                                                              double range = 0.0) {
     PairSeparation const s = separation(ps, i, j, period);
-    if (!overlapping(s))
+    if (!overlapping(s, range))
         return false;
     double const dist = std::sqrt(s.d2);
     core::Vec3 const& d = s.d;
@@ -87,13 +91,15 @@ separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 c
 /// ownership point, periodic wrap and the evaluation region.
 class PairRule {
 public:
+    /// `range`: the contact model's interaction range beyond touching (DetectorConfig::range).
     PairRule(ParticleStorage const& ps, core::AABB const& region, PeriodicFrame const& frame,
-             DetectorStats& stats)
+             DetectorStats& stats, double range = 0.0)
         : m_ps(ps)
         , m_region(region)
         , m_frame(frame)
         , m_period(frame.period())
-        , m_stats(stats) {}
+        , m_stats(stats)
+        , m_range(range) {}
 
     /// Tests candidate copies a and b (any order); true (and `c` filled) if this block
     /// evaluates their contact.
@@ -103,7 +109,7 @@ public:
             return false; // a grain and its own periodic image
         std::size_t const i = ps.uid(a) < ps.uid(b) ? a : b;
         std::size_t const j = i == a ? b : a;
-        if (!overlapGeometry(ps, i, j, m_period, c))
+        if (!overlapGeometry(ps, i, j, m_period, c, m_range))
             return false;
         ++m_stats.overlapsFound;
         if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
@@ -148,6 +154,7 @@ private:
     PeriodicFrame const& m_frame;
     core::Vec3 m_period;
     DetectorStats& m_stats;
+    double m_range;
 };
 
 } // namespace regolith::particles::detection_detail

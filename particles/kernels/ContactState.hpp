@@ -43,4 +43,10 @@ concept ContactModel = requires(M const& m, ContactState const& s, core::Vec3& s
     { m.hasRollingSpring() } -> std::convertible_to<bool>;
 };
 
+/// A model's batch kernel, where it has one: a specialisation beside the model names its
+/// reusable `Workspace` and its pair callback `Pairs<Sink>` (SpringDashpotBatch.hpp), and the
+/// contact loop then evaluates the pairs it finds a batch at a time (BlockContactLoop.hpp).
+template <class M>
+struct BatchKernel {};
+
 } // namespace regolith::particles

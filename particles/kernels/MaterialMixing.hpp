@@ -14,6 +14,10 @@
 
 namespace regolith::particles {
 
+/// Which elastic keys of a material a contact model reads: the linear spring's stiffness, or
+/// Hertz's Young's modulus and Poisson ratio.
+enum class Elasticity { Linear, Hertz };
+
 /// One material type's properties (the scene's [[materials]] entry).
 struct MaterialProperties {
     double stiffness = 0.0;     ///< k_n of the linear model [force/length]

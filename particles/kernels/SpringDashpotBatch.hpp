@@ -268,4 +268,13 @@ private:
     bool m_moved = false; ///< some history of the batch's pairs got an entry since it started
 };
 
+/// The spring-dashpot's batch kernel (ContactState.hpp, BatchKernel): the contact loop
+/// evaluates its pairs with BatchedSpringDashpot.
+template <>
+struct BatchKernel<SpringDashpot> {
+    using Workspace = SpringDashpotBatch;
+    template <class Sink>
+    using Pairs = BatchedSpringDashpot<Sink>;
+};
+
 } // namespace regolith::particles

@@ -2,7 +2,6 @@
 
 #include "core/Error.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
-#include "particles/kernels/SpringDashpotBatch.hpp"
 
 #include <fmt/format.h>
 
@@ -12,7 +11,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <type_traits>
 #include <utility>
 
 namespace regolith::particles {
@@ -28,9 +26,16 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     , m_walls(std::move(walls))
     , m_config(config)
     , m_timers(&timers)
-    , m_frame(local.forest().geometry()) {
+    , m_frame(local.forest().geometry())
+    , m_loop(m_model.blockLoop()) {
     if (!(config.dt > 0.0) || !std::isfinite(config.dt))
         throw core::Error("DemStep: the time step must be positive and finite");
+    // A model acting beyond touching: the shadows cover its range (the batch kernels screen
+    // overlaps only).
+    double const range = m_model.interactionRange();
+    if (range > 0.0 && m_model.batched())
+        throw core::Error("DemStep: a contact model with a batch kernel must act in overlap only");
+    sync.coverReach(range);
     placeOnBlocks();
 }
 
@@ -46,12 +51,12 @@ void DemStep::placeOnBlocks() {
     }
     m_movedSinceSync.assign(m_reachEdge.size(), 0.0);
     std::size_t const blocks = m_local->blocks().size();
-    // The spring-dashpot batch takes springs kept beside the lists (without model C's
-    // rolling spring, which stays in the histories).
+    // A batch kernel takes springs kept beside the lists (without model C's rolling spring,
+    // which stays in the histories).
     DetectorConfig detector = m_config.detector;
-    auto const* linear = std::get_if<SpringDashpot>(&m_model);
-    detector.keepSprings = m_config.keepSprings && linear != nullptr && !linear->hasRollingSpring();
+    detector.keepSprings = m_config.keepSprings && m_model.batched() && !m_model.hasRollingSpring();
     detector.settleFaceTwins = true; // the storages are the synchronisation's
+    detector.range = m_model.interactionRange();
     m_detectors.assign(blocks, ContactDetector(detector));
     m_contacts.assign(blocks, ContactList{});
     m_records.assign(blocks, std::vector<ForceRecord>{});
@@ -74,7 +79,7 @@ int DemStep::setUp() {
         calls = m_sync->syncUntilConverged(*m_local);
     }
     if (m_config.checkInvariants)
-        requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", m_sync->config().skin);
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep set-up", copySkin());
     m_startStep = m_steps;
     computeForces(0);
     m_walls.restartWork();
@@ -96,7 +101,7 @@ int DemStep::resume(std::uint64_t stepsDone, double time) {
         calls = m_sync->syncUntilConverged(*m_local);
     }
     if (m_config.checkInvariants)
-        requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", m_sync->config().skin);
+        requireSyncInvariants(*m_local, *m_comm, true, "DemStep resume", copySkin());
     m_steps = stepsDone;
     m_startStep = stepsDone;
     m_startTime = time;
@@ -206,6 +211,10 @@ void DemStep::completeStep() {
                                      return integrator.postForce(ps, dt, g);
                                  });
     m_kickPending = false;
+}
+
+double DemStep::copySkin() const {
+    return m_sync->config().skin + 0.5 * m_sync->config().reach;
 }
 
 double DemStep::listSkin() const {
@@ -329,7 +338,7 @@ void DemStep::syncParticles() {
     // One call per step keeps SOS-class grains converged after set-up.
     if (m_config.checkInvariants)
         requireSyncInvariants(*m_local, *m_comm, true,
-                              "DemStep step " + std::to_string(m_steps + 1), m_sync->config().skin);
+                              "DemStep step " + std::to_string(m_steps + 1), copySkin());
 }
 
 void DemStep::agreeOnListRebuilds() {
@@ -351,31 +360,6 @@ void DemStep::agreeOnListRebuilds() {
             m_detectors[b].rebuildNext();
 }
 
-template <class Model, class Sink>
-void DemStep::evaluateBlock(std::size_t b, Model const& model, std::uint32_t stamp, bool keepPairs,
-                            Sink&& sink) {
-    ParticleStorage& ps = m_local->blocks()[b].particles;
-    core::AABB const& box = m_local->blocks()[b].block->aabb;
-    double const dt = m_config.dt;
-    // Detection and evaluation in one loop over the Verlet list: each contact is evaluated as
-    // soon as the loop finds it (spring-dashpot: in batches, SpringDashpotBatch), its history
-    // slot hint kept beside the pair. Same contacts, same order, same arithmetic as detecting
-    // first: same bits.
-    if constexpr (std::is_same_v<Model, SpringDashpot>) {
-        if (!m_batch)
-            m_batch = std::make_unique<SpringDashpotBatch>();
-        BatchedSpringDashpot pairs(ps, model, dt, stamp, *m_batch, sink);
-        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], pairs, keepPairs);
-        pairs.finish();
-    } else {
-        auto onePair = [&](Contact const& c, std::uint8_t& hint) {
-            evaluatePair(ps, c, model, dt, stamp, hint, sink);
-        };
-        m_detectors[b].detect(ps, m_walls, box, m_frame, m_contacts[b], onePair, keepPairs);
-    }
-    evaluateWallsWith(ps, m_walls, m_contacts[b].walls, model, dt, stamp, sink);
-}
-
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
     bool const keepPairs = m_config.keepContacts || stamp == 0;
@@ -393,29 +377,9 @@ void DemStep::computeForces(std::uint32_t stamp) {
             // (docs/design.md, "The time step": each contact evaluated once). Walls are global:
             // every block tests its copies against all of them, and the detector keeps a
             // sphere-wall contact only for the sphere's master, so it too is evaluated once.
-            std::visit(
-                [&](auto const& model) {
-                    if (reproducible) {
-                        std::vector<ForceRecord>& out = m_records[b];
-                        evaluateBlock(b, model, stamp, keepPairs,
-                                      [&out](std::size_t k, Uid partner, core::Vec3 const& f,
-                                             core::Vec3 const& tq) {
-                                          out.push_back(ForceRecord{k, partner, f, tq});
-                                      });
-                    } else {
-                        // The arrays' addresses, not the storage's: stable while the block is
-                        // evaluated, and not reloaded after every store.
-                        core::Vec3* const force = ps.empty() ? nullptr : &ps.force(0);
-                        core::Vec3* const torque = ps.empty() ? nullptr : &ps.torque(0);
-                        evaluateBlock(b, model, stamp, keepPairs,
-                                      [force, torque](std::size_t k, Uid, core::Vec3 const& f,
-                                                      core::Vec3 const& tq) {
-                                          force[k] += f;
-                                          torque[k] += tq;
-                                      });
-                    }
-                },
-                m_model);
+            m_loop->evaluate(BlockPass{ps, m_detectors[b], m_walls, blocks[b].block->aabb, m_frame,
+                                       m_contacts[b], m_config.dt, stamp, keepPairs,
+                                       reproducible ? &m_records[b] : nullptr});
             // A block without copies "rebuilds" an empty list every call: not counted.
             m_listRebuilds += m_detectors[b].stats().rebuilt && !ps.empty() ? 1 : 0;
         }

@@ -15,7 +15,8 @@
 #include "particles/kernels/ForceRecord.hpp"
 #include "particles/kernels/HertzMindlin.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
-#include "particles/kernels/SpringDashpotBatch.hpp"
+#include "particles/simulation/AnyContactModel.hpp"
+#include "particles/simulation/BlockContactLoop.hpp"
 #include "particles/storage/WallList.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
@@ -33,9 +34,6 @@
 
 namespace regolith::particles {
 
-/// The contact models a run may choose: the built-in ones (scene key contact.model) and a
-/// law of one's own (CustomContact, from code).
-using AnyContactModel = std::variant<SpringDashpot, HertzMindlin, CustomContact>;
 /// The integrators a run may choose (scene key time.integrator).
 using AnyIntegrator = std::variant<VelocityVerlet, SemiImplicitEuler>;
 
@@ -232,6 +230,9 @@ private:
     /// Sizes the per-block state (detectors, contact lists, reach) for the blocks of m_local.
     void placeOnBlocks();
     void syncParticles();
+    /// How far beyond its radius a grain's copies reach: the sync skin and half the contact
+    /// model's range (what the invariant checks allow).
+    [[nodiscard]] double copySkin() const;
     /// A count of the local blocks' last detections, summed (DetectorStats).
     [[nodiscard]] std::size_t detectorSum(std::size_t DetectorStats::*count) const;
     /// Writes the springs the blocks' Verlet lists keep back to the grains' histories
@@ -246,11 +247,6 @@ private:
     /// the other ranks waiting, in turns, at the force reduction; moving bodies use their
     /// skins at similar rates, so after one common rebuild they stay in step. COLLECTIVE.
     void agreeOnListRebuilds();
-    /// Detection and evaluation of block b's contacts with `model`, each participant's share
-    /// handed to `sink` (ContactSink). Not collective.
-    template <class Model, class Sink>
-    void evaluateBlock(std::size_t b, Model const& model, std::uint32_t stamp, bool keepPairs,
-                       Sink&& sink);
 
     core::Comm const* m_comm;
     ParticleSync* m_sync;
@@ -265,7 +261,7 @@ private:
     std::vector<char> m_listHalfway;                 ///< agreeOnListRebuilds, per block
     std::vector<ContactList> m_contacts;             ///< one per local block
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
-    std::unique_ptr<SpringDashpotBatch> m_batch;     ///< the spring-dashpot lanes, reused
+    std::unique_ptr<BlockContactLoop> m_loop;        ///< m_model's per-block contact loop
     BodyForces m_bodyForces;
     /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
     /// unknown, before the first step).

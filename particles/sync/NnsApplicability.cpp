@@ -20,7 +20,7 @@ std::optional<NnsViolation> ParticleSync::findNnsViolation(LocalParticles const&
         ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             double const r = ps.radius(i);
-            if (!(r + m_config.skin >= edge))
+            if (!(r + m_config.skin + 0.5 * m_config.reach >= edge))
                 return;
             radiusAlone = radiusAlone || r >= edge;
             skinBound = std::min(skinBound, edge - r);

@@ -9,6 +9,7 @@
 #include "particles/sync/UpdateList.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <span>
 #include <sstream>
@@ -100,6 +101,16 @@ void ParticleSync::relocate(domain::BlockForest const& forest) {
 
 ParticleSync::~ParticleSync() = default;
 
+void ParticleSync::coverReach(double range) {
+    if (!(range >= 0.0) || !std::isfinite(range))
+        throw core::Error("ParticleSync::coverReach: the range must be finite and >= 0");
+    if (range <= m_config.reach)
+        return;
+    m_config.reach = range;
+    if (m_updateList)
+        m_updateList->invalidate(); // its shadows were decided for the narrower balls
+}
+
 namespace {
 
 /// The Update of shadow `t` (on this rank, same image) from master i of `ps`, applied
@@ -132,11 +143,12 @@ void prefetchShadowLookups(ParticleSync::Impl const& engine, LocalParticles cons
 }
 
 /// Alg. 1 lines 2-24 (NNS class) and Alg. 2 lines 2-13 (SOS class) for master `i` of `bp`,
-/// an NNS-class ball grown by `grow` (SyncConfig::skin). Returns true if the master leaves this
-/// block (transferred or out of the domain).
+/// an NNS-class ball grown by `grow` (SyncConfig::skin and half the reach), an SOS-class one
+/// by `halfReach`. Returns true if the master leaves this block (transferred or out of the
+/// domain).
 bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParticles& bp,
                    ParticleSync::Impl::LinkGroups const& links, std::size_t i, bool nnsClass,
-                   bool reachable, double grow, SyncStats& stats) {
+                   bool reachable, double grow, double halfReach, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
@@ -144,7 +156,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     Uid const uid = ps.uid(i);
     core::Vec3 const x = ps.position(i);
     // An NNS-class grain's copies are decided for its ball grown by the skin (UpdateList.hpp).
-    double const r = ps.radius(i) + (nnsClass ? grow : 0.0);
+    double const r = ps.radius(i) + (nnsClass ? grow : halfReach);
 
     // Ownership (Alg. 1 l. 16-24, Alg. 2 l. 4-12): the block whose box holds the centre.
     bool transfer = false;
@@ -287,6 +299,10 @@ void ParticleSync::syncInFull(LocalParticles& local,
                               std::span<std::vector<std::uint32_t> const> only, double grow) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
+    // Every ball reaches half the interaction range farther (SyncConfig::reach).
+    double const halfReach = 0.5 * m_config.reach;
+    bool const skinned = grow > 0.0;
+    grow += halfReach;
     bool const twoRounds = m_config.method != SyncMethod::NextNeighbour;
     // Whether this rank has copies round 2 (spread) may act on: SOS-class shadows, and
     // SOS-class masters processed below. Shadows and promotions that round 1 brings come from
@@ -336,13 +352,14 @@ void ParticleSync::syncInFull(LocalParticles& local,
             if (m_config.method == SyncMethod::NextNeighbour && !reachable) {
                 std::ostringstream msg;
                 msg << "NNS cannot synchronise particle uid " << ps.uid(i) << ": its radius "
-                    << ps.radius(i) << (grow > 0.0 ? " plus sync.skin" : "")
+                    << ps.radius(i) << (skinned ? " plus sync.skin" : "")
+                    << (halfReach > 0.0 ? " plus half the contact model's range" : "")
                     << (small ? " plus its displacement in one step reach" : " is not below")
                     << " the smallest "
                     << (engine.forest().subdomains() == domain::Subdomains::RankBoxes ? "subdomain"
                                                                                       : "block")
                     << " edge " << edge << " it may touch; set sync.method = \"sos\" or \"hybrid\""
-                    << (grow > 0.0 ? ", reduce sync.skin" : "")
+                    << (skinned ? ", reduce sync.skin" : "")
                     << (small ? ", or reduce time.dt" : "");
                 // Found here alone, mid-sync: the job ends with this message (exit 2).
                 throw core::RankInputError(msg.str());
@@ -350,7 +367,8 @@ void ParticleSync::syncInFull(LocalParticles& local,
             bool const nnsClass = m_config.method == SyncMethod::NextNeighbour ||
                                   (m_config.method == SyncMethod::Hybrid && reachable);
             spreadWork = spreadWork || !nnsClass;
-            if (processMaster(engine, local, bp, links, i, nnsClass, reachable, grow, m_last))
+            if (processMaster(engine, local, bp, links, i, nnsClass, reachable, grow, halfReach,
+                              m_last))
                 leaving.push_back(ps.uid(i));
             else if (twoRounds && !nnsClass && !ps.flags(i).has(Flag::MasterReachesAll) &&
                      !engine.deepInside(deep, ps.position(i), r))
@@ -362,7 +380,7 @@ void ParticleSync::syncInFull(LocalParticles& local,
     receiveRound(engine, local, m_last, spreadWork);
     if (twoRounds && engine.flagRaised()) {
         for (BlockParticles& bp : local.blocks())
-            spread(engine, bp, m_last);
+            spread(engine, bp, halfReach, m_last);
         receiveRound(engine, local, m_last);
     }
     m_counters.record(m_last.comm);

@@ -121,6 +121,11 @@ public:
     /// the remedy, if the configured method is NNS and any rank holds such a grain. COLLECTIVE.
     void requireNnsApplicable(LocalParticles const& local) const;
 
+    /// Makes the copies cover an interaction range of `range` beyond the radii
+    /// (SyncConfig::reach), if they do not yet; the next call decides every shadow anew.
+    /// Before a sync call, on every rank alike (DemStep's constructor). Not collective.
+    void coverReach(double range);
+
     [[nodiscard]] SyncConfig const& config() const { return m_config; }
     [[nodiscard]] SyncStats const& lastStats() const { return m_last; }
     /// Whether the last reduceForces(local, stamp) went along the skin's list (the same on

@@ -48,7 +48,7 @@ std::vector<std::size_t> const& spreadingCopies(ParticleSync::Impl& engine, Bloc
 
 /// Alg. 2 lines 15-28 for every SOS-class copy of `bp`: create missing shadows on the
 /// neighbour blocks (one layer per call), drop shadows that no longer touch the block.
-void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
+void spread(ParticleSync::Impl& engine, BlockParticles& bp, double halfReach, SyncStats& stats) {
     ParticleStorage& ps = bp.particles;
     domain::Block const& block = *bp.block;
     int const me = engine.rank();
@@ -60,7 +60,7 @@ void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats) {
         Uid const uid = ps.uid(i);
         CopyImage const k = ps.image(i);
         core::Vec3 const& x = ps.position(i);
-        double const r = ps.radius(i);
+        double const r = ps.radius(i) + halfReach;
         BlockRef const owner = ps.owner(i);
         bool const master = ps.flags(i).isMaster();
         if (!master && !copyNeeded(block.aabb, x, k, r, period)) {

@@ -12,7 +12,8 @@ namespace regolith::particles::sync_detail {
 /// longer overlap it. Visits the SOS-class shadows and the masters in `bp.spreadingMasters`
 /// (consumed): the caller lists there every SOS-class master that is not deep inside. Local;
 /// the caller exchanges the buffers (receiveRound).
-void spread(ParticleSync::Impl& engine, BlockParticles& bp, SyncStats& stats);
+/// Every ball is grown by `halfReach` (half of SyncConfig::reach).
+void spread(ParticleSync::Impl& engine, BlockParticles& bp, double halfReach, SyncStats& stats);
 
 } // namespace regolith::particles::sync_detail
 

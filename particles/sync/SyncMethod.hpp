@@ -37,6 +37,11 @@ struct SyncConfig {
     /// Alg. 1's (copies within r + 2 skin), never fewer (UpdateList.hpp). Any number of ranks
     /// (remote shadows along the owners' send lists); method "nns" or "hybrid".
     double skin = 0.0;
+    /// The contact model's interaction range [length] (AnyContactModel::interactionRange,
+    /// set by DemStep): every grain's copies cover its ball grown by reach / 2 (beyond the
+    /// skin), so that the block owning a contact of two grains up to `reach` apart -- whose
+    /// ownership point lies in the gap, within r + gap / 2 of each centre -- holds both.
+    double reach = 0.0;
 };
 
 } // namespace regolith::particles

@@ -84,7 +84,7 @@ TEST(SceneSections, TimeSyncContactGravityOutputRules) {
               "'reproducible'?");
     EXPECT_EQ(errorWith("contact.model=hooke"),
               "--set contact.model=hooke: contact.model: expected one of \"spring-dashpot\", "
-              "\"hertz\", got \"hooke\"");
+              "\"hertz\", \"vdw\", \"dmt\", got \"hooke\"");
     EXPECT_EQ(errorWith("contact.restitution=1.5"),
               "--set contact.restitution=1.5: contact.restitution: expected a number in (0, 1], "
               "got 1.5");
@@ -222,4 +222,34 @@ TEST(SceneSections, TyposAnywhereAreRejectedAfterParsing) {
     } catch (core::InputError const& e) {
         EXPECT_STREQ(e.what(), "t.toml:7: unknown key 'time.stesp' \u2014 did you mean 'steps'?");
     }
+}
+
+TEST(SceneSections, CohesiveContactModelRules) {
+    // Each cohesive model's own keys, checked by its registry entry, named in the message.
+    std::string_view const vdw = "contact.model=vdw";
+    EXPECT_EQ(errorWith({vdw, "contact.hamaker=-1e-20", "contact.min_separation=1e-3",
+                         "contact.cutoff=0.1"}),
+              "--set contact.hamaker=-1e-20: contact.hamaker: expected a positive Hamaker "
+              "constant A (an energy) (required with contact.model = \"vdw\"), got -1e-20");
+    EXPECT_EQ(errorWith({vdw, "contact.hamaker=1e-3", "contact.min_separation=0.01",
+                         "contact.cutoff=0.005"}),
+              "--set contact.cutoff=0.005: contact.cutoff: expected a cut-off gap (a length) "
+              "above min_separation = 0.01 (required with contact.model = \"vdw\"), got 0.005");
+    EXPECT_EQ(
+        errorWith({vdw, "contact.hamaker=1e-3", "contact.min_separation=0", "contact.cutoff=0.1"}),
+        "--set contact.min_separation=0: contact.min_separation: expected a positive "
+        "minimum separation (a length, where the force stops growing) (required with "
+        "contact.model = \"vdw\"), got 0");
+    EXPECT_NE(errorWith({vdw, "contact.min_separation=0.01", "contact.cutoff=0.1"})
+                  .find("contact.hamaker"),
+              std::string::npos);
+    EXPECT_EQ(errorWith({"contact.model=dmt", "contact.surface_energy=-0.5"}),
+              "--set contact.surface_energy=-0.5: contact.surface_energy: expected a "
+              "non-negative surface energy gamma (energy / area; the pull-off force is 2 pi "
+              "gamma R*), required with contact.model = \"dmt\", got -0.5");
+    // The model's keys are no typo for it (the scene's materials are Hertz's, as dmt's), and
+    // stand refused for the others.
+    EXPECT_EQ(errorWith({"contact.model=dmt", "contact.surface_energy=0.5"}), "(no error)");
+    EXPECT_NE(errorWith("contact.hamaker=1e-3").find("unknown key 'contact.hamaker'"),
+              std::string::npos);
 }

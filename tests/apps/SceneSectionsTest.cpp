@@ -43,7 +43,7 @@ TEST(SceneSections, EverySectionParsed) {
     EXPECT_EQ(skin.skin, 0.2);
     EXPECT_FALSE(s.sync.reproducible); // the default
     EXPECT_TRUE(parse({"sync.reproducible=true"}).sync.reproducible);
-    EXPECT_EQ(s.contact.model, apps::ContactModel::Hertz);
+    EXPECT_EQ(s.contact.model, "hertz");
     EXPECT_EQ(s.materials.of(0).rollingFriction, 0.01);
     EXPECT_EQ(s.materials.of(0).youngsModulus, 1.82e7);
     EXPECT_EQ(s.materials.of(0).poissonRatio, 0.3);
@@ -105,7 +105,7 @@ TEST(SceneSections, DefaultsForOptionalSections) {
     EXPECT_EQ(s.forest.rootBlocks, (std::array<int, 3>{1, 1, 1}));
     EXPECT_EQ(s.sync.method, particles::SyncMethod::Hybrid); // the scenes' default
     EXPECT_FALSE(s.sync.reproducible);
-    EXPECT_EQ(s.contact.model, apps::ContactModel::SpringDashpot);
+    EXPECT_EQ(s.contact.model, "spring-dashpot");
     EXPECT_EQ(s.materials.of(0).stiffness, 1e4);
     EXPECT_EQ(s.gravity.self, "none");
     EXPECT_TRUE(s.particles.empty());

@@ -110,7 +110,7 @@ std::vector<Final> runOn(core::Comm const& comm, std::array<int, 3> blocks, bool
     coupling::SimulationSetup setup = boxSetup(blocks, selfGravity);
     if (ownLaw)
         setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
-            std::get<particles::SpringDashpot>(*setup.contact)));
+            *setup.contact->get<particles::SpringDashpot>()));
     coupling::Simulation sim(comm, setup);
     addGrains(sim);
     sim.start();
@@ -270,7 +270,7 @@ TEST(Simulation, RefusesWhatCannotRun) {
     std::string const tooLong = errorOf([&] {
         coupling::SimulationSetup setup = boxSetup({2, 2, 2}, false);
         setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
-            std::get<particles::SpringDashpot>(*setup.contact)));
+            *setup.contact->get<particles::SpringDashpot>()));
         setup.dem.dt = 0.01; // t_c = pi sqrt(m / 2k) = 0.036
         coupling::Simulation sim(world, setup);
         addGrains(sim);
