@@ -1,83 +1,45 @@
-// Tutorial 02: a contact law of one's own — Hertz elasticity with DMT adhesion — given to the
-// time step from this file, and its pull-off force measured against the closed form.
+// Tutorial 02: a contact law of one's own -- Hertz elasticity with DMT adhesion, the whole law
+// in HertzDmtLaw.hpp -- registered with one line, chosen by name as a scene would, and its
+// pull-off force measured against the closed form.
 //
-// The law (Derjaguin, Muller & Toporov 1975): a Hertz spring with a constant adhesive pull
-// while the grains touch, F_n = 4/3 E* sqrt(R*) delta^(3/2) - 2 pi w R*, with w the work of
-// adhesion [energy / area], plus a normal dashpot. Two grains stick; one is fixed, the other is
-// pulled away by a slowly growing force of our own; they part when the pull exceeds the
-// adhesion, at F = 2 pi w R* (the DMT pull-off force). Run: ./02-contact-law [steps].
+// Two grains stick; one is fixed, the other is pulled away by a slowly growing force of our
+// own; they part when the pull exceeds the adhesion, at F = 2 pi w R* (the DMT pull-off
+// force). Run: ./02-contact-law [steps].
+#include "core/config/ConfigTable.hpp"
 #include "core/math/Vec3.hpp"
 #include "core/mpi/Comm.hpp"
 #include "coupling/simulation/Simulation.hpp"
-#include "particles/kernels/ContactLaw.hpp"
+#include "particles/simulation/ContactModelRegistry.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <memory>
 #include <numbers>
+
+#include "HertzDmtLaw.hpp"
 
 using namespace regolith;
 using core::Vec3;
-
-namespace {
-
-/// The law: every contact, one call. `s.penetration` > 0 is the overlap, `s.normal` points
-/// from i to j, the force returned acts on j (i gets the opposite).
-class HertzDmt final : public particles::ContactLaw {
-public:
-    HertzDmt(double effectiveModulus, double workOfAdhesion, double dampingRatio)
-        : m_modulus(effectiveModulus)
-        , m_work(workOfAdhesion)
-        , m_damping(dampingRatio) {}
-
-    particles::ContactResponse operator()(particles::ContactState const& s, Vec3& /*spring*/,
-                                          Vec3& /*rolling*/, double /*dt*/) const override {
-        double const r = s.effectiveRadius;
-        double const elastic = 4.0 / 3.0 * m_modulus * std::sqrt(r) * std::pow(s.penetration, 1.5);
-        double const adhesion = 2.0 * std::numbers::pi * m_work * r;
-        // A dashpot on the tangent stiffness k = dF/d(delta) = 2 E* sqrt(R* delta).
-        double const k = 2.0 * m_modulus * std::sqrt(r * s.penetration);
-        double const vn = s.relativeVelocity.dot(s.normal);
-        double const fn =
-            elastic - adhesion - 2.0 * m_damping * std::sqrt(k * s.effectiveMass) * vn;
-        return {fn * s.normal, Vec3::Zero()}; // frictionless: no tangential force, no couple
-    }
-
-    /// The period of small oscillations about the resting overlap: the time scale the step
-    /// must resolve (the grains here have radius 0.5, so R* = 0.25).
-    double contactTime(std::uint32_t, std::uint32_t, double effectiveMass) const override {
-        double const r = 0.25;
-        double const k = 2.0 * m_modulus * std::sqrt(r * restingOverlap(r));
-        return std::numbers::pi * std::sqrt(effectiveMass / k);
-    }
-
-    [[nodiscard]] double pullOff(double effectiveRadius) const {
-        return 2.0 * std::numbers::pi * m_work * effectiveRadius;
-    }
-    /// The overlap at which the Hertz force balances the adhesion.
-    [[nodiscard]] double restingOverlap(double effectiveRadius) const {
-        return std::pow(pullOff(effectiveRadius) /
-                            (4.0 / 3.0 * m_modulus * std::sqrt(effectiveRadius)),
-                        2.0 / 3.0);
-    }
-
-private:
-    double m_modulus, m_work, m_damping;
-};
-
-} // namespace
 
 int main(int argc, char** argv) {
     core::MpiEnvironment mpi(argc, argv);
     core::Comm const world;
     long long const steps = argc > 1 ? std::atoll(argv[1]) : 20000;
 
-    auto const law = std::make_shared<HertzDmt>(1.0e4, 1.0, 0.5);
+    particles::contactModels().add(tutorial::hertzDmtEntry()); // the registration line
+
+    // The [contact] table of a scene that names the law (here from a string).
+    auto const contact = core::ConfigTable::fromString(
+        "model = \"hertz-dmt\"\neffective_modulus = 1.0e4\nadhesion_work = 1.0\n"
+        "damping_ratio = 0.5\n",
+        "02-contact-law");
     coupling::SimulationSetup setup;
     setup.domain.domain = core::AABB{Vec3::Constant(-4.0), Vec3::Constant(4.0)};
     setup.domain.rootBlocks = {2, 2, 2};
-    setup.contact = particles::CustomContact(law); // the law, given to the step
+    setup.contact = particles::contactModelEntry(contact).make({contact, {}, {}});
+    tutorial::HertzDmtLaw const* law = setup.contact->get<tutorial::HertzDmtLaw>();
+    if (law == nullptr)
+        return 1;
     setup.dem.dt = 2e-3;
     coupling::Simulation sim(world, setup);
 

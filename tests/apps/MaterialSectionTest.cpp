@@ -81,7 +81,9 @@ TEST(Materials, EveryTypeHasItsOwnAndUnlikePairsMix) {
     EXPECT_EQ(scene.materials.of(1).friction, 0.8);
     EXPECT_EQ(scene.materials.of(2).rollingFriction, 0.1);
     auto const model = apps::makeContactModel(scene);
-    auto const& table = model.get<particles::SpringDashpot>()->materials();
+    auto const* held = model.get<particles::SpringDashpot>();
+    ASSERT_NE(held, nullptr);
+    auto const& table = held->materials();
     ASSERT_EQ(table.numTypes(), 3U);
     EXPECT_EQ(table(0, 0).restitution, 0.9);
     EXPECT_DOUBLE_EQ(table(0, 1).stiffness, 200.0);
@@ -94,7 +96,9 @@ TEST(Materials, ContactAloneIsEveryTypesMaterial) {
     auto const scene = parse("[contact]\nstiffness = 50.0\nfriction = 0.3\n");
     EXPECT_FALSE(scene.materials.perType);
     auto const model = apps::makeContactModel(scene);
-    auto const& table = model.get<particles::SpringDashpot>()->materials();
+    auto const* held = model.get<particles::SpringDashpot>();
+    ASSERT_NE(held, nullptr);
+    auto const& table = held->materials();
     ASSERT_EQ(table.numTypes(), 3U); // types 0 to 2 are used
     for (std::uint32_t a = 0; a < 3; ++a)
         for (std::uint32_t b = 0; b < 3; ++b) {
@@ -111,7 +115,9 @@ TEST(Materials, HertzTakesYoungsModulusAndPoissonRatio) {
                              "[[materials]]\nyoungs_modulus = 4e7\npoisson_ratio = 0.5\n"
                              "[[materials]]\nyoungs_modulus = 2e8\npoisson_ratio = 0.3\n");
     auto const model = apps::makeContactModel(scene);
-    auto const& table = model.get<particles::HertzMindlin>()->materials();
+    auto const* held = model.get<particles::HertzMindlin>();
+    ASSERT_NE(held, nullptr);
+    auto const& table = held->materials();
     EXPECT_DOUBLE_EQ(table(0, 0).effectiveYoungsModulus, 1e7 / (2.0 * (1.0 - 0.0625)));
     EXPECT_DOUBLE_EQ(table(0, 1).effectiveYoungsModulus, 1.0 / ((1.0 - 0.0625) / 1e7 + 0.75 / 4e7));
 }

@@ -109,8 +109,9 @@ std::vector<Final> runOn(core::Comm const& comm, std::array<int, 3> blocks, bool
                          bool ownLaw = false) {
     coupling::SimulationSetup setup = boxSetup(blocks, selfGravity);
     if (ownLaw)
-        setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
-            *setup.contact->get<particles::SpringDashpot>()));
+        if (auto const* linear = setup.contact->get<particles::SpringDashpot>())
+            setup.contact =
+                particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(*linear));
     coupling::Simulation sim(comm, setup);
     addGrains(sim);
     sim.start();
@@ -269,8 +270,9 @@ TEST(Simulation, RefusesWhatCannotRun) {
     // The time-step guard asks a law of one's own for its contact time.
     std::string const tooLong = errorOf([&] {
         coupling::SimulationSetup setup = boxSetup({2, 2, 2}, false);
-        setup.contact = particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(
-            *setup.contact->get<particles::SpringDashpot>()));
+        if (auto const* linear = setup.contact->get<particles::SpringDashpot>())
+            setup.contact =
+                particles::CustomContact(std::make_shared<ForwardedSpringDashpot>(*linear));
         setup.dem.dt = 0.01; // t_c = pi sqrt(m / 2k) = 0.036
         coupling::Simulation sim(world, setup);
         addGrains(sim);
