@@ -4,8 +4,8 @@
 /// (AnyContactModel). The law sees what the built-in models see (ContactState: normal,
 /// overlap, relative velocities, effective mass and radius, the two material types) and keeps
 /// its tangential and rolling springs in the contact history the same way. One virtual call
-/// per contact and step: the built-in models are called directly, the spring-dashpot in
-/// batches (SpringDashpotBatch).
+/// per contact and step: a model type of one's own (AnyContactModel.hpp, registered by name
+/// through ContactModelRegistry.hpp) is called directly, as the built-in ones are.
 #include "particles/kernels/ContactState.hpp"
 
 #include <cstdint>
