@@ -381,6 +381,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     detection_detail::PairRule const rule(ps, region, frame, m_stats, m_config.range);
     core::Vec3 const& period = rule.period();
     double const slack = m_stats.slack;
+    double const range = m_config.range; // in a register: the loop's stores may alias m_config
+    double const rangeSlack = range + slack;
     auto const& x = ps.positions();
     std::size_t overlaps = 0;
     Contact c;
@@ -418,7 +420,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             }
         }
         if (mode != PairMode::Check) {
-            if (!detection_detail::overlapGeometry(ps, a, b, period, c, m_config.range))
+            if (!detection_detail::overlapGeometry(ps, a, b, period, c, range))
                 return;
             ++overlaps;
         } else {
@@ -428,7 +430,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             if (!sameImage(ps.image(a), ps.image(b)))
                 d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a)),
                                  period);
-            double const reach = ps.radius(a) + ps.radius(b) + m_config.range + slack;
+            double const reach = ps.radius(a) + ps.radius(b) + rangeSlack;
             if (!(d.squaredNorm() < reach * reach) || !rule(a, b, c))
                 return;
         }
