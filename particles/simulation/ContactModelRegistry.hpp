@@ -54,9 +54,9 @@ private:
 /// call on. Not thread-safe: register before the run starts.
 ContactModelRegistry& contactModels();
 
-/// The model the scene names, read from `inputs.contact` ("model", default
-/// "spring-dashpot"): its entry's factory. Throws core::InputError naming contact.model if no
-/// model of that name is registered.
+/// The entry of the model `contact` (a scene's [contact] table) names with its key "model"
+/// (default "spring-dashpot"). Throws core::InputError naming contact.model, listing the
+/// registered names, if no model of that name is registered.
 [[nodiscard]] ContactModelEntry const& contactModelEntry(core::ConfigTable const& contact);
 
 } // namespace regolith::particles

@@ -97,6 +97,15 @@ regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
   NP8 base "--set domain.blocks=[2,2,2] --set sync.method=sos"         # 8, 1 SOS
       "${skin} --set sync.method=nns")                                 # 8 NNS skin
 
+#    With van der Waals cohesion (contact.model = "vdw") grains attract across gaps up to the
+#    cut-off: pairs apart are contacts too, owned in the gap, and the shadows reach half the
+#    cut-off farther; across block, rank and periodic faces the trajectory is the same.
+regolith_sync_equality(cohesive_gas SCENE sync-sparse-gas.toml
+  ARGS --set contact.model=vdw --set contact.hamaker=0.02 --set contact.min_separation=0.01
+       --set contact.cutoff=0.1
+  NP1 base ${one_block} ${skin}                                        # 64, 1, 64 skin
+  NP2 base "--set domain.blocks=[2,2,1]" "${per_block} --set sync.method=nns") # 32, 2, NNS
+
 # b) Dense packing under gravity between z walls: long-lived contacts, whose tangential
 #    springs travel with the grains.
 regolith_sync_equality(dense_packing SCENE sync-dense-packing.toml
