@@ -101,7 +101,7 @@ regolith_sync_equality(sparse_gas SCENE sync-sparse-gas.toml
 #    cut-off: pairs apart are contacts too, owned in the gap, and the shadows reach half the
 #    cut-off farther; across block, rank and periodic faces the trajectory is the same.
 regolith_sync_equality(cohesive_gas SCENE sync-sparse-gas.toml
-  ARGS --set contact.model=vdw --set contact.hamaker=0.02 --set contact.min_separation=0.01
+  ARGS --set contact.model=vdw --set contact.hamaker=0.0015 --set contact.min_separation=0.01
        --set contact.cutoff=0.1
   NP1 base ${one_block} ${skin}                                        # 64, 1, 64 skin
   NP2 base "--set domain.blocks=[2,2,1]" "${per_block} --set sync.method=nns") # 32, 2, NNS
