@@ -1,12 +1,14 @@
 #pragma once
 /// One master particle as the apps report it (checksum, `--dump`, conserved quantities): plain
 /// data, independent of the particle storage, in the columns of the dump contract
-/// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass).
+/// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass, then the grain fields
+/// a program declared).
 #include "core/math/Vec3.hpp"
 
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -17,6 +19,9 @@ struct MasterRecord {
     core::Vec3 angularVelocity = core::Vec3::Zero(); ///< [rad/time]
     double radius = 0.0;                             ///< [length]
     double mass = 0.0;                               ///< [mass]
+    /// The declared grain fields (particles/storage/GrainFields.hpp), for --dump's columns
+    /// after the contract's; empty where only the state above is reported.
+    std::vector<double> fields{};
 };
 
 /// The local masters visited one by one, in a fixed order, without a list of them: a call

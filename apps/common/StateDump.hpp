@@ -13,9 +13,10 @@ namespace regolith::apps {
 /// The header line of the dump (with its newline).
 inline constexpr std::string_view kDumpHeader = "uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n";
 
-/// The dump text of `masters` (one rank's or all): kDumpHeader, then one line per master in
-/// increasing uid, every number with "{:.17g}" (17 significant digits: reads back to the same
-/// double) and the uid as an integer. Not collective.
+/// The dump text of `masters` (one rank's or all): kDumpHeader (with a column per declared
+/// grain-field component before its newline: `name`, or `name_x,name_y,name_z`), then one
+/// line per master in increasing uid, every number with "{:.17g}" (17 significant digits:
+/// reads back to the same double) and the uid as an integer. Not collective.
 [[nodiscard]] std::string dumpCsv(std::span<MasterRecord const> masters);
 
 /// Gathers the masters of every rank on rank 0 and returns dumpCsv of all of them there ("" on

@@ -32,7 +32,7 @@ std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local) 
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             out.push_back({ps.uid(i), ps.position(i), ps.velocity(i), ps.angularVelocity(i),
-                           ps.radius(i), ps.mass(i)});
+                           ps.radius(i), ps.mass(i), ps.fieldValues(i)});
         });
     }
     return out;

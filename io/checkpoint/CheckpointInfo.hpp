@@ -12,7 +12,8 @@
 ///             type[N], flags[N], gravity_reference[N,3], gravity_field[N,3],
 ///             gravity_slope[N,3] (NaN rows: no self-gravity record), history_offset[N] (first
 ///             entry of the grain), history_count[N], history_partner[H], history_spring[H,3],
-///             history_stamp[H]
+///             history_stamp[H], then one dataset per grain field a program declared
+///             (particles/storage/GrainFields.hpp), named as declared, [N] or [N,3]
 /// `checksum` is the FNV-1a of the attributes plus the sum over grains of grainHash: any
 /// slice of grains can be hashed by any rank, so a file is verified on any rank count.
 #include "core/math/AABB.hpp"

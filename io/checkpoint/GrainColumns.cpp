@@ -1,6 +1,7 @@
 #include "io/checkpoint/GrainColumns.hpp"
 
 #include "core/Error.hpp"
+#include "particles/storage/GrainFields.hpp"
 
 #include <fmt/format.h>
 
@@ -18,6 +19,10 @@ void GrainColumns::resize(std::size_t grains, std::size_t entries) {
     flags.resize(grains);
     historyOffset.resize(grains);
     historyCount.resize(grains);
+    auto const declared = particles::grainFields();
+    fields.resize(declared.size());
+    for (std::size_t f = 0; f < declared.size(); ++f)
+        fields[f].resize(static_cast<std::size_t>(declared[f].components) * grains);
     partner.resize(entries);
     spring.resize(3 * entries);
     stamp.resize(entries);
@@ -26,7 +31,7 @@ void GrainColumns::resize(std::size_t grains, std::size_t entries) {
 std::vector<ColumnView> columnViews(GrainColumns& c) {
     constexpr bool grain = false, history = true;
     constexpr char const* velocity = "length/time";
-    return {
+    std::vector<ColumnView> views{
         {"uid", ColumnType::U64, 1, c.uid.data(), grain, "1", "unique grain id"},
         {"position", ColumnType::F64, 3, c.position.data(), grain, "length",
          "centre (x, y, z), wrapped into the domain on periodic axes"},
@@ -64,6 +69,13 @@ std::vector<ColumnView> columnViews(GrainColumns& c) {
         {"history_stamp", ColumnType::U32, 1, c.stamp.data(), history, "1",
          "step the entry was last touched"},
     };
+    // The grain fields of one's own, after the built-in columns, named as declared.
+    auto const declared = particles::grainFields();
+    for (std::size_t f = 0; f < declared.size() && f < c.fields.size(); ++f)
+        views.push_back({declared[f].name.c_str(), ColumnType::F64,
+                         static_cast<std::size_t>(declared[f].components), c.fields[f].data(),
+                         grain, declared[f].unit.c_str(), declared[f].description.c_str()});
+    return views;
 }
 
 namespace {
@@ -75,6 +87,26 @@ void put3(std::vector<double>& v, std::size_t row, core::Vec3 const& x) {
 
 core::Vec3 get3(std::vector<double> const& v, std::size_t row) {
     return {v[3 * row], v[3 * row + 1], v[3 * row + 2]};
+}
+
+/// Row `row` of every grain-field column from `values` (declaration order; missing: 0).
+void putFields(GrainColumns& c, std::size_t row, std::vector<double> const& values) {
+    std::size_t k = 0;
+    for (std::vector<double>& column : c.fields) {
+        std::size_t const width = column.size() / c.uid.size();
+        for (std::size_t j = 0; j < width; ++j, ++k)
+            column[width * row + j] = k < values.size() ? values[k] : 0.0;
+    }
+}
+
+std::vector<double> getFields(GrainColumns const& c, std::size_t row) {
+    std::vector<double> values;
+    for (std::vector<double> const& column : c.fields) {
+        std::size_t const width = column.size() / c.uid.size();
+        for (std::size_t j = 0; j < width; ++j)
+            values.push_back(column[width * row + j]);
+    }
+    return values;
 }
 
 } // namespace
@@ -105,6 +137,7 @@ GrainColumns toColumns(std::span<GrainState const> grains, std::uint64_t history
         put3(c.gravityReference, i, g.gravityReference);
         put3(c.gravityField, i, g.gravityField);
         put3(c.gravitySlope, i, g.gravitySlope);
+        putFields(c, i, g.fields);
         c.historyOffset[i] = historyBase + e;
         c.historyCount[i] = static_cast<std::uint32_t>(g.history.size());
         for (particles::HistoryEntry const& h : g.history) {
@@ -137,6 +170,7 @@ std::vector<GrainState> fromColumns(GrainColumns const& c, std::uint64_t history
         g.gravityReference = get3(c.gravityReference, i);
         g.gravityField = get3(c.gravityField, i);
         g.gravitySlope = get3(c.gravitySlope, i);
+        g.fields = getFields(c, i);
         std::uint64_t const first = c.historyOffset[i];
         std::uint64_t const count = c.historyCount[i];
         if (first < historyBase || first - historyBase + count > c.partner.size())

@@ -23,6 +23,8 @@ struct GrainColumns {
     std::vector<std::uint64_t> partner; ///< history entries, grain after grain
     std::vector<double> spring;
     std::vector<std::uint32_t> stamp;
+    /// Per declared grain field (particles::grainFields order), its components row by row.
+    std::vector<std::vector<double>> fields;
 
     /// Resizes every grain column to `grains` rows and every history column to `entries`.
     void resize(std::size_t grains, std::size_t entries);

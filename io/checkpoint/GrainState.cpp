@@ -23,6 +23,7 @@ std::vector<GrainState> collectMasters(particles::LocalParticles const& local) {
             g.type = ps.type(i);
             g.flags = ps.flags(i).bits();
             g.history.assign(ps.history(i).begin(), ps.history(i).end());
+            g.fields = ps.fieldValues(i);
             out.push_back(std::move(g));
         });
     }
@@ -41,6 +42,7 @@ particles::ParticleInit toParticleInit(GrainState const& g) {
     p.type = g.type;
     // Every stored flag as written; a restored grain is a master.
     p.flags = particles::Flags::fromBits(g.flags).set(particles::Flag::Shadow, false);
+    p.fields = g.fields;
     return p;
 }
 
@@ -117,6 +119,8 @@ std::uint64_t grainHash(GrainState const& g) {
         h.add(e.spring);
         h.add(e.stamp);
     }
+    for (double v : g.fields)
+        h.add(v);
     return fmix64(h.value());
 }
 

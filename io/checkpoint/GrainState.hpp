@@ -37,6 +37,7 @@ struct GrainState {
     core::Vec3 gravityReference = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     core::Vec3 gravityField = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
     core::Vec3 gravitySlope = core::Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    std::vector<double> fields; ///< the declared grain fields (particles/storage/GrainFields.hpp)
 };
 
 /// The masters of every local block, in block order then storage order. Not collective.

@@ -1,6 +1,7 @@
 #include "io/vtk/VtkPieces.hpp"
 
 #include "core/Error.hpp"
+#include "particles/storage/GrainFields.hpp"
 
 #include <fmt/format.h>
 
@@ -15,6 +16,8 @@ std::vector<ArraySpec> particleArrays(bool shadows) {
         {"owner_rank", "Int32", 1}};
     if (shadows)
         a.push_back({"shadow", "UInt8", 1});
+    for (particles::GrainField const& f : particles::grainFields()) // of one's own
+        a.push_back({f.name, "Float64", f.components});
     return a;
 }
 
@@ -48,6 +51,8 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
     std::vector<std::uint64_t> uid;
     std::vector<std::int32_t> owner;
     std::vector<std::uint8_t> shadow;
+    auto const fields = particles::grainFields();
+    std::vector<std::vector<double>> fieldValues(fields.size());
     for (auto* v : {&xyz, &velocity, &omega, &force})
         v->reserve(3 * n);
     radius.reserve(n);
@@ -70,12 +75,21 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
             append(force, ps.force(i));
             owner.push_back(ps.owner(i).rank);
             shadow.push_back(isShadow ? 1 : 0);
+            for (std::size_t f = 0; f < fields.size(); ++f) {
+                particles::GrainFieldId const id = particles::grainFieldId(f);
+                for (std::size_t c = 0; c < id.components; ++c)
+                    fieldValues[f].push_back(
+                        ps.fieldComponents() > id.offset + c ? ps.field(id, i, c) : 0.0);
+            }
         });
     }
     std::vector<ArraySpec> const specs = particleArrays(shadows);
-    std::vector<void const*> const values{uid.data(),      radius.data(), mass.data(),
-                                          velocity.data(), omega.data(),  force.data(),
-                                          owner.data(),    shadow.data()};
+    std::vector<void const*> values{uid.data(),   radius.data(), mass.data(), velocity.data(),
+                                    omega.data(), force.data(),  owner.data()};
+    if (shadows)
+        values.push_back(shadow.data());
+    for (std::vector<double> const& f : fieldValues)
+        values.push_back(f.data());
     std::vector<vtkxml::Column> columns;
     for (std::size_t k = 0; k < specs.size(); ++k)
         columns.push_back({specs[k], values[k]});

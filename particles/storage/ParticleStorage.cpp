@@ -30,6 +30,8 @@ void ParticleStorage::forEachArray(F&& f) {
     f(m_image);
     f(m_shadowHolders);
     f(m_history);
+    for (std::vector<double>& component : m_fields)
+        f(component);
 }
 
 ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
@@ -42,6 +44,9 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     if (!m_index.insert(CopyKey{p.uid, p.image}, static_cast<std::uint32_t>(i), keyAt()))
         throw core::Error("ParticleStorage::add: uid " + std::to_string(p.uid) +
                           (isZero(p.image) ? "" : " (periodic image)") + " is already stored");
+    // Grain fields declared since the last copy was added: zero for the copies before.
+    if (m_fields.size() < grainFieldComponents())
+        m_fields.resize(grainFieldComponents(), std::vector<double>(i, 0.0));
     // Every array is full at once: grow all by a sixteenth, not by push_back's doubling (the
     // first shadow after a set-up reserved to the masters would double the whole storage).
     if (i == m_uid.capacity())
@@ -68,6 +73,8 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     m_image.push_back(p.image);
     m_shadowHolders.emplace_back();
     m_history.emplace_back();
+    for (std::size_t c = 0; c < m_fields.size(); ++c)
+        m_fields[c].push_back(c < p.fields.size() ? p.fields[c] : 0.0);
     updateInverses(i);
     if (tracing()) {
         core::reserveForAppend(m_traceTag);
@@ -75,6 +82,18 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), kUntraced});
     }
     return i;
+}
+
+std::vector<double> ParticleStorage::fieldValues(Index i) const {
+    std::vector<double> values(m_fields.size());
+    for (std::size_t c = 0; c < m_fields.size(); ++c)
+        values[c] = m_fields[c][i];
+    return values;
+}
+
+void ParticleStorage::setFieldValues(Index i, std::span<double const> values) {
+    for (std::size_t c = 0; c < std::min(values.size(), m_fields.size()); ++c)
+        m_fields[c][i] = values[c];
 }
 
 void ParticleStorage::remove(Index i) {
@@ -277,6 +296,8 @@ std::size_t ParticleStorage::bytes() const {
     add(m_history);
     add(m_traceTag);
     add(m_traceJournal);
+    for (std::vector<double> const& component : m_fields)
+        add(component);
     for (auto const& h : m_shadowHolders)
         b += h.heapBytes();
     for (auto const& h : m_history)

@@ -5,6 +5,7 @@
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/CopyImage.hpp"
 #include "particles/storage/CopyIndex.hpp"
+#include "particles/storage/GrainFields.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
@@ -55,6 +56,9 @@ struct ParticleInit {
     Flags flags{};
     BlockRef owner{};
     CopyImage image = kNoImage; ///< see CopyImage.hpp; a master's is always kNoImage
+    /// The declared grain fields' components (GrainFields.hpp, declaration order); those
+    /// missing are 0.
+    std::vector<double> fields;
 };
 
 /// One change of the storage seen by a trace (see ParticleStorage::startTracing): slot `index`
@@ -157,6 +161,25 @@ public:
     [[nodiscard]] HolderList const& shadowHolders(Index i) const { return m_shadowHolders[i]; }
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
+
+    /// Component `c` of the grain field `id` (GrainFields.hpp) of copy i; the field was declared
+    /// before the copy was added.
+    [[nodiscard]] double& field(GrainFieldId id, Index i, std::size_t c = 0) {
+        return m_fields[id.offset + c][i];
+    }
+    [[nodiscard]] double field(GrainFieldId id, Index i, std::size_t c = 0) const {
+        return m_fields[id.offset + c][i];
+    }
+    /// Component `k` of all declared components (< fieldComponents()) of copy i.
+    [[nodiscard]] double& fieldComponent(std::size_t k, Index i) { return m_fields[k][i]; }
+    [[nodiscard]] double fieldComponent(std::size_t k, Index i) const { return m_fields[k][i]; }
+    /// Every declared grain field's components of copy i (ParticleInit::fields' order).
+    [[nodiscard]] std::vector<double> fieldValues(Index i) const;
+    /// Sets them from `values` (those missing: unchanged).
+    void setFieldValues(Index i, std::span<double const> values);
+    /// The grain-field components this storage keeps (grainFieldComponents() once a copy was
+    /// added after the last declaration).
+    [[nodiscard]] std::size_t fieldComponents() const { return m_fields.size(); }
 
     /// Setters for properties that others depend on (inverse mass and inertia; a radius
     /// change also breaks a running trace, see startTracing).
@@ -271,6 +294,7 @@ private:
     std::vector<CopyImage> m_image;
     std::vector<HolderList> m_shadowHolders;
     std::vector<ContactHistory> m_history;
+    std::vector<std::vector<double>> m_fields; ///< one array per declared grain-field component
     CopyIndex m_index;
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.
     std::vector<std::uint32_t> m_traceTag;

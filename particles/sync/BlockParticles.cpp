@@ -82,7 +82,8 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
                              masters.type(i),
                              masters.flags(i),
                              masters.owner(i),
-                             kNoImage};
+                             kNoImage,
+                             masters.fieldValues(i)};
         if (!addMaster(p))
             throw core::Error("particle uid " + std::to_string(p.uid) +
                               " lies in no block of this rank");

@@ -111,7 +111,7 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
         s.init =
             ParticleInit{ps.uid(i),         ps.position(i), ps.velocity(i), ps.angularVelocity(i),
                          ps.orientation(i), ps.radius(i),   ps.mass(i),     ps.type(i),
-                         ps.flags(i),       ps.owner(i),    u.newImage};
+                         ps.flags(i),       ps.owner(i),    u.newImage,     ps.fieldValues(i)};
         ps.remove(i);
         rekeyed.emplace_back(std::move(s), &u);
     }

@@ -2,6 +2,19 @@
 
 namespace regolith::particles::sync_detail {
 
+void writeFields(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i) {
+    std::size_t const n = grainFieldComponents();
+    for (std::size_t k = 0; k < n; ++k)
+        b << (k < ps.fieldComponents() ? ps.fieldComponent(k, i) : 0.0);
+}
+
+std::vector<double> readFields(core::RecvBuffer& b) {
+    std::vector<double> values(grainFieldComponents());
+    for (double& v : values)
+        b >> v;
+    return values;
+}
+
 void writeHeader(core::SendBuffer& b, RecordKind kind, std::uint64_t targetBlock) {
     b << kind << targetBlock;
 }
@@ -13,6 +26,7 @@ void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
       << ps.orientation(i) << ps.radius(i) << ps.mass(i) << ps.type(i)
       << Flags(ps.flags(i)).set(Flag::Shadow, false) << owner << ps.force(i) << ps.torque(i)
       << ps.history(i).entries() << holders;
+    writeFields(b, ps, i);
 }
 
 FullState readFull(core::RecvBuffer& b) {
@@ -21,6 +35,7 @@ FullState readFull(core::RecvBuffer& b) {
     b >> p.uid >> p.image >> p.position >> p.velocity >> p.angularVelocity >> p.orientation >>
         p.radius >> p.mass >> p.type >> p.flags >> p.owner >> s.force >> s.torque >> s.history >>
         s.holders;
+    p.fields = readFields(b);
     return s;
 }
 
@@ -30,12 +45,14 @@ void writeUpdate(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
     b << ps.uid(i) << oldImage << newImage << position << ps.velocity(i) << ps.angularVelocity(i)
       << ps.orientation(i) << Flags(ps.flags(i)).set(Flag::Shadow, false) << owner
       << ps.history(i).entries();
+    writeFields(b, ps, i);
 }
 
 UpdateState readUpdate(core::RecvBuffer& b) {
     UpdateState u;
     b >> u.uid >> u.oldImage >> u.newImage >> u.position >> u.velocity >> u.angularVelocity >>
         u.orientation >> u.flags >> u.owner >> u.history;
+    u.fields = readFields(b);
     return u;
 }
 
@@ -59,6 +76,7 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
     ps.setFlags(i, Flags(u.flags).set(Flag::Shadow, ps.flags(i).isShadow()));
     ps.setOwner(i, u.owner);
     ps.history(i).assign(u.history);
+    ps.setFieldValues(i, u.fields);
 }
 
 void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
@@ -69,6 +87,8 @@ void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
     to.setOrientation(k, from.orientation(i));
     if (!from.history(i).empty() || !to.history(k).empty())
         to.history(k).assign(from.history(i).entries());
+    for (std::size_t c = 0; c < from.fieldComponents(); ++c)
+        to.fieldComponent(c, k) = from.fieldComponent(c, i);
 }
 
 void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,

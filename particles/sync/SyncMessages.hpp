@@ -55,9 +55,15 @@ struct UpdateState {
     Flags flags{};
     BlockRef owner{};
     std::vector<HistoryEntry> history;
+    std::vector<double> fields; ///< the grain fields (GrainFields.hpp)
 };
 
 void writeHeader(core::SendBuffer& b, RecordKind kind, std::uint64_t targetBlock);
+
+/// The grain fields of copy i of `ps` (GrainFields.hpp): grainFieldComponents() doubles,
+/// declared alike on every rank; nothing when none is declared.
+void writeFields(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i);
+[[nodiscard]] std::vector<double> readFields(core::RecvBuffer& b);
 
 /// Full state of copy `i` of `ps`, as a copy with `image` owned by `owner`.
 void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
@@ -78,7 +84,8 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u);
 /// image, without the buffer: copy k of `to` gets master i's state with `position` and `owner`.
 void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
                 BlockRef owner, ParticleStorage& to, std::size_t k);
-/// copyUpdate's motion part: position, velocities, orientation and contact history, for a
+/// copyUpdate's motion part: position, velocities, orientation, contact history and grain
+/// fields, for a
 /// shadow whose flags and owner are already its master's (along the update list between two
 /// refreshes: nothing changes a master's flags or block there; checkSyncInvariants compares
 /// both).

@@ -273,6 +273,7 @@ void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i) 
     if (oriented)
         b << ps.orientation(i);
     b << ps.history(i).entries();
+    sync_detail::writeFields(b, ps, i);
 }
 
 void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
@@ -286,6 +287,7 @@ void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
     ps.setOrientation(k, q);
     if (!history.empty() || !ps.history(k).empty())
         ps.history(k).assign(history);
+    ps.setFieldValues(k, sync_detail::readFields(b));
 }
 
 } // namespace
