@@ -1,7 +1,7 @@
-// The generic scene run behind `regolith` and the reference-scene apps: builds the block
-// forest, generates the initial particles on every rank, runs the DEM time steps with shadow
-// synchronisation and writes the run summary and dump (docs/design.md, "Contracts"), checkpoints
-// (output.checkpoint_every) and restarts from one (--restart).
+// The generic scene run behind `regolith` and the apps built on it: reads the scene, generates
+// the grains on every rank (or restores a checkpoint's, --restart), runs them as a
+// coupling::Simulation with the scene's outputs as its observers (RunOutputs) and writes the run
+// summary and dump (docs/design.md, "Contracts").
 #include "apps/regolith/SceneRun.hpp"
 
 #include "apps/common/ConservedQuantities.hpp"
@@ -12,32 +12,24 @@
 #include "apps/regolith/AutoChoices.hpp"
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/Checkpointing.hpp"
-#include "apps/regolith/DynamicBalance.hpp"
-#include "apps/regolith/GrainPouring.hpp"
 #include "apps/regolith/GravitySetup.hpp"
 #include "apps/regolith/GridAccuracy.hpp"
 #include "apps/regolith/InitialState.hpp"
 #include "apps/regolith/LoopSummary.hpp"
 #include "apps/regolith/ParticleSetup.hpp"
-#include "apps/regolith/ParticleSnapshots.hpp"
-#include "apps/regolith/ProgressLine.hpp"
 #include "apps/regolith/RunOutputs.hpp"
 #include "apps/regolith/RunPaths.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/SceneReport.hpp"
 #include "apps/regolith/SceneSections.hpp"
 #include "apps/regolith/SpeedChoices.hpp"
-#include "apps/regolith/ThermoLog.hpp"
 #include "apps/regolith/WallLoads.hpp"
 #include "apps/scenarios/Scenarios.hpp"
 #include "core/Error.hpp"
 #include "core/log/Log.hpp"
-#include "core/timing/TimerTree.hpp"
 #include "domain/BlockForest.hpp"
-#include "io/vtk/VtkOutput.hpp"
 #include "particles/simulation/DemStep.hpp"
 #include "particles/sync/BlockParticles.hpp"
-#include "particles/sync/ParticleSync.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
