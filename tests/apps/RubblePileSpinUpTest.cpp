@@ -85,7 +85,8 @@ struct SpinUpOutcome {
 SpinUpOutcome spinUp(int n, double rate, std::int64_t steps) {
     coupling::SimulationSetup const setup = pileSetup(n);
     apps::RubblePileScene scene;
-    scene.pile.file = "rubble_pile_test.csv";
+    // One file per rank count: the np1 and np4 runs of this test may run at once.
+    scene.pile.file = "rubble_pile_test_np" + std::to_string(world().size()) + ".csv";
     scene.pile.recordEvery = 200;
     scene.pile.radius = 1.5;
     apps::SpinUpSection spin;
