@@ -58,12 +58,11 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
         startStep > 0 ? fmt::format("{} steps (from step {} to {})", scene.time.steps - startStep,
                                     startStep, scene.time.steps)
                       : fmt::format("{} steps", scene.time.steps);
-    text +=
-        fmt::format("  {} of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
-                    "{} walls\n",
-                    steps, scene.time.dt, toString(scene.sync.method),
-                    scene.sync.reproducible ? " (reproducible)" : "", scene.contact.model,
-                    scene.gravity.self, poissonNote(scene.gravity), scene.walls.size());
+    text += fmt::format("  {} of dt = {}, sync {}{}, contact {}, self-gravity {}{}, "
+                        "{} walls\n",
+                        steps, scene.time.dt, toString(scene.sync.method),
+                        scene.sync.reproducible ? " (reproducible)" : "", scene.contact.model,
+                        scene.gravity.self, poissonNote(scene.gravity), scene.walls.size());
     text += startStep > 0
                 ? fmt::format("  {} particles from the checkpoint ({} to {} per rank)\n",
                               particles.total, particles.minPerRank, particles.maxPerRank)
