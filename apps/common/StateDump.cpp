@@ -72,15 +72,12 @@ std::string dumpCsv(std::span<MasterRecord const> masters) {
         auto const& w = m->angularVelocity;
         fmt::format_to(std::back_inserter(out),
                        "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-                       "{:.17g},{:.17g}\n",
+                       "{:.17g},{:.17g}",
                        m->uid, x.x(), x.y(), x.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(),
                        m->radius, m->mass);
-        if (!m->fields.empty()) { // the line's newline goes after the grain fields
-            out.resize(out.size() - 1);
-            for (double value : m->fields)
-                fmt::format_to(std::back_inserter(out), ",{:.17g}", value);
-            out.push_back('\n');
-        }
+        for (double value : m->fields)
+            fmt::format_to(std::back_inserter(out), ",{:.17g}", value);
+        out.push_back('\n');
     }
     return fmt::to_string(out);
 }
