@@ -37,8 +37,6 @@ constexpr std::array kSyncNames{"nns"sv, "sos"sv, "hybrid"sv};
 constexpr std::array kSubdomainNames{"blocks"sv, "merged"sv};
 constexpr std::array kRollingNames{"constant"sv, "spring"sv};
 constexpr std::array kIntegratorNames{"euler"sv, "verlet"sv};
-/// In the order of DumpFormat.
-constexpr std::array kDumpFormatNames{"csv"sv, "hdf5"sv};
 
 /// gravity.check_every and update_every above this are typos: a run has far fewer updates.
 constexpr std::int64_t kMaxEvery = 1000000;
@@ -267,26 +265,6 @@ GravitySection parseGravity(core::ConfigTable const& t) {
                                       "a positive finite length");
     s.neighbourhood = t.getOrIf<double>("neighbourhood", s.neighbourhood, isNonNegativeFinite,
                                         "a non-negative finite length");
-    return s;
-}
-
-OutputSection parseOutput(core::ConfigTable const& t) {
-    OutputSection s;
-    s.dir = t.getOrIf<std::string>(
-        "dir", s.dir, [](std::string const& d) { return !d.empty(); }, "a non-empty string");
-    s.vtkEvery = t.getOrIf<std::int64_t>("vtk_every", 0, isNonNegative, "a non-negative integer");
-    s.checkpointEvery =
-        t.getOrIf<std::int64_t>("checkpoint_every", 0, isNonNegative, "a non-negative integer");
-    s.checkpointKeep = t.getOrIf<std::int64_t>("checkpoint_keep", s.checkpointKeep, isNonNegative,
-                                               "a non-negative integer");
-    s.vtkShadows = t.getOr<bool>("vtk_shadows", false);
-    s.progressSeconds = t.getOrIf<double>(
-        "progress_seconds", s.progressSeconds,
-        [](double v) { return std::isfinite(v) && v >= 0.0; }, "a non-negative number");
-    s.thermoEvery =
-        t.getOrIf<std::int64_t>("thermo_every", 0, isNonNegative, "a non-negative integer");
-    s.dumpEvery = t.getOrIf<std::int64_t>("dump_every", 0, isNonNegative, "a non-negative integer");
-    s.dumpFormat = static_cast<DumpFormat>(t.getChoiceOr("dump_format", kDumpFormatNames, 0));
     return s;
 }
 
