@@ -6,9 +6,10 @@
 /// Why double-double: each term is added with Knuth's TwoSum, the rounding error kept in a
 /// second word. hi + lo then equals the exact sum to about 1e-32 relative to the largest
 /// partial sum, so rounding it to one double gives the same bits for any summation order
-/// except in the (never observed) case of a near-tie. Every term itself is computed from the
-/// same operands on every rank (no FMA contraction on the x86-64 baseline target), so forces
-/// agree bitwise across rank counts in practice and to far below 1e-12 always.
+/// unless the sum cancels to the size of that error (a grain at the centre of a symmetric pile)
+/// or lies at a near-tie. Every term itself is computed from the same operands on every rank
+/// (no FMA contraction on the x86-64 baseline target), so forces agree across rank counts to
+/// far below 1e-12 always, and bitwise where reproducible mode fixes the order (DirectSum.hpp).
 #include <cmath>
 #include <cstddef>
 

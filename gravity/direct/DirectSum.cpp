@@ -11,8 +11,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <span>
+#include <utility>
 
 namespace regolith::gravity::direct {
 
@@ -72,6 +75,83 @@ void accumulateAll(PointMasses const& targets, double const* sx, double const* s
     }
 }
 
+/// Adds every rank's grains to `acc` as they pass around the ring.
+void ringPass(core::Comm const& comm, PointMasses const& local, DirectOptions const& options,
+              Accumulators& acc) {
+    int const p = comm.size();
+    int const rank = comm.rank();
+    std::vector<long long> const counts = comm.allGather(static_cast<long long>(local.size()));
+    long long const maxCount = *std::max_element(counts.begin(), counts.end());
+    if (4 * maxCount > INT_MAX)
+        throw core::Error("gravity direct sum: a block of grains exceeds the MPI count limit");
+
+    // A block is x..., y..., z..., m... of one rank's grains.
+    auto const capacity = static_cast<std::size_t>(4 * maxCount);
+    std::vector<double> current(capacity);
+    std::vector<double> next(capacity);
+    std::size_t const n = local.size();
+    std::copy(local.x.begin(), local.x.end(), current.begin());
+    std::copy(local.y.begin(), local.y.end(), current.begin() + static_cast<long>(n));
+    std::copy(local.z.begin(), local.z.end(), current.begin() + static_cast<long>(2 * n));
+    std::copy(local.m.begin(), local.m.end(), current.begin() + static_cast<long>(3 * n));
+
+    int const right = (rank + 1) % p;
+    int const left = (rank + p - 1) % p;
+    int const tag = core::toInt(core::Tag::DirectGravityRing);
+    for (int step = 0; step < p; ++step) {
+        // At step k this rank holds the block of rank (rank - k) mod p.
+        auto const owner = static_cast<std::size_t>((rank - step + p) % p);
+        auto const ns = static_cast<std::size_t>(counts[owner]);
+        std::array<MPI_Request, 2> requests{MPI_REQUEST_NULL, MPI_REQUEST_NULL};
+        if (step + 1 < p) {
+            auto const incoming = static_cast<std::size_t>((rank - step - 1 + 2 * p) % p);
+            core::Comm::check(MPI_Irecv(next.data(), static_cast<int>(4 * counts[incoming]),
+                                        MPI_DOUBLE, left, tag, comm.raw(), &requests[0]),
+                              "MPI_Irecv (direct gravity ring)");
+            core::Comm::check(MPI_Isend(current.data(), static_cast<int>(4 * ns), MPI_DOUBLE, right,
+                                        tag, comm.raw(), &requests[1]),
+                              "MPI_Isend (direct gravity ring)");
+        }
+        double const* block = current.data();
+        accumulateAll(local, block, block + ns, block + 2 * ns, block + 3 * ns, ns, options, acc);
+        if (step + 1 < p) {
+            core::Comm::check(MPI_Waitall(2, requests.data(), MPI_STATUSES_IGNORE),
+                              "MPI_Waitall (direct gravity ring)");
+            std::swap(current, next);
+        }
+    }
+}
+
+/// Adds every rank's grains to `acc` in one order on any number of ranks: by the bits of
+/// (x, y, z, m). Grains alike in all four add the same terms, so their order is immaterial.
+void canonicalPass(core::Comm const& comm, PointMasses const& local, DirectOptions const& options,
+                   Accumulators& acc) {
+    std::size_t const n = local.size();
+    std::vector<double> mine(4 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+        mine[4 * i] = local.x[i];
+        mine[4 * i + 1] = local.y[i];
+        mine[4 * i + 2] = local.z[i];
+        mine[4 * i + 3] = local.m[i];
+    }
+    std::vector<double> const all = comm.allGatherVarying<double>(std::span<double const>(mine));
+    std::size_t const ns = all.size() / 4;
+    using Key = std::array<std::uint64_t, 4>;
+    std::vector<std::pair<Key, std::size_t>> order(ns);
+    for (std::size_t j = 0; j < ns; ++j) {
+        for (std::size_t c = 0; c < 4; ++c)
+            order[j].first[c] = std::bit_cast<std::uint64_t>(all[4 * j + c]);
+        order[j].second = j;
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<double> sources(4 * ns); // x..., y..., z..., m...
+    for (std::size_t k = 0; k < ns; ++k)
+        for (std::size_t c = 0; c < 4; ++c)
+            sources[c * ns + k] = all[4 * order[k].second + c];
+    double const* s = sources.data();
+    accumulateAll(local, s, s + ns, s + 2 * ns, s + 3 * ns, ns, options, acc);
+}
+
 } // namespace
 
 void validate(DirectOptions const& options) {
@@ -102,49 +182,11 @@ DirectSum::DirectSum(core::Comm const& comm, DirectOptions const& options)
 double DirectSum::evaluate(PointMasses const& local, FieldOut out) {
     validatePointMassesCollective(m_comm, local, "gravity");
     validateFieldOut(out, local.size());
-    int const p = m_comm.size();
-    int const rank = m_comm.rank();
-    std::vector<long long> const counts = m_comm.allGather(static_cast<long long>(local.size()));
-    long long const maxCount = *std::max_element(counts.begin(), counts.end());
-    if (4 * maxCount > INT_MAX)
-        throw core::Error("gravity direct sum: a block of grains exceeds the MPI count limit");
-
-    // A block is x..., y..., z..., m... of one rank's grains.
-    auto const capacity = static_cast<std::size_t>(4 * maxCount);
-    std::vector<double> current(capacity);
-    std::vector<double> next(capacity);
-    std::size_t const n = local.size();
-    std::copy(local.x.begin(), local.x.end(), current.begin());
-    std::copy(local.y.begin(), local.y.end(), current.begin() + static_cast<long>(n));
-    std::copy(local.z.begin(), local.z.end(), current.begin() + static_cast<long>(2 * n));
-    std::copy(local.m.begin(), local.m.end(), current.begin() + static_cast<long>(3 * n));
-
-    Accumulators acc(n);
-    int const right = (rank + 1) % p;
-    int const left = (rank + p - 1) % p;
-    int const tag = core::toInt(core::Tag::DirectGravityRing);
-    for (int step = 0; step < p; ++step) {
-        // At step k this rank holds the block of rank (rank - k) mod p.
-        auto const owner = static_cast<std::size_t>((rank - step + p) % p);
-        auto const ns = static_cast<std::size_t>(counts[owner]);
-        std::array<MPI_Request, 2> requests{MPI_REQUEST_NULL, MPI_REQUEST_NULL};
-        if (step + 1 < p) {
-            auto const incoming = static_cast<std::size_t>((rank - step - 1 + 2 * p) % p);
-            core::Comm::check(MPI_Irecv(next.data(), static_cast<int>(4 * counts[incoming]),
-                                        MPI_DOUBLE, left, tag, m_comm.raw(), &requests[0]),
-                              "MPI_Irecv (direct gravity ring)");
-            core::Comm::check(MPI_Isend(current.data(), static_cast<int>(4 * ns), MPI_DOUBLE, right,
-                                        tag, m_comm.raw(), &requests[1]),
-                              "MPI_Isend (direct gravity ring)");
-        }
-        double const* block = current.data();
-        accumulateAll(local, block, block + ns, block + 2 * ns, block + 3 * ns, ns, m_options, acc);
-        if (step + 1 < p) {
-            core::Comm::check(MPI_Waitall(2, requests.data(), MPI_STATUSES_IGNORE),
-                              "MPI_Waitall (direct gravity ring)");
-            std::swap(current, next);
-        }
-    }
+    Accumulators acc(local.size());
+    if (m_options.reproducible)
+        canonicalPass(m_comm, local, m_options, acc);
+    else
+        ringPass(m_comm, local, m_options, acc);
     double const energy = acc.finish(out, local.m);
     return m_comm.allReduce(energy, core::ReduceOp::Sum);
 }

@@ -9,7 +9,8 @@ namespace {
 class DirectSumMethod final : public GravityMethod {
 public:
     explicit DirectSumMethod(GravityMethodInput const& in)
-        : m_sum(in.comm, gravity::direct::DirectOptions{in.config.G, in.config.softening}) {}
+        : m_sum(in.comm, gravity::direct::DirectOptions{in.config.G, in.config.softening,
+                                                        in.config.reproducible}) {}
     double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) override {
         return m_sum.evaluate(grains, out);
     }
