@@ -77,6 +77,12 @@ std::string thermoPath(SceneDescription const& scene) {
     return (fs::path(scene.output.dir) / "thermo.csv").string();
 }
 
+bool writesIntoOutputDir(core::CliOptions const& options, SceneDescription const& scene) {
+    OutputSection const& o = scene.output;
+    return options.jsonPath.empty() || o.vtkEvery > 0 || o.checkpointEvery > 0 ||
+           o.thermoEvery > 0 || o.dumpEvery > 0;
+}
+
 void checkRunPaths(core::Comm const& world, core::CliOptions const& options,
                    SceneDescription const& scene) {
     core::agreeOnInputError(world, [&] {

@@ -25,4 +25,9 @@ namespace regolith::apps {
 void checkRunPaths(core::Comm const& world, core::CliOptions const& options,
                    SceneDescription const& scene);
 
+/// Whether the run writes into output.dir: the summary there (no --json), VTK, checkpoints,
+/// thermo.csv or particle snapshots. Not collective.
+[[nodiscard]] bool writesIntoOutputDir(core::CliOptions const& options,
+                                       SceneDescription const& scene);
+
 } // namespace regolith::apps

@@ -5,6 +5,8 @@
 #include "apps/regolith/SceneRun.hpp"
 
 #include "apps/common/ConservedQuantities.hpp"
+#include "apps/common/OutputDirLock.hpp"
+#include "apps/common/OutputDirLock.hpp"
 #include "apps/common/OutputFile.hpp"
 #include "apps/common/RunSummary.hpp"
 #include "apps/common/StateChecksum.hpp"
@@ -85,6 +87,7 @@ struct PreparedRun {
     std::string text; ///< the scene as stored in checkpoints (sceneText, withAutoChoices)
     RunStart start;
     std::string summaryFile;
+    OutputDirLock outputLock; ///< held from the checks of the paths to the run's end
 };
 
 /// COLLECTIVE.
@@ -97,6 +100,8 @@ PreparedRun prepareRun(core::AppContext& ctx) {
     // Fail before the run, not after it, if an output file would overwrite an input or
     // another output, or cannot be written.
     checkRunPaths(world, ctx.options, scene);
+    if (writesIntoOutputDir(ctx.options, scene))
+        run.outputLock = OutputDirLock(world, scene.output.dir);
     run.summaryFile = summaryPath(ctx.options, scene);
     checkWritable(world, run.summaryFile,
                   ctx.options.jsonPath.empty() ? "the run summary" : "--json");

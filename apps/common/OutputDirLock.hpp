@@ -1,0 +1,35 @@
+#pragma once
+/// Keeps a second run out of an output folder while a first one writes there. Two runs writing
+/// the same summary, VTK series and checkpoints would replace each other's files mid-run.
+#include "core/mpi/Comm.hpp"
+
+#include <string>
+
+namespace regolith::apps {
+
+/// Rank 0 holds a POSIX record lock (fcntl F_SETLK) on `<dir>/.regolith.lock` while the object
+/// lives. The lock goes with the process, so a killed run leaves only the empty file behind and
+/// the next run takes it; a run started on the folder while another holds it stops before its
+/// first step. Where the file system keeps no locks (some network mounts) the run goes on after
+/// a warning. Move-only.
+class OutputDirLock {
+public:
+    OutputDirLock() = default;
+    /// Creates `dir` if missing and takes its lock. COLLECTIVE over `comm`; throws
+    /// core::InputError on every rank ("output.dir = \"<dir>\": another run (process N) is
+    /// writing there ...") if another process holds it, or the folder cannot be made.
+    OutputDirLock(core::Comm const& comm, std::string const& dir);
+    OutputDirLock(OutputDirLock&& other) noexcept;
+    OutputDirLock& operator=(OutputDirLock&& other) noexcept;
+    OutputDirLock(OutputDirLock const&) = delete;
+    OutputDirLock& operator=(OutputDirLock const&) = delete;
+    ~OutputDirLock();
+
+    /// The lock file's name in the folder.
+    static constexpr char const* kFileName = ".regolith.lock";
+
+private:
+    int m_fd = -1; ///< the lock file, open on rank 0 while the lock is held
+};
+
+} // namespace regolith::apps
