@@ -97,6 +97,13 @@ SMALL = {
                         "--set", "time.steps=150", "--set", "pile.settle_steps=50",
                         "--set", "pile.record_every=50",
                         "--set", "particles[0].count=30", "--out", "{tmp}/bench/out"],
+    "cohesive_spin_up.py": ["--ranks", "1", "--pull-offs", "8", "--repeats", "1",
+                            "--steps", "150", "--set", "pile.settle_steps=50",
+                            "--set", "pile.record_every=50", "--set", "particles[0].count=30",
+                            "--out", "{tmp}/bench/out"],
+    "spin_up": ["--set", "particles[0].count=300", "--set", "particles[0].radius=6",
+                "--set", "time.steps=20", "--set", "pile.settle_steps=10",
+                "--set", "pile.record_every=10"],
 }
 # Options a program refuses to see twice (CLI11): small mode replaces their value in place.
 SMALL_REPLACE = {"regolith": {"--steps": "2"}}

@@ -190,13 +190,31 @@ def flyby(args):
                         os.path.join(args.images, "flyby_mass_lost.png"))
 
 
+def add_run_options(p):
+    """The options every rubble-pile script shares: where the app is, where its runs go, on how
+    many ranks, scene overrides and the charts."""
+    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
+    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "rubble_piles"))
+    p.add_argument("--ranks", type=int, default=2)
+    p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
+    p.add_argument("--no-chart", dest="chart", action="store_false")
+    p.add_argument("--images", help="a folder the charts are copied to too (docs/images)")
+
+
+def parse_run_options(p):
+    """The arguments, with the output folders made."""
+    args = p.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    if args.images:
+        os.makedirs(args.images, exist_ok=True)
+    return args
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("what", choices=["chart", "spin-up", "cost", "flyby"])
     p.add_argument("csv", nargs="*", help="chart: the records to draw")
-    p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
-    p.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "rubble_piles"))
-    p.add_argument("--ranks", type=int, default=2)
+    add_run_options(p)
     p.add_argument("--scene")
     p.add_argument("--rates", type=float, nargs="+", default=[0.05])
     p.add_argument("--repeats", type=int, default=1)
@@ -205,13 +223,7 @@ def main():
     p.add_argument("--cost-steps", type=int, nargs=2, default=[200, 600])
     p.add_argument("--estimate-steps", type=int, default=18000)
     p.add_argument("--periapses", type=float, nargs="+", default=[0.4, 0.5, 0.6, 0.8, 1.0])
-    p.add_argument("--set", action="append", default=[], help="a scene override, repeated")
-    p.add_argument("--no-chart", dest="chart", action="store_false")
-    p.add_argument("--images", help="a folder the charts are copied to too (docs/images)")
-    args = p.parse_args()
-    os.makedirs(args.out, exist_ok=True)
-    if args.images:
-        os.makedirs(args.images, exist_ok=True)
+    args = parse_run_options(p)
     if args.what == "chart":
         for path in args.csv:
             print(chart(path))
