@@ -100,8 +100,11 @@ def chart(args, rows, w0, a_dp, a, beta):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    cohesive = [r for r in rows if r["pull_off"] > 0 and not math.isnan(r["failure_spin"])]
+    if math.isnan(w0) or not cohesive:
+        print("no chart: a pile did not fail (raise --steps)")
+        return
     fig, ax = plt.subplots(figsize=(6.0, 4.2))
-    cohesive = [r for r in rows if r["pull_off"] > 0]
     ax.plot([r["strength"] for r in cohesive], [r["failure_spin"] for r in cohesive], "o",
             label="measured (vdW cohesion)")
     xs = [r["strength"] for r in cohesive]
