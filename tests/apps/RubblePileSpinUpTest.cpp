@@ -137,8 +137,8 @@ TEST(SpinUpValidation, CohesionlessPileFailsAtTheCriticalSpinThenSheds) {
 }
 
 // The same ball spun up faster (0.05 omega_c^2 from 0.85 omega_c), without and with van der
-// Waals cohesion of a pull-off force F_c = A R* / (6 s_min^2) = 4 per contact, ~1.5 times the
-// weight of a surface grain (m g = m omega_c^2 R = 2.6): a surface grain bound by one contact
+// Waals cohesion of a pull-off force F_c = A R* / (6 s_min^2) = 4 per contact, 0.8 times the
+// weight of a surface grain (m g = m omega_c^2 R = 5.1): a surface grain bound by one contact
 // lifts off only at omega^2 = omega_c^2 + F_c / (m R), 1.3 omega_c. The cohesive pile must
 // still turn, unbroken, 0.15 omega_c above the spin at which the cohesionless one failed.
 TEST(SpinUpValidation, CohesivePileHoldsAboveTheCohesionlessFailure) {
