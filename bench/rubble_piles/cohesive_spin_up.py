@@ -22,7 +22,7 @@ is recomputed on the adaptive schedule (gravity.update_every; the pile changes s
 a (Y / (rho R^2 omega_c^2))^beta to the cohesive runs, prints a and beta against the
 Drucker–Prager a_DP and beta = 1, and draws <out>/cohesive_spin_up.png.
 
-usage: cohesive_spin_up.py [--pull-offs 2 4 8 16 32] [--repeats 1] [--steps 35000]
+usage: cohesive_spin_up.py [--pull-offs 2 4 8 16 32] [--repeats 2] [--steps 35000]
        [--final-spin 2.0] [--ranks 2] [--build build/default] [--out bench/out/rubble_piles]
        [--set KEY=VALUE ...] [--images docs/images] [--no-chart]
 """
@@ -135,7 +135,7 @@ def main():
     p.add_argument("--scene", default=os.path.join(ROOT, "scenes", "spin-up.toml"))
     p.add_argument("--pull-offs", type=float, nargs="+", default=[2.0, 4.0, 8.0, 16.0, 32.0],
                    help="F_c of a pair of mean grains; the cohesionless pile is always run")
-    p.add_argument("--repeats", type=int, default=1)
+    p.add_argument("--repeats", type=int, default=2)
     p.add_argument("--steps", type=int, default=35000)
     p.add_argument("--final-spin", type=float, default=2.0)
     args = parse_run_options(p)
