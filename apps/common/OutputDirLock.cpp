@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <sys/file.h>
 #include <unistd.h>
 #include <utility>
 
@@ -17,17 +18,7 @@ namespace regolith::apps {
 
 namespace {
 
-/// A write lock on the whole of `fd`'s file.
-struct flock wholeFile() {
-    struct flock lock {};
-    lock.l_type = F_WRLCK;
-    lock.l_whence = SEEK_SET;
-    lock.l_start = 0;
-    lock.l_len = 0;
-    return lock;
-}
-
-/// Takes the lock of `dir` for this process: the open lock file, or -1 where the file system
+/// Takes the lock of `dir` for this process: the folder, open, or -1 where the file system
 /// keeps no locks (warned). Throws core::InputError if another process holds it.
 int lockFolder(std::string const& dir) {
     std::string const where = fmt::format("output.dir = \"{}\"", dir);
@@ -36,27 +27,19 @@ int lockFolder(std::string const& dir) {
     if (ec)
         throw core::InputError(
             fmt::format("{}: cannot create the folder: {}", where, ec.message()));
-    std::string const path = (std::filesystem::path(dir) / OutputDirLock::kFileName).string();
-    int const fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    int const fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0)
         throw core::InputError(
-            fmt::format("{}: cannot open '{}': {}", where, path, std::strerror(errno)));
-    struct flock lock = wholeFile();
-    if (::fcntl(fd, F_SETLK, &lock) == 0)
+            fmt::format("{}: cannot open the folder: {}", where, std::strerror(errno)));
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0)
         return fd;
     int const why = errno;
-    if (why == EACCES || why == EAGAIN) {
-        struct flock holder = wholeFile();
-        std::string const who = ::fcntl(fd, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK
-                                    ? fmt::format(" (process {})", holder.l_pid)
-                                    : std::string();
-        ::close(fd);
-        throw core::InputError(fmt::format(
-            "{}: another run{} is writing there (it holds '{}'); give this run another folder "
-            "(--output DIR or output.dir)",
-            where, who, path));
-    }
     ::close(fd);
+    if (why == EWOULDBLOCK)
+        throw core::InputError(fmt::format("{}: another run is writing there (it holds the "
+                                           "folder's lock); give this run another folder "
+                                           "(--output DIR or output.dir)",
+                                           where));
     core::log::warn("{}: the file system keeps no locks ({}): nothing keeps another run from "
                     "writing into the same folder",
                     where, std::strerror(why));
@@ -86,7 +69,7 @@ OutputDirLock& OutputDirLock::operator=(OutputDirLock&& other) noexcept {
 
 OutputDirLock::~OutputDirLock() {
     if (m_fd >= 0)
-        ::close(m_fd); // releases the lock; the file stays (removing it would race a waiter)
+        ::close(m_fd); // releases the lock
 }
 
 } // namespace regolith::apps

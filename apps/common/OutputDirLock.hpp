@@ -7,17 +7,17 @@
 
 namespace regolith::apps {
 
-/// Rank 0 holds a POSIX record lock (fcntl F_SETLK) on `<dir>/.regolith.lock` while the object
-/// lives. The lock goes with the process, so a killed run leaves only the empty file behind and
-/// the next run takes it; a run started on the folder while another holds it stops before its
-/// first step. Where the file system keeps no locks (some network mounts) the run goes on after
-/// a warning. Move-only.
+/// Rank 0 holds an exclusive lock on the folder itself (flock of the open directory) while the
+/// object lives: no file is added to the folder, and the lock goes with the process, so a
+/// killed run leaves nothing behind. A run started on the folder while another holds it stops
+/// before its first step. Where the file system keeps no locks (some network mounts) the run
+/// goes on after a warning. Move-only.
 class OutputDirLock {
 public:
     OutputDirLock() = default;
     /// Creates `dir` if missing and takes its lock. COLLECTIVE over `comm`; throws
-    /// core::InputError on every rank ("output.dir = \"<dir>\": another run (process N) is
-    /// writing there ...") if another process holds it, or the folder cannot be made.
+    /// core::InputError on every rank ("output.dir = \"<dir>\": another run is writing
+    /// there ...") if another process holds it, or the folder cannot be made.
     OutputDirLock(core::Comm const& comm, std::string const& dir);
     OutputDirLock(OutputDirLock&& other) noexcept;
     OutputDirLock& operator=(OutputDirLock&& other) noexcept;
@@ -25,11 +25,8 @@ public:
     OutputDirLock& operator=(OutputDirLock const&) = delete;
     ~OutputDirLock();
 
-    /// The lock file's name in the folder.
-    static constexpr char const* kFileName = ".regolith.lock";
-
 private:
-    int m_fd = -1; ///< the lock file, open on rank 0 while the lock is held
+    int m_fd = -1; ///< the folder, open on rank 0 while the lock is held
 };
 
 } // namespace regolith::apps

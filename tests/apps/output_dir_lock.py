@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """A run stops before its first step, with one message, while another process holds the lock
-of its output folder (output.dir/.regolith.lock, a POSIX record lock as the running run holds
-it), and runs once the lock is free; the files already in the folder are untouched.
+of its output folder (flock of the folder, as a running run holds it), and runs once the lock
+is free; the folder's files are untouched and the refused run adds none.
 
 usage: output_dir_lock.py --mpiexec MPIEXEC --app REGOLITH --scene TOML --out DIR
 """
@@ -33,20 +33,22 @@ def main():
     kept = os.path.join(args.out, "summary.json")
     with open(kept, "w", encoding="utf-8") as f:
         f.write("a file of an earlier run\n")
-    with open(os.path.join(args.out, ".regolith.lock"), "w", encoding="utf-8") as lock:
-        fcntl.lockf(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)  # as a running run holds it
-        for np in (1, 2):
-            text = run(args, np, expect_ok=False)
-            expected = (f'output.dir = "{args.out}": another run (process {os.getpid()}) is '
-                        "writing there")
-            if text.count(expected) != 1:
-                sys.exit(f"expected one message '{expected}', got:\n{text}")
-            if "Segmentation" in text or "core dumped" in text:
-                sys.exit(f"the refused run crashed:\n{text}")
-        with open(kept, encoding="utf-8") as f:
-            if f.read() != "a file of an earlier run\n":
-                sys.exit("the refused run changed the folder's summary.json")
-    run(args, 2, expect_ok=True)  # the lock released (the holder closed the file)
+    folder = os.open(args.out, os.O_RDONLY | os.O_DIRECTORY)
+    fcntl.flock(folder, fcntl.LOCK_EX | fcntl.LOCK_NB)  # as a running run holds it
+    for np in (1, 2):
+        text = run(args, np, expect_ok=False)
+        expected = f'output.dir = "{args.out}": another run is writing there'
+        if text.count(expected) != 1:
+            sys.exit(f"expected one message '{expected}', got:\n{text}")
+        if "Segmentation" in text or "core dumped" in text:
+            sys.exit(f"the refused run crashed:\n{text}")
+    if os.listdir(args.out) != ["summary.json"]:
+        sys.exit(f"the refused runs wrote into the folder: {sorted(os.listdir(args.out))}")
+    with open(kept, encoding="utf-8") as f:
+        if f.read() != "a file of an earlier run\n":
+            sys.exit("the refused run changed the folder's summary.json")
+    os.close(folder)  # releases the lock
+    run(args, 2, expect_ok=True)
     print("refused while the folder was locked, ran once it was free")
 
 
