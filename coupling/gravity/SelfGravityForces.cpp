@@ -113,24 +113,21 @@ void SelfGravityForces::addForces(particles::LocalParticles& local) {
     }
     // Masters in gather order: index k is the k-th master visited. Between updates the policy
     // guarantees a record for every local master (fetched from the rank it came from).
-    m_fx.resize(n);
-    m_fy.resize(n);
-    m_fz.resize(n);
+    if (updated) {
+        m_fx = m_ax;
+        m_fy = m_ay;
+        m_fz = m_az;
+    } else {
+        m_fx.resize(n);
+        m_fy.resize(n);
+        m_fz.resize(n);
+        m_policy.fieldsAt(m_fx, m_fy, m_fz);
+    }
     std::size_t k = 0;
     for (particles::BlockParticles& bp : local.blocks()) {
         particles::ParticleStorage& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             std::size_t const s = m_config.reproducible ? m_slot[k] : k;
-            if (updated) {
-                m_fx[s] = m_ax[s];
-                m_fy[s] = m_ay[s];
-                m_fz[s] = m_az[s];
-            } else {
-                auto const a = m_policy.fieldAt(s);
-                m_fx[s] = a[0];
-                m_fy[s] = a[1];
-                m_fz[s] = a[2];
-            }
             ps.force(i) += ps.mass(i) * core::Vec3(m_fx[s], m_fy[s], m_fz[s]);
             ++k;
         });

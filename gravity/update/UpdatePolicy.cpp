@@ -120,7 +120,7 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         }
         global[0] = comm.allReduce(local, core::ReduceOp::Max);
     }
-    if (lookup || global[1] > 0.0) { // the fields in grain order, for fieldAt()
+    if (lookup || global[1] > 0.0) { // the fields in grain order, for fieldAt() and fieldsAt()
         m_atField.resize(3 * uid.size());
         m_atSlope.resize(3 * uid.size());
         for (std::size_t i = 0; i < m_found.size(); ++i)
@@ -204,11 +204,26 @@ void UpdatePolicy::adaptInterval(core::Comm const& comm) {
                          1LL, m_interval.maxEvery);
 }
 
+double UpdatePolicy::sinceUpdateSeconds() const {
+    return m_every > 0 ? static_cast<double>(m_since) * m_interval.dt : 0.0;
+}
+
 std::array<double, 3> UpdatePolicy::fieldAt(std::size_t i) const {
-    double const elapsed = m_every > 0 ? static_cast<double>(m_since) * m_interval.dt : 0.0;
+    double const elapsed = sinceUpdateSeconds();
     double const* f = &m_atField[3 * i];
     double const* s = &m_atSlope[3 * i];
     return {f[0] + s[0] * elapsed, f[1] + s[1] * elapsed, f[2] + s[2] * elapsed};
+}
+
+void UpdatePolicy::fieldsAt(std::span<double> x, std::span<double> y, std::span<double> z) const {
+    double const elapsed = sinceUpdateSeconds();
+    double const* f = m_atField.data();
+    double const* s = m_atSlope.data();
+    for (std::size_t i = 0; i < x.size(); ++i, f += 3, s += 3) {
+        x[i] = f[0] + s[0] * elapsed;
+        y[i] = f[1] + s[1] * elapsed;
+        z[i] = f[2] + s[2] * elapsed;
+    }
 }
 
 void UpdatePolicy::restoreInterval(long long sinceUpdate, long long every) {

@@ -99,6 +99,10 @@ public:
     /// field without an interval); from a copy of the records in that order, read without
     /// lookups. Not collective.
     [[nodiscard]] std::array<double, 3> fieldAt(std::size_t i) const;
+    /// fieldAt() of every grain passed to that due(), in its order, into `x`, `y`, `z` (one
+    /// value per grain each): the same values in one pass over the copied records, as the
+    /// coupled step applies them. Not collective.
+    void fieldsAt(std::span<double> x, std::span<double> y, std::span<double> z) const;
 
     /// Continues from a checkpoint: `updates` as updates(), and records of any grains (not
     /// necessarily this rank's: the next due() brings each to the rank holding its grain).
@@ -136,6 +140,8 @@ public:
 private:
     /// Records kept between updates (threshold or interval), else every step is an update.
     [[nodiscard]] bool keepsRecords() const { return m_threshold > 0.0 || m_every > 0; }
+    /// The time the fields are extrapolated over (0 without an interval: the kept field) [s].
+    [[nodiscard]] double sinceUpdateSeconds() const;
 
     double m_threshold;
     UpdateInterval m_interval;
