@@ -46,6 +46,44 @@ TEST(UpdateInterval, DueEveryNStepsWithTheFieldExtrapolated) {
     EXPECT_EQ(policy.updates(), 4);
 }
 
+TEST(UpdateInterval, AllFieldsAtOnceAreEachGrainsField) {
+    // Three grains with different fields and slopes in every component: the one-pass
+    // extrapolation gives each grain's fieldAt() bit for bit, in the order given to due().
+    double const dt = 0.1;
+    std::vector<std::uint64_t> uid{7, 3, 11};
+    std::vector<double> const x(3, 0.0);
+    gravity::UpdatePolicy policy(0.0, {0.0, 0.0, 0.0}, {2, false, 0.0, dt});
+    auto field = [](int update, std::size_t i, int a) {
+        double const g = static_cast<double>(i);
+        return 1.0 + 0.3 * g - 0.7 * a + 0.11 * update * (a + 1.0 + g);
+    };
+    std::vector<double> fx(3), fy(3), fz(3);
+    int update = 0;
+    for (long long step = 0; step <= 5; ++step) {
+        if (policy.due(world(), uid, x, x, x)) {
+            std::vector<double> ax(3), ay(3), az(3);
+            for (std::size_t i = 0; i < 3; ++i) {
+                ax[i] = field(update, i, 0);
+                ay[i] = field(update, i, 1);
+                az[i] = field(update, i, 2);
+            }
+            policy.markUpdated(uid, x, x, x, ax, ay, az);
+            ++update;
+            continue;
+        }
+        policy.fieldsAt(fx, fy, fz);
+        for (std::size_t i = 0; i < 3; ++i) {
+            auto const one = policy.fieldAt(i);
+            EXPECT_EQ(fx[i], one[0]) << step << " " << i;
+            EXPECT_EQ(fy[i], one[1]) << step << " " << i;
+            EXPECT_EQ(fz[i], one[2]) << step << " " << i;
+        }
+        if (step == 5) { // after two updates: extrapolated, not the kept field
+            EXPECT_NE(fx[1], field(update - 1, 1, 0));
+        }
+    }
+}
+
 TEST(UpdateInterval, AGrainThatChangesRankBringsItsSlope) {
     int const p = world().size();
     LinearField f;
