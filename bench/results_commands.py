@@ -80,7 +80,7 @@ SMALL = {
                                  "--stale", "0.002", "--every", "10",
                                  "--out", "{tmp}/bench/out"],
     "agglomerates_policies.py": ["--instances", "small", "--steps", "5", "--ranks", "1",
-                                 "--repeats", "1", "--policies", "auto:1e-3",
+                                 "--repeats", "1", "--max-seconds", "0",
                                  "--out", "{tmp}/bench/out"],
     "agglomerates_bench.py": ["--steps", "5", "--instances", "small", "--ranks", "1",
                               "--methods", "direct", "--out", "{tmp}/bench/out"],
