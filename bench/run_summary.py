@@ -30,8 +30,15 @@ def run_app(app, ranks, args, refusal=None):
                               env={**os.environ, **MPI_ENV})
         if done.returncode == 2 and refusal is not None and refusal in done.stderr:
             return None
-        if done.returncode != 0:
-            sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)} exited with "
-                     f"{done.returncode}\n{done.stdout}\n{done.stderr}")
-        with open(summary, encoding="utf-8") as f:
-            return json.load(f)
+        return summary_or_exit(command, done.returncode, f"{done.stdout}\n{done.stderr}",
+                               summary)
+
+
+def summary_or_exit(command, returncode, output, summary):
+    """The run summary written to `summary` by `command`, which exited with `returncode`; a
+    failed run ends the calling script with the command and its `output`."""
+    if returncode != 0:
+        sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)} exited with "
+                 f"{returncode}\n{output}")
+    with open(summary, encoding="utf-8") as f:
+        return json.load(f)

@@ -34,7 +34,6 @@ machine may be shared.
 """
 import argparse
 import csv
-import json
 import os
 import re
 import signal
@@ -48,7 +47,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, ".."))
 sys.path.insert(0, HERE)
 from agglomerates_bench import INSTANCES, ROOT, SCENE, write_csv  # noqa: E402
-from run_summary import MPI_ENV, mpiexec  # noqa: E402
+from run_summary import MPI_ENV, mpiexec, summary_or_exit  # noqa: E402
 
 # A progress line (apps/regolith/ProgressLine.cpp): the steps done, the mean rate since the
 # loop's start, and once checked the run's measured error so far.
@@ -108,11 +107,7 @@ def run_logged(app, ranks, args, progress_seconds, max_seconds, record):
         proc.wait()
         if stopped:
             return None
-        if proc.returncode != 0:
-            sys.exit(f"{os.path.basename(sys.argv[0])}: {' '.join(command)} exited with "
-                     f"{proc.returncode}\n{''.join(lines[-40:])}")
-        with open(summary, encoding="utf-8") as f:
-            return json.load(f)
+        return summary_or_exit(command, proc.returncode, "".join(lines[-40:]), summary)
 
 
 def last_part_ms(progress, steps, fraction):
