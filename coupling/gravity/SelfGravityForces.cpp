@@ -41,6 +41,7 @@ void SelfGravityForces::relocate(domain::BlockForest const& forest) {
 }
 
 void SelfGravityForces::gather(particles::LocalParticles const& local, bool state) {
+    m_gatheredState = state;
     m_uid.clear();
     m_x.clear();
     m_y.clear();
@@ -85,15 +86,29 @@ void SelfGravityForces::gather(particles::LocalParticles const& local, bool stat
     permute(m_r);
 }
 
+bool SelfGravityForces::needsState() const {
+    return m_config.updateThreshold > 0.0 || m_config.interval.every == 0 || m_monitor.armed() ||
+           m_policy.stepsSinceUpdate() + 1 >= m_policy.interval();
+}
+
 void SelfGravityForces::addForces(particles::LocalParticles& local) {
-    // The positions are read only by a displacement threshold, an update, or an armed check;
-    // a step that extrapolates the field needs the uids alone.
-    bool const state = m_config.updateThreshold > 0.0 || m_config.interval.every == 0 ||
-                       m_monitor.armed() || m_policy.stepsSinceUpdate() + 1 >= m_policy.interval();
-    gather(local, state);
+    gather(local, needsState());
+    applyForces(local, m_policy.due(*m_comm, m_uid, m_x, m_y, m_z));
+}
+
+std::array<double, 2> SelfGravityForces::voteShare(particles::LocalParticles const& local) {
+    gather(local, needsState());
+    return m_policy.localVerdict(m_uid, m_x, m_y, m_z);
+}
+
+void SelfGravityForces::addForces(particles::LocalParticles& local,
+                                  std::array<double, 2> const& vote) {
+    applyForces(local, m_policy.decideDue(*m_comm, vote, m_uid, m_x, m_y, m_z));
+}
+
+void SelfGravityForces::applyForces(particles::LocalParticles& local, bool updated) {
     std::size_t const n = m_uid.size();
-    bool const updated = m_policy.due(*m_comm, m_uid, m_x, m_y, m_z);
-    if (updated && !state) // a grain new since the last update forced it
+    if (updated && !m_gatheredState) // a grain new since the last update forced it
         gather(local, true);
     m_lastUpdated = updated;
     if (updated && m_monitor.armed() && m_kept.valid) // the step before, now judged

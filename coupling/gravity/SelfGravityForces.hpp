@@ -88,6 +88,14 @@ public:
     /// record on any rank), else uses the field of the last update (extrapolated in time with
     /// gravity.update_every), which a grain that changed rank brings along. COLLECTIVE.
     void addForces(particles::LocalParticles& local);
+    /// For a step whose vote of all ranks carries self-gravity's (particles::DemStep::
+    /// BodyForceVote): this rank's share, from the masters of `local` after the
+    /// synchronisation (gravity::UpdatePolicy::localVerdict). Not collective.
+    [[nodiscard]] std::array<double, 2> voteShare(particles::LocalParticles const& local);
+    /// As addForces(local), with `vote` the maximum over the ranks of every rank's
+    /// voteShare() of this step, the masters unchanged since: no reduction of its own unless a
+    /// grain changed rank. COLLECTIVE.
+    void addForces(particles::LocalParticles& local, std::array<double, 2> const& vote);
 
     [[nodiscard]] SelfGravityStats const& stats() const { return m_stats; }
 
@@ -133,6 +141,11 @@ public:
 private:
     /// The local masters' uids, and with `state` their positions, masses and radii.
     void gather(particles::LocalParticles const& local, bool state);
+    /// Whether this step reads the positions: a displacement threshold, an update, or an
+    /// armed check; a step that extrapolates the field needs the uids alone.
+    [[nodiscard]] bool needsState() const;
+    /// addForces after the policy's verdict: updates the field if `updated`, applies it.
+    void applyForces(particles::LocalParticles& local, bool updated);
     /// The grains of a step and the field the integrator gave them (a check's input).
     struct AppliedField {
         bool valid = false; ///< a step was kept (on every rank alike, also one without grains)
@@ -147,6 +160,7 @@ private:
     SelfGravityStats m_stats;
     bool m_gridRefreshed = false; ///< refreshGridFields computed the grid fields
     bool m_lastUpdated = false;   ///< the last addForces() updated the field (m_ax... hold it)
+    bool m_gatheredState = false; ///< the last gather() read the positions
     // The local masters, in block then storage order, or in uid order (reused between calls).
     std::vector<std::uint64_t> m_uid;
     std::vector<double> m_x, m_y, m_z, m_m, m_r, m_ax, m_ay, m_az;

@@ -135,10 +135,14 @@ void Simulation::assemble() {
                                                  *m_setup.contact, m_setup.integrator,
                                                  m_setup.walls, m_setup.dem, m_timers);
     // Self-gravity first, then the program's own (after the contacts and their reduction).
+    // Self-gravity's check for grains that changed rank rides on the step's vote.
+    if (m_gravity)
+        m_dem->setBodyForceVote(
+            [this](particles::LocalParticles const& local) { return m_gravity->voteShare(local); });
     if (m_gravity || !m_bodyForces.empty())
         m_dem->setBodyForces([this](particles::LocalParticles& local) {
             if (m_gravity)
-                m_gravity->addForces(local);
+                m_gravity->addForces(local, m_dem->bodyForceVote());
             for (BodyForces const& f : m_bodyForces)
                 f(local);
         });

@@ -60,6 +60,17 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
                        std::span<double const> z) {
     if (!keepsRecords())
         return true; // every step, on every rank alike: nothing to measure or agree on
+    std::array<double, 2> global = localVerdict(uid, x, y, z);
+    comm.allReduceInPlace(std::span<double>(global), core::ReduceOp::Max);
+    return decideDue(comm, global, uid, x, y, z);
+}
+
+std::array<double, 2> UpdatePolicy::localVerdict(std::span<std::uint64_t const> uid,
+                                                 std::span<double const> x,
+                                                 std::span<double const> y,
+                                                 std::span<double const> z) {
+    if (!keepsRecords())
+        return {0.0, 0.0};
     ++m_call;
     ++m_since;
     double local = m_updates == 0 ? std::numeric_limits<double>::infinity() : 0.0;
@@ -71,12 +82,12 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
     // The same grains as at the last call, all found then: nothing to look up or measure
     // without a threshold (most steps of an interval).
     bool const lookup = !same || m_threshold > 0.0;
-    std::vector<std::size_t> missing; // grains without a record here: they changed rank
+    m_missing.clear(); // grains without a record here: they changed rank
     for (std::size_t i = 0; lookup && i < uid.size() && std::isfinite(local); ++i) {
         if (m_found[i] == nullptr) {
             auto const it = m_records.find(uid[i]);
             if (it == m_records.end()) {
-                missing.push_back(i);
+                m_missing.push_back(i);
                 continue;
             }
             m_found[i] = &it->second;
@@ -86,9 +97,17 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
             local =
                 std::max(local, distance(m_found[i]->record.reference, x[i], y[i], z[i], m_period));
     }
-    // One reduction: the largest displacement, and whether any rank misses a record.
-    std::array<double, 2> global{local, missing.empty() ? 0.0 : 1.0};
-    comm.allReduceInPlace(std::span<double>(global), core::ReduceOp::Max);
+    m_localMax = local;
+    m_lookedUp = lookup;
+    return {local, m_missing.empty() ? 0.0 : 1.0};
+}
+
+bool UpdatePolicy::decideDue(core::Comm const& comm, std::array<double, 2> global,
+                             std::span<std::uint64_t const> uid, std::span<double const> x,
+                             std::span<double const> y, std::span<double const> z) {
+    if (!keepsRecords())
+        return true;
+    double local = m_localMax;
     bool const stepsDue = m_every > 0 && m_since >= m_every;
     // Records are fetched unless the step updates anyway (the next due() would give them away);
     // with an interval an update needs them too: the slopes are differences with the old field.
@@ -100,15 +119,15 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         if (!m_exchange)
             m_exchange = std::make_unique<core::SparseExchange>(comm);
         std::vector<std::uint64_t> wanted;
-        wanted.reserve(missing.size());
-        for (std::size_t const i : missing)
+        wanted.reserve(m_missing.size());
+        for (std::size_t const i : m_missing)
             wanted.push_back(uid[i]);
-        if (!lookup) // this rank's records are claimed: none is given away
+        if (!m_lookedUp) // this rank's records are claimed: none is given away
             for (Entry* e : m_found)
                 if (e != nullptr)
                     e->seen = m_call;
         fetchMigratedRecords(*m_exchange, comm.size(), m_records, wanted, m_call);
-        for (std::size_t const i : missing) {
+        for (std::size_t const i : m_missing) {
             auto const it = m_records.find(uid[i]);
             if (it != m_records.end())
                 m_found[i] = &it->second;
@@ -120,7 +139,7 @@ bool UpdatePolicy::due(core::Comm const& comm, std::span<std::uint64_t const> ui
         }
         global[0] = comm.allReduce(local, core::ReduceOp::Max);
     }
-    if (lookup || global[1] > 0.0) { // the fields in grain order, for fieldAt() and fieldsAt()
+    if (m_lookedUp || global[1] > 0.0) { // the fields in grain order, for fieldAt() and fieldsAt()
         m_atField.resize(3 * uid.size());
         m_atSlope.resize(3 * uid.size());
         for (std::size_t i = 0; i < m_found.size(); ++i)

@@ -75,6 +75,19 @@ public:
     [[nodiscard]] bool due(core::Comm const& comm, std::span<std::uint64_t const> uid,
                            std::span<double const> x, std::span<double const> y,
                            std::span<double const> z);
+    /// due() in two parts, for a caller that reduces the verdict together with its own (one
+    /// reduction fewer per step): localVerdict() measures this rank's grains (the largest
+    /// displacement, +inf before the first update; 1 if a grain has no record here, else 0)
+    /// and is not collective; decideDue() takes the element-wise maximum of every rank's
+    /// verdict and the same grains, and is COLLECTIVE only when some rank misses a record.
+    /// due() is localVerdict, an all-reduce and decideDue.
+    [[nodiscard]] std::array<double, 2> localVerdict(std::span<std::uint64_t const> uid,
+                                                     std::span<double const> x,
+                                                     std::span<double const> y,
+                                                     std::span<double const> z);
+    [[nodiscard]] bool decideDue(core::Comm const& comm, std::array<double, 2> global,
+                                 std::span<std::uint64_t const> uid, std::span<double const> x,
+                                 std::span<double const> y, std::span<double const> z);
 
     /// Records the positions of this rank's grains at an update and counts it. Not
     /// collective (call it on every rank after every update).
@@ -161,7 +174,11 @@ private:
     /// them without hashing.
     std::vector<std::uint64_t> m_foundUid;
     std::vector<Entry*> m_found;
-    std::vector<double> m_atField, m_atSlope;         ///< their fields and slopes, 3 per grain
+    std::vector<double> m_atField, m_atSlope; ///< their fields and slopes, 3 per grain
+    // Between localVerdict() and decideDue():
+    std::vector<std::size_t> m_missing; ///< grains without a record here (they changed rank)
+    double m_localMax = 0.0;            ///< the largest displacement here
+    bool m_lookedUp = false;            ///< the records were looked up (not the last ones')
     std::unique_ptr<core::SparseExchange> m_exchange; ///< made at the first migration
 };
 

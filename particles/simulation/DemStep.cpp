@@ -353,7 +353,11 @@ void DemStep::agreeOnListRebuilds() {
         due = std::max(due, outlook.due ? 1 : 0);
         m_listHalfway[b] = outlook.halfway ? 1 : 0;
     }
-    if (m_comm->allReduce(due, core::ReduceOp::Max) == 0)
+    // One reduction: the lists' verdict and the body force's vote (0 or 1, and any numbers).
+    std::array<double, 3> votes{static_cast<double>(due), m_bodyForceVote[0], m_bodyForceVote[1]};
+    m_comm->allReduceInPlace(std::span<double>(votes), core::ReduceOp::Max);
+    m_bodyForceVote = {votes[1], votes[2]};
+    if (votes[0] == 0.0)
         return;
     for (std::size_t b = 0; b < blocks.size(); ++b)
         if (m_listHalfway[b] != 0)
@@ -363,6 +367,11 @@ void DemStep::agreeOnListRebuilds() {
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
     bool const keepPairs = m_config.keepContacts || stamp == 0;
+    m_bodyForceVote = {};
+    if (m_bodyForceShare) {
+        auto const t = m_timers->scope(kBodyForceTimer);
+        m_bodyForceVote = m_bodyForceShare(*m_local);
+    }
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();

@@ -22,6 +22,7 @@
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncInvariants.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -114,6 +115,12 @@ public:
     /// step), it adds to the masters' force and torque. It must be COLLECTIVE over the same
     /// communicator if it communicates (it is called on every rank at the same point).
     using BodyForces = std::function<void(LocalParticles&)>;
+    /// A body force's share of a vote of all ranks (e.g. self-gravity's: whether a grain here
+    /// has no field record, gravity::UpdatePolicy::localVerdict): called with the local
+    /// particles after the synchronisation, before the contacts (timer "gravity"), not
+    /// collective; the element-wise maximum over the ranks is taken in the reduction that
+    /// decides the Verlet list rebuilds, so the body forces need no reduction of their own.
+    using BodyForceVote = std::function<std::array<double, 2>(LocalParticles const&)>;
 
     /// Pre: `comm` is the communicator `sync` was built from (or a duplicate), `local`
     /// belongs to the forest `sync` was built for; config.dt > 0 and finite (throws
@@ -183,6 +190,12 @@ public:
     /// Installs the body forces (see BodyForces); an empty function removes them. Call it
     /// before setUp(), so that the initial forces include them.
     void setBodyForces(BodyForces forces) { m_bodyForces = std::move(forces); }
+    /// Installs a body force's vote (see BodyForceVote); an empty function removes it. Call it
+    /// before setUp().
+    void setBodyForceVote(BodyForceVote share) { m_bodyForceShare = std::move(share); }
+    /// The maximum over the ranks of every rank's BodyForceVote share in the current force
+    /// computation (zeros without a vote): for the body forces. Not collective.
+    [[nodiscard]] std::array<double, 2> const& bodyForceVote() const { return m_bodyForceVote; }
 
     /// Simulated time after stepsDone() steps: the start's (0, or resume's) plus dt per step.
     [[nodiscard]] double time() const {
@@ -263,6 +276,8 @@ private:
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
     std::unique_ptr<BlockContactLoop> m_loop;        ///< m_model's per-block contact loop
     BodyForces m_bodyForces;
+    BodyForceVote m_bodyForceShare;
+    std::array<double, 2> m_bodyForceVote{}; ///< this force computation's, reduced
     /// Bound on every copy's displacement since the last sync call, on this rank (+inf:
     /// unknown, before the first step).
     double m_moved = std::numeric_limits<double>::infinity();

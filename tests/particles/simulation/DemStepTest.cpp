@@ -18,6 +18,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -439,4 +440,40 @@ TEST(DemStep, ListsAtRestAreNotRebuiltForOthers) {
         EXPECT_GE(rebuilds, 2u);
     else
         EXPECT_EQ(rebuilds, 0u);
+}
+
+TEST(DemStep, BodyForceVoteIsTheMaximumOverRanks) {
+    // Each rank votes (rank, -rank): every force computation's body forces see (size - 1, 0)
+    // on every rank, one share per computation, taken before the contacts.
+    core::Comm const world;
+    domain::ForestSpec spec;
+    spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
+    spec.rootBlocks = {2, 2, 2};
+    spec.periodic = {true, true, true};
+    domain::BlockForest const forest(world, spec);
+    LocalParticles local(forest);
+    Uid uid = 0;
+    for (double x = 1.0; x < 8.0; x += 2.0)
+        local.addMaster(grain(uid++, {x, 1.0, 1.0}, {0.0, 1.0, 0.0}, 0.2));
+    ParticleSync sync(world, forest, SyncConfig{});
+    core::TimerTree timers;
+    DemStepConfig c;
+    c.dt = kDt;
+    DemStep dem(world, sync, local, model(), VelocityVerlet{}, WallList{}, c, timers);
+    int shares = 0, applied = 0;
+    dem.setBodyForceVote([&](LocalParticles const&) {
+        ++shares;
+        return std::array<double, 2>{static_cast<double>(world.rank()),
+                                     -static_cast<double>(world.rank())};
+    });
+    dem.setBodyForces([&](LocalParticles&) {
+        ++applied;
+        EXPECT_EQ(dem.bodyForceVote()[0], static_cast<double>(world.size() - 1));
+        EXPECT_EQ(dem.bodyForceVote()[1], 0.0);
+    });
+    dem.setUp();
+    for (int n = 0; n < 5; ++n)
+        dem.step();
+    EXPECT_EQ(applied, 6);
+    EXPECT_EQ(shares, applied);
 }
