@@ -70,6 +70,8 @@ struct DemStepConfig {
 ///
 ///     integrator.preForce    on every block          (timer "integrate"; moves masters only)
 ///     sync.sync(local)                               (timer "sync")
+///     the body forces' vote share (setBodyForceVote)  (timer "gravity")
+///     the vote on list rebuilds, with that share     (one all-reduce, more than one rank)
 ///     per block: resetForces, detect (region = block box, periodic frame of the forest),
 ///                evaluate with stamp = step number   (timer "contact")
 ///     sync.reduceForces(local[, records], stamp)     (timer "sync")
