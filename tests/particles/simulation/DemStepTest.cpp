@@ -446,11 +446,7 @@ TEST(DemStep, BodyForceVoteIsTheMaximumOverRanks) {
     // Each rank votes (rank, -rank): every force computation's body forces see (size - 1, 0)
     // on every rank, one share per computation, taken before the contacts.
     core::Comm const world;
-    domain::ForestSpec spec;
-    spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
-    spec.rootBlocks = {2, 2, 2};
-    spec.periodic = {true, true, true};
-    domain::BlockForest const forest(world, spec);
+    domain::BlockForest const forest(world, boxSpec({2, 2, 2}));
     LocalParticles local(forest);
     Uid uid = 0;
     for (double x = 1.0; x < 8.0; x += 2.0)
