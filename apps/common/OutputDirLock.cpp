@@ -18,19 +18,16 @@ namespace regolith::apps {
 
 namespace {
 
-/// Takes the lock of `dir` for this process: the folder, open, or -1 where the file system
+/// Takes the lock of `dir` for this process: the folder, open, or -1 where there is no folder
+/// to lock (it cannot be made: the outputs' own checks name what fails) or the file system
 /// keeps no locks (warned). Throws core::InputError if another process holds it.
 int lockFolder(std::string const& dir) {
-    std::string const where = fmt::format("output.dir = \"{}\"", dir);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
-    if (ec)
-        throw core::InputError(
-            fmt::format("{}: cannot create the folder: {}", where, ec.message()));
-    int const fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    int const fd = ec ? -1 : ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0)
-        throw core::InputError(
-            fmt::format("{}: cannot open the folder: {}", where, std::strerror(errno)));
+        return -1;
+    std::string const where = fmt::format("output.dir = \"{}\"", dir);
     if (::flock(fd, LOCK_EX | LOCK_NB) == 0)
         return fd;
     int const why = errno;

@@ -15,9 +15,10 @@ namespace regolith::apps {
 class OutputDirLock {
 public:
     OutputDirLock() = default;
-    /// Creates `dir` if missing and takes its lock. COLLECTIVE over `comm`; throws
+    /// Creates `dir` if missing and takes its lock (none if the folder cannot be made: the
+    /// outputs' own checks then refuse the run). COLLECTIVE over `comm`; throws
     /// core::InputError on every rank ("output.dir = \"<dir>\": another run is writing
-    /// there ...") if another process holds it, or the folder cannot be made.
+    /// there ...") if another process holds it.
     OutputDirLock(core::Comm const& comm, std::string const& dir);
     OutputDirLock(OutputDirLock&& other) noexcept;
     OutputDirLock& operator=(OutputDirLock&& other) noexcept;
