@@ -22,8 +22,8 @@ several joined by a trailing backslash; `build/default` in it stands for the bui
          test, or a table that names a label no block defines.
 
 A command whose requirement is missing (`lmp`: LAMMPS's executable on PATH; `matplotlib`, `vtk`:
-the Python modules matplotlib and vtkmodules; `pvbatch`: ParaView's pvbatch and xvfb-run) is
-skipped with a message, in both modes.
+the Python modules matplotlib and vtkmodules; `pvbatch`: ParaView's pvbatch and xvfb-run;
+`valgrind`: valgrind on PATH) is skipped with a message, in both modes.
 
 usage: results_commands.py {list,run,check} [--build build/default] [--page docs/results.md]
                            [--only c1 c7 ...] [--timeout 60]
@@ -41,7 +41,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LABEL = re.compile(r"^#\s*\[(c\d+)\]\s*(?:needs:\s*([a-z0-9 ]*?))?\s*(\(.*\))?\s*$")
-KNOWN_NEEDS = {"lmp", "matplotlib", "vtk", "pvbatch"}
+KNOWN_NEEDS = {"lmp", "matplotlib", "vtk", "pvbatch", "valgrind"}
 
 # Small mode: arguments appended to a command, by the script's or executable's file name. Every
 # program a command of the page runs must be here (a missing one fails the check), so a new
@@ -89,6 +89,8 @@ SMALL = {
     "load_balance.py": ["--ranks", "2", "--steps", "5", "--repeats", "1",
                         "--out", "{tmp}/bench/out"],
     "regolith": ["--output", "{tmp}/out"],
+    "instruction_counts.py": ["--steps", "1", "--sync-steps", "1",
+                              "--set", "domain.max=[8.0,8.0,8.0]", "--out", "{tmp}/bench/out"],
     "tutorial_figures.py": ["--pull-steps", "2000", "--spin-sites", "6", "--spin-steps", "600",
                             "--out", "{tmp}/bench/out"],
     "grid_fields_figure.py": ["--np", "1", "--steps", "2", "--png", "{tmp}/docs/images/g.png"],
@@ -180,6 +182,8 @@ def missing_needs(needs):
     missing = []
     if "lmp" in needs and not shutil.which("lmp"):
         missing.append("lmp (LAMMPS)")
+    if "valgrind" in needs and not shutil.which("valgrind"):
+        missing.append("valgrind")
     if "pvbatch" in needs and not pvbatch_works():
         missing.append("pvbatch with its Python modules, and xvfb-run (ParaView, a display)")
     for module, name in (("matplotlib", "matplotlib"), ("vtk", "vtkmodules")):

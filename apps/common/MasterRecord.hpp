@@ -1,9 +1,9 @@
 #pragma once
 /// One master particle as the apps report it (checksum, `--dump`, conserved quantities): plain
-/// data, independent of the particle storage, in the columns of the dump contract
+/// data, independent of the particle storage; `--dump` writes the table entries marked kDump
 /// (docs/design.md, "Dump": uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass, then the grain fields
 /// a program declared).
-#include "core/math/Vec3.hpp"
+#include "particles/storage/GrainQuantities.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -12,13 +12,9 @@
 
 namespace regolith::apps {
 
-struct MasterRecord {
-    std::uint64_t uid = 0;                           ///< globally unique particle id
-    core::Vec3 position = core::Vec3::Zero();        ///< centre [length]
-    core::Vec3 velocity = core::Vec3::Zero();        ///< [length/time]
-    core::Vec3 angularVelocity = core::Vec3::Zero(); ///< [rad/time]
-    double radius = 0.0;                             ///< [length]
-    double mass = 0.0;                               ///< [mass]
+/// The table's quantities (particles/storage/GrainQuantities.hpp; the apps read uid, position,
+/// velocity, angular velocity, radius and mass) and the declared grain fields.
+struct MasterRecord : particles::GrainRow {
     /// The declared grain fields (particles/storage/GrainFields.hpp), for --dump's columns
     /// after the contract's; empty where only the state above is reported.
     std::vector<double> fields{};

@@ -7,18 +7,34 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace regolith::apps {
 
 namespace {
 
-/// A record's bytes in a gathered message: the contract's columns, then the grain fields.
+template <std::size_t K>
+constexpr auto const& kQuantity = std::get<K>(particles::kGrainQuantities);
+
+template <std::size_t K>
+constexpr bool kInDump = (kQuantity<K>.outputs & particles::kDump) != 0;
+
+template <std::size_t K>
+using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
+
+/// A record's bytes in a gathered message: the table's dump columns, then the grain fields.
 std::size_t recordBytes() {
-    return sizeof(std::uint64_t) + (11 + particles::grainFieldComponents()) * sizeof(double);
+    std::size_t bytes = 0;
+    particles::forEachGrainQuantity([&](auto k) {
+        if constexpr (kInDump<k.value>)
+            bytes += kQuantity<k.value>.components * sizeof(typename LayoutOf<k.value>::Element);
+    });
+    return bytes + particles::grainFieldComponents() * sizeof(double);
 }
 
 std::string pack(std::span<MasterRecord const> masters) {
@@ -26,7 +42,10 @@ std::string pack(std::span<MasterRecord const> masters) {
     b.reserve(masters.size() * recordBytes());
     std::size_t const fields = particles::grainFieldComponents();
     for (auto const& m : masters) {
-        b << m.uid << m.position << m.velocity << m.angularVelocity << m.radius << m.mass;
+        particles::forEachGrainQuantity([&](auto k) {
+            if constexpr (kInDump<k.value>)
+                b << m.*kQuantity<k.value>.row;
+        });
         for (std::size_t k = 0; k < fields; ++k)
             b << (k < m.fields.size() ? m.fields[k] : 0.0);
     }
@@ -40,7 +59,10 @@ void unpack(std::string const& text, std::vector<MasterRecord>& out) {
     core::RecvBuffer b(std::move(bytes));
     while (!b.exhausted()) {
         MasterRecord m;
-        b >> m.uid >> m.position >> m.velocity >> m.angularVelocity >> m.radius >> m.mass;
+        particles::forEachGrainQuantity([&](auto k) {
+            if constexpr (kInDump<k.value>)
+                b >> m.*kQuantity<k.value>.row;
+        });
         m.fields.resize(particles::grainFieldComponents());
         for (double& v : m.fields)
             b >> v;
@@ -50,6 +72,25 @@ void unpack(std::string const& text, std::vector<MasterRecord>& out) {
 
 } // namespace
 
+std::string dumpHeader() {
+    std::string header;
+    particles::forEachGrainQuantity([&](auto k) {
+        if constexpr (kInDump<k.value>) {
+            if (!header.empty())
+                header += ',';
+            header += kQuantity<k.value>.dumpColumns;
+        }
+    });
+    for (particles::GrainField const& f : particles::grainFields()) {
+        header += ',';
+        if (f.components == 1)
+            header += f.name;
+        else
+            header += fmt::format("{0}_x,{0}_y,{0}_z", f.name);
+    }
+    return header + "\n";
+}
+
 std::string dumpCsv(std::span<MasterRecord const> masters) {
     std::vector<MasterRecord const*> order;
     order.reserve(masters.size());
@@ -58,25 +99,26 @@ std::string dumpCsv(std::span<MasterRecord const> masters) {
     std::sort(order.begin(), order.end(),
               [](MasterRecord const* a, MasterRecord const* b) { return a->uid < b->uid; });
     fmt::memory_buffer out;
-    out.append(kDumpHeader.substr(0, kDumpHeader.size() - 1));
-    for (particles::GrainField const& f : particles::grainFields()) {
-        if (f.components == 1)
-            fmt::format_to(std::back_inserter(out), ",{}", f.name);
-        else
-            fmt::format_to(std::back_inserter(out), ",{0}_x,{0}_y,{0}_z", f.name);
-    }
-    out.push_back('\n');
+    auto text = std::back_inserter(out);
+    fmt::format_to(text, "{}", dumpHeader());
     for (MasterRecord const* m : order) {
-        auto const& x = m->position;
-        auto const& v = m->velocity;
-        auto const& w = m->angularVelocity;
-        fmt::format_to(std::back_inserter(out),
-                       "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
-                       "{:.17g},{:.17g}",
-                       m->uid, x.x(), x.y(), x.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(),
-                       m->radius, m->mass);
+        char const* separator = "";
+        particles::forEachGrainQuantity([&](auto k) {
+            if constexpr (kInDump<k.value>) {
+                using Element = typename LayoutOf<k.value>::Element;
+                std::array<Element, kQuantity<k.value>.components> e{};
+                LayoutOf<k.value>::put(m->*kQuantity<k.value>.row, e.data());
+                for (Element x : e) {
+                    if constexpr (std::is_floating_point_v<Element>)
+                        fmt::format_to(text, "{}{:.17g}", separator, x);
+                    else
+                        fmt::format_to(text, "{}{}", separator, x);
+                    separator = ",";
+                }
+            }
+        });
         for (double value : m->fields)
-            fmt::format_to(std::back_inserter(out), ",{:.17g}", value);
+            fmt::format_to(text, ",{:.17g}", value);
         out.push_back('\n');
     }
     return fmt::to_string(out);

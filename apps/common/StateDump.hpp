@@ -6,17 +6,17 @@
 
 #include <span>
 #include <string>
-#include <string_view>
 
 namespace regolith::apps {
 
-/// The header line of the dump (with its newline).
-inline constexpr std::string_view kDumpHeader = "uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n";
+/// The header line of the dump (with its newline): the dump columns of the table's entries
+/// marked kDump (particles/storage/GrainQuantities.hpp: uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass),
+/// then a column per declared grain-field component (`name`, or `name_x,name_y,name_z`).
+[[nodiscard]] std::string dumpHeader();
 
-/// The dump text of `masters` (one rank's or all): kDumpHeader (with a column per declared
-/// grain-field component before its newline: `name`, or `name_x,name_y,name_z`), then one
-/// line per master in increasing uid, every number with "{:.17g}" (17 significant digits:
-/// reads back to the same double) and the uid as an integer. Not collective.
+/// The dump text of `masters` (one rank's or all): dumpHeader(), then one line per master in
+/// increasing uid, every floating-point number with "{:.17g}" (17 significant digits: reads
+/// back to the same double) and integers (the uid) as integers. Not collective.
 [[nodiscard]] std::string dumpCsv(std::span<MasterRecord const> masters);
 
 /// Gathers the masters of every rank on rank 0 and returns dumpCsv of all of them there ("" on

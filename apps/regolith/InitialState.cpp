@@ -60,8 +60,15 @@ particles::ParticleStorage generateLocalMasters(core::Comm const& comm,
 std::vector<MasterRecord> toMasterRecords(std::span<particles::GrainInit const> grains) {
     std::vector<MasterRecord> out;
     out.reserve(grains.size());
-    for (auto const& g : grains)
-        out.push_back({g.uid, g.position, g.velocity, g.angularVelocity, g.radius, g.mass});
+    for (auto const& g : grains) {
+        MasterRecord& m = out.emplace_back();
+        m.uid = g.uid;
+        m.position = g.position;
+        m.velocity = g.velocity;
+        m.angularVelocity = g.angularVelocity;
+        m.radius = g.radius;
+        m.mass = g.mass;
+    }
     return out;
 }
 

@@ -18,8 +18,9 @@ MasterSource masterSource(particles::LocalParticles const& local) {
         for (particles::BlockParticles const& bp : local.blocks()) {
             particles::ParticleStorage const& ps = bp.particles;
             ps.forEachMaster([&](std::size_t i) {
-                visit({ps.uid(i), ps.position(i), ps.velocity(i), ps.angularVelocity(i),
-                       ps.radius(i), ps.mass(i)});
+                MasterRecord m;
+                static_cast<particles::GrainRow&>(m) = ps.row(i);
+                visit(m);
             });
         }
     };
@@ -31,8 +32,9 @@ std::vector<MasterRecord> masterRecords(particles::LocalParticles const& local) 
     for (particles::BlockParticles const& bp : local.blocks()) {
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
-            out.push_back({ps.uid(i), ps.position(i), ps.velocity(i), ps.angularVelocity(i),
-                           ps.radius(i), ps.mass(i), ps.fieldValues(i)});
+            MasterRecord& m = out.emplace_back();
+            static_cast<particles::GrainRow&>(m) = ps.row(i);
+            m.fields = ps.fieldValues(i);
         });
     }
     return out;

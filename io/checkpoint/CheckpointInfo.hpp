@@ -7,7 +7,8 @@
 ///                      periodic[3], scene (text), state_checksum (text), grain_count,
 ///                      history_count, gravity_updates, gravity_potential_energy,
 ///                      gravity_since_update, gravity_interval, checksum
-///   datasets: uid[N], position[N,3], velocity[N,3], angular_velocity[N,3],
+///   datasets: the entries of particles::kGrainQuantities (GrainQuantities.hpp), in its order:
+///             uid[N], position[N,3], velocity[N,3], angular_velocity[N,3],
 ///             orientation[N,4] (w, x, y, z), force[N,3], torque[N,3], radius[N], mass[N],
 ///             type[N], flags[N], gravity_reference[N,3], gravity_field[N,3],
 ///             gravity_slope[N,3] (NaN rows: no self-gravity record), history_offset[N] (first

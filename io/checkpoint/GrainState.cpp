@@ -1,5 +1,6 @@
 #include "io/checkpoint/GrainState.hpp"
 
+#include <array>
 #include <cstring>
 
 namespace regolith::io {
@@ -11,17 +12,7 @@ std::vector<GrainState> collectMasters(particles::LocalParticles const& local) {
         particles::ParticleStorage const& ps = bp.particles;
         ps.forEachMaster([&](std::size_t i) {
             GrainState g;
-            g.uid = ps.uid(i);
-            g.position = ps.position(i);
-            g.velocity = ps.velocity(i);
-            g.angularVelocity = ps.angularVelocity(i);
-            g.orientation = ps.orientation(i);
-            g.force = ps.force(i);
-            g.torque = ps.torque(i);
-            g.radius = ps.radius(i);
-            g.mass = ps.mass(i);
-            g.type = ps.type(i);
-            g.flags = ps.flags(i).bits();
+            static_cast<particles::GrainRow&>(g) = ps.row(i);
             g.history.assign(ps.history(i).begin(), ps.history(i).end());
             g.fields = ps.fieldValues(i);
             out.push_back(std::move(g));
@@ -32,24 +23,15 @@ std::vector<GrainState> collectMasters(particles::LocalParticles const& local) {
 
 particles::ParticleInit toParticleInit(GrainState const& g) {
     particles::ParticleInit p;
-    p.uid = g.uid;
-    p.position = g.position;
-    p.velocity = g.velocity;
-    p.angularVelocity = g.angularVelocity;
-    p.orientation = g.orientation;
-    p.radius = g.radius;
-    p.mass = g.mass;
-    p.type = g.type;
+    static_cast<particles::GrainRow&>(p) = g;
     // Every stored flag as written; a restored grain is a master.
-    p.flags = particles::Flags::fromBits(g.flags).set(particles::Flag::Shadow, false);
+    p.flags.set(particles::Flag::Shadow, false);
     p.fields = g.fields;
     return p;
 }
 
-void restoreDynamicState(GrainState const& g, particles::ParticleStorage& ps,
-                         particles::ParticleStorage::Index i) {
-    ps.force(i) = g.force;
-    ps.torque(i) = g.torque;
+void restoreHistory(GrainState const& g, particles::ParticleStorage& ps,
+                    particles::ParticleStorage::Index i) {
     ps.history(i).clear();
     for (particles::HistoryEntry const& e : g.history)
         ps.history(i).set(e);
@@ -74,9 +56,15 @@ public:
     void add(T const& v) {
         m_h = fnv1a(std::as_bytes(std::span<T const, 1>(&v, 1)), m_h);
     }
-    void add(core::Vec3 const& v) {
-        for (int k = 0; k < 3; ++k)
-            add(v[k]);
+    /// A table entry's value by its column elements (a quaternion as w, x, y, z; flags as
+    /// their byte).
+    template <class T>
+    void addValue(T const& v) {
+        using Layout = particles::GrainValueLayout<T>;
+        std::array<typename Layout::Element, Layout::components> e{};
+        Layout::put(v, e.data());
+        for (auto const& x : e)
+            add(x);
     }
     [[nodiscard]] std::uint64_t value() const { return m_h; }
 
@@ -97,26 +85,14 @@ std::uint64_t fmix64(std::uint64_t k) {
 
 std::uint64_t grainHash(GrainState const& g) {
     Hasher h;
-    h.add(g.uid);
-    h.add(g.position);
-    h.add(g.velocity);
-    h.add(g.angularVelocity);
-    h.add(g.orientation.w());
-    h.add(g.orientation.x());
-    h.add(g.orientation.y());
-    h.add(g.orientation.z());
-    h.add(g.force);
-    h.add(g.torque);
-    h.add(g.radius);
-    h.add(g.mass);
-    h.add(g.type);
-    h.add(g.flags);
-    h.add(g.gravityReference);
-    h.add(g.gravityField);
-    h.add(g.gravitySlope);
+    particles::forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = std::get<k.value>(particles::kGrainQuantities);
+        if constexpr ((q.outputs & particles::kCheckpoint) != 0)
+            h.addValue(g.*q.row);
+    });
     for (particles::HistoryEntry const& e : g.history) {
         h.add(e.partner);
-        h.add(e.spring);
+        h.addValue(e.spring);
         h.add(e.stamp);
     }
     for (double v : g.fields)

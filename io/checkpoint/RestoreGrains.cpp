@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 #include "core/mpi/AgreeOnInputError.hpp"
 #include "core/mpi/SparseExchange.hpp"
+#include "particles/sync/SyncMessages.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
@@ -87,22 +88,22 @@ private:
 };
 
 void pack(core::SendBuffer& b, GrainState const& g) {
-    b << g.uid << g.position << g.velocity << g.angularVelocity << g.orientation << g.force
-      << g.torque << g.radius << g.mass << g.type << g.flags << g.gravityReference << g.gravityField
-      << g.gravitySlope << static_cast<std::uint64_t>(g.history.size());
+    particles::sync_detail::writeRow<particles::sync_detail::RowPart::Every>(b, g);
+    b << static_cast<std::uint64_t>(g.history.size());
     for (particles::HistoryEntry const& e : g.history)
         b << e.partner << e.spring << e.stamp;
+    b << g.fields;
 }
 
 GrainState unpack(core::RecvBuffer& b) {
     GrainState g;
     std::uint64_t entries = 0;
-    b >> g.uid >> g.position >> g.velocity >> g.angularVelocity >> g.orientation >> g.force >>
-        g.torque >> g.radius >> g.mass >> g.type >> g.flags >> g.gravityReference >>
-        g.gravityField >> g.gravitySlope >> entries;
+    particles::sync_detail::readRow<particles::sync_detail::RowPart::Every>(b, g);
+    b >> entries;
     g.history.resize(entries);
     for (particles::HistoryEntry& e : g.history)
         b >> e.partner >> e.spring >> e.stamp;
+    b >> g.fields;
     return g;
 }
 
@@ -114,7 +115,7 @@ void addRestored(particles::LocalParticles& local, GrainState const& g) {
     domain::BlockForest const& forest = local.forest();
     domain::Block const* block = forest.localBlockContaining(forest.wrap(g.position));
     particles::ParticleStorage& ps = local.find(block->id.raw())->particles;
-    restoreDynamicState(g, ps, ps.find(g.uid));
+    restoreHistory(g, ps, ps.find(g.uid));
 }
 
 } // namespace

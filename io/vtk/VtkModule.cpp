@@ -41,6 +41,8 @@ int vtkTypeOf(std::string const& type) {
         return VTK_TYPE_INT64;
     if (type == "UInt64")
         return VTK_TYPE_UINT64;
+    if (type == "UInt32")
+        return VTK_TYPE_UINT32;
     if (type == "UInt8")
         return VTK_TYPE_UINT8;
     throw std::invalid_argument("VTK module: unknown array type '" + type + "'");

@@ -17,7 +17,7 @@ namespace regolith::io::vtkxml {
 /// One data array as a .pvtu declares it: name, VTK XML type, components.
 struct ArraySpec {
     std::string name;
-    std::string type; ///< "Float64", "Int32", "Int64", "UInt64", "UInt8"
+    std::string type; ///< "Float64", "Int32", "Int64", "UInt64", "UInt32", "UInt8"
     int components = 1;
 };
 

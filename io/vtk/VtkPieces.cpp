@@ -2,18 +2,60 @@
 
 #include "core/Error.hpp"
 #include "particles/storage/GrainFields.hpp"
+#include "particles/storage/GrainQuantities.hpp"
 
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <tuple>
+#include <type_traits>
 
 namespace regolith::io::detail {
 
+namespace {
+
+template <std::size_t K>
+constexpr auto const& kQuantity = std::get<K>(particles::kGrainQuantities);
+
+template <std::size_t K>
+constexpr bool kInVtk = (kQuantity<K>.outputs & particles::kVtk) != 0;
+
+template <std::size_t K>
+using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
+
+constexpr char const* vtkType(particles::GrainElement e) {
+    switch (e) {
+    case particles::GrainElement::F64:
+        return "Float64";
+    case particles::GrainElement::U64:
+        return "UInt64";
+    case particles::GrainElement::U32:
+        return "UInt32";
+    case particles::GrainElement::U8:
+        break;
+    }
+    return "UInt8";
+}
+
+/// The point arrays of the table's entries written to VTK, one per entry (others stay empty).
+template <class Table>
+struct VtkColumnsOf;
+template <class... Q>
+struct VtkColumnsOf<std::tuple<Q...>> {
+    using type = std::tuple<std::vector<typename Q::Layout::Element>...>;
+};
+using VtkColumns = VtkColumnsOf<std::remove_cv_t<decltype(particles::kGrainQuantities)>>::type;
+
+} // namespace
+
 std::vector<ArraySpec> particleArrays(bool shadows) {
-    std::vector<ArraySpec> a{
-        {"uid", "UInt64", 1},       {"radius", "Float64", 1},           {"mass", "Float64", 1},
-        {"velocity", "Float64", 3}, {"angular_velocity", "Float64", 3}, {"force", "Float64", 3},
-        {"owner_rank", "Int32", 1}};
+    std::vector<ArraySpec> a;
+    particles::forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = kQuantity<k.value>;
+        if constexpr (kInVtk<k.value>)
+            a.push_back({std::string(q.name), vtkType(q.element), static_cast<int>(q.components)});
+    });
+    a.push_back({"owner_rank", "Int32", 1});
     if (shadows)
         a.push_back({"shadow", "UInt8", 1});
     for (particles::GrainField const& f : particles::grainFields()) // of one's own
@@ -46,18 +88,18 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
     std::size_t n = 0;
     for (particles::BlockParticles const& bp : local.blocks())
         n += shadows ? bp.particles.size() : bp.particles.countMasters();
-    // Columns in particleArrays() order.
-    std::vector<double> xyz, radius, mass, velocity, omega, force;
-    std::vector<std::uint64_t> uid;
+    // Columns in particleArrays() order: the table's, owner_rank, shadow, the grain fields.
+    std::vector<double> xyz;
+    VtkColumns quantities;
     std::vector<std::int32_t> owner;
     std::vector<std::uint8_t> shadow;
     auto const fields = particles::grainFields();
     std::vector<std::vector<double>> fieldValues(fields.size());
-    for (auto* v : {&xyz, &velocity, &omega, &force})
-        v->reserve(3 * n);
-    radius.reserve(n);
-    mass.reserve(n);
-    uid.reserve(n);
+    xyz.reserve(3 * n);
+    particles::forEachGrainQuantity([&](auto k) {
+        if constexpr (kInVtk<k.value>)
+            std::get<k.value>(quantities).reserve(kQuantity<k.value>.components * n);
+    });
     owner.reserve(n);
     shadow.reserve(n);
     for (particles::BlockParticles const& bp : local.blocks()) {
@@ -67,12 +109,14 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
             if (isShadow && !shadows)
                 return;
             append(xyz, ps.position(i));
-            uid.push_back(ps.uid(i));
-            radius.push_back(ps.radius(i));
-            mass.push_back(ps.mass(i));
-            append(velocity, ps.velocity(i));
-            append(omega, ps.angularVelocity(i));
-            append(force, ps.force(i));
+            particles::forEachGrainQuantity([&](auto k) {
+                if constexpr (kInVtk<k.value>) {
+                    auto& column = std::get<k.value>(quantities);
+                    column.resize(column.size() + kQuantity<k.value>.components);
+                    LayoutOf<k.value>::put(ps.value<k.value>(i), column.data() + column.size() -
+                                                                     kQuantity<k.value>.components);
+                }
+            });
             owner.push_back(ps.owner(i).rank);
             shadow.push_back(isShadow ? 1 : 0);
             for (std::size_t f = 0; f < fields.size(); ++f) {
@@ -84,8 +128,12 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
         });
     }
     std::vector<ArraySpec> const specs = particleArrays(shadows);
-    std::vector<void const*> values{uid.data(),   radius.data(), mass.data(), velocity.data(),
-                                    omega.data(), force.data(),  owner.data()};
+    std::vector<void const*> values;
+    particles::forEachGrainQuantity([&](auto k) {
+        if constexpr (kInVtk<k.value>)
+            values.push_back(std::get<k.value>(quantities).data());
+    });
+    values.push_back(owner.data());
     if (shadows)
         values.push_back(shadow.data());
     for (std::vector<double> const& f : fieldValues)
@@ -93,7 +141,7 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
     std::vector<vtkxml::Column> columns;
     for (std::size_t k = 0; k < specs.size(); ++k)
         columns.push_back({specs[k], values[k]});
-    check(vtkxml::module().writeVertices(path, uid.size(), xyz.data(), columns), path);
+    check(vtkxml::module().writeVertices(path, owner.size(), xyz.data(), columns), path);
 }
 
 void writeBlockPiece(std::string const& path, particles::LocalParticles const& local) {

@@ -12,8 +12,9 @@ namespace regolith::io::detail {
 
 using vtkxml::ArraySpec;
 
-/// Point data of a particle piece: uid, radius, mass, velocity, angular_velocity, force,
-/// owner_rank, and with `shadows` also shadow (1 for a shadow copy, 0 for a master).
+/// Point data of a particle piece: the entries of particles::kGrainQuantities written to VTK
+/// (uid, velocity, angular_velocity, force, radius, mass), owner_rank, with `shadows` also
+/// shadow (1 for a shadow copy, 0 for a master), then the declared grain fields.
 [[nodiscard]] std::vector<ArraySpec> particleArrays(bool shadows);
 /// Cell data of a block piece: block_id, owner_rank, level, grains (masters in the block).
 [[nodiscard]] std::vector<ArraySpec> blockArrays();

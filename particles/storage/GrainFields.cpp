@@ -1,10 +1,9 @@
 #include "particles/storage/GrainFields.hpp"
 
 #include "core/Error.hpp"
+#include "particles/storage/GrainQuantities.hpp"
 
 #include <algorithm>
-#include <array>
-#include <string_view>
 #include <vector>
 
 namespace regolith::particles {
@@ -22,29 +21,6 @@ Declared& declared() {
     return d;
 }
 
-/// The columns every grain has in checkpoints, snapshots and VTK output.
-constexpr std::array<std::string_view, 21> kBuiltIn{"uid",
-                                                    "position",
-                                                    "velocity",
-                                                    "angular_velocity",
-                                                    "orientation",
-                                                    "force",
-                                                    "torque",
-                                                    "radius",
-                                                    "mass",
-                                                    "type",
-                                                    "flags",
-                                                    "gravity_reference",
-                                                    "gravity_field",
-                                                    "gravity_slope",
-                                                    "history_offset",
-                                                    "history_count",
-                                                    "history_partner",
-                                                    "history_spring",
-                                                    "history_stamp",
-                                                    "owner_rank",
-                                                    "shadow"};
-
 bool validName(std::string const& name) {
     return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
         return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -59,7 +35,7 @@ GrainFieldId declareGrainField(GrainField const& field) {
     if (!validName(field.name))
         throw core::Error("declareGrainField: name \"" + field.name +
                           "\": expected letters, digits and '_'");
-    if (std::find(kBuiltIn.begin(), kBuiltIn.end(), field.name) != kBuiltIn.end())
+    if (isBuiltInColumn(field.name))
         throw core::Error("declareGrainField: \"" + field.name + "\" is a built-in column");
     if (field.components != 1 && field.components != 3)
         throw core::Error("declareGrainField: \"" + field.name + "\" has " +

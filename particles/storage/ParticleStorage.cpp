@@ -12,20 +12,17 @@ namespace regolith::particles {
 
 template <class F>
 void ParticleStorage::forEachArray(F&& f) {
-    f(m_uid);
-    f(m_position);
-    f(m_velocity);
-    f(m_angularVelocity);
-    if (!m_orientation.empty())
-        f(m_orientation);
-    f(m_force);
-    f(m_torque);
-    f(m_radius);
-    f(m_mass);
+    forEachGrainQuantity([&](auto k) {
+        constexpr GrainStorage kept = std::get<k.value>(kGrainQuantities).storage;
+        if constexpr (kept == GrainStorage::PerCopy)
+            f(array<k.value>());
+        else if constexpr (kept == GrainStorage::WhenNeeded) {
+            if (!array<k.value>().empty())
+                f(array<k.value>());
+        }
+    });
     f(m_invMass);
     f(m_invInertia);
-    f(m_flags);
-    f(m_type);
     f(m_ownerSlot);
     f(m_image);
     f(m_shadowHolders);
@@ -49,26 +46,21 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
         m_fields.resize(grainFieldComponents(), std::vector<double>(i, 0.0));
     // Every array is full at once: grow all by a sixteenth, not by push_back's doubling (the
     // first shadow after a set-up reserved to the masters would double the whole storage).
-    if (i == m_uid.capacity())
+    if (i == array<kUid>().capacity())
         forEachArray([i](auto& v) { v.reserve(core::gentleCapacity(i)); });
-    // Empty m_orientation: not stored (size() is still i here, maybe 0).
-    bool const storeOrientation = !m_orientation.empty() || !isIdentityBits(p.orientation);
-    if (storeOrientation && m_orientation.empty())
+    // Empty array<kOrientation>(): not stored (size() is still i here, maybe 0).
+    bool const storeOrientation = !array<kOrientation>().empty() || !isIdentityBits(p.orientation);
+    if (storeOrientation && array<kOrientation>().empty())
         storeOrientations();
-    m_uid.push_back(p.uid);
-    m_position.push_back(p.position);
-    m_velocity.push_back(p.velocity);
-    m_angularVelocity.push_back(p.angularVelocity);
+    forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        if constexpr (q.storage == GrainStorage::PerCopy)
+            array<k.value>().push_back(p.*q.row);
+    });
     if (storeOrientation)
-        m_orientation.push_back(p.orientation);
-    m_force.push_back(core::Vec3::Zero());
-    m_torque.push_back(core::Vec3::Zero());
-    m_radius.push_back(p.radius);
-    m_mass.push_back(p.mass);
+        array<kOrientation>().push_back(p.orientation);
     m_invMass.push_back(0.0);
     m_invInertia.push_back(0.0);
-    m_flags.push_back(p.flags);
-    m_type.push_back(p.type);
     m_ownerSlot.push_back(ownerSlot(p.owner));
     m_image.push_back(p.image);
     m_shadowHolders.emplace_back();
@@ -82,6 +74,16 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), kUntraced});
     }
     return i;
+}
+
+GrainRow ParticleStorage::row(Index i) const {
+    GrainRow r;
+    forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        if constexpr (q.storage != GrainStorage::Elsewhere)
+            r.*q.row = value<k.value>(i);
+    });
+    return r;
 }
 
 std::vector<double> ParticleStorage::fieldValues(Index i) const {
@@ -138,10 +140,11 @@ void ParticleStorage::setImage(Index i, CopyImage const& image) {
     CopyImage const old = m_image[i];
     m_index.erase(key(i), keyAt());
     m_image[i] = image;
-    if (!m_index.insert(CopyKey{m_uid[i], image}, static_cast<std::uint32_t>(i), keyAt())) {
+    if (!m_index.insert(CopyKey{array<kUid>()[i], image}, static_cast<std::uint32_t>(i), keyAt())) {
         m_image[i] = old;
-        (void)m_index.insert(CopyKey{m_uid[i], old}, static_cast<std::uint32_t>(i), keyAt());
-        throw core::Error("ParticleStorage::setImage: uid " + std::to_string(m_uid[i]) +
+        (void)m_index.insert(CopyKey{array<kUid>()[i], old}, static_cast<std::uint32_t>(i),
+                             keyAt());
+        throw core::Error("ParticleStorage::setImage: uid " + std::to_string(array<kUid>()[i]) +
                           " is already stored at that periodic image");
     }
     if (tracing()) { // its local position jumped: a new copy for the follower
@@ -183,8 +186,8 @@ void ParticleStorage::reserve(std::size_t n) {
 }
 
 void ParticleStorage::storeOrientations() {
-    m_orientation.reserve(m_uid.capacity());
-    m_orientation.assign(size(), kIdentityOrientation);
+    array<kOrientation>().reserve(array<kUid>().capacity());
+    array<kOrientation>().assign(size(), kIdentityOrientation);
 }
 
 void ParticleStorage::clear() {
@@ -213,40 +216,40 @@ std::uint64_t ParticleStorage::startTracing() {
 }
 
 void ParticleStorage::setRadius(Index i, double radius) {
-    if (radius != m_radius[i]) {
+    if (radius != array<kRadius>()[i]) {
         touchLayout(); // which blocks need copies depends on the radii
         if (tracing())
             m_traceBroken = true; // a neighbour list's reach depends on the radii
     }
-    m_radius[i] = radius;
+    array<kRadius>()[i] = radius;
     updateInverses(i);
 }
 
 void ParticleStorage::setMass(Index i, double mass) {
-    m_mass[i] = mass;
+    array<kMass>()[i] = mass;
     updateInverses(i);
 }
 
 void ParticleStorage::setFlags(Index i, Flags flags) {
-    bool const fixedChanged = flags.isFixed() != m_flags[i].isFixed();
+    bool const fixedChanged = flags.isFixed() != array<kFlags>()[i].isFixed();
     if (tracing() && fixedChanged)
         m_traceBroken = true; // a neighbour list skips pairs of two Fixed copies
-    m_flags[i] = flags;
+    array<kFlags>()[i] = flags;
     if (fixedChanged) // the sync sets flags every step; inverses depend only on Fixed
         updateInverses(i);
 }
 
 void ParticleStorage::updateInverses(Index i) {
-    if (m_flags[i].isFixed()) {
+    if (array<kFlags>()[i].isFixed()) {
         m_invMass[i] = 0.0;
         m_invInertia[i] = 0.0;
         return;
     }
     // Solid sphere about its centre: I = 2/5 m r^2. Invalid mass or radius gives inf or NaN
     // here; validateParticles reports those before a run starts.
-    double const r = m_radius[i];
-    m_invMass[i] = 1.0 / m_mass[i];
-    m_invInertia[i] = 1.0 / (0.4 * m_mass[i] * r * r);
+    double const r = array<kRadius>()[i];
+    m_invMass[i] = 1.0 / array<kMass>()[i];
+    m_invInertia[i] = 1.0 / (0.4 * array<kMass>()[i] * r * r);
 }
 
 std::uint32_t ParticleStorage::ownerSlot(BlockRef const& owner) {
@@ -261,14 +264,14 @@ std::uint32_t ParticleStorage::ownerSlot(BlockRef const& owner) {
 
 void ParticleStorage::resetForces() {
     for (Index i = 0, n = size(); i < n; ++i) {
-        m_force[i].setZero();
-        m_torque[i].setZero();
+        array<kForce>()[i].setZero();
+        array<kTorque>()[i].setZero();
     }
 }
 
 std::size_t ParticleStorage::countMasters() const {
     std::size_t n = 0;
-    for (Flags f : m_flags)
+    for (Flags f : array<kFlags>())
         n += f.isMaster() ? 1 : 0;
     return n;
 }
@@ -276,19 +279,9 @@ std::size_t ParticleStorage::countMasters() const {
 std::size_t ParticleStorage::bytes() const {
     std::size_t b = 0;
     auto add = [&b](auto const& v) { b += v.capacity() * sizeof(v[0]); };
-    add(m_uid);
-    add(m_position);
-    add(m_velocity);
-    add(m_angularVelocity);
-    add(m_orientation);
-    add(m_force);
-    add(m_torque);
-    add(m_radius);
-    add(m_mass);
+    std::apply([&add](auto const&... v) { (add(v), ...); }, m_state);
     add(m_invMass);
     add(m_invInertia);
-    add(m_flags);
-    add(m_type);
     add(m_ownerSlot);
     add(m_owners);
     add(m_image);

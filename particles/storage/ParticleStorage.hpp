@@ -6,6 +6,7 @@
 #include "particles/storage/CopyImage.hpp"
 #include "particles/storage/CopyIndex.hpp"
 #include "particles/storage/GrainFields.hpp"
+#include "particles/storage/GrainQuantities.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
@@ -16,6 +17,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace regolith::particles {
@@ -43,17 +45,10 @@ struct CopyRef {
 /// The shadow holders of a master: one pointer per copy, null while empty (ThinList).
 using HolderList = ThinList<CopyRef>;
 
-/// Everything needed to create a particle. Force, torque and history start empty.
-struct ParticleInit {
-    Uid uid = kInvalidUid;
-    core::Vec3 position = core::Vec3::Zero();        ///< [length]
-    core::Vec3 velocity = core::Vec3::Zero();        ///< [length/time]
-    core::Vec3 angularVelocity = core::Vec3::Zero(); ///< world frame [rad/time]
-    core::Quat orientation = core::Quat::Identity();
-    double radius = 0.0;    ///< [length]
-    double mass = 0.0;      ///< [mass]
-    std::uint32_t type = 0; ///< material index into the contact model's MaterialTable
-    Flags flags{};
+/// Everything needed to create a particle: its built-in state (GrainRow; the self-gravity
+/// records there are not kept by the storage), where its copy lives and its grain fields.
+/// Contact history starts empty.
+struct ParticleInit : GrainRow {
     BlockRef owner{};
     CopyImage image = kNoImage; ///< see CopyImage.hpp; a master's is always kNoImage
     /// The declared grain fields' components (GrainFields.hpp, declaration order); those
@@ -81,6 +76,10 @@ class ParticleStorage {
 public:
     using Index = std::size_t;
     static constexpr Index kNotFound = std::numeric_limits<Index>::max();
+    /// The value type of table entry K (GrainQuantities.hpp).
+    template <std::size_t K>
+    using ValueOf =
+        typename std::tuple_element_t<K, std::remove_cv_t<decltype(kGrainQuantities)>>::Value;
 
     /// Appends a particle and returns its index. Throws core::Error if the uid is kInvalidUid
     /// or (uid, image) is already stored. Values are not checked here (see validateParticles).
@@ -107,55 +106,70 @@ public:
     /// [0, size()). O(N) time and one temporary copy of each array.
     void permute(std::span<Index const> newToOld);
 
-    [[nodiscard]] std::size_t size() const { return m_uid.size(); }
-    [[nodiscard]] bool empty() const { return m_uid.empty(); }
+    [[nodiscard]] std::size_t size() const { return array<kUid>().size(); }
+    [[nodiscard]] bool empty() const { return array<kUid>().empty(); }
     void reserve(std::size_t n);
     void clear();
 
     // ---- per-particle access (i < size()) ----------------------------------------------
-    [[nodiscard]] Uid uid(Index i) const { return m_uid[i]; }
-    [[nodiscard]] core::Vec3& position(Index i) { return m_position[i]; }
-    [[nodiscard]] core::Vec3 const& position(Index i) const { return m_position[i]; }
-    [[nodiscard]] core::Vec3& velocity(Index i) { return m_velocity[i]; }
-    [[nodiscard]] core::Vec3 const& velocity(Index i) const { return m_velocity[i]; }
-    [[nodiscard]] core::Vec3& angularVelocity(Index i) { return m_angularVelocity[i]; }
-    [[nodiscard]] core::Vec3 const& angularVelocity(Index i) const { return m_angularVelocity[i]; }
+    /// Table entry K's value of copy i (K kept here: PerCopy or WhenNeeded).
+    template <std::size_t K>
+    [[nodiscard]] ValueOf<K> const& value(Index i) const {
+        constexpr GrainStorage kept = std::get<K>(kGrainQuantities).storage;
+        static_assert(kept != GrainStorage::Elsewhere, "not kept by ParticleStorage");
+        if constexpr (kept == GrainStorage::WhenNeeded) {
+            static ValueOf<K> const unset = GrainRow{}.*std::get<K>(kGrainQuantities).row;
+            return array<K>().empty() ? unset : array<K>()[i];
+        } else
+            return array<K>()[i];
+    }
+    /// The kept table entries of copy i as a row (those kept Elsewhere: GrainRow's defaults).
+    [[nodiscard]] GrainRow row(Index i) const;
+    [[nodiscard]] Uid uid(Index i) const { return array<kUid>()[i]; }
+    [[nodiscard]] core::Vec3& position(Index i) { return array<kPosition>()[i]; }
+    [[nodiscard]] core::Vec3 const& position(Index i) const { return array<kPosition>()[i]; }
+    [[nodiscard]] core::Vec3& velocity(Index i) { return array<kVelocity>()[i]; }
+    [[nodiscard]] core::Vec3 const& velocity(Index i) const { return array<kVelocity>()[i]; }
+    [[nodiscard]] core::Vec3& angularVelocity(Index i) { return array<kAngularVelocity>()[i]; }
+    [[nodiscard]] core::Vec3 const& angularVelocity(Index i) const {
+        return array<kAngularVelocity>()[i];
+    }
     /// The identity until some copy of this storage was given another orientation (see
     /// storesOrientations).
     [[nodiscard]] core::Quat const& orientation(Index i) const {
-        return m_orientation.empty() ? kIdentityOrientation : m_orientation[i];
+        return array<kOrientation>().empty() ? kIdentityOrientation : array<kOrientation>()[i];
     }
     /// Sets the orientation of copy i; the first orientation other than the identity makes
     /// the storage keep one per copy from then on.
     void setOrientation(Index i, core::Quat const& q) {
-        if (m_orientation.empty()) {
+        if (array<kOrientation>().empty()) {
             if (isIdentityBits(q))
                 return;
             storeOrientations();
         }
-        m_orientation[i] = q;
+        array<kOrientation>()[i] = q;
     }
     /// Does the storage keep an orientation per copy? Not until a copy gets another than the
     /// identity (and again not once the storage is empty): spheres whose orientation is not
     /// integrated (time.orientation = false) cost no 32 bytes per copy (docs/notes/memory.md).
-    [[nodiscard]] bool storesOrientations() const { return !m_orientation.empty(); }
-    [[nodiscard]] core::Vec3& force(Index i) { return m_force[i]; }
-    [[nodiscard]] core::Vec3 const& force(Index i) const { return m_force[i]; }
-    [[nodiscard]] core::Vec3& torque(Index i) { return m_torque[i]; }
-    [[nodiscard]] core::Vec3 const& torque(Index i) const { return m_torque[i]; }
-    [[nodiscard]] double radius(Index i) const { return m_radius[i]; }
-    [[nodiscard]] double mass(Index i) const { return m_mass[i]; }
+    [[nodiscard]] bool storesOrientations() const { return !array<kOrientation>().empty(); }
+    [[nodiscard]] core::Vec3& force(Index i) { return array<kForce>()[i]; }
+    [[nodiscard]] core::Vec3 const& force(Index i) const { return array<kForce>()[i]; }
+    [[nodiscard]] core::Vec3& torque(Index i) { return array<kTorque>()[i]; }
+    [[nodiscard]] core::Vec3 const& torque(Index i) const { return array<kTorque>()[i]; }
+    [[nodiscard]] double radius(Index i) const { return array<kRadius>()[i]; }
+    [[nodiscard]] double mass(Index i) const { return array<kMass>()[i]; }
     /// 1 / mass, 0 for a Fixed particle. Stored, not computed on use: recomputing both
     /// inverses in the integrators' loops (two divisions per grain and half-step) cost ~7 %
     /// of the sparse gas's step rate for 16 bytes per copy (docs/notes/memory.md).
     [[nodiscard]] double invMass(Index i) const { return m_invMass[i]; }
     /// Inverse of the (scalar) moment of inertia of the sphere about its centre.
     [[nodiscard]] double invInertia(Index i) const { return m_invInertia[i]; }
-    [[nodiscard]] Flags flags(Index i) const { return m_flags[i]; }
-    [[nodiscard]] std::uint32_t type(Index i) const { return m_type[i]; }
+    [[nodiscard]] Flags flags(Index i) const { return array<kFlags>()[i]; }
+    [[nodiscard]] std::uint32_t type(Index i) const { return array<kType>()[i]; }
     [[nodiscard]] BlockRef owner(Index i) const { return m_owners[m_ownerSlot[i]]; }
     [[nodiscard]] CopyImage const& image(Index i) const { return m_image[i]; }
-    [[nodiscard]] CopyKey key(Index i) const { return {m_uid[i], m_image[i]}; }
+    [[nodiscard]] CopyKey key(Index i) const { return {array<kUid>()[i], m_image[i]}; }
     /// Where the master knows its shadows to be (masters only; sorted, unique).
     [[nodiscard]] HolderList& shadowHolders(Index i) { return m_shadowHolders[i]; }
     [[nodiscard]] HolderList const& shadowHolders(Index i) const { return m_shadowHolders[i]; }
@@ -186,23 +200,23 @@ public:
     void setRadius(Index i, double radius);
     void setMass(Index i, double mass);
     void setFlags(Index i, Flags flags);
-    void setType(Index i, std::uint32_t type) { m_type[i] = type; }
+    void setType(Index i, std::uint32_t type) { array<kType>()[i] = type; }
     void setOwner(Index i, BlockRef owner) { m_ownerSlot[i] = ownerSlot(owner); }
     /// Re-keys copy i to `image`; throws core::Error if (uid, image) is held already.
     void setImage(Index i, CopyImage const& image);
 
     // ---- bulk access ---------------------------------------------------------------------
-    [[nodiscard]] std::vector<Uid> const& uids() const { return m_uid; }
-    [[nodiscard]] std::vector<core::Vec3> const& positions() const { return m_position; }
-    [[nodiscard]] std::vector<core::Vec3> const& velocities() const { return m_velocity; }
+    [[nodiscard]] std::vector<Uid> const& uids() const { return array<kUid>(); }
+    [[nodiscard]] std::vector<core::Vec3> const& positions() const { return array<kPosition>(); }
+    [[nodiscard]] std::vector<core::Vec3> const& velocities() const { return array<kVelocity>(); }
     [[nodiscard]] std::vector<core::Vec3> const& angularVelocities() const {
-        return m_angularVelocity;
+        return array<kAngularVelocity>();
     }
-    [[nodiscard]] std::vector<double> const& radii() const { return m_radius; }
+    [[nodiscard]] std::vector<double> const& radii() const { return array<kRadius>(); }
     [[nodiscard]] std::vector<double> const& invMasses() const { return m_invMass; }
     [[nodiscard]] std::vector<double> const& invInertias() const { return m_invInertia; }
     [[nodiscard]] std::vector<CopyImage> const& images() const { return m_image; }
-    [[nodiscard]] std::vector<Flags> const& allFlags() const { return m_flags; }
+    [[nodiscard]] std::vector<Flags> const& allFlags() const { return array<kFlags>(); }
 
     /// Zeroes force and torque of every particle (masters and shadows).
     void resetForces();
@@ -216,7 +230,7 @@ public:
     template <class F>
     void forEachMaster(F&& f) const {
         for (Index i = 0, n = size(); i < n; ++i)
-            if (m_flags[i].isMaster())
+            if (array<kFlags>()[i].isMaster())
                 f(i);
     }
     [[nodiscard]] std::size_t countMasters() const;
@@ -259,32 +273,53 @@ private:
                            4 * sizeof(double)) == 0;
     }
 
+    /// One array per table entry (GrainQuantities.hpp), in the table's order.
+    template <class Table>
+    struct ArraysOf;
+    template <class... Q>
+    struct ArraysOf<std::tuple<Q...>> {
+        using type = std::tuple<std::vector<typename Q::Value>...>;
+    };
+    using StateArrays = ArraysOf<std::remove_cv_t<decltype(kGrainQuantities)>>::type;
+    static constexpr std::size_t kUid = grainQuantityIndex("uid");
+    static constexpr std::size_t kPosition = grainQuantityIndex("position");
+    static constexpr std::size_t kVelocity = grainQuantityIndex("velocity");
+    static constexpr std::size_t kAngularVelocity = grainQuantityIndex("angular_velocity");
+    static constexpr std::size_t kOrientation = grainQuantityIndex("orientation");
+    static constexpr std::size_t kForce = grainQuantityIndex("force");
+    static constexpr std::size_t kTorque = grainQuantityIndex("torque");
+    static constexpr std::size_t kRadius = grainQuantityIndex("radius");
+    static constexpr std::size_t kMass = grainQuantityIndex("mass");
+    static constexpr std::size_t kType = grainQuantityIndex("type");
+    static constexpr std::size_t kFlags = grainQuantityIndex("flags");
+    template <std::size_t K>
+    [[nodiscard]] std::vector<ValueOf<K>>& array() {
+        return std::get<K>(m_state);
+    }
+    template <std::size_t K>
+    [[nodiscard]] std::vector<ValueOf<K>> const& array() const {
+        return std::get<K>(m_state);
+    }
+
     void updateInverses(Index i);
-    /// Gives every copy the identity orientation in m_orientation (capacity as the others).
+    /// Gives every copy the identity orientation in array<kOrientation>() (capacity as the others).
     void storeOrientations();
-    /// Calls `f` for every per-copy array (m_orientation only while it is stored).
+    /// Calls `f` for every per-copy array (array<kOrientation>() only while it is stored).
     template <class F>
     void forEachArray(F&& f);
     /// Reads the key of a stored copy for m_index, which keeps no keys (see CopyIndex).
     [[nodiscard]] auto keyAt() const {
-        return [this](std::uint32_t i) { return CopyKey{m_uid[i], m_image[i]}; };
+        return [this](std::uint32_t i) { return CopyKey{array<kUid>()[i], m_image[i]}; };
     }
     /// The slot of `owner` in m_owners, appended if new.
     [[nodiscard]] std::uint32_t ownerSlot(BlockRef const& owner);
 
-    std::vector<Uid> m_uid;
-    std::vector<core::Vec3> m_position;
-    std::vector<core::Vec3> m_velocity;
-    std::vector<core::Vec3> m_angularVelocity;
-    std::vector<core::Quat> m_orientation; ///< empty: every copy has the identity
-    std::vector<core::Vec3> m_force;
-    std::vector<core::Vec3> m_torque;
-    std::vector<double> m_radius;
-    std::vector<double> m_mass;
+    /// The table's arrays (GrainQuantities.hpp), one per entry; those kept Elsewhere stay empty,
+    /// the orientation's (WhenNeeded) is empty while every copy has the identity.
+    StateArrays m_state;
+    // Derived from mass, radius and the Fixed flag (updateInverses).
     std::vector<double> m_invMass;
     std::vector<double> m_invInertia;
-    std::vector<Flags> m_flags;
-    std::vector<std::uint32_t> m_type;
     // The owner block of each copy as a 4-byte slot in a table of the distinct owners seen
     // (12 bytes per copy less than a BlockRef): a block's copies have few owners, its own
     // block and the neighbours whose grains reach it. The table only grows (until clear()).

@@ -72,18 +72,10 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
         }
     }
     for (std::size_t i = 0; i < masters.size(); ++i) {
-        ParticleInit const p{masters.uid(i),
-                             masters.position(i),
-                             masters.velocity(i),
-                             masters.angularVelocity(i),
-                             masters.orientation(i),
-                             masters.radius(i),
-                             masters.mass(i),
-                             masters.type(i),
-                             masters.flags(i),
-                             masters.owner(i),
-                             kNoImage,
-                             masters.fieldValues(i)};
+        ParticleInit p;
+        static_cast<GrainRow&>(p) = masters.row(i);
+        p.owner = masters.owner(i);
+        p.fields = masters.fieldValues(i);
         if (!addMaster(p))
             throw core::Error("particle uid " + std::to_string(p.uid) +
                               " lies in no block of this rank");

@@ -108,10 +108,10 @@ void apply(BlockParticles& bp, Inbox& box, SyncStats& stats) {
             throw core::Error("sync: update for " + describe(u.uid, u.oldImage, self) +
                               ", which this block does not hold");
         FullState s;
-        s.init =
-            ParticleInit{ps.uid(i),         ps.position(i), ps.velocity(i), ps.angularVelocity(i),
-                         ps.orientation(i), ps.radius(i),   ps.mass(i),     ps.type(i),
-                         ps.flags(i),       ps.owner(i),    u.newImage,     ps.fieldValues(i)};
+        static_cast<GrainRow&>(s.init) = ps.row(i);
+        s.init.owner = ps.owner(i);
+        s.init.image = u.newImage;
+        s.init.fields = ps.fieldValues(i);
         ps.remove(i);
         rekeyed.emplace_back(std::move(s), &u);
     }

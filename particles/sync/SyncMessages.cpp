@@ -22,19 +22,27 @@ void writeHeader(core::SendBuffer& b, RecordKind kind, std::uint64_t targetBlock
 void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
                core::Vec3 const& position, CopyImage const& image, BlockRef owner,
                std::vector<CopyRef> const& holders) {
-    b << ps.uid(i) << image << position << ps.velocity(i) << ps.angularVelocity(i)
-      << ps.orientation(i) << ps.radius(i) << ps.mass(i) << ps.type(i)
-      << Flags(ps.flags(i)).set(Flag::Shadow, false) << owner << ps.force(i) << ps.torque(i)
-      << ps.history(i).entries() << holders;
+    // writeRow<RowPart::Kept> of copy i, read from the storage in place, with the copy's
+    // position and without the Shadow bit.
+    constexpr std::size_t kPosition = grainQuantityIndex("position");
+    constexpr std::size_t kFlags = grainQuantityIndex("flags");
+    forEachGrainQuantity([&](auto k) {
+        if constexpr (k.value == kPosition)
+            b << position;
+        else if constexpr (k.value == kFlags)
+            b << Flags(ps.flags(i)).set(Flag::Shadow, false);
+        else if constexpr (std::get<k.value>(kGrainQuantities).storage != GrainStorage::Elsewhere)
+            b << ps.value<k.value>(i);
+    });
+    b << image << owner << ps.history(i).entries() << holders;
     writeFields(b, ps, i);
 }
 
 FullState readFull(core::RecvBuffer& b) {
     FullState s;
     ParticleInit& p = s.init;
-    b >> p.uid >> p.image >> p.position >> p.velocity >> p.angularVelocity >> p.orientation >>
-        p.radius >> p.mass >> p.type >> p.flags >> p.owner >> s.force >> s.torque >> s.history >>
-        s.holders;
+    readRow<RowPart::Kept>(b, p);
+    b >> p.image >> p.owner >> s.history >> s.holders;
     p.fields = readFields(b);
     return s;
 }
@@ -60,8 +68,6 @@ std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master) {
     ParticleInit p = s.init;
     p.flags.set(Flag::Shadow, !master);
     std::size_t const i = ps.add(p);
-    ps.force(i) = s.force;
-    ps.torque(i) = s.torque;
     ps.history(i).assign(s.history);
     if (master)
         ps.shadowHolders(i) = s.holders;

@@ -34,14 +34,39 @@ enum class RecordKind : std::uint8_t {
     ForceRecords = 9,  ///< shadow -> master, reproducible: per-contact force records
 };
 
-/// A particle's complete state as it travels (creation and promotion).
+/// A particle's complete state as it travels (creation and promotion): the table's entries kept
+/// by the storage (force and torque among them), the copy's place, its history and holders.
 struct FullState {
     ParticleInit init;
-    core::Vec3 force = core::Vec3::Zero();
-    core::Vec3 torque = core::Vec3::Zero();
     std::vector<HistoryEntry> history;
     std::vector<CopyRef> holders;
 };
+
+/// Which table entries (GrainQuantities.hpp) a row carries through a buffer.
+enum class RowPart : std::uint8_t {
+    Kept,  ///< those ParticleStorage keeps (a copy's state)
+    Every, ///< all of them (a checkpoint's grain on its way to its owner)
+};
+
+/// Writes the entries `part` of `row` (a GrainRow, or a row holding every entry, as
+/// io::GrainState) in the table's order.
+template <RowPart part, class Row>
+void writeRow(core::SendBuffer& b, Row const& row) {
+    forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        if constexpr (part == RowPart::Every || q.storage != GrainStorage::Elsewhere)
+            b << row.*q.row;
+    });
+}
+/// Reads what writeRow<part> wrote into `row` (other entries unchanged).
+template <RowPart part, class Row>
+void readRow(core::RecvBuffer& b, Row& row) {
+    forEachGrainQuantity([&](auto k) {
+        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        if constexpr (part == RowPart::Every || q.storage != GrainStorage::Elsewhere)
+            b >> row.*q.row;
+    });
+}
 
 /// What an update carries.
 struct UpdateState {

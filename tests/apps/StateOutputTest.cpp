@@ -158,7 +158,9 @@ TEST(StateDump, FormatSortedByUidWithRoundTripDigits) {
     std::istringstream in(apps::dumpCsv(all));
     std::string line;
     std::getline(in, line);
-    EXPECT_EQ(line + "\n", apps::kDumpHeader);
+    EXPECT_EQ(line + "\n", apps::dumpHeader());
+    // The dump contract (docs/design.md, "Dump"), which `kind = "file"` sources read back.
+    EXPECT_EQ(apps::dumpHeader(), "uid,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass\n");
     std::vector<MasterRecord> read;
     while (std::getline(in, line)) {
         std::istringstream fields(line);
@@ -193,7 +195,7 @@ TEST(StateDump, FormatSortedByUidWithRoundTripDigits) {
     m.mass = 1.0 / 3.0;
     std::vector<MasterRecord> const one{m};
     EXPECT_EQ(apps::dumpCsv(one),
-              std::string(apps::kDumpHeader) +
+              std::string(apps::dumpHeader()) +
                   "42,0.10000000000000001,-2,9.9999999999999995e-21,0,-0,3,0,0,0,"
                   "0.40000000000000002,0.33333333333333331\n");
 }
@@ -201,7 +203,7 @@ TEST(StateDump, FormatSortedByUidWithRoundTripDigits) {
 TEST(StateDump, EmptyStateIsTheHeaderOnly) {
     Comm world;
     std::string const text = apps::gatherDumpCsv(world, {});
-    EXPECT_EQ(text, world.rank() == 0 ? std::string(apps::kDumpHeader) : std::string());
+    EXPECT_EQ(text, world.rank() == 0 ? std::string(apps::dumpHeader()) : std::string());
 }
 
 TEST(ConservedQuantities, HandComputedTwoGrainState) {

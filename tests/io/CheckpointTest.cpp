@@ -62,7 +62,7 @@ std::vector<io::GrainState> allGrains() {
         flags.set(particles::Flag::Fixed, k % 5 == 0);
         flags.set(particles::Flag::Spreads, k % 7 < 2);
         flags.set(particles::Flag::MasterReachesAll, k % 7 == 0);
-        g.flags = flags.bits();
+        g.flags = flags;
         if (k % 3 == 0)
             for (int e = 0; e <= k % 3 + k % 2; ++e)
                 g.history.push_back({g.uid + 1 + static_cast<particles::Uid>(e),
@@ -80,7 +80,7 @@ particles::LocalParticles fill(domain::BlockForest const& forest) {
             local.addMaster(io::toParticleInit(g));
             for (particles::BlockParticles& bp : local.blocks())
                 if (auto i = bp.particles.find(g.uid); i != particles::ParticleStorage::kNotFound)
-                    io::restoreDynamicState(g, bp.particles, i);
+                    io::restoreHistory(g, bp.particles, i);
         }
     return local;
 }
@@ -190,7 +190,7 @@ TEST(Checkpoint, RoundTripIsBitwise) {
         auto const it = std::find_if(written.begin(), written.end(),
                                      [&](io::GrainState const& w) { return w.uid == g.uid; });
         ASSERT_NE(it, written.end());
-        EXPECT_EQ(int{g.flags}, int{it->flags}) << "uid " << g.uid;
+        EXPECT_EQ(int{g.flags.bits()}, int{it->flags.bits()}) << "uid " << g.uid;
     }
 }
 

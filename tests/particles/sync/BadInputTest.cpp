@@ -138,7 +138,7 @@ TEST(TruncatedMessage, EveryCutOfAParticleRecordIsDetected) {
     FullState const whole = read(bytes);
     EXPECT_EQ(whole.init.uid, p.uid);
     EXPECT_TRUE(sameBits(whole.init.position, p.position));
-    EXPECT_TRUE(sameBits(whole.force, Vec3(7, 8, 9)));
+    EXPECT_TRUE(sameBits(whole.init.force, Vec3(7, 8, 9)));
     EXPECT_EQ(whole.history.size(), 2U);
     EXPECT_EQ(whole.holders, holders);
 
