@@ -11,28 +11,25 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
-#include <type_traits>
 #include <vector>
 
 namespace regolith::apps {
 
 namespace {
 
-template <std::size_t K>
-constexpr auto const& kQuantity = std::get<K>(particles::kGrainQuantities);
+using particles::GrainLayoutOf;
+using particles::kGrainQuantity;
 
 template <std::size_t K>
-constexpr bool kInDump = (kQuantity<K>.outputs & particles::kDump) != 0;
-
-template <std::size_t K>
-using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
+constexpr bool kInDump = particles::grainWrittenTo<K>(particles::kDump);
 
 /// A record's bytes in a gathered message: the table's dump columns, then the grain fields.
 std::size_t recordBytes() {
     std::size_t bytes = 0;
     particles::forEachGrainQuantity([&](auto k) {
         if constexpr (kInDump<k.value>)
-            bytes += kQuantity<k.value>.components * sizeof(typename LayoutOf<k.value>::Element);
+            bytes += kGrainQuantity<k.value>.components *
+                     sizeof(typename GrainLayoutOf<k.value>::Element);
     });
     return bytes + particles::grainFieldComponents() * sizeof(double);
 }
@@ -44,7 +41,7 @@ std::string pack(std::span<MasterRecord const> masters) {
     for (auto const& m : masters) {
         particles::forEachGrainQuantity([&](auto k) {
             if constexpr (kInDump<k.value>)
-                b << m.*kQuantity<k.value>.row;
+                b << m.*kGrainQuantity<k.value>.row;
         });
         for (std::size_t k = 0; k < fields; ++k)
             b << (k < m.fields.size() ? m.fields[k] : 0.0);
@@ -61,7 +58,7 @@ void unpack(std::string const& text, std::vector<MasterRecord>& out) {
         MasterRecord m;
         particles::forEachGrainQuantity([&](auto k) {
             if constexpr (kInDump<k.value>)
-                b >> m.*kQuantity<k.value>.row;
+                b >> m.*kGrainQuantity<k.value>.row;
         });
         m.fields.resize(particles::grainFieldComponents());
         for (double& v : m.fields)
@@ -78,7 +75,7 @@ std::string dumpHeader() {
         if constexpr (kInDump<k.value>) {
             if (!header.empty())
                 header += ',';
-            header += kQuantity<k.value>.dumpColumns;
+            header += kGrainQuantity<k.value>.dumpColumns;
         }
     });
     for (particles::GrainField const& f : particles::grainFields()) {
@@ -105,9 +102,9 @@ std::string dumpCsv(std::span<MasterRecord const> masters) {
         char const* separator = "";
         particles::forEachGrainQuantity([&](auto k) {
             if constexpr (kInDump<k.value>) {
-                using Element = typename LayoutOf<k.value>::Element;
-                std::array<Element, kQuantity<k.value>.components> e{};
-                LayoutOf<k.value>::put(m->*kQuantity<k.value>.row, e.data());
+                using Element = typename GrainLayoutOf<k.value>::Element;
+                std::array<Element, kGrainQuantity<k.value>.components> e{};
+                GrainLayoutOf<k.value>::put(m->*kGrainQuantity<k.value>.row, e.data());
                 for (Element x : e) {
                     if constexpr (std::is_floating_point_v<Element>)
                         fmt::format_to(text, "{}{:.17g}", separator, x);

@@ -9,14 +9,11 @@ namespace regolith::io::detail {
 
 namespace {
 
-template <std::size_t K>
-constexpr auto const& kQuantity = std::get<K>(particles::kGrainQuantities);
+using particles::GrainLayoutOf;
+using particles::kGrainQuantity;
 
 template <std::size_t K>
-using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
-
-template <std::size_t K>
-constexpr bool kInCheckpoint = (kQuantity<K>.outputs & particles::kCheckpoint) != 0;
+constexpr bool kInCheckpoint = particles::grainWrittenTo<K>(particles::kCheckpoint);
 
 constexpr ColumnType columnType(particles::GrainElement e) {
     switch (e) {
@@ -38,7 +35,7 @@ void GrainColumns::resize(std::size_t rows, std::size_t entries) {
     grains = rows;
     particles::forEachGrainQuantity([&](auto k) {
         if constexpr (kInCheckpoint<k.value>)
-            std::get<k.value>(quantities).resize(kQuantity<k.value>.components * rows);
+            std::get<k.value>(quantities).resize(kGrainQuantity<k.value>.components * rows);
     });
     historyOffset.resize(rows);
     historyCount.resize(rows);
@@ -55,7 +52,7 @@ std::vector<ColumnView> columnViews(GrainColumns& c) {
     constexpr bool grain = false, history = true;
     std::vector<ColumnView> views;
     particles::forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = kQuantity<k.value>;
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (kInCheckpoint<k.value>)
             views.push_back({q.name.data(), columnType(q.element), q.components,
                              std::get<k.value>(c.quantities).data(), grain, q.unit.data(),
@@ -126,10 +123,10 @@ GrainColumns toColumns(std::span<GrainState const> grains, std::uint64_t history
     for (std::size_t i = 0; i < grains.size(); ++i) {
         GrainState const& g = grains[i];
         particles::forEachGrainQuantity([&](auto k) {
-            constexpr auto const& q = kQuantity<k.value>;
+            constexpr auto const& q = kGrainQuantity<k.value>;
             if constexpr (kInCheckpoint<k.value>)
-                LayoutOf<k.value>::put(g.*q.row,
-                                       std::get<k.value>(c.quantities).data() + q.components * i);
+                GrainLayoutOf<k.value>::put(g.*q.row, std::get<k.value>(c.quantities).data() +
+                                                          q.components * i);
         });
         putFields(c, i, g.fields);
         c.historyOffset[i] = historyBase + e;
@@ -150,10 +147,10 @@ std::vector<GrainState> fromColumns(GrainColumns const& c, std::uint64_t history
     for (std::size_t i = 0; i < out.size(); ++i) {
         GrainState& g = out[i];
         particles::forEachGrainQuantity([&](auto k) {
-            constexpr auto const& q = kQuantity<k.value>;
+            constexpr auto const& q = kGrainQuantity<k.value>;
             if constexpr (kInCheckpoint<k.value>)
-                g.*q.row = LayoutOf<k.value>::get(std::get<k.value>(c.quantities).data() +
-                                                  q.components * i);
+                g.*q.row = GrainLayoutOf<k.value>::get(std::get<k.value>(c.quantities).data() +
+                                                       q.components * i);
         });
         g.fields = getFields(c, i);
         std::uint64_t const first = c.historyOffset[i];

@@ -8,26 +8,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <tuple>
-#include <type_traits>
 #include <vector>
 
 namespace regolith::io::detail {
 
-/// One column per entry of particles::kGrainQuantities, of the entry's element type (those
-/// not written to checkpoints stay empty).
-template <class Table>
-struct QuantityColumnsOf;
-template <class... Q>
-struct QuantityColumnsOf<std::tuple<Q...>> {
-    using type = std::tuple<std::vector<typename Q::Layout::Element>...>;
-};
-using QuantityColumns =
-    QuantityColumnsOf<std::remove_cv_t<decltype(particles::kGrainQuantities)>>::type;
-
 struct GrainColumns {
     std::size_t grains = 0;
-    QuantityColumns quantities;               ///< the table's entries, components row by row
+    /// One column per entry of particles::kGrainQuantities (those not written to checkpoints
+    /// stay empty), components row by row.
+    particles::GrainElementColumns quantities;
     std::vector<std::uint64_t> historyOffset; ///< global index of the grain's first entry
     std::vector<std::uint32_t> historyCount;
     std::vector<std::uint64_t> partner; ///< history entries, grain after grain

@@ -86,7 +86,7 @@ std::uint64_t fmix64(std::uint64_t k) {
 std::uint64_t grainHash(GrainState const& g) {
     Hasher h;
     particles::forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = std::get<k.value>(particles::kGrainQuantities);
+        constexpr auto const& q = particles::kGrainQuantity<k.value>;
         if constexpr ((q.outputs & particles::kCheckpoint) != 0)
             h.addValue(g.*q.row);
     });

@@ -7,21 +7,16 @@
 #include <fmt/format.h>
 
 #include <cstdint>
-#include <tuple>
-#include <type_traits>
 
 namespace regolith::io::detail {
 
 namespace {
 
-template <std::size_t K>
-constexpr auto const& kQuantity = std::get<K>(particles::kGrainQuantities);
+using particles::GrainLayoutOf;
+using particles::kGrainQuantity;
 
 template <std::size_t K>
-constexpr bool kInVtk = (kQuantity<K>.outputs & particles::kVtk) != 0;
-
-template <std::size_t K>
-using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
+constexpr bool kInVtk = particles::grainWrittenTo<K>(particles::kVtk);
 
 constexpr char const* vtkType(particles::GrainElement e) {
     switch (e) {
@@ -37,21 +32,12 @@ constexpr char const* vtkType(particles::GrainElement e) {
     return "UInt8";
 }
 
-/// The point arrays of the table's entries written to VTK, one per entry (others stay empty).
-template <class Table>
-struct VtkColumnsOf;
-template <class... Q>
-struct VtkColumnsOf<std::tuple<Q...>> {
-    using type = std::tuple<std::vector<typename Q::Layout::Element>...>;
-};
-using VtkColumns = VtkColumnsOf<std::remove_cv_t<decltype(particles::kGrainQuantities)>>::type;
-
 } // namespace
 
 std::vector<ArraySpec> particleArrays(bool shadows) {
     std::vector<ArraySpec> a;
     particles::forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = kQuantity<k.value>;
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (kInVtk<k.value>)
             a.push_back({std::string(q.name), vtkType(q.element), static_cast<int>(q.components)});
     });
@@ -90,7 +76,7 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
         n += shadows ? bp.particles.size() : bp.particles.countMasters();
     // Columns in particleArrays() order: the table's, owner_rank, shadow, the grain fields.
     std::vector<double> xyz;
-    VtkColumns quantities;
+    particles::GrainElementColumns quantities; // the entries written to VTK
     std::vector<std::int32_t> owner;
     std::vector<std::uint8_t> shadow;
     auto const fields = particles::grainFields();
@@ -98,7 +84,7 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
     xyz.reserve(3 * n);
     particles::forEachGrainQuantity([&](auto k) {
         if constexpr (kInVtk<k.value>)
-            std::get<k.value>(quantities).reserve(kQuantity<k.value>.components * n);
+            std::get<k.value>(quantities).reserve(kGrainQuantity<k.value>.components * n);
     });
     owner.reserve(n);
     shadow.reserve(n);
@@ -112,9 +98,10 @@ void writeParticlePiece(std::string const& path, particles::LocalParticles const
             particles::forEachGrainQuantity([&](auto k) {
                 if constexpr (kInVtk<k.value>) {
                     auto& column = std::get<k.value>(quantities);
-                    column.resize(column.size() + kQuantity<k.value>.components);
-                    LayoutOf<k.value>::put(ps.value<k.value>(i), column.data() + column.size() -
-                                                                     kQuantity<k.value>.components);
+                    column.resize(column.size() + kGrainQuantity<k.value>.components);
+                    GrainLayoutOf<k.value>::put(ps.value<k.value>(i),
+                                                column.data() + column.size() -
+                                                    kGrainQuantity<k.value>.components);
                 }
             });
             owner.push_back(ps.owner(i).rank);

@@ -15,7 +15,7 @@
 ///   owner, history and grain fields: particles/sync/SyncMessages.cpp, UpdateList.cpp), which
 ///   sends the orientation only when the storage keeps any;
 /// - the VTK arrays owner_rank and shadow, which describe a copy, not the grain
-///   (kCopyColumns).
+///   (kStructureColumns).
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ParticleFlags.hpp"
 #include "particles/storage/Uid.hpp"
@@ -26,7 +26,9 @@
 #include <limits>
 #include <string_view>
 #include <tuple>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace regolith::particles {
 
@@ -59,29 +61,14 @@ struct GrainGravityRecord {
 /// The element type of a quantity's columns.
 enum class GrainElement : std::uint8_t { F64, U64, U32, U8 };
 
-/// How a value type is laid out as column elements (components per grain).
+/// How a value type is laid out as column elements (components per grain): a number as itself.
 template <class T>
-struct GrainValueLayout;
-template <>
-struct GrainValueLayout<double> {
-    using Element = double;
+struct GrainValueLayout {
+    static_assert(std::is_arithmetic_v<T>);
+    using Element = T;
     static constexpr std::size_t components = 1;
-    static void put(double v, Element* out) { out[0] = v; }
-    static double get(Element const* in) { return in[0]; }
-};
-template <>
-struct GrainValueLayout<std::uint64_t> {
-    using Element = std::uint64_t;
-    static constexpr std::size_t components = 1;
-    static void put(std::uint64_t v, Element* out) { out[0] = v; }
-    static std::uint64_t get(Element const* in) { return in[0]; }
-};
-template <>
-struct GrainValueLayout<std::uint32_t> {
-    using Element = std::uint32_t;
-    static constexpr std::size_t components = 1;
-    static void put(std::uint32_t v, Element* out) { out[0] = v; }
-    static std::uint32_t get(Element const* in) { return in[0]; }
+    static void put(T v, Element* out) { out[0] = v; }
+    static T get(Element const* in) { return in[0]; }
 };
 template <>
 struct GrainValueLayout<Flags> {
@@ -207,7 +194,7 @@ inline constexpr std::tuple kGrainQuantities{
 inline constexpr std::size_t kGrainQuantityCount = std::tuple_size_v<decltype(kGrainQuantities)>;
 
 /// Calls `f(std::integral_constant<std::size_t, K>{})` for every entry K of the table, in order
-/// (a fold: no run-time loop; `std::get<K>(kGrainQuantities)` is a constant expression in f).
+/// (a fold: no run-time loop; `kGrainQuantity<K>` is a constant expression in f).
 template <class F>
 constexpr void forEachGrainQuantity(F&& f) {
     [&]<std::size_t... K>(std::index_sequence<K...>) {
@@ -215,6 +202,26 @@ constexpr void forEachGrainQuantity(F&& f) {
     }
     (std::make_index_sequence<kGrainQuantityCount>{});
 }
+
+/// Entry K of the table, its value layout, and whether it is written to `output`.
+template <std::size_t K>
+inline constexpr auto const& kGrainQuantity = std::get<K>(kGrainQuantities);
+template <std::size_t K>
+using GrainLayoutOf = typename std::remove_cvref_t<decltype(kGrainQuantity<K>)>::Layout;
+template <std::size_t K>
+constexpr bool grainWrittenTo(GrainOutput output) {
+    return (kGrainQuantity<K>.outputs & output) != 0;
+}
+
+/// One std::vector per entry of the table, of the entry's column element type (the columns of
+/// many grains, component after component; entries an output skips stay empty).
+template <class Table>
+struct GrainColumnsOf;
+template <class... Q>
+struct GrainColumnsOf<std::tuple<Q...>> {
+    using type = std::tuple<std::vector<typename Q::Layout::Element>...>;
+};
+using GrainElementColumns = GrainColumnsOf<std::remove_cv_t<decltype(kGrainQuantities)>>::type;
 
 /// The place of the entry named `name` in the table (a compile error if there is none).
 consteval std::size_t grainQuantityIndex(std::string_view name) {

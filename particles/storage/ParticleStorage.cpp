@@ -13,7 +13,7 @@ namespace regolith::particles {
 template <class F>
 void ParticleStorage::forEachArray(F&& f) {
     forEachGrainQuantity([&](auto k) {
-        constexpr GrainStorage kept = std::get<k.value>(kGrainQuantities).storage;
+        constexpr GrainStorage kept = kGrainQuantity<k.value>.storage;
         if constexpr (kept == GrainStorage::PerCopy)
             f(array<k.value>());
         else if constexpr (kept == GrainStorage::WhenNeeded) {
@@ -53,7 +53,7 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
     if (storeOrientation && array<kOrientation>().empty())
         storeOrientations();
     forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (q.storage == GrainStorage::PerCopy)
             array<k.value>().push_back(p.*q.row);
     });
@@ -79,7 +79,7 @@ ParticleStorage::Index ParticleStorage::add(ParticleInit const& p) {
 GrainRow ParticleStorage::row(Index i) const {
     GrainRow r;
     forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (q.storage != GrainStorage::Elsewhere)
             r.*q.row = value<k.value>(i);
     });

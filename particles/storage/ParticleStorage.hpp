@@ -115,10 +115,10 @@ public:
     /// Table entry K's value of copy i (K kept here: PerCopy or WhenNeeded).
     template <std::size_t K>
     [[nodiscard]] ValueOf<K> const& value(Index i) const {
-        constexpr GrainStorage kept = std::get<K>(kGrainQuantities).storage;
+        constexpr GrainStorage kept = kGrainQuantity<K>.storage;
         static_assert(kept != GrainStorage::Elsewhere, "not kept by ParticleStorage");
         if constexpr (kept == GrainStorage::WhenNeeded) {
-            static ValueOf<K> const unset = GrainRow{}.*std::get<K>(kGrainQuantities).row;
+            static ValueOf<K> const unset = GrainRow{}.*kGrainQuantity<K>.row;
             return array<K>().empty() ? unset : array<K>()[i];
         } else
             return array<K>()[i];

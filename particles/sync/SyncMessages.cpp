@@ -31,7 +31,7 @@ void writeFull(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
             b << position;
         else if constexpr (k.value == kFlags)
             b << Flags(ps.flags(i)).set(Flag::Shadow, false);
-        else if constexpr (std::get<k.value>(kGrainQuantities).storage != GrainStorage::Elsewhere)
+        else if constexpr (kGrainQuantity<k.value>.storage != GrainStorage::Elsewhere)
             b << ps.value<k.value>(i);
     });
     b << image << owner << ps.history(i).entries() << holders;

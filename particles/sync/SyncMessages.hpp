@@ -53,7 +53,7 @@ enum class RowPart : std::uint8_t {
 template <RowPart part, class Row>
 void writeRow(core::SendBuffer& b, Row const& row) {
     forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (part == RowPart::Every || q.storage != GrainStorage::Elsewhere)
             b << row.*q.row;
     });
@@ -62,7 +62,7 @@ void writeRow(core::SendBuffer& b, Row const& row) {
 template <RowPart part, class Row>
 void readRow(core::RecvBuffer& b, Row& row) {
     forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = std::get<k.value>(kGrainQuantities);
+        constexpr auto const& q = kGrainQuantity<k.value>;
         if constexpr (part == RowPart::Every || q.storage != GrainStorage::Elsewhere)
             b >> row.*q.row;
     });

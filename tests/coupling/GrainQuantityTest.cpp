@@ -33,21 +33,18 @@ using particles::kGrainQuantities;
 
 namespace {
 
-template <std::size_t K>
-constexpr auto const& kQuantity = std::get<K>(kGrainQuantities);
+using particles::GrainLayoutOf;
+using particles::kGrainQuantity;
 
 template <std::size_t K>
-using LayoutOf = typename std::remove_cvref_t<decltype(kQuantity<K>)>::Layout;
-
-template <std::size_t K>
-using ElementsOf = std::array<typename LayoutOf<K>::Element, kQuantity<K>.components>;
+using ElementsOf = std::array<typename GrainLayoutOf<K>::Element, kGrainQuantity<K>.components>;
 
 /// A value of entry K no other entry has, component by component (a fixed grain for flags).
 template <std::size_t K>
 ElementsOf<K> distinctElements(std::uint64_t salt) {
     ElementsOf<K> e{};
     for (std::size_t c = 0; c < e.size(); ++c) {
-        using Element = typename LayoutOf<K>::Element;
+        using Element = typename GrainLayoutOf<K>::Element;
         if constexpr (std::is_same_v<Element, std::uint8_t>)
             e[c] = static_cast<Element>(particles::Flags(particles::Flag::Fixed).bits());
         else
@@ -61,7 +58,7 @@ io::GrainState distinctRow(std::uint64_t salt) {
     io::GrainState r;
     particles::forEachGrainQuantity([&](auto k) {
         ElementsOf<k.value> const e = distinctElements<k.value>(salt);
-        r.*kQuantity<k.value>.row = LayoutOf<k.value>::get(e.data());
+        r.*kGrainQuantity<k.value>.row = GrainLayoutOf<k.value>::get(e.data());
     });
     return r;
 }
@@ -70,7 +67,7 @@ io::GrainState distinctRow(std::uint64_t salt) {
 template <std::size_t K, class Row>
 ElementsOf<K> elementsOf(Row const& row) {
     ElementsOf<K> e{};
-    LayoutOf<K>::put(row.*kQuantity<K>.row, e.data());
+    GrainLayoutOf<K>::put(row.*kGrainQuantity<K>.row, e.data());
     return e;
 }
 
@@ -117,7 +114,7 @@ TEST(GrainQuantities, EveryEntryIsACheckpointColumnReadBackBitForBit) {
         hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
         ASSERT_GE(file, 0);
         particles::forEachGrainQuantity([&](auto k) {
-            constexpr auto const& q = kQuantity<k.value>;
+            constexpr auto const& q = kGrainQuantity<k.value>;
             std::string const name(q.name);
             bool const written = (q.outputs & particles::kCheckpoint) != 0;
             EXPECT_EQ(H5Lexists(file, name.c_str(), H5P_DEFAULT) > 0, written) << name;
@@ -131,9 +128,9 @@ TEST(GrainQuantities, EveryEntryIsACheckpointColumnReadBackBitForBit) {
     for (io::GrainState const& r : slice.grains) {
         io::GrainState const expected = distinctRow(saltOf(r.uid));
         particles::forEachGrainQuantity([&](auto k) {
-            if constexpr ((kQuantity<k.value>.outputs & particles::kCheckpoint) != 0) {
+            if constexpr ((kGrainQuantity<k.value>.outputs & particles::kCheckpoint) != 0) {
                 EXPECT_EQ(elementsOf<k.value>(r), elementsOf<k.value>(expected))
-                    << kQuantity<k.value>.name;
+                    << kGrainQuantity<k.value>.name;
             }
         });
     }
@@ -160,7 +157,7 @@ TEST(GrainQuantities, TheVtkPieceHasAnArrayPerEntryMarkedForIt) {
     std::filesystem::remove(path);
     std::vector<io::vtkxml::ArraySpec> const arrays = io::detail::particleArrays(true);
     particles::forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = kQuantity<k.value>;
+        constexpr auto const& q = kGrainQuantity<k.value>;
         std::string const name(q.name);
         bool const written = (q.outputs & particles::kVtk) != 0;
         EXPECT_EQ(text.str().find("Name=\"" + name + "\"") != std::string::npos, written) << name;
@@ -181,7 +178,7 @@ TEST(GrainQuantities, TheDumpHasTheColumnsOfEveryEntryMarkedForIt) {
     std::string const header = csv.substr(0, csv.find('\n'));
     std::string expected;
     particles::forEachGrainQuantity([&](auto k) {
-        constexpr auto const& q = kQuantity<k.value>;
+        constexpr auto const& q = kGrainQuantity<k.value>;
         bool const dumped = (q.outputs & particles::kDump) != 0;
         EXPECT_EQ(!q.dumpColumns.empty(), dumped) << q.name;
         if (dumped) {
@@ -220,12 +217,12 @@ TEST(GrainQuantities, AShadowMadeByTheFullStateRecordCarriesEveryKeptEntry) {
     expected.flags.set(particles::Flag::Shadow, true);
     particles::GrainRow const got = shadows.row(k);
     particles::forEachGrainQuantity([&](auto q) {
-        if constexpr (kQuantity<q.value>.storage != particles::GrainStorage::Elsewhere) {
+        if constexpr (kGrainQuantity<q.value>.storage != particles::GrainStorage::Elsewhere) {
             EXPECT_EQ(elementsOf<q.value>(got), elementsOf<q.value>(expected))
-                << kQuantity<q.value>.name;
+                << kGrainQuantity<q.value>.name;
             // Every entry's value is distinct from its default: the record did carry it.
             EXPECT_NE(elementsOf<q.value>(got), elementsOf<q.value>(particles::GrainRow{}))
-                << kQuantity<q.value>.name;
+                << kGrainQuantity<q.value>.name;
         }
     });
 }
