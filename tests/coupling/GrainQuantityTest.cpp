@@ -13,6 +13,7 @@
 #include "particles/storage/GrainQuantities.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/SyncMessages.hpp"
+#include "tests/io/DatasetText.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -71,23 +72,6 @@ ElementsOf<K> elementsOf(Row const& row) {
     return e;
 }
 
-std::string attribute(hid_t file, std::string const& set, char const* name) {
-    hid_t const data = H5Dopen2(file, set.c_str(), H5P_DEFAULT);
-    std::string text;
-    if (data >= 0 && H5Aexists(data, name) > 0) {
-        hid_t const attr = H5Aopen(data, name, H5P_DEFAULT);
-        hid_t const type = H5Aget_type(attr);
-        text.resize(H5Tget_size(type));
-        H5Aread(attr, type, text.data());
-        text.resize(std::strlen(text.c_str()));
-        H5Tclose(type);
-        H5Aclose(attr);
-    }
-    if (data >= 0)
-        H5Dclose(data);
-    return text;
-}
-
 std::string tempPath(core::Comm const& comm, std::string const& name) {
     long long const pid = comm.allReduce(static_cast<long long>(::getpid()), core::ReduceOp::Max);
     return (std::filesystem::temp_directory_path() / (std::to_string(pid) + "-" + name)).string();
@@ -116,11 +100,12 @@ TEST(GrainQuantities, EveryEntryIsACheckpointColumnReadBackBitForBit) {
         particles::forEachGrainQuantity([&](auto k) {
             constexpr auto const& q = kGrainQuantity<k.value>;
             std::string const name(q.name);
-            bool const written = (q.outputs & particles::kCheckpoint) != 0;
+            bool const written = particles::grainWrittenTo<k.value>(particles::kCheckpoint);
             EXPECT_EQ(H5Lexists(file, name.c_str(), H5P_DEFAULT) > 0, written) << name;
             if (written) {
-                EXPECT_EQ(attribute(file, name, "units"), q.unit) << name;
-                EXPECT_EQ(attribute(file, name, "description"), q.description) << name;
+                EXPECT_EQ(test::datasetText(path, name.c_str(), "units"), q.unit) << name;
+                EXPECT_EQ(test::datasetText(path, name.c_str(), "description"), q.description)
+                    << name;
             }
         });
         H5Fclose(file);
@@ -128,7 +113,7 @@ TEST(GrainQuantities, EveryEntryIsACheckpointColumnReadBackBitForBit) {
     for (io::GrainState const& r : slice.grains) {
         io::GrainState const expected = distinctRow(saltOf(r.uid));
         particles::forEachGrainQuantity([&](auto k) {
-            if constexpr ((kGrainQuantity<k.value>.outputs & particles::kCheckpoint) != 0) {
+            if constexpr (particles::grainWrittenTo<k.value>(particles::kCheckpoint)) {
                 EXPECT_EQ(elementsOf<k.value>(r), elementsOf<k.value>(expected))
                     << kGrainQuantity<k.value>.name;
             }
@@ -159,7 +144,7 @@ TEST(GrainQuantities, TheVtkPieceHasAnArrayPerEntryMarkedForIt) {
     particles::forEachGrainQuantity([&](auto k) {
         constexpr auto const& q = kGrainQuantity<k.value>;
         std::string const name(q.name);
-        bool const written = (q.outputs & particles::kVtk) != 0;
+        bool const written = particles::grainWrittenTo<k.value>(particles::kVtk);
         EXPECT_EQ(text.str().find("Name=\"" + name + "\"") != std::string::npos, written) << name;
         auto const array = std::find_if(arrays.begin(), arrays.end(),
                                         [&](auto const& a) { return a.name == name; });
@@ -179,7 +164,7 @@ TEST(GrainQuantities, TheDumpHasTheColumnsOfEveryEntryMarkedForIt) {
     std::string expected;
     particles::forEachGrainQuantity([&](auto k) {
         constexpr auto const& q = kGrainQuantity<k.value>;
-        bool const dumped = (q.outputs & particles::kDump) != 0;
+        bool const dumped = particles::grainWrittenTo<k.value>(particles::kDump);
         EXPECT_EQ(!q.dumpColumns.empty(), dumped) << q.name;
         if (dumped) {
             if (!expected.empty())

@@ -9,6 +9,7 @@
 #include "io/checkpoint/CheckpointSeries.hpp"
 #include "io/checkpoint/CheckpointWriter.hpp"
 #include "io/checkpoint/RestoreGrains.hpp"
+#include "tests/io/DatasetText.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -194,30 +195,8 @@ TEST(Checkpoint, RoundTripIsBitwise) {
     }
 }
 
-namespace {
-
-/// The string attribute `name` of dataset `set` in `path` ("" if absent).
-std::string datasetText(std::string const& path, char const* set, char const* name) {
-    hid_t const file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    hid_t const data = H5Dopen2(file, set, H5P_DEFAULT);
-    std::string text;
-    if (H5Aexists(data, name) > 0) {
-        hid_t const attr = H5Aopen(data, name, H5P_DEFAULT);
-        hid_t const type = H5Aget_type(attr);
-        text.resize(H5Tget_size(type));
-        H5Aread(attr, type, text.data());
-        text.resize(std::strlen(text.c_str()));
-        H5Tclose(type);
-        H5Aclose(attr);
-    }
-    H5Dclose(data);
-    H5Fclose(file);
-    return text;
-}
-
-} // namespace
-
 TEST(Checkpoint, DatasetsCarryUnitsAndDescription) {
+    using test::datasetText;
     core::Comm const world;
     std::string const path = fileName(world, "attributes");
     writeSample(world, path);
