@@ -132,7 +132,6 @@ enum class GrainStorage : std::uint8_t {
 template <class T, class Row = GrainRow>
 struct GrainQuantity {
     using Value = T;
-    using RowType = Row;
     using Layout = GrainValueLayout<T>;
     std::string_view name;        ///< checkpoint dataset, VTK array, reserved grain-field name
     std::string_view unit;        ///< the checkpoint column's `units`
@@ -179,16 +178,16 @@ inline constexpr std::tuple kGrainQuantities{
         "gravity_reference", "length",
         "position at the last self-gravity update (update_threshold > 0)",
         &GrainGravityRecord::gravityReference, GrainStorage::Elsewhere},
-    GrainQuantity<core::Vec3, GrainGravityRecord>{
-        "gravity_field", "length/time^2",
-        "self-gravity acceleration at the last update (update_threshold > "
-        "0)",
-        &GrainGravityRecord::gravityField, GrainStorage::Elsewhere},
-    GrainQuantity<core::Vec3, GrainGravityRecord>{
-        "gravity_slope", "length/time^3",
-        "rate the self-gravity field is extrapolated at until the next "
-        "update (gravity.update_every)",
-        &GrainGravityRecord::gravitySlope, GrainStorage::Elsewhere},
+    GrainQuantity<core::Vec3, GrainGravityRecord>{"gravity_field", "length/time^2",
+                                                  "self-gravity acceleration at the last update "
+                                                  "(update_threshold > 0)",
+                                                  &GrainGravityRecord::gravityField,
+                                                  GrainStorage::Elsewhere},
+    GrainQuantity<core::Vec3, GrainGravityRecord>{"gravity_slope", "length/time^3",
+                                                  "rate the self-gravity field is extrapolated at "
+                                                  "until the next update (gravity.update_every)",
+                                                  &GrainGravityRecord::gravitySlope,
+                                                  GrainStorage::Elsewhere},
 };
 
 inline constexpr std::size_t kGrainQuantityCount = std::tuple_size_v<decltype(kGrainQuantities)>;
@@ -227,7 +226,7 @@ using GrainElementColumns = GrainColumnsOf<std::remove_cv_t<decltype(kGrainQuant
 consteval std::size_t grainQuantityIndex(std::string_view name) {
     std::size_t found = kGrainQuantityCount;
     forEachGrainQuantity([&](auto k) {
-        if (std::get<k.value>(kGrainQuantities).name == name)
+        if (kGrainQuantity<k.value>.name == name)
             found = k.value;
     });
     if (found == kGrainQuantityCount)
@@ -244,8 +243,7 @@ inline constexpr std::array<std::string_view, 7> kStructureColumns{
 /// Is `name` a built-in column (the table's or kStructureColumns)?
 [[nodiscard]] constexpr bool isBuiltInColumn(std::string_view name) {
     bool found = false;
-    forEachGrainQuantity(
-        [&](auto k) { found = found || std::get<k.value>(kGrainQuantities).name == name; });
+    forEachGrainQuantity([&](auto k) { found = found || kGrainQuantity<k.value>.name == name; });
     for (std::string_view s : kStructureColumns)
         found = found || s == name;
     return found;

@@ -45,9 +45,8 @@ struct CopyRef {
 /// The shadow holders of a master: one pointer per copy, null while empty (ThinList).
 using HolderList = ThinList<CopyRef>;
 
-/// Everything needed to create a particle: its built-in state (GrainRow; the self-gravity
-/// records there are not kept by the storage), where its copy lives and its grain fields.
-/// Contact history starts empty.
+/// Everything needed to create a particle: its built-in state (GrainRow), where its copy lives
+/// and its grain fields. Contact history starts empty.
 struct ParticleInit : GrainRow {
     BlockRef owner{};
     CopyImage image = kNoImage; ///< see CopyImage.hpp; a master's is always kNoImage
