@@ -30,7 +30,6 @@
 #include <unistd.h>
 
 using namespace regolith;
-using particles::kGrainQuantities;
 
 namespace {
 
@@ -77,12 +76,12 @@ std::string tempPath(core::Comm const& comm, std::string const& name) {
     return (std::filesystem::temp_directory_path() / (std::to_string(pid) + "-" + name)).string();
 }
 
-} // namespace
-
-/// The uid distinctRow(salt) gives (the uid's one component).
+/// The salt of distinctRow(salt) from the uid it gave.
 std::uint64_t saltOf(particles::Uid uid) {
     return uid / 1000;
 }
+
+} // namespace
 
 TEST(GrainQuantities, EveryEntryIsACheckpointColumnReadBackBitForBit) {
     core::Comm const world;
