@@ -389,9 +389,11 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     // A consumer that computes the geometry itself gets the owned pairs screened a block at
     // a time (OverlapScreen), those known to overlap (KeptPressed) untested; a pair that
     // bypasses the screen first flushes the block, so that every pair still reaches onPair in
-    // list order.
+    // list order. Always inlined into the list's loop: left to itself, the compiler kept it
+    // out of line for some models (the per-contact Hertz loop ran 2 % more instructions).
     OverlapScreen screen;
-    auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p) {
+    auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p)
+        __attribute__((always_inline)) {
         PairMode const mode = m_list.mode(p);
         KeptSpring* const kept = m_springsLive && keepsSpring(mode) ? &m_list.spring(p) : nullptr;
         if (kept != nullptr)
