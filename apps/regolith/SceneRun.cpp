@@ -6,7 +6,6 @@
 
 #include "apps/common/ConservedQuantities.hpp"
 #include "apps/common/OutputDirLock.hpp"
-#include "apps/common/OutputDirLock.hpp"
 #include "apps/common/OutputFile.hpp"
 #include "apps/common/RunSummary.hpp"
 #include "apps/common/StateChecksum.hpp"
