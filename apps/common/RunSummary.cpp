@@ -59,6 +59,7 @@ std::string toJson(RunSummary const& s) {
         .member("every", s.balance.every)
         .member("threshold", s.balance.threshold)
         .member("rebalances", s.balance.rebalances)
+        .member("splits", s.balance.splits)
         .member("seconds", s.balance.seconds)
         .member("mean_imbalance", s.balance.meanImbalance)
         .member("final_imbalance", s.balance.finalImbalance)

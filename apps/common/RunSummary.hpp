@@ -66,11 +66,12 @@ struct RunSummary {
         std::int64_t every = 0;
         double threshold = 1.1;
         long long rebalances = 0;
+        long long splits = 0; ///< blocks split into eight (balance.split_levels)
         double seconds = 0.0;
         double meanImbalance = 1.0;
         double finalImbalance = 1.0;
-        /// The heaviest block over a rank's mean load, the largest measured: no cut of whole
-        /// blocks brings the imbalance below it.
+        /// The heaviest block over a rank's mean load, the largest measured (after the
+        /// blocks split): no cut of whole blocks brings the imbalance below it.
         double blockFloor = 1.0;
         std::vector<double> steps;
         std::vector<double> imbalances;

@@ -1,6 +1,8 @@
 #include "apps/regolith/BlockPlacement.hpp"
 
+#include "coupling/balance/BlockSplit.hpp"
 #include "coupling/gravity/GravityMethod.hpp"
+#include "domain/SpecValidation.hpp"
 #include "io/checkpoint/GrainState.hpp"
 #include "io/checkpoint/RestoreGrains.hpp"
 
@@ -46,14 +48,43 @@ coupling::BlockLoadModel loadModel(core::Comm const& comm, SceneDescription cons
     return model;
 }
 
+namespace {
+
+/// How far the blocks of `scene` may split: balance.split_levels below the scene's deepest
+/// blocks, and no child narrower than the largest grain (so that every grain stays narrower
+/// than its blocks, in the next-neighbour class of the first paper's synchronisation).
+coupling::SplitLimits splitLimits(core::Comm const& comm, SceneDescription const& scene,
+                                  particles::LocalParticles const& local) {
+    coupling::SplitLimits limits;
+    limits.share = std::max(scene.balance.threshold - 1.0, kSplitShare);
+    int deepest = 0;
+    for (domain::RefineRegion const& r : scene.forest.refine)
+        deepest = std::max(deepest, r.level);
+    limits.deepestLevel =
+        std::min(deepest + static_cast<int>(scene.balance.splitLevels), domain::kMaxRefineLevel);
+    double largest = 0.0;
+    for (particles::BlockParticles const& bp : local.blocks())
+        bp.particles.forEachMaster(
+            [&](std::size_t i) { largest = std::max(largest, bp.particles.radius(i)); });
+    limits.smallestEdge = 2.0 * comm.allReduce(largest, core::ReduceOp::Max);
+    return limits;
+}
+
+} // namespace
+
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
                    coupling::Placement& placement, WorthMoving const& worthMoving) {
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
-    domain::BlockWeight const weight = coupling::grainAndCellWeights(
-        comm, *placement.local, loadModel(comm, scene, *placement.local));
-    coupling::Placement balanced =
-        coupling::placeBlocks(comm, scene.forest, weight, scene.sync.subdomains);
+    coupling::BlockLoadModel const model = loadModel(comm, scene, *placement.local);
+    domain::ForestSpec spec = placement.spec;
+    if (scene.balance.splitLevels > 0)
+        spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
+                                          splitLimits(comm, scene, *placement.local))
+                   .spec;
+    domain::BlockWeight const weight =
+        coupling::grainAndCellWeights(comm, *placement.local, model, spec);
+    coupling::Placement balanced = coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains);
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;
     if (worthMoving) {
@@ -66,6 +97,7 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     // The masters travel as a restart's grains do (one sparse exchange, state complete). The
     // objects stay where they are: what refers to them sees the new assignment.
     std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);
+    placement.spec = std::move(balanced.spec);
     *placement.forest = std::move(*balanced.forest);
     *placement.particleForest = std::move(*balanced.particleForest);
     *placement.local = particles::LocalParticles(*placement.particleForest);

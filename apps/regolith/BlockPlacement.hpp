@@ -28,11 +28,17 @@ namespace regolith::apps {
 /// (max / mean) it would give.
 using WorthMoving = std::function<bool(double after)>;
 
+/// Blocks split where one holds more than this share of a rank's mean load, or
+/// balance.threshold - 1 if more (coupling/balance/BlockSplit.hpp: below it the cut that
+/// follows comes within the threshold).
+inline constexpr double kSplitShare = 0.1;
+
 /// Re-assigns the blocks of `placement` by the load of the masters it holds (and the cells,
-/// when the scene's gravity uses a grid) and moves every master, with its force, torque and
-/// contact history, to its new owner. The forests and the particles are replaced in place
-/// (references to them stay valid and see the new assignment; what was built on the old one,
-/// the synchronisation, DemStep's lists, a grid, must be relocated). Keeps `placement` when
+/// when the scene's gravity uses a grid), first splitting the heavy blocks where
+/// balance.split_levels allows (coupling::splitHeavyBlocks), and moves every master, with its
+/// force, torque and contact history, to its new owner. The forests and the particles are replaced
+/// in place (references to them stay valid and see the new assignment; what was built on the old
+/// one, the synchronisation, DemStep's lists, a grid, must be relocated). Keeps `placement` when
 /// the assignment does not change (equal loads, or domain.balance = "blocks") or
 /// `worthMoving` (if given) says no. Returns whether the blocks moved. COLLECTIVE.
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,

@@ -1,6 +1,7 @@
 #include "apps/regolith/DynamicBalance.hpp"
 
 #include "core/log/Log.hpp"
+#include "domain/ForestBuilder.hpp"
 
 #include <mpi.h>
 
@@ -44,29 +45,38 @@ coupling::LoadSpread DynamicBalance::measure() const {
 bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
     coupling::LoadSpread const spread = measure();
     m_last = spread.imbalance;
-    m_floor = std::max(m_floor, spread.blockFloor);
     m_steps.push_back(static_cast<double>(stepsDone));
     m_imbalances.push_back(m_last);
     BalanceSection const& balance = m_scene->balance;
-    if (balance.every == 0 || !(m_last > balance.threshold))
+    if (balance.every == 0 || !(m_last > balance.threshold)) {
+        m_floor = std::max(m_floor, spread.blockFloor);
         return false;
-    if (spread.blockFloor > balance.threshold && !m_warned) {
-        m_warned = true; // once a run: the blocks are what the scene gave
-        core::log::warn("balance: at step {} the heaviest block weighs {:.2f} times a rank's "
-                        "mean load, above balance.threshold = {}: no cut of whole blocks evens "
-                        "the loads. A finer domain.blocks, or a [[domain.refine]] box where the "
-                        "grains gather, does (docs/balance.md)",
-                        stepsDone, spread.blockFloor, balance.threshold);
     }
     double const started = MPI_Wtime();
     double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
+    std::size_t const blocks = m_placement->forest->globalBlockCount();
     bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement,
                                      [enough](double after) { return after <= enough; });
+    double floor = spread.blockFloor;
     if (moved) {
         m_relocate();
         ++m_rebalances;
+        if (m_placement->forest->globalBlockCount() != blocks) // split: the new blocks' floor
+            floor = measure().blockFloor;
     }
     m_seconds += MPI_Wtime() - started; // a cut not worth moving to costs its search
+    m_floor = std::max(m_floor, floor);
+    if (floor > balance.threshold && !m_warned) {
+        m_warned = true; // once a run: the blocks are what the scene (and the splits) gave
+        core::log::warn("balance: at step {} the heaviest block weighs {:.2f} times a rank's "
+                        "mean load, above balance.threshold = {}: no cut of whole blocks evens "
+                        "the loads{}. A finer domain.blocks, or a [[domain.refine]] box where "
+                        "the grains gather, does (docs/balance.md)",
+                        stepsDone, floor, balance.threshold,
+                        balance.splitLevels > 0 ? ", and the blocks split no further "
+                                                  "(balance.split_levels, the largest grain)"
+                                                : "");
+    }
     return moved;
 }
 
@@ -75,6 +85,10 @@ RunSummary::Balance DynamicBalance::finish() {
     out.every = m_scene->balance.every;
     out.threshold = m_scene->balance.threshold;
     out.rebalances = m_rebalances;
+    // Since the scene's forest (the start's cut may have split blocks too); a split adds seven.
+    std::size_t const sceneBlocks = domain::ForestBuilder(m_scene->forest).leaves().size();
+    out.splits =
+        static_cast<long long>((m_placement->forest->globalBlockCount() - sceneBlocks) / 7);
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
     coupling::LoadSpread const last = measure();
     out.finalImbalance = last.imbalance;

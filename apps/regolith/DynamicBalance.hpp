@@ -72,7 +72,7 @@ private:
     std::int64_t m_next;     ///< the step after which the next measurement comes
     std::int64_t m_start;    ///< steps done when the run started
     double m_last = 1.0;
-    double m_floor = 1.0; ///< the largest LoadSpread::blockFloor measured
+    double m_floor = 1.0; ///< the largest LoadSpread::blockFloor measured (after the splits)
     bool m_warned = false;
     double m_seconds = 0.0;
     long long m_rebalances = 0;

@@ -11,6 +11,7 @@
 #include "apps/common/StateChecksum.hpp"
 #include "apps/common/StateDump.hpp"
 #include "apps/regolith/AutoChoices.hpp"
+#include "apps/regolith/BalanceChoices.hpp"
 #include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/GravitySetup.hpp"
@@ -127,8 +128,10 @@ PreparedRun prepareRun(core::AppContext& ctx) {
             generateInitialState(ctx, scene, *run.placement.particleForest, *run.placement.local);
         run.text = withAutoChoices(std::move(run.text), run.choices);
     }
-    balanceByLoad(world, scene, run.placement);
     // Not in the checkpoint's scene text: they change the speed, not the trajectory.
+    for (AutoChoice& c : resolveBalanceChoices(world, scene))
+        run.choices.push_back(std::move(c));
+    balanceByLoad(world, scene, run.placement);
     for (AutoChoice& c : resolveSpeedChoices(world, *run.placement.local, scene))
         run.choices.push_back(std::move(c));
     if (ctx.isRoot() && !ctx.options.quiet)

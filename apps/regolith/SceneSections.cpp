@@ -8,6 +8,7 @@
 #include "core/log/Log.hpp"
 #include "coupling/gravity/GravityMethod.hpp"
 #include "domain/ForestConfig.hpp"
+#include "domain/SpecValidation.hpp"
 #include "particles/generators/LatticeSites.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 #include "particles/simulation/ContactModelRegistry.hpp"
@@ -127,6 +128,9 @@ BalanceSection parseBalance(core::ConfigTable const& t) {
     s.threshold = t.getOrIf<double>(
         "threshold", s.threshold, [](double x) { return x >= 1.0 && std::isfinite(x); },
         "an imbalance (max / mean load) >= 1");
+    if (t.has("split_levels"))
+        s.splitAuto = isWordElseInteger(t, "split_levels", "auto", 0, domain::kMaxRefineLevel,
+                                        "a number of levels in [0, 8] or \"auto\"", s.splitLevels);
     return s;
 }
 

@@ -148,12 +148,17 @@ struct OutputSection {
 /// curve when the imbalance (max / mean) exceeds `threshold` and the new cut lowers it by at
 /// least half of (threshold - 1), the hysteresis; 0: the assignment of the start stays; "auto"
 /// (the default): 0 on one rank, otherwise 20 measurements a run, 10 to 100 steps apart
-/// (DynamicBalance.hpp). threshold >= 1, default 1.1.
+/// (DynamicBalance.hpp). threshold >= 1, default 1.1. split_levels: how many levels below
+/// the scene's forest a block may be split while the blocks are re-cut
+/// (coupling/balance/BlockSplit.hpp); "auto" (the default): kAutoSplitLevels where the blocks
+/// move and can split, else 0.
 struct BalanceSection {
     std::int64_t every = 0;
     bool everyAuto = true;
     bool adapts = false; ///< "auto" resolved to every > 0: the interval adapts up to it
     double threshold = 1.1;
+    std::int64_t splitLevels = 0;
+    bool splitAuto = true;
 };
 
 /// A whole scene. `name` is the top-level `name` key, else the scene file's stem.

@@ -1,6 +1,5 @@
 #include "apps/regolith/SpeedChoices.hpp"
 
-#include "apps/regolith/DynamicBalance.hpp"
 #include "core/Error.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
@@ -21,44 +20,12 @@ double smallestRadius(core::Comm const& comm, particles::LocalParticles const& l
     return comm.allReduce(r, core::ReduceOp::Min);
 }
 
-/// balance.every: "auto" resolved; an explicit interval checked against what can move.
-void resolveBalance(core::Comm const& comm, SceneDescription& scene, std::vector<AutoChoice>& out) {
-    BalanceSection& balance = scene.balance;
-    bool const fixed = scene.forest.balance == domain::ForestSpec::Balance::Blocks;
-    if (balance.everyAuto) {
-        balance.everyAuto = false;
-        balance.every = comm.size() > 1 && !fixed ? autoBalanceEvery(scene.time.steps) : 0;
-        balance.adapts = balance.every > 0;
-        out.push_back({"balance.every", fmt::format("{}", balance.every),
-                       comm.size() == 1 ? "one rank: nothing to balance"
-                       : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
-                                        : "the ranks' loads measured every 10 to 100 steps (20 "
-                                          "times a run, more often while the blocks move), the "
-                                          "blocks re-cut when they differ by more than "
-                                          "balance.threshold"});
-        return;
-    }
-    if (balance.every == 0)
-        return;
-    if (fixed)
-        throw core::InputError(fmt::format("balance.every = {}: domain.balance = \"blocks\" "
-                                           "weighs every block the same, so the blocks never "
-                                           "move; expected 0, or domain.balance = \"load\"",
-                                           balance.every));
-    if (comm.size() == 1)
-        throw core::InputError(fmt::format("balance.every = {}: the run has one rank, whose "
-                                           "blocks cannot move; expected 0 (or \"auto\") on one "
-                                           "rank",
-                                           balance.every));
-}
-
 } // namespace
 
 std::vector<AutoChoice> resolveSpeedChoices(core::Comm const& comm,
                                             particles::LocalParticles const& local,
                                             SceneDescription& scene) {
     std::vector<AutoChoice> out;
-    resolveBalance(comm, scene, out);
     TimeSection& time = scene.time;
     if (time.orientationAuto) {
         time.orientationAuto = false;

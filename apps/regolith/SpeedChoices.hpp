@@ -1,8 +1,8 @@
 #pragma once
-/// The "auto" keys that change only the speed of a run, not its trajectory: sync.skin,
-/// time.orientation and balance.every (the default of all three; in reproducible mode a
-/// rebalance keeps every bit, otherwise it changes the order of sums as another rank count
-/// does). Resolved on a new run and on a restart alike from
+/// The "auto" keys that change only the speed of a run, not its trajectory: sync.skin and
+/// time.orientation (the default of both; [balance]'s are BalanceChoices.hpp's: in
+/// reproducible mode a rebalance keeps every bit, otherwise it changes the order of sums as
+/// another rank count does). Resolved on a new run and on a restart alike from
 /// the grains and the outputs the scene writes, printed with the other "auto" choices and
 /// listed in the run summary; checkpoints do not store them.
 #include "apps/regolith/AutoChoices.hpp"
@@ -20,9 +20,6 @@ inline constexpr double kAutoSyncSkinPerRadius = 0.25;
 
 /// Resolves the speed keys of `scene` left "auto" (none with explicit values) and returns the
 /// decisions:
-///  - balance.every: autoBalanceEvery(time.steps) on more than one rank (0 on one, or with
-///    domain.balance = "blocks"); an explicit interval above 0 on one rank or with
-///    domain.balance = "blocks" is refused (core::InputError, on every rank);
 ///  - time.orientation: integrated where something reads it -- a checkpoint (or an HDF5
 ///    particle snapshot, output.dump_format) the run will
 ///    write (it stores the orientation), or semi-implicit Euler (which always integrates it);

@@ -4,6 +4,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <span>
 #include <tuple>
 #include <vector>
 
@@ -53,27 +54,38 @@ LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& l
     return {most[0] / mean, std::max(1.0, most[1] / mean)};
 }
 
+std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles const& local,
+                              BlockLoadModel const& model, domain::ForestBuilder const& builder) {
+    std::size_t const leaves = builder.leaves().size();
+    std::vector<double> counts(2 * leaves, 0.0); // grains, contacts per leaf: exact sums
+    for (particles::BlockParticles const& bp : local.blocks())
+        bp.particles.forEachMaster([&](std::size_t i) {
+            auto const at = builder.geometry().locate(bp.particles.position(i));
+            if (!at)
+                return; // a master lies in the domain; nothing to count otherwise
+            std::size_t const leaf = builder.leafAt(at->cell);
+            counts[2 * leaf] += 1.0;
+            counts[2 * leaf + 1] += static_cast<double>(bp.particles.history(i).size());
+        });
+    comm.allReduceInPlace(std::span<double>(counts), core::ReduceOp::Sum);
+    std::vector<double> load(leaves);
+    for (std::size_t l = 0; l < leaves; ++l)
+        load[l] = model.weight(
+            {static_cast<std::size_t>(counts[2 * l]), static_cast<std::size_t>(counts[2 * l + 1])});
+    return load;
+}
+
 domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                         particles::LocalParticles const& local,
-                                        BlockLoadModel const& model) {
-    constexpr std::size_t kFields = 5; // min x, y, z, level, weight
-    std::vector<double> mine;
-    mine.reserve(local.blocks().size() * kFields);
-    auto const blocks = local.blocks();
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-        auto const loads = local.loadPerLeaf(b);
-        auto const& leaves = blocks[b].block->leaves;
-        for (std::size_t l = 0; l < leaves.size(); ++l) {
-            core::AABB const& box = leaves[l].aabb;
-            mine.insert(mine.end(),
-                        {box.min.x(), box.min.y(), box.min.z(),
-                         static_cast<double>(leaves[l].id.level()), model.weight(loads[l])});
-        }
-    }
-    std::vector<double> const all = comm.allGatherVarying(std::span<double const>(mine));
+                                        BlockLoadModel const& model,
+                                        domain::ForestSpec const& spec) {
+    domain::ForestBuilder const builder(spec);
+    std::vector<double> const load = leafLoads(comm, local, model, builder);
     auto table = std::make_shared<std::map<BlockKey, double>>();
-    for (std::size_t i = 0; i + kFields <= all.size(); i += kFields)
-        (*table)[{all[i], all[i + 1], all[i + 2], static_cast<int>(all[i + 3])}] = all[i + 4];
+    for (std::size_t l = 0; l < load.size(); ++l) {
+        domain::ForestLeaf const& leaf = builder.leaves()[l];
+        (*table)[keyOf(builder.geometry().box(leaf.box), leaf.id.level())] = load[l];
+    }
     // A block the table does not know cannot occur for the same specification; weight 1
     // keeps the assignment defined regardless.
     return [table](core::AABB const& box, int level) {

@@ -14,10 +14,13 @@
 /// the weights are equal and the assignment is the uniform one.
 #include "core/mpi/Comm.hpp"
 #include "domain/Block.hpp"
+#include "domain/ForestBuilder.hpp"
+#include "domain/ForestSpec.hpp"
 #include "particles/sync/BlockParticles.hpp"
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
 namespace regolith::coupling {
 
@@ -60,12 +63,21 @@ struct LoadSpread {
 [[nodiscard]] LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
                                     BlockLoadModel const& model);
 
-/// The weight function of every block of `local`'s forest, from the masters (and their
-/// contacts) each block holds now. Blocks are matched by (box, level), which the same forest
-/// specification reproduces exactly. COLLECTIVE (one all-gather of O(global blocks) doubles); the
-/// result is local.
+/// The load of every leaf of `builder`'s forest, in its curve order, from the masters of
+/// `local` (and their contacts) binned by their positions: the same on every rank. The forest
+/// need not be the one the grains live on (a finer one, BlockSplit.hpp). COLLECTIVE (one
+/// all-reduction of two numbers per leaf).
+[[nodiscard]] std::vector<double> leafLoads(core::Comm const& comm,
+                                            particles::LocalParticles const& local,
+                                            BlockLoadModel const& model,
+                                            domain::ForestBuilder const& builder);
+
+/// The weight function of every block of the forest `spec` makes, from the masters (and their
+/// contacts) each block would hold now (leafLoads). Blocks are matched by (box, level), which
+/// the same specification reproduces exactly. COLLECTIVE; the result is local.
 [[nodiscard]] domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                                       particles::LocalParticles const& local,
-                                                      BlockLoadModel const& model);
+                                                      BlockLoadModel const& model,
+                                                      domain::ForestSpec const& spec);
 
 } // namespace regolith::coupling

@@ -16,6 +16,7 @@ namespace regolith::coupling {
 /// The particles refer to the particle forest, so the three move together; a rebalance
 /// replaces the objects' contents in place, and what refers to them sees the new assignment.
 struct Placement {
+    domain::ForestSpec spec; ///< what the forest is made of (a run's splits refine it)
     std::unique_ptr<domain::BlockForest> forest;         ///< one block per leaf
     std::unique_ptr<domain::BlockForest> particleForest; ///< the particles' subdomains
     std::unique_ptr<particles::LocalParticles> local;    ///< this rank's grains, on particleForest

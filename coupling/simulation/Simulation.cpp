@@ -99,7 +99,8 @@ void Simulation::start() {
         BlockLoadModel load;
         if (usesGrid(m_setup.selfGravity))
             load = {m_setup.domain.cellsPerBlock, m_setup.domain.cellWeight};
-        place(grainAndCellWeights(*m_comm, *m_placed.local, load)); // the grains' load
+        place(grainAndCellWeights(*m_comm, *m_placed.local, load,
+                                  m_setup.domain)); // the grains' load
         m_pending.clear();
         m_pending.shrink_to_fit();
         auto const kept = m_comm->allReduce(static_cast<long long>(m_placed.local->countMasters()),

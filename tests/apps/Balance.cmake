@@ -3,11 +3,17 @@
 # end in the serial run's state, byte for byte, having moved their blocks at least once: the settling gas (its
 # load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
 # update_threshold > 0 (the cached field follows its grains to their new ranks) on 2 and 3.
+# The blocks split too where they gather a tenth of a rank's share (balance.split_levels,
+# "auto"): the settling gas on 4, 8 and 27 ranks, the cold collapse below.
 # Included by tests/apps/CMakeLists.txt (needs Python and ${compare}).
 
 # regolith_balance_equality(<name> EVERY <steps> RANKS <np> ... ARGS <app arguments>)
 function(regolith_balance_equality name)
-  cmake_parse_arguments(ARG "" "EVERY" "RANKS;ARGS" ${ARGN})
+  cmake_parse_arguments(ARG "" "EVERY" "RANKS;ARGS;EXPECT" ${ARGN})
+  set(expects --expect balance.rebalances>0)
+  foreach(e IN LISTS ARG_EXPECT)
+    list(APPEND expects --expect ${e})
+  endforeach()
   set(app_args ${ARG_ARGS})
   add_test(NAME regolith.balance.${name}.np1
            COMMAND ${compare} --name balance_${name} --np 1 --expect balance.rebalances=0
@@ -20,7 +26,7 @@ function(regolith_balance_equality name)
              COMMAND ${compare} --name balance_${name}
                      --case "${np} --set balance.every=${ARG_EVERY} --set balance.threshold=1"
                      --reference ${app_test_out}/balance_${name}.np1 --same particles checksum
-                     --expect balance.rebalances>0 --dump -- ${app_args})
+                     ${expects} --dump -- ${app_args})
     set_tests_properties(${test} PROPERTIES FIXTURES_REQUIRED balance_${name}
                          ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}" LABELS "scene;mpi"
                          TIMEOUT 120 PROCESSORS 2)
@@ -29,6 +35,11 @@ endfunction()
 
 regolith_balance_equality(settling EVERY 10 RANKS 2 3 4 8 27 ARGS
   ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
+  --set sync.reproducible=true)
+# The cold collapse on the scene's 2 x 2 x 2 blocks: they split where the cloud gathers (at the
+# start and as it collapses), the direct sum's field in canonical order keeps every bit.
+regolith_balance_equality(split EVERY 10 RANKS 3 8 EXPECT balance.splits>8 ARGS
+  ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
   --set sync.reproducible=true)
 regolith_balance_equality(gravity EVERY 2 RANKS 2 3 ARGS
   ${bad}/restart_gravity.toml --set domain.blocks=[4,4,4])

@@ -51,9 +51,9 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
                 for (particles::Uid partner : {1000, 1001})
                     bp.particles.history(i).touch(partner, 1);
         });
-    domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {});
+    domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {}, spec);
     domain::BlockWeight const withCells =
-        coupling::grainAndCellWeights(world, local, {{4, 2, 2}, 0.25});
+        coupling::grainAndCellWeights(world, local, {{4, 2, 2}, 0.25}, spec);
     double const perContact = coupling::BlockLoadModel::kContactWeight;
     // Every rank answers for every block, not only its own.
     for (int b = 0; b < 8; ++b) {
@@ -69,7 +69,8 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     coupling::BlockLoadModel direct;
     direct.grainWeight = coupling::directGravityWeight(140.0, 1.0);
     EXPECT_DOUBLE_EQ(direct.grainWeight, 1.0 + 0.04 * 140.0);
-    domain::BlockWeight const withGravity = coupling::grainAndCellWeights(world, local, direct);
+    domain::BlockWeight const withGravity =
+        coupling::grainAndCellWeights(world, local, direct, spec);
     EXPECT_DOUBLE_EQ(withGravity({Vec3(1, 0, 0), Vec3(2, 1, 1)}, 0),
                      1.0 + 10.0 * direct.grainWeight);
     coupling::LoadSpread const spread = coupling::loadSpread(world, local, {});
@@ -92,7 +93,7 @@ TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
     particles::LocalParticles local(uniform);
     addAll(local, world, crowdedRow(200));
     domain::BlockForest const balanced(world, spec,
-                                       coupling::grainAndCellWeights(world, local, {}));
+                                       coupling::grainAndCellWeights(world, local, {}, spec));
     // The load of a rank differs from the mean by less than the heaviest block (the curve
     // cut, domain/SfcPartition.hpp); the crowded block (201 of 278) is alone when P > 1.
     double const total = 201.0 + 7 * 11.0;

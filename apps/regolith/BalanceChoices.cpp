@@ -1,0 +1,88 @@
+#include "apps/regolith/BalanceChoices.hpp"
+
+#include "apps/regolith/DynamicBalance.hpp"
+#include "core/Error.hpp"
+#include "coupling/gravity/GravityMethod.hpp"
+
+#include <fmt/format.h>
+
+#include <string>
+
+namespace regolith::apps {
+
+namespace {
+
+/// balance.every: "auto" resolved; an explicit interval checked against what can move.
+void resolveEvery(core::Comm const& comm, SceneDescription& scene, std::vector<AutoChoice>& out) {
+    BalanceSection& balance = scene.balance;
+    bool const fixed = scene.forest.balance == domain::ForestSpec::Balance::Blocks;
+    if (balance.everyAuto) {
+        balance.everyAuto = false;
+        balance.every = comm.size() > 1 && !fixed ? autoBalanceEvery(scene.time.steps) : 0;
+        balance.adapts = balance.every > 0;
+        out.push_back({"balance.every", fmt::format("{}", balance.every),
+                       comm.size() == 1 ? "one rank: nothing to balance"
+                       : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
+                                        : "the ranks' loads measured every 10 to 100 steps (20 "
+                                          "times a run, more often while the blocks move), the "
+                                          "blocks re-cut when they differ by more than "
+                                          "balance.threshold"});
+        return;
+    }
+    if (balance.every == 0)
+        return;
+    if (fixed)
+        throw core::InputError(fmt::format("balance.every = {}: domain.balance = \"blocks\" "
+                                           "weighs every block the same, so the blocks never "
+                                           "move; expected 0, or domain.balance = \"load\"",
+                                           balance.every));
+    if (comm.size() == 1)
+        throw core::InputError(fmt::format("balance.every = {}: the run has one rank, whose "
+                                           "blocks cannot move; expected 0 (or \"auto\") on one "
+                                           "rank",
+                                           balance.every));
+}
+
+/// Why the blocks of `scene` cannot split, or nullptr. Pre: balance.every resolved.
+char const* whyNoSplit(SceneDescription const& scene) {
+    if (scene.balance.every == 0)
+        return "the blocks are not re-cut during the run (balance.every = 0)";
+    coupling::GravityMethodEntry const* gravity = coupling::findGravityMethod(scene.gravity.self);
+    if (gravity && gravity->usesGrid)
+        return "the grid gravity's cells are the blocks' (a split would change its resolution)";
+    if (scene.sync.method == particles::SyncMethod::NextNeighbour)
+        return "sync.method = \"nns\" needs every grain below the edges of its blocks";
+    return nullptr;
+}
+
+/// balance.split_levels: "auto" resolved; explicit levels checked against what can split.
+void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
+    BalanceSection& balance = scene.balance;
+    char const* const why = whyNoSplit(scene);
+    if (balance.splitAuto) {
+        balance.splitAuto = false;
+        balance.splitLevels = why ? 0 : kAutoSplitLevels;
+        out.push_back({"balance.split_levels", fmt::format("{}", balance.splitLevels),
+                       why ? std::string(why)
+                           : fmt::format("a block holding more than a tenth of a rank's share of "
+                                         "the load is split, down to {} levels below the "
+                                         "scene's blocks",
+                                         kAutoSplitLevels)});
+        return;
+    }
+    if (balance.splitLevels > 0 && why)
+        throw core::InputError(
+            fmt::format("balance.split_levels = {}: the blocks cannot split: {}; expected 0",
+                        balance.splitLevels, why));
+}
+
+} // namespace
+
+std::vector<AutoChoice> resolveBalanceChoices(core::Comm const& comm, SceneDescription& scene) {
+    std::vector<AutoChoice> out;
+    resolveEvery(comm, scene, out);
+    resolveSplit(scene, out);
+    return out;
+}
+
+} // namespace regolith::apps

@@ -1,0 +1,38 @@
+#include "coupling/balance/BlockSplit.hpp"
+
+#include "domain/ForestBuilder.hpp"
+
+#include <numeric>
+#include <vector>
+
+namespace regolith::coupling {
+
+SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles const& local,
+                             BlockLoadModel const& model, domain::ForestSpec spec,
+                             SplitLimits const& limits) {
+    std::size_t const firstBlocks = domain::ForestBuilder(spec).leaves().size();
+    std::size_t blocks = firstBlocks;
+    for (;;) {
+        domain::ForestBuilder const builder(spec);
+        blocks = builder.leaves().size();
+        std::vector<double> const load = leafLoads(comm, local, model, builder);
+        double const mean = std::accumulate(load.begin(), load.end(), 0.0) / comm.size();
+        std::vector<domain::RefineRegion> split;
+        for (std::size_t l = 0; l < load.size(); ++l) {
+            domain::ForestLeaf const& leaf = builder.leaves()[l];
+            core::AABB const box = builder.geometry().box(leaf.box);
+            if (!(load[l] > limits.share * mean) || leaf.id.level() >= limits.deepestLevel ||
+                0.5 * box.minEdge() < limits.smallestEdge)
+                continue;
+            // A region inside the block only (its middle half), refined to the next level.
+            core::Vec3 const quarter = 0.25 * box.extent();
+            split.push_back({{box.min + quarter, box.max - quarter}, leaf.id.level() + 1});
+        }
+        if (split.empty())
+            break;
+        spec.refine.insert(spec.refine.end(), split.begin(), split.end());
+    }
+    return {std::move(spec), (blocks - firstBlocks) / 7}; // each split adds seven leaves
+}
+
+} // namespace regolith::coupling

@@ -1,0 +1,39 @@
+#pragma once
+/// Blocks that split during a run where the load gathers. A cut of whole blocks along the
+/// curve comes within one block's weight of the mean load (domain/SfcPartition.hpp), so no cut
+/// evens the ranks while one block holds a large part of a rank's share (the block floor,
+/// docs/balance.md): a cold cloud collapsing into one block, a pile settling into a few. Such a
+/// block is refined into its eight children, by a refine region added to the run's forest
+/// specification, round after round until no block is heavier than `share` of a rank's mean
+/// load or the limits stop it. With share <= threshold - 1 the cut that follows reaches the
+/// threshold. Blocks are not merged back: a split block costs its rank nothing (docs/sync.md,
+/// "Subdomains").
+#include "coupling/balance/BlockWeights.hpp"
+#include "domain/ForestSpec.hpp"
+
+#include <cstddef>
+
+namespace regolith::coupling {
+
+/// How far blocks may split (balance.split_levels).
+struct SplitLimits {
+    double share = 0.1;        ///< a block heavier than share x a rank's mean load splits
+    int deepestLevel = 0;      ///< no block is split below this level
+    double smallestEdge = 0.0; ///< nor into children with an edge below this [length]
+};
+
+/// The specification with the refine regions that split the heavy blocks, and how many
+/// blocks were split (each into eight; those 2:1 balance splits included).
+struct SplitForest {
+    domain::ForestSpec spec;
+    std::size_t splits = 0;
+};
+
+/// `spec` with its heavy blocks split, by the loads of `local`'s masters (see the file
+/// comment). The same on every rank. COLLECTIVE (one all-reduction per round).
+[[nodiscard]] SplitForest splitHeavyBlocks(core::Comm const& comm,
+                                           particles::LocalParticles const& local,
+                                           BlockLoadModel const& model, domain::ForestSpec spec,
+                                           SplitLimits const& limits);
+
+} // namespace regolith::coupling

@@ -1,0 +1,105 @@
+// Blocks that split where the load gathers (coupling/balance/BlockSplit.hpp): every block
+// heavier than the share of a rank's mean load is split until the limits stop it, the grains' load
+// is the same on the split forest, and every rank computes the same forest.
+#include "coupling/balance/BlockSplit.hpp"
+
+#include "tests/particles/sync/SyncTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+using namespace regolith;
+using namespace regolith::particles::synctest;
+
+namespace {
+
+/// 4 x 1 x 1 blocks of edge 1; 300 grains spread over the plane z = 1/2 of block 0 (a
+/// Kronecker sequence), 3 in every other block.
+std::vector<particles::ParticleInit> crowdInFirstBlock() {
+    std::vector<particles::ParticleInit> grains;
+    particles::Uid uid = 0;
+    auto const spread = [](int k, double step) {
+        double const f = k * step;
+        return 0.01 + 0.98 * (f - std::floor(f));
+    };
+    for (int b = 0; b < 4; ++b)
+        for (int k = 0, n = b == 0 ? 300 : 3; k < n; ++k)
+            grains.push_back(grain(
+                uid++, Vec3(b + spread(k, 0.6180339887), spread(k, 0.7548776662), 0.5), 0.001));
+    return grains;
+}
+
+struct CrowdedRow {
+    Comm world;
+    domain::ForestSpec spec = forestSpec(Vec3::Zero(), Vec3(4, 1, 1), {4, 1, 1}, allAxes(false));
+    domain::BlockForest forest{world, spec};
+    particles::LocalParticles local{forest};
+    CrowdedRow() { addAll(local, world, crowdInFirstBlock()); }
+};
+
+double total(std::vector<double> const& load) {
+    return std::accumulate(load.begin(), load.end(), 0.0);
+}
+
+} // namespace
+
+TEST(BlockSplit, HeavyBlocksSplitUntilNoneExceedsTheShare) {
+    CrowdedRow run;
+    coupling::SplitLimits limits{0.1, 6, 0.0};
+    coupling::SplitForest const split =
+        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits);
+    domain::ForestBuilder const builder(split.spec);
+    EXPECT_GT(split.splits, 0u);
+    EXPECT_EQ(builder.leaves().size(), 4 + 7 * split.splits);
+    std::vector<double> const load = coupling::leafLoads(run.world, run.local, {}, builder);
+    double const mean = total(load) / run.world.size();
+    // Every leaf weighs 1 + its grains: the grains are all counted, each once.
+    EXPECT_DOUBLE_EQ(total(load), static_cast<double>(load.size()) + 309.0);
+    for (std::size_t l = 0; l < load.size(); ++l) {
+        domain::ForestLeaf const& leaf = builder.leaves()[l];
+        EXPECT_TRUE(load[l] <= limits.share * mean || leaf.id.level() == limits.deepestLevel)
+            << "leaf " << l << " weighs " << load[l] << " at level " << leaf.id.level();
+        // Two blocks from the crowd, beyond its neighbours' 2:1 balance, nothing splits.
+        if (builder.geometry().box(leaf.box).min.x() >= 2.0) {
+            EXPECT_EQ(leaf.id.level(), 0) << "leaf " << l;
+        }
+    }
+    // The same forest on every rank.
+    auto const leaves = static_cast<long long>(builder.leaves().size());
+    EXPECT_EQ(run.world.allReduce(leaves, core::ReduceOp::Min),
+              run.world.allReduce(leaves, core::ReduceOp::Max));
+}
+
+TEST(BlockSplit, LimitsStopTheSplits) {
+    CrowdedRow run;
+    auto const splitsWith = [&](coupling::SplitLimits const& limits) {
+        return coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits).splits;
+    };
+    EXPECT_EQ(splitsWith({0.1, 0, 0.0}), 0u); // no level below the scene's
+    EXPECT_EQ(splitsWith({0.1, 6, 0.6}), 0u); // children of edge 0.5 would be too narrow
+    EXPECT_EQ(splitsWith({0.1, 1, 0.0}), 1u); // one level: the crowded block alone
+    EXPECT_EQ(splitsWith({4.0, 6, 0.0}), 0u); // no block above four ranks' shares (P <= 4)
+}
+
+TEST(BlockSplit, WeightsOfTheSplitForestCountItsBlocksGrains) {
+    CrowdedRow run;
+    coupling::SplitForest const split =
+        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.1, 1, 0.0});
+    domain::BlockWeight const weight =
+        coupling::grainAndCellWeights(run.world, run.local, {}, split.spec);
+    domain::ForestBuilder const builder(split.spec);
+    double sum = 0.0;
+    for (domain::ForestLeaf const& leaf : builder.leaves()) {
+        core::AABB const box = builder.geometry().box(leaf.box);
+        double const w = weight(box, leaf.id.level());
+        EXPECT_GE(w, 1.0);
+        if (box.min.x() >= 1.0) {
+            EXPECT_DOUBLE_EQ(w, 4.0) << "block at x = " << box.min.x();
+        }
+        sum += w;
+    }
+    EXPECT_DOUBLE_EQ(sum, static_cast<double>(builder.leaves().size()) + 309.0);
+}
