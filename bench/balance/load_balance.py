@@ -9,8 +9,9 @@ imbalance: each scene on each rank count of --ranks (oversubscribed), once with 
   defaults (balance.every = "auto"); the time-averaged and final imbalance max / mean of the
   ranks' loads in work units (a block weighs 1 + its grains [+ its cells for grid gravity],
   coupling/balance), so the figure holds on any machine; the rebalances and their cost in
-  steps' time; the block floor (the heaviest block over a rank's mean load, the largest
-  measured: no cut of whole blocks goes below it). Writes load_balance_imbalance.csv and,
+  steps' time; the blocks split (balance.split_levels) and their number at the end; the
+  block floor (the heaviest block over a rank's mean load, the largest measured after the
+  splits: no cut of whole blocks goes below it). Writes load_balance_imbalance.csv and,
   with --chart, imbalance against step.
 layouts: the cold collapse rebalanced on the largest of --ranks with n x n x n blocks for
   each n of --blocks ("12r": 12 x 12 x 12 with the blocks of the box |x|, |y|, |z| <= 0.7,
@@ -79,7 +80,8 @@ def summary_row(name, np, mode, s):
             "mean_imbalance": round(b["mean_imbalance"], 3),
             "final_imbalance": round(b["final_imbalance"], 3),
             "block_floor": round(b.get("block_floor", 1.0), 3),
-            "rebalances": b["rebalances"], "steps_per_rebalance": round(cost, 2)}
+            "rebalances": b["rebalances"], "splits": b.get("splits", 0),
+            "steps_per_rebalance": round(cost, 2)}
 
 
 def imbalance(args):

@@ -59,6 +59,21 @@ set_tests_properties(regolith.balance.settling_restart PROPERTIES
                      FIXTURES_REQUIRED balance_settling ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
                      LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
 
+# The same for the cold collapse's split blocks: written on 8 ranks after splits, restarted on
+# 3 (the scene's blocks, split again at the start's cut).
+set(split_restart_dir ${app_test_out}/balance_split_restart)
+add_test(NAME regolith.balance.split_restart
+         COMMAND ${compare} --name balance_split_restart
+                 --case "8 --set balance.every=10 --set balance.threshold=1 --set output.checkpoint_every=50 --output ${split_restart_dir}"
+                 --case "3 --set balance.every=10 --set balance.threshold=1 --restart ${split_restart_dir}/checkpoint_00000050.h5 --output ${split_restart_dir}"
+                 --reference ${app_test_out}/balance_split.np1 --same particles checksum
+                 --expect balance.splits>8 --dump --
+                 ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
+                 --set sync.reproducible=true)
+set_tests_properties(regolith.balance.split_restart PROPERTIES
+                     FIXTURES_REQUIRED balance_split ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                     LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+
 # ParaView sees the blocks change owner: blocks.pvd's pieces at the start and the end.
 add_test(NAME regolith.balance.blocks_vtk
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/balance_vtk_check.py
