@@ -50,11 +50,8 @@ coupling::BlockLoadModel loadModel(core::Comm const& comm, SceneDescription cons
 
 namespace {
 
-/// How far the blocks of `scene` may split: balance.split_levels below the scene's deepest
-/// blocks, and no child narrower than the largest grain (so that every grain stays narrower
-/// than its blocks, in the next-neighbour class of the first paper's synchronisation).
-coupling::SplitLimits splitLimits(core::Comm const& comm, SceneDescription const& scene,
-                                  particles::LocalParticles const& local) {
+/// How far the blocks of `scene` may split: balance.split_levels below its deepest blocks.
+coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     coupling::SplitLimits limits;
     limits.share = std::max(scene.balance.threshold - 1.0, kSplitShare);
     int deepest = 0;
@@ -62,11 +59,6 @@ coupling::SplitLimits splitLimits(core::Comm const& comm, SceneDescription const
         deepest = std::max(deepest, r.level);
     limits.deepestLevel =
         std::min(deepest + static_cast<int>(scene.balance.splitLevels), domain::kMaxRefineLevel);
-    double largest = 0.0;
-    for (particles::BlockParticles const& bp : local.blocks())
-        bp.particles.forEachMaster(
-            [&](std::size_t i) { largest = std::max(largest, bp.particles.radius(i)); });
-    limits.smallestEdge = 2.0 * comm.allReduce(largest, core::ReduceOp::Max);
     return limits;
 }
 
@@ -80,7 +72,7 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     domain::ForestSpec spec = placement.spec;
     if (scene.balance.splitLevels > 0)
         spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
-                                          splitLimits(comm, scene, *placement.local))
+                                          splitLimits(scene))
                    .spec;
     domain::BlockWeight const weight =
         coupling::grainAndCellWeights(comm, *placement.local, model, spec);

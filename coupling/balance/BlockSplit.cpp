@@ -2,7 +2,9 @@
 
 #include "domain/ForestBuilder.hpp"
 
+#include <algorithm>
 #include <numeric>
+#include <span>
 #include <vector>
 
 namespace regolith::coupling {
@@ -16,13 +18,20 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
         domain::ForestBuilder const builder(spec);
         blocks = builder.leaves().size();
         std::vector<double> const load = leafLoads(comm, local, model, builder);
+        std::vector<double> widest(load.size(), 0.0); // the widest grain centred in each leaf
+        forEachMasterInLeaf(
+            local, builder,
+            [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
+                widest[leaf] = std::max(widest[leaf], 2.0 * ps.radius(i));
+            });
+        comm.allReduceInPlace(std::span<double>(widest), core::ReduceOp::Max);
         double const mean = std::accumulate(load.begin(), load.end(), 0.0) / comm.size();
         std::vector<domain::RefineRegion> split;
         for (std::size_t l = 0; l < load.size(); ++l) {
             domain::ForestLeaf const& leaf = builder.leaves()[l];
             core::AABB const box = builder.geometry().box(leaf.box);
             if (!(load[l] > limits.share * mean) || leaf.id.level() >= limits.deepestLevel ||
-                0.5 * box.minEdge() < limits.smallestEdge)
+                0.5 * box.minEdge() < widest[l])
                 continue;
             // A region inside the block only (its middle half), refined to the next level.
             core::Vec3 const quarter = 0.25 * box.extent();

@@ -15,11 +15,12 @@
 
 namespace regolith::coupling {
 
-/// How far blocks may split (balance.split_levels).
+/// How far blocks may split (balance.split_levels). Nor does a block split into children
+/// narrower than the widest grain centred in it: its grains stay in the next-neighbour class
+/// of the first paper's synchronisation.
 struct SplitLimits {
-    double share = 0.1;        ///< a block heavier than share x a rank's mean load splits
-    int deepestLevel = 0;      ///< no block is split below this level
-    double smallestEdge = 0.0; ///< nor into children with an edge below this [length]
+    double share = 0.1;   ///< a block heavier than share x a rank's mean load splits
+    int deepestLevel = 0; ///< no block is split below this level
 };
 
 /// The specification with the refine regions that split the heavy blocks, and how many
@@ -30,7 +31,7 @@ struct SplitForest {
 };
 
 /// `spec` with its heavy blocks split, by the loads of `local`'s masters (see the file
-/// comment). The same on every rank. COLLECTIVE (one all-reduction per round).
+/// comment). The same on every rank. COLLECTIVE (two all-reductions per round).
 [[nodiscard]] SplitForest splitHeavyBlocks(core::Comm const& comm,
                                            particles::LocalParticles const& local,
                                            BlockLoadModel const& model, domain::ForestSpec spec,

@@ -58,15 +58,11 @@ std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles 
                               BlockLoadModel const& model, domain::ForestBuilder const& builder) {
     std::size_t const leaves = builder.leaves().size();
     std::vector<double> counts(2 * leaves, 0.0); // grains, contacts per leaf: exact sums
-    for (particles::BlockParticles const& bp : local.blocks())
-        bp.particles.forEachMaster([&](std::size_t i) {
-            auto const at = builder.geometry().locate(bp.particles.position(i));
-            if (!at)
-                return; // a master lies in the domain; nothing to count otherwise
-            std::size_t const leaf = builder.leafAt(at->cell);
-            counts[2 * leaf] += 1.0;
-            counts[2 * leaf + 1] += static_cast<double>(bp.particles.history(i).size());
-        });
+    forEachMasterInLeaf(local, builder,
+                        [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
+                            counts[2 * leaf] += 1.0;
+                            counts[2 * leaf + 1] += static_cast<double>(ps.history(i).size());
+                        });
     comm.allReduceInPlace(std::span<double>(counts), core::ReduceOp::Sum);
     std::vector<double> load(leaves);
     for (std::size_t l = 0; l < leaves; ++l)

@@ -63,6 +63,20 @@ struct LoadSpread {
 [[nodiscard]] LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
                                     BlockLoadModel const& model);
 
+/// Calls `f(leaf, storage, i)` for every master `i` of `local` (in `storage`) with the index
+/// of the leaf of `builder`'s forest holding its centre; the forest need not be the one the
+/// grains live on. Not collective.
+template <class F>
+void forEachMasterInLeaf(particles::LocalParticles const& local,
+                         domain::ForestBuilder const& builder, F&& f) {
+    for (particles::BlockParticles const& bp : local.blocks())
+        bp.particles.forEachMaster([&](std::size_t i) {
+            auto const at = builder.geometry().locate(bp.particles.position(i));
+            if (at) // a master lies in the domain
+                f(builder.leafAt(at->cell), bp.particles, i);
+        });
+}
+
 /// The load of every leaf of `builder`'s forest, in its curve order, from the masters of
 /// `local` (and their contacts) binned by their positions: the same on every rank. The forest
 /// need not be the one the grains live on (a finer one, BlockSplit.hpp). COLLECTIVE (one

@@ -18,7 +18,7 @@ namespace {
 
 /// 4 x 1 x 1 blocks of edge 1; 300 grains spread over the plane z = 1/2 of block 0 (a
 /// Kronecker sequence), 3 in every other block.
-std::vector<particles::ParticleInit> crowdInFirstBlock() {
+std::vector<particles::ParticleInit> crowdInFirstBlock(double radius) {
     std::vector<particles::ParticleInit> grains;
     particles::Uid uid = 0;
     auto const spread = [](int k, double step) {
@@ -28,7 +28,7 @@ std::vector<particles::ParticleInit> crowdInFirstBlock() {
     for (int b = 0; b < 4; ++b)
         for (int k = 0, n = b == 0 ? 300 : 3; k < n; ++k)
             grains.push_back(grain(
-                uid++, Vec3(b + spread(k, 0.6180339887), spread(k, 0.7548776662), 0.5), 0.001));
+                uid++, Vec3(b + spread(k, 0.6180339887), spread(k, 0.7548776662), 0.5), radius));
     return grains;
 }
 
@@ -37,7 +37,7 @@ struct CrowdedRow {
     domain::ForestSpec spec = forestSpec(Vec3::Zero(), Vec3(4, 1, 1), {4, 1, 1}, allAxes(false));
     domain::BlockForest forest{world, spec};
     particles::LocalParticles local{forest};
-    CrowdedRow() { addAll(local, world, crowdInFirstBlock()); }
+    explicit CrowdedRow(double radius = 0.001) { addAll(local, world, crowdInFirstBlock(radius)); }
 };
 
 double total(std::vector<double> const& load) {
@@ -48,7 +48,7 @@ double total(std::vector<double> const& load) {
 
 TEST(BlockSplit, HeavyBlocksSplitUntilNoneExceedsTheShare) {
     CrowdedRow run;
-    coupling::SplitLimits limits{0.1, 6, 0.0};
+    coupling::SplitLimits limits{0.1, 6};
     coupling::SplitForest const split =
         coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits);
     domain::ForestBuilder const builder(split.spec);
@@ -78,16 +78,19 @@ TEST(BlockSplit, LimitsStopTheSplits) {
     auto const splitsWith = [&](coupling::SplitLimits const& limits) {
         return coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits).splits;
     };
-    EXPECT_EQ(splitsWith({0.1, 0, 0.0}), 0u); // no level below the scene's
-    EXPECT_EQ(splitsWith({0.1, 6, 0.6}), 0u); // children of edge 0.5 would be too narrow
-    EXPECT_EQ(splitsWith({0.1, 1, 0.0}), 1u); // one level: the crowded block alone
-    EXPECT_EQ(splitsWith({4.0, 6, 0.0}), 0u); // no block above four ranks' shares (P <= 4)
+    EXPECT_EQ(splitsWith({0.1, 0}), 0u); // no level below the scene's
+    EXPECT_EQ(splitsWith({0.1, 1}), 1u); // one level: the crowded block alone
+    EXPECT_EQ(splitsWith({4.0, 6}), 0u); // no block above four ranks' shares (P <= 4)
+    // Grains of diameter 0.6: children of edge 0.5 would be narrower.
+    CrowdedRow wide(0.3);
+    EXPECT_EQ(coupling::splitHeavyBlocks(wide.world, wide.local, {}, wide.spec, {0.1, 6}).splits,
+              0u);
 }
 
 TEST(BlockSplit, WeightsOfTheSplitForestCountItsBlocksGrains) {
     CrowdedRow run;
     coupling::SplitForest const split =
-        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.1, 1, 0.0});
+        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.1, 1});
     domain::BlockWeight const weight =
         coupling::grainAndCellWeights(run.world, run.local, {}, split.spec);
     domain::ForestBuilder const builder(split.spec);
