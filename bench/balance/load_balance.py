@@ -3,6 +3,7 @@
 usage: load_balance.py [imbalance] [layouts] [wall] [--build build/default]
                        [--out bench/out/balance] [--ranks 8 27] [--blocks 12 16 24 32 12r]
                        [--cases NAME ...] [--repeats N] [--chart FILE] [--steps N] [--reuse]
+                       [--split-levels N]
 
 imbalance: each scene on each rank count of --ranks (oversubscribed), once with the blocks
   assigned at the start only (balance.every = 0, the loads still measured) and once with the
@@ -16,7 +17,8 @@ imbalance: each scene on each rank count of --ranks (oversubscribed), once with 
 layouts: the cold collapse rebalanced on the largest of --ranks with n x n x n blocks for
   each n of --blocks ("12r": 12 x 12 x 12 with the blocks of the box |x|, |y|, |z| <= 0.7,
   where the cloud collapses to by the end, refined once): how fine the forest must be for
-  whole blocks to even its collapsed core. Writes load_balance_layouts.csv.
+  whole blocks to even its collapsed core, with the blocks splitting (the default) or not
+  (--split-levels 0). Writes load_balance_layouts.csv.
 wall: on 2 ranks, static and rebalanced alternately (--repeats pairs), the wall time of the
   loop, the ratio's median and range, for the --cases: "settling" (the settling gas at 8
   times its grains), "default" (the default scene: its piles start on one rank each),
@@ -134,6 +136,8 @@ def layouts(args):
     for layout in args.blocks:
         n = layout.rstrip("r")
         extra = ["--set", f"domain.blocks=[{n},{n},{n}]"]
+        if args.split_levels is not None:
+            extra += ["--set", f"balance.split_levels={args.split_levels}"]
         if layout.endswith("r"):
             extra += ["--set", "domain.refine=[{min=[-0.7,-0.7,-0.7],max=[0.7,0.7,0.7],level=1}]"]
         path = os.path.join(args.out, f"balance_layout_{layout}_{np}.json")
@@ -199,6 +203,8 @@ def main():
     parser.add_argument("--reuse", action="store_true",
                         help="imbalance: take a run's summary from --out where it exists")
     parser.add_argument("--steps", type=int, help="time.steps of every run (the scenes' own)")
+    parser.add_argument("--split-levels", type=int,
+                        help="layouts: balance.split_levels of every run (the default \"auto\")")
     args = parser.parse_args()
     args.build = os.path.abspath(args.build)
     os.makedirs(args.out, exist_ok=True)

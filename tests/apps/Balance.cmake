@@ -44,35 +44,40 @@ regolith_balance_equality(split EVERY 10 RANKS 3 8 EXPECT balance.splits>8 ARGS
 regolith_balance_equality(gravity EVERY 2 RANKS 2 3 ARGS
   ${bad}/restart_gravity.toml --set domain.blocks=[4,4,4])
 
-# A checkpoint written after rebalances, restarted on another rank count (which cuts its
-# blocks by the load at once, then goes on rebalancing), ends in the serial run's state.
-set(restart_dir ${app_test_out}/balance_restart)
-add_test(NAME regolith.balance.settling_restart
-         COMMAND ${compare} --name balance_settling_restart
-                 --case "3 --set balance.every=10 --set balance.threshold=1 --set output.checkpoint_every=150 --output ${restart_dir}"
-                 --case "2 --set balance.every=10 --set balance.threshold=1 --restart ${restart_dir}/checkpoint_00000150.h5 --output ${restart_dir}"
-                 --reference ${app_test_out}/balance_settling.np1 --same particles checksum
-                 --expect balance.rebalances>0 --dump --
-                 ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
-                 --set sync.reproducible=true)
-set_tests_properties(regolith.balance.settling_restart PROPERTIES
-                     FIXTURES_REQUIRED balance_settling ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
-                     LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+# A checkpoint written after rebalances at step AT on FROM ranks, restarted on TO ranks (which
+# cuts its blocks by the load at once, then goes on rebalancing), ends in the state of the
+# serial run of regolith_balance_equality(<name>).
+# regolith_balance_restart(<name> FROM <np> TO <np> AT <step> EXPECT <key>... ARGS <app args>)
+function(regolith_balance_restart name)
+  cmake_parse_arguments(ARG "" "FROM;TO;AT" "EXPECT;ARGS" ${ARGN})
+  set(dir ${app_test_out}/balance_${name}_restart)
+  set(rebalancing --set balance.every=10 --set balance.threshold=1)
+  string(JOIN " " rebalancing ${rebalancing})
+  math(EXPR padded "100000000 + ${ARG_AT}")
+  string(SUBSTRING ${padded} 1 8 padded)
+  set(expects)
+  foreach(e IN LISTS ARG_EXPECT)
+    list(APPEND expects --expect ${e})
+  endforeach()
+  add_test(NAME regolith.balance.${name}_restart
+           COMMAND ${compare} --name balance_${name}_restart
+                   --case "${ARG_FROM} ${rebalancing} --set output.checkpoint_every=${ARG_AT} --output ${dir}"
+                   --case "${ARG_TO} ${rebalancing} --restart ${dir}/checkpoint_${padded}.h5 --output ${dir}"
+                   --reference ${app_test_out}/balance_${name}.np1 --same particles checksum
+                   ${expects} --dump -- ${ARG_ARGS})
+  set_tests_properties(regolith.balance.${name}_restart PROPERTIES
+                       FIXTURES_REQUIRED balance_${name} ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
+                       LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+endfunction()
 
-# The same for the cold collapse's split blocks: written on 8 ranks after splits, restarted on
-# 3 (the scene's blocks, split again at the start's cut).
-set(split_restart_dir ${app_test_out}/balance_split_restart)
-add_test(NAME regolith.balance.split_restart
-         COMMAND ${compare} --name balance_split_restart
-                 --case "8 --set balance.every=10 --set balance.threshold=1 --set output.checkpoint_every=50 --output ${split_restart_dir}"
-                 --case "3 --set balance.every=10 --set balance.threshold=1 --restart ${split_restart_dir}/checkpoint_00000050.h5 --output ${split_restart_dir}"
-                 --reference ${app_test_out}/balance_split.np1 --same particles checksum
-                 --expect balance.splits>8 --dump --
-                 ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
-                 --set sync.reproducible=true)
-set_tests_properties(regolith.balance.split_restart PROPERTIES
-                     FIXTURES_REQUIRED balance_split ENVIRONMENT "${REGOLITH_MPI_TEST_ENV}"
-                     LABELS "scene;mpi" TIMEOUT 120 PROCESSORS 2)
+regolith_balance_restart(settling FROM 3 TO 2 AT 150 EXPECT balance.rebalances>0 ARGS
+  ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
+  --set sync.reproducible=true)
+# The cold collapse's split blocks: written on 8 ranks after splits, restarted on 3 (the
+# scene's blocks, split again at the start's cut).
+regolith_balance_restart(split FROM 8 TO 3 AT 50 EXPECT balance.splits>8 ARGS
+  ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
+  --set sync.reproducible=true)
 
 # ParaView sees the blocks change owner: blocks.pvd's pieces at the start and the end.
 add_test(NAME regolith.balance.blocks_vtk
