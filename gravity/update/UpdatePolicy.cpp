@@ -191,7 +191,7 @@ void UpdatePolicy::markUpdated(std::span<std::uint64_t const> uid, std::span<dou
         records[uid[i]] = e;
     }
     m_records = std::move(records);
-    m_foundUid.clear(); // the entries moved
+    forgetFound(); // the entries moved
     m_since = 0;
 }
 
@@ -260,7 +260,7 @@ void UpdatePolicy::restore(long long updates, std::span<std::uint64_t const> uid
                            std::span<GrainRecord const> records) {
     m_updates = updates;
     m_records.clear();
-    m_foundUid.clear();
+    forgetFound();
     if (!keepsRecords())
         return;
     for (std::size_t i = 0; i < uid.size(); ++i) {

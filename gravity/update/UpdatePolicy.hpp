@@ -174,6 +174,12 @@ private:
     /// them without hashing.
     std::vector<std::uint64_t> m_foundUid;
     std::vector<Entry*> m_found;
+    /// Forgets the records found for the grains of the last due(), whose entries moved or
+    /// went: both lists, so that a rank left without grains holds no pointer either.
+    void forgetFound() {
+        m_foundUid.clear();
+        m_found.clear();
+    }
     std::vector<double> m_atField, m_atSlope; ///< their fields and slopes, 3 per grain
     // Between localVerdict() and decideDue():
     std::vector<std::size_t> m_missing; ///< grains without a record here (they changed rank)
