@@ -244,6 +244,9 @@ public:
 private:
     /// Sizes the per-block state (detectors, contact lists, reach) for the blocks of m_local.
     void placeOnBlocks();
+    /// The step's synchronisation (DemStepSync.cpp): refuses, on every rank, a motion beyond
+    /// the neighbour blocks the sync reaches, writes kept springs back where a copy may
+    /// migrate, syncs, and counts the grains that left the domain or crossed a wall. COLLECTIVE.
     void syncParticles();
     /// How far beyond its radius a grain's copies reach: the sync skin and half the contact
     /// model's range (what the invariant checks allow).
