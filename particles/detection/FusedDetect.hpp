@@ -6,6 +6,7 @@
 /// ContactDetector.hpp, after the class; include that one.
 #include "core/math/AABB.hpp"
 #include "particles/detection/Contact.hpp"
+#include "particles/detection/ContactDetector.hpp"
 #include "particles/detection/OverlapScreen.hpp"
 #include "particles/detection/PairCallbacks.hpp"
 #include "particles/detection/PairRule.hpp"
