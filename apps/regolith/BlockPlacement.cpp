@@ -62,6 +62,25 @@ coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     return limits;
 }
 
+/// The forest of `spec` cut by the loads of `local`'s masters, and the imbalance it gives.
+struct CutByLoad {
+    coupling::Placement placement;
+    double imbalance = 1.0;
+};
+
+/// COLLECTIVE.
+CutByLoad cutByLoad(core::Comm const& comm, SceneDescription const& scene,
+                    particles::LocalParticles const& local, coupling::BlockLoadModel const& model,
+                    domain::ForestSpec spec) {
+    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, local, model, spec);
+    CutByLoad cut{coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains)};
+    double load = 0.0;
+    for (domain::Block const& b : cut.placement.forest->blocks())
+        load += weight(b.aabb, b.id.level());
+    cut.imbalance = coupling::loadImbalance(comm, load);
+    return cut;
+}
+
 } // namespace
 
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
@@ -69,23 +88,19 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
     coupling::BlockLoadModel const model = loadModel(comm, scene, *placement.local);
-    domain::ForestSpec spec = placement.spec;
-    if (scene.balance.splitLevels > 0)
-        spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
-                                          splitLimits(scene))
-                   .spec;
-    domain::BlockWeight const weight =
-        coupling::grainAndCellWeights(comm, *placement.local, model, spec);
-    coupling::Placement balanced = coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains);
+    CutByLoad cut = cutByLoad(comm, scene, *placement.local, model, placement.spec);
+    // Blocks split only where whole blocks cannot even the loads.
+    if (scene.balance.splitLevels > 0 && cut.imbalance > scene.balance.threshold) {
+        coupling::SplitForest split = coupling::splitHeavyBlocks(
+            comm, *placement.local, model, placement.spec, splitLimits(scene));
+        if (split.splits > 0)
+            cut = cutByLoad(comm, scene, *placement.local, model, std::move(split.spec));
+    }
+    coupling::Placement& balanced = cut.placement;
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;
-    if (worthMoving) {
-        double load = 0.0;
-        for (domain::Block const& b : balanced.forest->blocks())
-            load += weight(b.aabb, b.id.level());
-        if (!worthMoving(coupling::loadImbalance(comm, load)))
-            return false;
-    }
+    if (worthMoving && !worthMoving(cut.imbalance))
+        return false;
     // The masters travel as a restart's grains do (one sparse exchange, state complete). The
     // objects stay where they are: what refers to them sees the new assignment.
     std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);

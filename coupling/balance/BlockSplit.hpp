@@ -16,8 +16,9 @@
 namespace regolith::coupling {
 
 /// How far blocks may split (balance.split_levels). Nor does a block split into children
-/// narrower than the widest grain centred in it: its grains stay in the next-neighbour class
-/// of the first paper's synchronisation.
+/// narrower than the widest grain centred in it (its grains stay in the next-neighbour class
+/// of the first paper's synchronisation), or when it holds one grain (its children would
+/// weigh as much).
 struct SplitLimits {
     double share = 0.1;   ///< a block heavier than share x a rank's mean load splits
     int deepestLevel = 0; ///< no block is split below this level
@@ -31,7 +32,7 @@ struct SplitForest {
 };
 
 /// `spec` with its heavy blocks split, by the loads of `local`'s masters (see the file
-/// comment). The same on every rank. COLLECTIVE (two all-reductions per round).
+/// comment). The same on every rank. COLLECTIVE (three all-reductions per round).
 [[nodiscard]] SplitForest splitHeavyBlocks(core::Comm const& comm,
                                            particles::LocalParticles const& local,
                                            BlockLoadModel const& model, domain::ForestSpec spec,
