@@ -3,6 +3,7 @@
 #include "core/Error.hpp"
 #include "core/memory/GentleGrowth.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <string>
 #include <type_traits>
@@ -263,10 +264,10 @@ std::uint32_t ParticleStorage::ownerSlot(BlockRef const& owner) {
 }
 
 void ParticleStorage::resetForces() {
-    for (Index i = 0, n = size(); i < n; ++i) {
-        array<kForce>()[i].setZero();
-        array<kTorque>()[i].setZero();
-    }
+    // Whole arrays: Eigen's stores may alias the vectors' own pointers, so element by
+    // element every store reloaded them.
+    std::fill(array<kForce>().begin(), array<kForce>().end(), core::Vec3::Zero());
+    std::fill(array<kTorque>().begin(), array<kTorque>().end(), core::Vec3::Zero());
 }
 
 std::size_t ParticleStorage::countMasters() const {
