@@ -128,6 +128,12 @@ void addShare(ParticleStorage& master, std::size_t m, core::Vec3 const& force,
 /// torque (most shadows of a gas touch nothing and are skipped).
 [[nodiscard]] bool hasShare(ParticleStorage const& ps, std::size_t i,
                             std::span<HistoryEntry const> entries);
+/// Whether shadow i of `ps` may have a share at all (a history entry, a force or a torque):
+/// inline, before touchedEntries and hasShare, for the shadows of a gas, most of which touch
+/// nothing.
+[[nodiscard]] inline bool mayHaveShare(ParticleStorage const& ps, std::size_t i) {
+    return !ps.history(i).empty() || !ps.force(i).isZero(0.0) || !ps.torque(i).isZero(0.0);
+}
 /// addShare for a shadow on this rank: adds shadow i's force and
 /// torque and `entries` (touchedEntries) to master m of `master` and zeroes the shadow's force
 /// and torque -- unless there is nothing to add (no entry, zero force and torque).

@@ -347,6 +347,8 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
             for (std::size_t q = 0; q < m_from[p].size(); ++q) {
                 ParticleStorage& ps = blocks[m_from[p][q].block].particles;
                 std::size_t const i = m_from[p][q].index;
+                if (!sync_detail::mayHaveShare(ps, i))
+                    continue;
                 sync_detail::touchedEntries(ps, i, stamp, entries);
                 if (!sync_detail::hasShare(ps, i, entries))
                     continue;
@@ -360,6 +362,8 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         ParticleStorage& ps = blocks[b].particles;
         for (Shadow const& s : m_blocks[b].shadows) {
+            if (!sync_detail::mayHaveShare(ps, s.index))
+                continue;
             sync_detail::touchedEntries(ps, s.index, stamp, entries);
             sync_detail::addShadowShare(ps, s.index, entries, blocks[s.masterBlock].particles,
                                         s.master);
