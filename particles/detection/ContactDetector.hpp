@@ -278,7 +278,11 @@ private:
                                        double rounding) const;
     /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
     /// order, with their storage indices ka, kb) while the list holds.
-    enum class Listing { Drop, Check, Always, Open };
+    enum class Listing : std::uint8_t { Drop, Check, Always, Open };
+    /// Looks up the storage indices ka, kb of the listed ids a, b and puts both in canonical
+    /// order (uid(ka) <= uid(kb)).
+    void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
+                     std::size_t& ka, std::size_t& kb) const;
     Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;
@@ -287,7 +291,8 @@ private:
     /// periodic axis.
     [[nodiscard]] bool holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const;
     /// Lists in m_twins the open pairs of a new list that the block evaluates in place of their
-    /// twins (canonical ka, kb; i's master and j's copy that is sure to live as long as the list).
+    /// twins (canonical ka, kb; i's master and j's copy that is sure to live as long as the list),
+    /// and in m_listings every pair's settleListed, for classifyListed to take.
     void findFaceTwins(ParticleStorage const& particles, core::AABB const& region,
                        PeriodicFrame const& frame, double rounding);
     /// The mode of a settled face pair (canonical ka, kb; ids a, b): Owned, or Kept or
@@ -333,6 +338,7 @@ private:
     std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
     std::vector<FaceTwin> m_twins;          ///< sorted by key
+    std::vector<Listing> m_listings;        ///< findFaceTwins' settlements, one per listed pair
     double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")

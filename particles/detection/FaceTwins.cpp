@@ -18,9 +18,11 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
                                     PeriodicFrame const& frame, double rounding) {
     core::Vec3 const period = frame.period();
     double const motion = listMotion(rounding);
-    m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t) {
+    m_listings.assign(m_list.numPairs(), Listing::Drop);
+    m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
         VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
-        if (settleListed(ps, a, b, ka, kb, region, frame, rounding) != Listing::Open)
+        m_listings[p] = settleListed(ps, a, b, ka, kb, region, frame, rounding);
+        if (m_listings[p] != Listing::Open)
             return;
         // i's master: the one copy of i that nothing but a wrap replaces.
         if (!ps.flags(ka).isMaster() || !isZero(ps.image(ka)))

@@ -11,19 +11,24 @@ namespace regolith::particles {
 
 using detection_detail::imageDifference;
 
+void ContactDetector::orderListed(ParticleStorage const& ps, VerletList::Id& a, VerletList::Id& b,
+                                  std::size_t& ka, std::size_t& kb) const {
+    ka = m_list.indexOf(a);
+    kb = m_list.indexOf(b);
+    if (ps.uid(kb) < ps.uid(ka)) {
+        std::swap(a, b);
+        std::swap(ka, kb);
+    }
+}
+
 ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps, VerletList::Id& a,
                                                        VerletList::Id& b, std::size_t& ka,
                                                        std::size_t& kb, core::AABB const& region,
                                                        PeriodicFrame const& frame,
                                                        double rounding) const {
-    ka = m_list.indexOf(a);
-    kb = m_list.indexOf(b);
+    orderListed(ps, a, b, ka, kb);
     if (ps.uid(ka) == ps.uid(kb))
         return Listing::Drop; // a grain and its own periodic image: never a contact
-    if (ps.uid(kb) < ps.uid(ka)) {
-        std::swap(a, b);
-        std::swap(ka, kb);
-    }
     if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
         return Listing::Check; // rare: the rule skips them
     core::Vec3 const period = frame.period();
@@ -50,13 +55,24 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     // The list's reference positions are floats: the midpoint is off by at most their slack.
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
     bool const twins = holdsFaceTwins(region, frame);
-    if (twins && first == 0) // arrivals are never settled face pairs, only their dropped twins
+    // Arrivals are never settled face pairs, only their dropped twins. A new list's pairs are
+    // settled once, by findFaceTwins (which must know every twin before the first is dropped).
+    bool const settled = twins && first == 0;
+    if (settled)
         findFaceTwins(ps, region, frame, rounding);
     std::size_t place = first; // where classifyFrom puts the pair it is deciding
+    std::size_t offered = 0;   // the pairs classifyFrom offered so far
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = 0, kb = 0;
         int mode = static_cast<int>(PairMode::Check);
-        switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
+        Listing listing = Listing::Check;
+        if (settled) {
+            orderListed(ps, a, b, ka, kb);
+            listing = m_listings[offered++];
+        } else {
+            listing = settleListed(ps, a, b, ka, kb, region, frame, rounding);
+        }
+        switch (listing) {
         case Listing::Drop:
             return VerletList::kDrop;
         case Listing::Check:
