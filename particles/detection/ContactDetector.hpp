@@ -308,9 +308,10 @@ private:
     /// back with the other kept pairs') back to i's master, and the master's history to i's
     /// other images.
     void writeBackFaceTwin(ParticleStorage& particles, FaceTwin const& t) const;
-    /// Writes a kept spring back to the history of copy i, for partner `partner`.
+    /// Writes a kept spring back to the history of copy i, for partner `partner` (whose entry
+    /// fillKeptSprings found in slot `hint`).
     void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,
-                         KeptSpring const& kept) const;
+                         KeptSpring const& kept, std::uint8_t hint) const;
     /// How far a centre may be from its reference while the list holds (+ `rounding`).
     [[nodiscard]] double listMotion(double rounding) const;
     /// Whether a listed pair of reach r_a + r_b cannot meet through a second periodic image

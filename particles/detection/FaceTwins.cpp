@@ -92,14 +92,18 @@ void ContactDetector::writeBackFaceTwin(ParticleStorage& ps, FaceTwin const& t) 
     if (i == ParticleStorage::kNotFound)
         return;            // i left the domain through an open face
     if (!faceTwinAlive(t)) // (a live one's went back with the other kept pairs')
-        writeBackSpring(ps, i, t.key.j, m_list.spring(t.pair));
+        writeBackSpring(ps, i, t.key.j, m_list.spring(t.pair), m_list.hint(t.pair));
     // The synchronisation copied i's stale history to i's other images, which an instance of
     // the pair keeping the rule may read in this very pass (after a wrap, or in the rebuilt
     // list): they get the master's again, as the next synchronisation would give them. (Those
-    // images lie within one period of the master: the pair's reach is under half of it.)
-    for (std::int8_t x = -1; x <= 1; ++x)
-        for (std::int8_t y = -1; y <= 1; ++y)
-            for (std::int8_t z = -1; z <= 1; ++z) {
+    // images lie within one period of the master, on the periodic axes: the pair's reach is
+    // under half of it.)
+    auto const reach = [&](std::size_t axis) {
+        return static_cast<std::int8_t>(m_listFrame.periodic[axis] ? 1 : 0);
+    };
+    for (std::int8_t x = -reach(0); x <= reach(0); ++x)
+        for (std::int8_t y = -reach(1); y <= reach(1); ++y)
+            for (std::int8_t z = -reach(2); z <= reach(2); ++z) {
                 std::size_t const k = ps.find(t.key.i, CopyImage{x, y, z});
                 if (k != ParticleStorage::kNotFound && k != i)
                     ps.history(k).assign(ps.history(i).entries());

@@ -67,20 +67,24 @@ void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t fir
         [&](std::size_t i, std::size_t j, std::size_t p) {
             if (!keepsSpring(m_list.mode(p)))
                 return;
-            HistoryEntry const* e = ps.history(i).find(ps.uid(j));
+            ContactHistory const& history = ps.history(i);
+            HistoryEntry const* e = history.find(ps.uid(j));
             m_list.spring(p) = e != nullptr ? KeptSpring{e->spring, e->stamp} : KeptSpring{};
+            if (e != nullptr) // the slot, for writeBackSpring (a hint: verified there)
+                m_list.hint(p) =
+                    static_cast<std::uint8_t>(std::min<std::ptrdiff_t>(e - history.begin(), 255));
         },
         first);
     m_springsLive = true;
 }
 
 void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid partner,
-                                      KeptSpring const& kept) const {
+                                      KeptSpring const& kept, std::uint8_t hint) const {
     if (kept.stamp == KeptSpring::kUntouched)
         return; // filled from an absent entry, never touched since
     ContactHistory& history = ps.history(i);
     HistoryEntry const entry{partner, kept.spring, kept.stamp};
-    if (HistoryEntry* e = history.find(entry.partner))
+    if (HistoryEntry* e = history.find(entry.partner, hint))
         *e = entry;
     else if (kept.stamp == m_pass) // a contact of the last pass (new since the fill)
         history.set(entry);
@@ -96,7 +100,7 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
     // live: both are alive.
     m_list.forEachPair([&](std::size_t i, std::size_t j, std::size_t p) {
         if (keepsSpring(m_list.mode(p)))
-            writeBackSpring(ps, i, ps.uid(j), m_list.spring(p));
+            writeBackSpring(ps, i, ps.uid(j), m_list.spring(p), m_list.hint(p));
     });
     for (FaceTwin const& t : m_twins) // their images need the master's history too
         writeBackFaceTwin(ps, t);

@@ -49,6 +49,12 @@ public:
     /// The entry for `partner`, or nullptr.
     [[nodiscard]] HistoryEntry const* find(Uid partner) const;
     [[nodiscard]] HistoryEntry* find(Uid partner);
+    /// find() that first tries slot `hint` (where the entry sat when last found).
+    [[nodiscard]] HistoryEntry* find(Uid partner, std::uint8_t hint) {
+        if (hint < m_entries.size() && m_entries[hint].partner == partner)
+            return &m_entries[hint];
+        return find(partner);
+    }
     /// The entry for `partner` (created with a zero spring if absent), stamped with `stamp`.
     /// Passes are numbered consecutively: an entry found with a stamp below `stamp - 1` was not
     /// touched in the previous pass, so its contact broke since, and it starts again from a
