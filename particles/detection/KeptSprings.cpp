@@ -3,6 +3,9 @@
 /// how they are filled from the grains' histories and written back.
 #include "particles/detection/ContactDetector.hpp"
 
+#include <algorithm>
+#include <cstddef>
+
 namespace regolith::particles {
 
 PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,

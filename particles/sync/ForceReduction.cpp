@@ -87,8 +87,6 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
         forEachWithFlags<kShadow>(ps.allFlags(), [&](std::size_t i) {
             if (records == nullptr)
                 prefetchLocalMaster(engine, local, ps, i + kAhead);
-            if (!mayHaveShare(ps, i))
-                return; // nothing to send in either mode
             touchedEntries(ps, i, stamp, hist);
             // Reproducible mode sends the forces as records: only the history here.
             if (records != nullptr ? hist.empty() : !hasShare(ps, i, hist))
