@@ -19,7 +19,8 @@ double kickAndDrift(ParticleStorage& ps, double dt, core::Vec3 const& gravity, b
     if (n == 0)
         return 0.0;
     // The arrays' addresses in locals: Eigen's vector stores may alias anything, so through
-    // the storage's accessors every grain reloaded them (a fifth of a sparse gas's step).
+    // the storage's accessors every grain reloaded them (this pass is a fifth of a sparse
+    // gas's step).
     Flags const* const flags = ps.allFlags().data();
     double const* const invMass = ps.invMasses().data();
     double const* const invInertia = ps.invInertias().data();
