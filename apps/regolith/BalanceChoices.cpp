@@ -62,12 +62,13 @@ void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
     if (balance.splitAuto) {
         balance.splitAuto = false;
         balance.splitLevels = why ? 0 : kAutoSplitLevels;
-        out.push_back({"balance.split_levels", fmt::format("{}", balance.splitLevels),
-                       why ? std::string(why)
-                           : fmt::format("a block holding more than a tenth of a rank's share of "
-                                         "the load is split, down to {} levels below the "
-                                         "scene's blocks",
-                                         kAutoSplitLevels)});
+        out.push_back(
+            {"balance.split_levels", fmt::format("{}", balance.splitLevels),
+             why ? std::string(why)
+                 : fmt::format("a block holding more than a twentieth of a rank's share of "
+                               "the load is split, down to {} levels below the "
+                               "scene's blocks",
+                               kAutoSplitLevels)});
         return;
     }
     if (balance.splitLevels > 0 && why)

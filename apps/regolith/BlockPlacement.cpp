@@ -53,7 +53,7 @@ namespace {
 /// How far the blocks of `scene` may split: balance.split_levels below its deepest blocks.
 coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     coupling::SplitLimits limits;
-    limits.share = std::max(scene.balance.threshold - 1.0, kSplitShare);
+    limits.share = std::max(0.5 * (scene.balance.threshold - 1.0), kSplitShare);
     int deepest = 0;
     for (domain::RefineRegion const& r : scene.forest.refine)
         deepest = std::max(deepest, r.level);
@@ -89,8 +89,11 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
         return false;
     coupling::BlockLoadModel const model = loadModel(comm, scene, *placement.local);
     CutByLoad cut = cutByLoad(comm, scene, *placement.local, model, placement.spec);
-    // Blocks split only where whole blocks cannot even the loads.
-    if (scene.balance.splitLevels > 0 && cut.imbalance > scene.balance.threshold) {
+    // Blocks split only where whole blocks cannot even the loads to within half the threshold's
+    // margin: the imbalance the hysteresis asks of a new cut (DynamicBalance.hpp), so that the
+    // cut lasts.
+    double const even = 1.0 + 0.5 * (scene.balance.threshold - 1.0);
+    if (scene.balance.splitLevels > 0 && cut.imbalance > even) {
         coupling::SplitForest split = coupling::splitHeavyBlocks(
             comm, *placement.local, model, placement.spec, splitLimits(scene));
         if (split.splits > 0)

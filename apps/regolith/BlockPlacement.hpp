@@ -28,10 +28,10 @@ namespace regolith::apps {
 /// (max / mean) it would give.
 using WorthMoving = std::function<bool(double after)>;
 
-/// Blocks split where one holds more than this share of a rank's mean load, or
-/// balance.threshold - 1 if more (coupling/balance/BlockSplit.hpp: below it the cut that
-/// follows comes within the threshold).
-inline constexpr double kSplitShare = 0.1;
+/// Blocks split where one holds more than this share of a rank's mean load, or half of
+/// balance.threshold - 1 if more (coupling/balance/BlockSplit.hpp: below threshold - 1 the cut
+/// that follows comes within the threshold; half leaves room for the load to keep gathering).
+inline constexpr double kSplitShare = 0.05;
 
 /// Re-assigns the blocks of `placement` by the load of the masters it holds (and the cells,
 /// when the scene's gravity uses a grid), splitting the heavy blocks where whole blocks

@@ -3,7 +3,7 @@
 # end in the serial run's state, byte for byte, having moved their blocks at least once: the settling gas (its
 # load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
 # update_threshold > 0 (the cached field follows its grains to their new ranks) on 2 and 3.
-# The blocks split too where they gather a tenth of a rank's share (balance.split_levels,
+# The blocks split too where they gather a twentieth of a rank's share (balance.split_levels,
 # "auto"): the settling gas on 4, 8 and 27 ranks, the cold collapse below.
 # Included by tests/apps/CMakeLists.txt (needs Python and ${compare}).
 
