@@ -53,6 +53,10 @@ namespace {
 /// How far the blocks of `scene` may split: balance.split_levels below its deepest blocks.
 coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     coupling::SplitLimits limits;
+    // Whole blocks that cannot reach the imbalance the hysteresis asks of a new cut
+    // (DynamicBalance.hpp), and a finer split than the threshold needs, so that the cut lasts
+    // while the load keeps gathering.
+    limits.floor = 1.0 + 0.5 * (scene.balance.threshold - 1.0);
     limits.share = std::max(0.5 * (scene.balance.threshold - 1.0), kSplitShare);
     int deepest = 0;
     for (domain::RefineRegion const& r : scene.forest.refine)
@@ -88,17 +92,12 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
     coupling::BlockLoadModel const model = loadModel(comm, scene, *placement.local);
-    CutByLoad cut = cutByLoad(comm, scene, *placement.local, model, placement.spec);
-    // Blocks split only where whole blocks cannot even the loads to within half the threshold's
-    // margin: the imbalance the hysteresis asks of a new cut (DynamicBalance.hpp), so that the
-    // cut lasts.
-    double const even = 1.0 + 0.5 * (scene.balance.threshold - 1.0);
-    if (scene.balance.splitLevels > 0 && cut.imbalance > even) {
-        coupling::SplitForest split = coupling::splitHeavyBlocks(
-            comm, *placement.local, model, placement.spec, splitLimits(scene));
-        if (split.splits > 0)
-            cut = cutByLoad(comm, scene, *placement.local, model, std::move(split.spec));
-    }
+    domain::ForestSpec spec = placement.spec;
+    if (scene.balance.splitLevels > 0)
+        spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
+                                          splitLimits(scene))
+                   .spec;
+    CutByLoad cut = cutByLoad(comm, scene, *placement.local, model, std::move(spec));
     coupling::Placement& balanced = cut.placement;
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;

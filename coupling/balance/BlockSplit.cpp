@@ -40,7 +40,9 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
             core::Vec3 const quarter = 0.25 * box.extent();
             split.push_back({{box.min + quarter, box.max - quarter}, leaf.id.level() + 1});
         }
-        if (split.empty())
+        bool const floorReached = firstBlocks != blocks ||
+                                  *std::max_element(load.begin(), load.end()) > limits.floor * mean;
+        if (split.empty() || !floorReached) // whole blocks even the loads: keep them
             break;
         spec.refine.insert(spec.refine.end(), split.begin(), split.end());
     }

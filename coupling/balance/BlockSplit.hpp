@@ -2,12 +2,14 @@
 /// Blocks that split during a run where the load gathers. A cut of whole blocks along the
 /// curve comes within one block's weight of the mean load (domain/SfcPartition.hpp), so no cut
 /// evens the ranks while one block holds a large part of a rank's share (the block floor,
-/// docs/balance.md): a cold cloud collapsing into one block, a pile settling into a few. Such a
-/// block is refined into its eight children, by a refine region added to the run's forest
-/// specification, round after round until no block is heavier than `share` of a rank's mean
-/// load or the limits stop it. With share <= threshold - 1 the cut that follows reaches the
-/// threshold. Blocks are not merged back: a split block costs its rank nothing (docs/sync.md,
-/// "Subdomains").
+/// docs/balance.md): a cold cloud collapsing into one block, a pile settling into a few. When a
+/// block weighs more than `floor` shares, every block heavier than `share` is refined into its
+/// eight children, by a refine region added to the run's forest specification, round after
+/// round until no block is heavier than `share` of a rank's mean load or the limits stop it.
+/// With share <= threshold - 1 the cut that follows reaches the threshold. Splits are not
+/// free: a rank's region follows the finer blocks, so its surface, the shadows on it and the
+/// cuboids its blocks merge into grow (docs/balance.md); hence only where whole blocks cannot
+/// even the loads. Blocks are not merged back.
 #include "coupling/balance/BlockWeights.hpp"
 #include "domain/ForestSpec.hpp"
 
@@ -20,7 +22,10 @@ namespace regolith::coupling {
 /// of the first paper's synchronisation), or when it holds one grain (its children would
 /// weigh as much).
 struct SplitLimits {
-    double share = 0.1;   ///< a block heavier than share x a rank's mean load splits
+    /// Nothing splits unless a block weighs more than this times a rank's mean load: then no
+    /// cut of whole blocks gives an imbalance below it (the block floor, docs/balance.md).
+    double floor = 1.05;
+    double share = 0.05;  ///< then every block heavier than share x a rank's mean load splits
     int deepestLevel = 0; ///< no block is split below this level
 };
 

@@ -36,11 +36,12 @@ endfunction()
 regolith_balance_equality(settling EVERY 10 RANKS 2 3 4 8 27 ARGS
   ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
   --set sync.reproducible=true)
-# The cold collapse on the scene's 2 x 2 x 2 blocks: they split where the cloud gathers (at the
-# start and as it collapses), the direct sum's field in canonical order keeps every bit.
+# The cold collapse on one block: it splits where the cloud gathers (at the start, where it
+# holds every rank's share, and as the cloud collapses); the direct sum's field in canonical
+# order keeps every bit.
 regolith_balance_equality(split EVERY 10 RANKS 3 8 EXPECT balance.splits>8 ARGS
   ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
-  --set sync.reproducible=true)
+  --set domain.blocks=[1,1,1] --set sync.reproducible=true)
 regolith_balance_equality(gravity EVERY 2 RANKS 2 3 ARGS
   ${bad}/restart_gravity.toml --set domain.blocks=[4,4,4])
 
@@ -74,10 +75,10 @@ regolith_balance_restart(settling FROM 3 TO 2 AT 150 EXPECT balance.rebalances>0
   ${PROJECT_SOURCE_DIR}/scenes/settling-gas.toml --set time.steps=300
   --set sync.reproducible=true)
 # The cold collapse's split blocks: written on 8 ranks after splits, restarted on 3 (the
-# scene's blocks, split again at the start's cut).
+# scene's block, split again at the start's cut).
 regolith_balance_restart(split FROM 8 TO 3 AT 50 EXPECT balance.splits>8 ARGS
   ${PROJECT_SOURCE_DIR}/scenes/cold-collapse.toml --set time.steps=100
-  --set sync.reproducible=true)
+  --set domain.blocks=[1,1,1] --set sync.reproducible=true)
 
 # ParaView sees the blocks change owner: blocks.pvd's pieces at the start and the end.
 add_test(NAME regolith.balance.blocks_vtk

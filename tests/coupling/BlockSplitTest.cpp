@@ -48,7 +48,7 @@ double total(std::vector<double> const& load) {
 
 TEST(BlockSplit, HeavyBlocksSplitUntilNoneExceedsTheShare) {
     CrowdedRow run;
-    coupling::SplitLimits limits{0.1, 6};
+    coupling::SplitLimits limits{0.5, 0.1, 6};
     coupling::SplitForest const split =
         coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits);
     domain::ForestBuilder const builder(split.spec);
@@ -78,19 +78,20 @@ TEST(BlockSplit, LimitsStopTheSplits) {
     auto const splitsWith = [&](coupling::SplitLimits const& limits) {
         return coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, limits).splits;
     };
-    EXPECT_EQ(splitsWith({0.1, 0}), 0u); // no level below the scene's
-    EXPECT_EQ(splitsWith({0.1, 1}), 1u); // one level: the crowded block alone
-    EXPECT_EQ(splitsWith({4.0, 6}), 0u); // no block above four ranks' shares (P <= 4)
+    EXPECT_EQ(splitsWith({0.5, 0.1, 0}), 0u); // no level below the scene's
+    EXPECT_EQ(splitsWith({0.5, 0.1, 1}), 1u); // one level: the crowded block alone
+    EXPECT_EQ(splitsWith({4.0, 0.1, 6}), 0u); // no block above four shares: whole blocks do
     // Grains of diameter 0.6: children of edge 0.5 would be narrower.
     CrowdedRow wide(0.3);
-    EXPECT_EQ(coupling::splitHeavyBlocks(wide.world, wide.local, {}, wide.spec, {0.1, 6}).splits,
-              0u);
+    EXPECT_EQ(
+        coupling::splitHeavyBlocks(wide.world, wide.local, {}, wide.spec, {0.5, 0.1, 6}).splits,
+        0u);
 }
 
 TEST(BlockSplit, WeightsOfTheSplitForestCountItsBlocksGrains) {
     CrowdedRow run;
     coupling::SplitForest const split =
-        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.1, 1});
+        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.5, 0.1, 1});
     domain::BlockWeight const weight =
         coupling::grainAndCellWeights(run.world, run.local, {}, split.spec);
     domain::ForestBuilder const builder(split.spec);
