@@ -65,9 +65,9 @@ void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
         out.push_back(
             {"balance.split_levels", fmt::format("{}", balance.splitLevels),
              why ? std::string(why)
-                 : fmt::format("a block holding more than a twentieth of a rank's share of "
-                               "the load is split, down to {} levels below the "
-                               "scene's blocks",
+                 : fmt::format("where a block outweighs a rank's share, the blocks above a "
+                               "twentieth of one split, down to {} levels below the scene's "
+                               "blocks",
                                kAutoSplitLevels)});
         return;
     }

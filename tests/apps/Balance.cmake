@@ -1,10 +1,10 @@
 # Dynamic load balance: runs in reproducible mode whose blocks move between ranks during the
 # run (balance.every = 10 or 2, threshold = 1: a new cut whenever a better one exists) must
-# end in the serial run's state, byte for byte, having moved their blocks at least once: the settling gas (its
-# load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
+# end in the serial run's state, byte for byte, having moved their blocks at least once: the
+# settling gas (its load falls into the bottom blocks) on 2, 3, 4, 8 and 27 ranks; direct self-gravity with
 # update_threshold > 0 (the cached field follows its grains to their new ranks) on 2 and 3.
-# The blocks split too where they gather a twentieth of a rank's share (balance.split_levels,
-# "auto"): the settling gas on 4, 8 and 27 ranks, the cold collapse below.
+# The blocks split too where one outweighs a rank's share (balance.split_levels, "auto"): the
+# settling gas on 27 ranks, the cold collapse on one block below.
 # Included by tests/apps/CMakeLists.txt (needs Python and ${compare}).
 
 # regolith_balance_equality(<name> EVERY <steps> RANKS <np> ... ARGS <app arguments>)
