@@ -74,7 +74,7 @@ bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
                         "the grains gather, does (docs/balance.md)",
                         stepsDone, floor, balance.threshold,
                         balance.splitLevels > 0 ? ", and the blocks split no further "
-                                                  "(balance.split_levels, the largest grain)"
+                                                  "(balance.split_levels, the grains' size)"
                                                 : "");
     }
     return moved;

@@ -12,11 +12,13 @@ namespace regolith::coupling {
 SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles const& local,
                              BlockLoadModel const& model, domain::ForestSpec spec,
                              SplitLimits const& limits) {
-    std::size_t const firstBlocks = domain::ForestBuilder(spec).leaves().size();
-    std::size_t blocks = firstBlocks;
-    for (;;) {
+    std::size_t firstBlocks = 0;
+    std::size_t blocks = 0;
+    for (bool first = true;; first = false) {
         domain::ForestBuilder const builder(spec);
         blocks = builder.leaves().size();
+        if (first)
+            firstBlocks = blocks;
         std::vector<double> const load = leafLoads(comm, local, model, builder);
         std::vector<double> widest(load.size(), 0.0); // the widest grain centred in each leaf
         std::vector<double> grains(load.size(), 0.0);
@@ -40,9 +42,10 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
             core::Vec3 const quarter = 0.25 * box.extent();
             split.push_back({{box.min + quarter, box.max - quarter}, leaf.id.level() + 1});
         }
-        bool const floorReached = firstBlocks != blocks ||
-                                  *std::max_element(load.begin(), load.end()) > limits.floor * mean;
-        if (split.empty() || !floorReached) // whole blocks even the loads: keep them
+        // The first round decides: with no block above the floor, whole blocks even the loads.
+        bool const floorReached =
+            !first || *std::max_element(load.begin(), load.end()) > limits.floor * mean;
+        if (split.empty() || !floorReached)
             break;
         spec.refine.insert(spec.refine.end(), split.begin(), split.end());
     }
