@@ -66,25 +66,6 @@ coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     return limits;
 }
 
-/// The forest of `spec` cut by the loads of `local`'s masters, and the imbalance it gives.
-struct CutByLoad {
-    coupling::Placement placement;
-    double imbalance = 1.0;
-};
-
-/// COLLECTIVE.
-CutByLoad cutByLoad(core::Comm const& comm, SceneDescription const& scene,
-                    particles::LocalParticles const& local, coupling::BlockLoadModel const& model,
-                    domain::ForestSpec spec) {
-    domain::BlockWeight const weight = coupling::grainAndCellWeights(comm, local, model, spec);
-    CutByLoad cut{coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains)};
-    double load = 0.0;
-    for (domain::Block const& b : cut.placement.forest->blocks())
-        load += weight(b.aabb, b.id.level());
-    cut.imbalance = coupling::loadImbalance(comm, load);
-    return cut;
-}
-
 } // namespace
 
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
@@ -97,12 +78,18 @@ bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
         spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
                                           splitLimits(scene))
                    .spec;
-    CutByLoad cut = cutByLoad(comm, scene, *placement.local, model, std::move(spec));
-    coupling::Placement& balanced = cut.placement;
+    domain::BlockWeight const weight =
+        coupling::grainAndCellWeights(comm, *placement.local, model, spec);
+    coupling::Placement balanced = coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains);
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;
-    if (worthMoving && !worthMoving(cut.imbalance))
-        return false;
+    if (worthMoving) {
+        double load = 0.0;
+        for (domain::Block const& b : balanced.forest->blocks())
+            load += weight(b.aabb, b.id.level());
+        if (!worthMoving(coupling::loadImbalance(comm, load)))
+            return false;
+    }
     // The masters travel as a restart's grains do (one sparse exchange, state complete). The
     // objects stay where they are: what refers to them sees the new assignment.
     std::vector<io::GrainState> const grains = io::collectMasters(*placement.local);

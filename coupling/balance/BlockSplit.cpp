@@ -19,23 +19,24 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
         blocks = builder.leaves().size();
         if (first)
             firstBlocks = blocks;
-        std::vector<double> const load = leafLoads(comm, local, model, builder);
+        std::vector<particles::LocalParticles::LeafLoad> const counts =
+            leafCounts(comm, local, builder);
+        std::vector<double> load;
+        for (particles::LocalParticles::LeafLoad const& leaf : counts)
+            load.push_back(model.weight(leaf));
         std::vector<double> widest(load.size(), 0.0); // the widest grain centred in each leaf
-        std::vector<double> grains(load.size(), 0.0);
         forEachMasterInLeaf(
             local, builder,
             [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
                 widest[leaf] = std::max(widest[leaf], 2.0 * ps.radius(i));
-                grains[leaf] += 1.0;
             });
         comm.allReduceInPlace(std::span<double>(widest), core::ReduceOp::Max);
-        comm.allReduceInPlace(std::span<double>(grains), core::ReduceOp::Sum);
         double const mean = std::accumulate(load.begin(), load.end(), 0.0) / comm.size();
         std::vector<domain::RefineRegion> split;
         for (std::size_t l = 0; l < load.size(); ++l) {
             domain::ForestLeaf const& leaf = builder.leaves()[l];
             core::AABB const box = builder.geometry().box(leaf.box);
-            if (!(load[l] > limits.share * mean) || grains[l] < 2.0 ||
+            if (!(load[l] > limits.share * mean) || counts[l].grains < 2 ||
                 leaf.id.level() >= limits.deepestLevel || 0.5 * box.minEdge() < widest[l])
                 continue;
             // A region inside the block only (its middle half), refined to the next level.

@@ -37,7 +37,7 @@ struct SplitForest {
 };
 
 /// `spec` with its heavy blocks split, by the loads of `local`'s masters (see the file
-/// comment). The same on every rank. COLLECTIVE (three all-reductions per round).
+/// comment). The same on every rank. COLLECTIVE (two all-reductions per round).
 [[nodiscard]] SplitForest splitHeavyBlocks(core::Comm const& comm,
                                            particles::LocalParticles const& local,
                                            BlockLoadModel const& model, domain::ForestSpec spec,

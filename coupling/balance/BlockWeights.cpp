@@ -54,8 +54,9 @@ LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& l
     return {most[0] / mean, std::max(1.0, most[1] / mean)};
 }
 
-std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles const& local,
-                              BlockLoadModel const& model, domain::ForestBuilder const& builder) {
+std::vector<particles::LocalParticles::LeafLoad> leafCounts(core::Comm const& comm,
+                                                            particles::LocalParticles const& local,
+                                                            domain::ForestBuilder const& builder) {
     std::size_t const leaves = builder.leaves().size();
     std::vector<double> counts(2 * leaves, 0.0); // grains, contacts per leaf: exact sums
     forEachMasterInLeaf(local, builder,
@@ -64,10 +65,18 @@ std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles 
                             counts[2 * leaf + 1] += static_cast<double>(ps.history(i).size());
                         });
     comm.allReduceInPlace(std::span<double>(counts), core::ReduceOp::Sum);
-    std::vector<double> load(leaves);
+    std::vector<particles::LocalParticles::LeafLoad> out(leaves);
     for (std::size_t l = 0; l < leaves; ++l)
-        load[l] = model.weight(
-            {static_cast<std::size_t>(counts[2 * l]), static_cast<std::size_t>(counts[2 * l + 1])});
+        out[l] = {static_cast<std::size_t>(counts[2 * l]),
+                  static_cast<std::size_t>(counts[2 * l + 1])};
+    return out;
+}
+
+std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles const& local,
+                              BlockLoadModel const& model, domain::ForestBuilder const& builder) {
+    std::vector<double> load;
+    for (particles::LocalParticles::LeafLoad const& leaf : leafCounts(comm, local, builder))
+        load.push_back(model.weight(leaf));
     return load;
 }
 

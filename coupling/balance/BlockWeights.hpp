@@ -77,6 +77,13 @@ void forEachMasterInLeaf(particles::LocalParticles const& local,
         });
 }
 
+/// The grains and contact-history entries of every leaf of `builder`'s forest, in its curve
+/// order, from the masters of `local` binned by their positions: the same on every rank.
+/// COLLECTIVE (one all-reduction of two numbers per leaf).
+[[nodiscard]] std::vector<particles::LocalParticles::LeafLoad>
+leafCounts(core::Comm const& comm, particles::LocalParticles const& local,
+           domain::ForestBuilder const& builder);
+
 /// The load of every leaf of `builder`'s forest, in its curve order, from the masters of
 /// `local` (and their contacts) binned by their positions: the same on every rank. The forest
 /// need not be the one the grains live on (a finer one, BlockSplit.hpp). COLLECTIVE (one
