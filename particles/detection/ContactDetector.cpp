@@ -394,7 +394,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_listings.capacity() * sizeof(Listing);
+           m_listings.capacity() * sizeof(Listing) + m_depth.capacity() * sizeof(double);
 }
 
 } // namespace regolith::particles
