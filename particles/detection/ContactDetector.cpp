@@ -256,6 +256,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     largePass(positions, ps, slack + binned + m_config.range, add);
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
+    startDepths(region, frame);
     classifyListed(ps, region, frame, 0);
 }
 

@@ -283,14 +283,16 @@ private:
     /// order (uid(ka) <= uid(kb)).
     void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                      std::size_t& ka, std::size_t& kb) const;
-    /// Measures, per id of the last rebuild, how deep its local reference position lies inside
-    /// `region` (and inside the domain on `frame`'s periodic axes, where the rule emits): 0
-    /// outside it or if not finite. For settleListed and settledMode, which settle the pairs
-    /// of two deep copies without their midpoint.
-    void measureDepths(ParticleStorage const& particles, core::AABB const& region,
-                       PeriodicFrame const& frame);
-    /// Whether ids a and b both have a measured depth (measureDepths) above `depth`.
-    [[nodiscard]] bool deeperThan(VerletList::Id a, VerletList::Id b, double depth) const;
+    /// At a rebuild: the box where the rule emits (`region`, and the domain on `frame`'s
+    /// periodic axes) and no depth measured yet.
+    void startDepths(core::AABB const& region, PeriodicFrame const& frame);
+    /// How deep the local reference position of id (of the last rebuild) lies inside that box,
+    /// measured once: 0 outside it, if not finite, or for an arrival. Lets settleListed and
+    /// settledMode settle the pairs of two deep copies without their midpoint.
+    [[nodiscard]] double depthOf(ParticleStorage const& particles, VerletList::Id id) const;
+    /// Whether ids a and b both lie deeper than `depth` (depthOf).
+    [[nodiscard]] bool deeperThan(ParticleStorage const& particles, VerletList::Id a,
+                                  VerletList::Id b, double depth) const;
     Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;
@@ -348,8 +350,11 @@ private:
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
     std::vector<FaceTwin> m_twins;          ///< sorted by key
     std::vector<Listing> m_listings;        ///< findFaceTwins' settlements, one per listed pair
-    std::vector<double> m_depth;            ///< measureDepths', one per id of the last rebuild
-    double m_listScale = 0.0;               ///< coordinate scale of the last rebuild (its slack)
+    static constexpr double kUnmeasured = -1.0;
+    mutable std::vector<double> m_depth; ///< depthOf's, per id of the last rebuild (a cache)
+    core::AABB m_emits;                  ///< where the rule emits (startDepths)
+    core::Vec3 m_period = core::Vec3::Zero();
+    double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)

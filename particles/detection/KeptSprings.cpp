@@ -21,10 +21,10 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     // Deeper than skin / 2 inside the block, both: while the list holds (no copy moves skin / 2
     // from its reference) neither leaves the block, so the synchronisation neither migrates
     // nor wraps them.
-    // (The measured depths, with the rounding once more, answer for most pairs: the region
-    // holds the one they were measured in.)
+    // (The depths from the region's faces, with the rounding once more, answer for most pairs:
+    // the region holds the box they are measured in.)
     double const depth = listMotion(rounding);
-    if (!deeperThan(a, b, depth + rounding))
+    if (!deeperThan(ps, a, b, depth + rounding))
         for (VerletList::Id id : {a, b}) {
             core::Vec3 const x = m_list.reference(id);
             for (int d = 0; d < 3; ++d)

@@ -37,7 +37,7 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
         ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
     // Both reference centres deeper than the reach (with the rounding once more): so is their
     // midpoint, and settleOwnership answers Always.
-    if (deeperThan(a, b, reach + rounding))
+    if (deeperThan(ps, a, b, reach + rounding))
         return Listing::Always;
     core::Vec3 const period = frame.period();
     core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
@@ -53,35 +53,39 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
     return Listing::Open;
 }
 
-void ContactDetector::measureDepths(ParticleStorage const& ps, core::AABB const& region,
-                                    PeriodicFrame const& frame) {
+void ContactDetector::startDepths(core::AABB const& region, PeriodicFrame const& frame) {
     // Where the rule emits: the region, and on a periodic axis the domain too (settleOwnership).
-    core::AABB emits = region;
+    m_emits = region;
     for (std::size_t d = 0; d < 3; ++d) {
         if (!frame.periodic[d])
             continue;
         int const a = static_cast<int>(d);
-        emits.min[a] = std::max(emits.min[a], frame.domain.min[a]);
-        emits.max[a] = std::min(emits.max[a], frame.domain.max[a]);
+        m_emits.min[a] = std::max(m_emits.min[a], frame.domain.min[a]);
+        m_emits.max[a] = std::min(m_emits.max[a], frame.domain.max[a]);
     }
-    core::Vec3 const period = frame.period();
-    m_depth.assign(m_list.builtSize(), 0.0);
-    for (VerletList::Id id = 0; id < m_depth.size(); ++id) {
-        std::uint32_t const k = m_list.indexOf(id);
-        if (k == VerletList::kDead)
-            continue;
-        core::Vec3 const x = localPosition(m_list.reference(id), ps.image(k), period);
-        double depth = std::numeric_limits<double>::infinity();
-        for (int d = 0; d < 3 && depth > 0.0; ++d) {
-            double const below = x[d] - emits.min[d], above = emits.max[d] - x[d];
-            depth = below > 0.0 && above > 0.0 ? std::min({depth, below, above}) : 0.0;
-        } // outside, or not finite: 0, and the full rule decides
-        m_depth[id] = depth;
-    }
+    m_period = frame.period();
+    m_depth.assign(m_list.builtSize(), kUnmeasured);
 }
 
-bool ContactDetector::deeperThan(VerletList::Id a, VerletList::Id b, double depth) const {
-    return a < m_depth.size() && b < m_depth.size() && std::min(m_depth[a], m_depth[b]) > depth;
+double ContactDetector::depthOf(ParticleStorage const& ps, VerletList::Id id) const {
+    if (id >= m_depth.size())
+        return 0.0; // an arrival: the full rule decides
+    double& depth = m_depth[id];
+    if (depth != kUnmeasured)
+        return depth;
+    core::Vec3 const x =
+        localPosition(m_list.reference(id), ps.image(m_list.indexOf(id)), m_period);
+    depth = std::numeric_limits<double>::infinity();
+    for (int d = 0; d < 3 && depth > 0.0; ++d) {
+        double const below = x[d] - m_emits.min[d], above = m_emits.max[d] - x[d];
+        depth = below > 0.0 && above > 0.0 ? std::min({depth, below, above}) : 0.0;
+    } // outside, or not finite: 0, and the full rule decides
+    return depth;
+}
+
+bool ContactDetector::deeperThan(ParticleStorage const& ps, VerletList::Id a, VerletList::Id b,
+                                 double depth) const {
+    return depthOf(ps, a) > depth && depthOf(ps, b) > depth;
 }
 
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
@@ -94,8 +98,6 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     // Arrivals are never settled face pairs, only their dropped twins. A new list's pairs are
     // settled once, by findFaceTwins (which must know every twin before the first is dropped).
     bool const settled = twins && first == 0;
-    if (first == 0)
-        measureDepths(ps, region, frame);
     if (settled)
         findFaceTwins(ps, region, frame, rounding);
     std::size_t place = first; // where classifyFrom puts the pair it is deciding
