@@ -73,8 +73,10 @@ double ContactDetector::depthOf(ParticleStorage const& ps, VerletList::Id id) co
     double& depth = m_depth[id];
     if (depth != kUnmeasured)
         return depth;
-    core::Vec3 const x =
-        localPosition(m_list.reference(id), ps.image(m_list.indexOf(id)), m_period);
+    std::uint32_t const k = m_list.indexOf(id);
+    if (k == VerletList::kDead)
+        return depth = 0.0;
+    core::Vec3 const x = localPosition(m_list.reference(id), ps.image(k), m_period);
     depth = std::numeric_limits<double>::infinity();
     for (int d = 0; d < 3 && depth > 0.0; ++d) {
         double const below = x[d] - m_emits.min[d], above = m_emits.max[d] - x[d];
