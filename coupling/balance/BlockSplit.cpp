@@ -1,6 +1,8 @@
 #include "coupling/balance/BlockSplit.hpp"
 
+#include "coupling/balance/CutSurface.hpp"
 #include "domain/ForestBuilder.hpp"
+#include "domain/SfcPartition.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -9,11 +11,43 @@
 
 namespace regolith::coupling {
 
+namespace {
+
+/// The largest of `values` (0 if none).
+double largest(std::span<double const> values) {
+    double most = 0.0;
+    for (double const v : values)
+        most = std::max(most, v);
+    return most;
+}
+
+/// The loads of the ranks when the leaves weighing `load` go to the ranks `owner`.
+std::vector<double> rankLoads(std::span<double const> load, std::span<int const> owner, int ranks) {
+    std::vector<double> out(static_cast<std::size_t>(ranks), 0.0);
+    for (std::size_t l = 0; l < load.size(); ++l)
+        out[static_cast<std::size_t>(owner[l])] += load[l];
+    return out;
+}
+
+/// The largest cost (CutSurface.hpp) of the least-largest-load cut of the forest `spec`,
+/// whose leaves weigh `load`. COLLECTIVE.
+double largestCost(core::Comm const& comm, particles::LocalParticles const& local,
+                   BlockLoadModel const& model, domain::ForestSpec const& spec,
+                   std::span<double const> load) {
+    std::vector<int> const owner = domain::partitionCurve(load, comm.size());
+    return largest(rankCosts(comm, local, model, domain::ForestBuilder(spec), load, owner));
+}
+
+} // namespace
+
 SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles const& local,
                              BlockLoadModel const& model, domain::ForestSpec spec,
                              SplitLimits const& limits) {
+    domain::ForestSpec const whole = spec;
     std::size_t firstBlocks = 0;
     std::size_t blocks = 0;
+    std::vector<double> wholeLoad, load;
+    bool weighSurface = false; // the split is taken only if it costs the busiest rank less
     for (bool first = true;; first = false) {
         domain::ForestBuilder const builder(spec);
         blocks = builder.leaves().size();
@@ -21,7 +55,7 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
             firstBlocks = blocks;
         std::vector<particles::LocalParticles::LeafLoad> const counts =
             leafCounts(comm, local, builder);
-        std::vector<double> load;
+        load.clear();
         for (particles::LocalParticles::LeafLoad const& leaf : counts)
             load.push_back(model.weight(leaf));
         std::vector<double> widest(load.size(), 0.0); // the widest grain centred in each leaf
@@ -43,13 +77,23 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
             core::Vec3 const quarter = 0.25 * box.extent();
             split.push_back({{box.min + quarter, box.max - quarter}, leaf.id.level() + 1});
         }
-        // The first round decides: with no block above the floor, whole blocks even the loads.
-        bool const floorReached =
-            !first || *std::max_element(load.begin(), load.end()) > limits.floor * mean;
-        if (split.empty() || !floorReached)
+        // The first round decides. A block above the floor: no cut of whole blocks reaches it.
+        // Lighter blocks: the best cut of them may, else a split may, at the cost of surface.
+        if (first && !(largest(load) > limits.floor * mean)) {
+            std::vector<int> const owner = domain::partitionCurve(load, comm.size());
+            if (!(largest(rankLoads(load, owner, comm.size())) > limits.floor * mean))
+                break;
+            weighSurface = true;
+            wholeLoad = load;
+        }
+        if (split.empty())
             break;
         spec.refine.insert(spec.refine.end(), split.begin(), split.end());
     }
+    if (weighSurface && blocks > firstBlocks &&
+        !(largestCost(comm, local, model, spec, load) <
+          largestCost(comm, local, model, whole, wholeLoad)))
+        return {whole, 0};
     return {std::move(spec), (blocks - firstBlocks) / 7}; // each split adds seven leaves
 }
 

@@ -1,8 +1,11 @@
 // Blocks that split where the load gathers (coupling/balance/BlockSplit.hpp): every block
 // heavier than the share of a rank's mean load is split until the limits stop it, the grains' load
-// is the same on the split forest, and every rank computes the same forest.
+// is the same on the split forest, and every rank computes the same forest; where no block alone
+// outweighs the floor, a split is taken only if its cut costs the busiest rank less, shadows
+// counted (coupling/balance/CutSurface.hpp).
 #include "coupling/balance/BlockSplit.hpp"
 
+#include "coupling/balance/CutSurface.hpp"
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <gtest/gtest.h>
@@ -38,6 +41,27 @@ struct CrowdedRow {
     domain::BlockForest forest{world, spec};
     particles::LocalParticles local{forest};
     explicit CrowdedRow(double radius = 0.001) { addAll(local, world, crowdInFirstBlock(radius)); }
+};
+
+/// P + 1 blocks of edge 1 in a row on P ranks, `perBlock` grains in each, placed by `at(block,
+/// k)`: every block below a rank's share, yet some rank holds two of them in any cut of whole
+/// blocks (on one rank the cut is even).
+struct RowOfEqualBlocks {
+    Comm world;
+    int blocks = world.size() + 1;
+    domain::ForestSpec spec =
+        forestSpec(Vec3::Zero(), Vec3(blocks, 1, 1), {blocks, 1, 1}, allAxes(false));
+    domain::BlockForest forest{world, spec};
+    particles::LocalParticles local{forest};
+    template <class At>
+    RowOfEqualBlocks(int perBlock, At&& at) {
+        std::vector<particles::ParticleInit> grains;
+        particles::Uid uid = 0;
+        for (int b = 0; b < blocks; ++b)
+            for (int k = 0; k < perBlock; ++k)
+                grains.push_back(grain(uid++, at(b, k), 0.001));
+        addAll(local, world, grains);
+    }
 };
 
 double total(std::vector<double> const& load) {
@@ -106,4 +130,51 @@ TEST(BlockSplit, WeightsOfTheSplitForestCountItsBlocksGrains) {
         sum += w;
     }
     EXPECT_DOUBLE_EQ(sum, static_cast<double>(builder.leaves().size()) + 309.0);
+}
+
+TEST(BlockSplit, LighterBlocksSplitWhereTheSplitCutCostsLess) {
+    // Grains spread over each block: the split's cut evens the ranks, few grains on its faces.
+    auto const spread = [](int b, int k) {
+        auto const frac = [](double f) { return 0.01 + 0.98 * (f - std::floor(f)); };
+        return Vec3(b + frac(k * 0.6180339887), frac(k * 0.7548776662), frac(k * 0.5698402910));
+    };
+    RowOfEqualBlocks run(60, spread);
+    std::size_t const splits =
+        coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {1.05, 0.1, 3}).splits;
+    if (run.world.size() == 1)
+        EXPECT_EQ(splits, 0u); // one rank: whole blocks are even
+    else
+        EXPECT_GT(splits, 0u);
+}
+
+TEST(BlockSplit, LighterBlocksStayWholeWhereTheSplitCutCostsMore) {
+    // Each block's grains in one point: a split cannot part them, its cut is no better and has
+    // more blocks, so the whole blocks are kept (a heavier block than the floor would split).
+    RowOfEqualBlocks run(60, [](int b, int) { return Vec3(b + 0.3, 0.3, 0.3); });
+    EXPECT_EQ(coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {1.05, 0.1, 3}).splits,
+              0u);
+    EXPECT_GT(coupling::splitHeavyBlocks(run.world, run.local, {}, run.spec, {0.4, 0.1, 3}).splits,
+              0u);
+}
+
+TEST(CutSurface, ARankPaysForTheShadowsOfGrainsReachingItsBlocks) {
+    // Two blocks; a grain of block 0 reaches across the face into block 1, another does not.
+    Comm world;
+    domain::ForestSpec const spec =
+        forestSpec(Vec3::Zero(), Vec3(2, 1, 1), {2, 1, 1}, allAxes(false));
+    domain::BlockForest forest{world, spec};
+    particles::LocalParticles local{forest};
+    addAll(local, world, {grain(0, Vec3(0.95, 0.5, 0.5), 0.1), grain(1, Vec3(0.5, 0.5, 0.5), 0.1)});
+    domain::ForestBuilder const builder(spec);
+    std::vector<double> const load{3.0, 5.0};
+    int const second = std::min(1, world.size() - 1);
+    std::vector<int> const owner{0, second};
+    std::vector<double> const cost = coupling::rankCosts(world, local, {}, builder, load, owner);
+    ASSERT_EQ(cost.size(), static_cast<std::size_t>(world.size()));
+    if (second == 0) {
+        EXPECT_DOUBLE_EQ(cost[0], 8.0); // one rank, one cuboid: no shadow
+    } else {
+        EXPECT_DOUBLE_EQ(cost[0], 3.0);
+        EXPECT_DOUBLE_EQ(cost[1], 6.0); // its load and the shadow of grain 0
+    }
 }
