@@ -3,7 +3,8 @@
 usage: balance_vtk_check.py --mpiexec M --app APP --scene SCENE --out DIR
 
 Runs SCENE for 300 steps on 2 ranks with a new cut whenever a better one exists
-(balance.every = 10, threshold = 1) and VTK output at steps 0 and 300, then reads the
+(balance.every = 10, threshold = 1; the blocks do not split, balance.split_levels = 0, so
+the forest keeps its 128) and VTK output at steps 0 and 300, then reads the
 piece headers of vtk/blocks_<step>_r<rank>.vtu: at both steps the two pieces hold every
 block of the forest between them, and rank 0 holds another number of blocks at the end than
 at the start. Exit 1 with the reason otherwise.
@@ -40,7 +41,8 @@ def main():
     shutil.rmtree(out, ignore_errors=True)
     command = [args.mpiexec, "-n", "2", "--oversubscribe", args.app, args.scene, "--quiet",
                "--output", out, "--set", "time.steps=300", "--set", "balance.every=10",
-               "--set", "balance.threshold=1", "--set", "output.vtk_every=300"]
+               "--set", "balance.threshold=1", "--set", "balance.split_levels=0",
+               "--set", "output.vtk_every=300"]
     done = subprocess.run(command, capture_output=True, text=True, timeout=60, check=False)
     if done.returncode != 0:
         fail(f"{' '.join(command)} exited with {done.returncode}\n{done.stderr}")
