@@ -65,9 +65,10 @@ void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
         out.push_back(
             {"balance.split_levels", fmt::format("{}", balance.splitLevels),
              why ? std::string(why)
-                 : fmt::format("where a block outweighs a rank's share, the blocks above a "
-                               "twentieth of one split, down to {} levels below the scene's "
-                               "blocks",
+                 : fmt::format("where no cut of whole blocks evens the loads (a block "
+                               "outweighs a rank's share, or the split's cut costs less with "
+                               "its shadows), the blocks above a twentieth of one split, down "
+                               "to {} levels below the scene's blocks",
                                kAutoSplitLevels)});
         return;
     }

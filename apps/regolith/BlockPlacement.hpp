@@ -34,8 +34,9 @@ using WorthMoving = std::function<bool(double after)>;
 inline constexpr double kSplitShare = 0.05;
 
 /// Re-assigns the blocks of `placement` by the load of the masters it holds (and the cells,
-/// when the scene's gravity uses a grid), splitting the heavy blocks where whole blocks
-/// leave the imbalance above balance.threshold and balance.split_levels allows
+/// when the scene's gravity uses a grid), splitting the heavy blocks where no cut of whole
+/// blocks reaches 1 + (balance.threshold - 1) / 2 and balance.split_levels allows, if one block
+/// alone outweighs that or the split's cut costs less with its shadows counted
 /// (coupling::splitHeavyBlocks), and moves every master, with its
 /// force, torque and contact history, to its new owner. The forests and the particles are replaced
 /// in place (references to them stay valid and see the new assignment; what was built on the old
