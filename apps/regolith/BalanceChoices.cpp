@@ -1,5 +1,6 @@
 #include "apps/regolith/BalanceChoices.hpp"
 
+#include "apps/regolith/BlockPlacement.hpp"
 #include "apps/regolith/DynamicBalance.hpp"
 #include "core/Error.hpp"
 #include "coupling/gravity/GravityMethod.hpp"
@@ -23,10 +24,10 @@ void resolveEvery(core::Comm const& comm, SceneDescription& scene, std::vector<A
         out.push_back({"balance.every", fmt::format("{}", balance.every),
                        comm.size() == 1 ? "one rank: nothing to balance"
                        : fixed          ? "domain.balance = \"blocks\" weighs every block the same"
-                                        : "the ranks' loads measured every 10 to 100 steps (20 "
-                                          "times a run, more often while the blocks move), the "
-                                          "blocks re-cut when they differ by more than "
-                                          "balance.threshold"});
+                                        : "the ranks' loads measured every twentieth of the "
+                                          "run's steps, within 10 to 100, more often while the "
+                                          "blocks move; the blocks re-cut when they differ by "
+                                          "more than balance.threshold"});
         return;
     }
     if (balance.every == 0)
@@ -43,8 +44,11 @@ void resolveEvery(core::Comm const& comm, SceneDescription& scene, std::vector<A
                                            balance.every));
 }
 
-/// Why the blocks of `scene` cannot split, or nullptr. Pre: balance.every resolved.
-char const* whyNoSplit(SceneDescription const& scene) {
+/// Why the blocks of `scene` cannot split on `ranks` ranks, or nullptr. Pre: balance.every
+/// resolved.
+char const* whyNoSplit(SceneDescription const& scene, int ranks) {
+    if (ranks == 1)
+        return "the run has one rank, whose blocks are not re-cut";
     if (scene.balance.every == 0)
         return "the blocks are not re-cut during the run (balance.every = 0)";
     coupling::GravityMethodEntry const* gravity = coupling::findGravityMethod(scene.gravity.self);
@@ -56,9 +60,9 @@ char const* whyNoSplit(SceneDescription const& scene) {
 }
 
 /// balance.split_levels: "auto" resolved; explicit levels checked against what can split.
-void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
+void resolveSplit(core::Comm const& comm, SceneDescription& scene, std::vector<AutoChoice>& out) {
     BalanceSection& balance = scene.balance;
-    char const* const why = whyNoSplit(scene);
+    char const* const why = whyNoSplit(scene, comm.size());
     if (balance.splitAuto) {
         balance.splitAuto = false;
         balance.splitLevels = why ? 0 : kAutoSplitLevels;
@@ -67,9 +71,9 @@ void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
              why ? std::string(why)
                  : fmt::format("where no cut of whole blocks evens the loads (a block "
                                "outweighs a rank's share, or the split's cut costs less with "
-                               "its shadows), the blocks above a twentieth of one split, down "
-                               "to {} levels below the scene's blocks",
-                               kAutoSplitLevels)});
+                               "its shadows), the blocks above {:.3g} of a rank's share split, "
+                               "down to {} levels below the scene's blocks",
+                               splitShare(balance.threshold), kAutoSplitLevels)});
         return;
     }
     if (balance.splitLevels > 0 && why)
@@ -83,7 +87,7 @@ void resolveSplit(SceneDescription& scene, std::vector<AutoChoice>& out) {
 std::vector<AutoChoice> resolveBalanceChoices(core::Comm const& comm, SceneDescription& scene) {
     std::vector<AutoChoice> out;
     resolveEvery(comm, scene, out);
-    resolveSplit(scene, out);
+    resolveSplit(comm, scene, out);
     return out;
 }
 

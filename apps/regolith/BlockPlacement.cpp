@@ -57,7 +57,7 @@ coupling::SplitLimits splitLimits(SceneDescription const& scene) {
     // (DynamicBalance.hpp), and a finer split than the threshold needs, so that the cut lasts
     // while the load keeps gathering.
     limits.floor = 1.0 + 0.5 * (scene.balance.threshold - 1.0);
-    limits.share = std::max(0.5 * (scene.balance.threshold - 1.0), kSplitShare);
+    limits.share = splitShare(scene.balance.threshold);
     int deepest = 0;
     for (domain::RefineRegion const& r : scene.forest.refine)
         deepest = std::max(deepest, r.level);

@@ -9,6 +9,7 @@
 #include "coupling/balance/BlockWeights.hpp"
 #include "coupling/simulation/Placement.hpp"
 
+#include <algorithm>
 #include <functional>
 
 namespace regolith::apps {
@@ -28,10 +29,12 @@ namespace regolith::apps {
 /// (max / mean) it would give.
 using WorthMoving = std::function<bool(double after)>;
 
-/// Blocks split where one holds more than this share of a rank's mean load, or half of
-/// balance.threshold - 1 if more (coupling/balance/BlockSplit.hpp: below threshold - 1 the cut
-/// that follows comes within the threshold; half leaves room for the load to keep gathering).
-inline constexpr double kSplitShare = 0.05;
+/// The share of a rank's mean load above which a block splits: half of balance.threshold - 1,
+/// at least a twentieth (coupling/balance/BlockSplit.hpp: below threshold - 1 the cut that
+/// follows comes within the threshold; half leaves room for the load to keep gathering).
+[[nodiscard]] inline double splitShare(double threshold) {
+    return std::max(0.5 * (threshold - 1.0), 0.05);
+}
 
 /// Re-assigns the blocks of `placement` by the load of the masters it holds (and the cells,
 /// when the scene's gravity uses a grid), splitting the heavy blocks where no cut of whole

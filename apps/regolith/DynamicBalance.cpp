@@ -55,8 +55,12 @@ bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
     double const started = MPI_Wtime();
     double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
     std::size_t const blocks = m_placement->forest->globalBlockCount();
-    bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement,
-                                     [enough](double after) { return after <= enough; });
+    double best = m_last; // the best cut's imbalance (this one's, if no other cut is found)
+    bool const moved =
+        balanceByLoad(*m_comm, *m_scene, *m_placement, [enough, &best](double after) {
+            best = after;
+            return after <= enough;
+        });
     double floor = spread.blockFloor;
     if (moved) {
         m_relocate();
@@ -66,16 +70,17 @@ bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
     }
     m_seconds += MPI_Wtime() - started; // a cut not worth moving to costs its search
     m_floor = std::max(m_floor, floor);
-    if (floor > balance.threshold && !m_warned) {
+    if (best > balance.threshold && !m_warned) {
         m_warned = true; // once a run: the blocks are what the scene (and the splits) gave
-        core::log::warn("balance: at step {} the heaviest block weighs {:.2f} times a rank's "
-                        "mean load, above balance.threshold = {}: no cut of whole blocks evens "
-                        "the loads{}. A finer domain.blocks, or a [[domain.refine]] box where "
-                        "the grains gather, does (docs/balance.md)",
-                        stepsDone, floor, balance.threshold,
-                        balance.splitLevels > 0 ? ", and the blocks split no further "
-                                                  "(balance.split_levels, the grains' size)"
-                                                : "");
+        core::log::warn(
+            "balance: at step {} no cut of the {} blocks brings the loads within "
+            "balance.threshold = {}: the best leaves the busiest rank {:.2f} times the mean "
+            "load (the heaviest block weighs {:.2f} times it){}. A finer domain.blocks, or a "
+            "[[domain.refine]] box where the grains gather, does (docs/balance.md)",
+            stepsDone, m_placement->forest->globalBlockCount(), balance.threshold, best, floor,
+            balance.splitLevels > 0 ? ", and the blocks split no further (balance.split_levels, "
+                                      "the grains' size, or the shadows a split would add)"
+                                    : "");
     }
     return moved;
 }

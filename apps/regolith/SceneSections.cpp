@@ -127,7 +127,7 @@ BalanceSection parseBalance(core::ConfigTable const& t) {
                               "a number of steps >= 0 or \"auto\"", s.every);
     s.threshold = t.getOrIf<double>(
         "threshold", s.threshold, [](double x) { return x >= 1.0 && std::isfinite(x); },
-        "an imbalance (max / mean load) >= 1");
+        "a finite imbalance (max / mean load) >= 1");
     if (t.has("split_levels"))
         s.splitAuto = isWordElseInteger(t, "split_levels", "auto", 0, domain::kMaxRefineLevel,
                                         "a number of levels in [0, 8] or \"auto\"", s.splitLevels);

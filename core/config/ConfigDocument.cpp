@@ -162,8 +162,12 @@ void appendValue(std::string& out, toml::node const& node) {
             out += "nan";
         else if (std::isinf(x))
             out += x > 0 ? "inf" : "-inf";
-        else
-            out += fmt::format("{}", x);
+        else {
+            std::string const text = fmt::format("{}", x);
+            out += text;
+            if (text.find_first_of(".e") == std::string::npos)
+                out += ".0"; // a float as TOML writes it: 10.0 is not the integer 10
+        }
     } else if (auto const* b = node.as_boolean()) {
         out += b->get() ? "true" : "false";
     } else {
