@@ -35,6 +35,7 @@ GrainPouring::GrainPouring(core::Comm const& comm, SceneDescription const& scene
         });
     comm.allReduceInPlace(std::span<std::int64_t>(next), core::ReduceOp::Max);
     m_next = std::move(next);
+    m_warnedShort.assign(m_next.size(), false);
 }
 
 bool GrainPouring::due(std::int64_t stepsDone) const {
@@ -110,12 +111,15 @@ bool GrainPouring::afterStep(std::int64_t stepsDone, coupling::Placement& placem
         std::vector<particles::GrainInit> const placed =
             particles::placeBatch(spec, e, batch, static_cast<std::uint64_t>(m_next[e]),
                                   target - m_next[e], near, walls, periodic);
-        if (static_cast<std::int64_t>(placed.size()) < target - m_next[e])
+        if (static_cast<std::int64_t>(placed.size()) < target - m_next[e] && !m_warnedShort[e]) {
+            m_warnedShort[e] = true; // once per entry: the summary's `inserted` counts the rest
             core::log::warn("insert[{}]: after step {}, {} of {} grains found no place without "
-                            "overlap in {} attempts each; they wait for the next batch",
+                            "overlap in {} attempts each; they wait for the next batch (later "
+                            "batches short of room are not reported again)",
                             e, stepsDone,
                             target - m_next[e] - static_cast<std::int64_t>(placed.size()),
                             target - m_next[e], spec.attempts);
+        }
         m_next[e] += static_cast<std::int64_t>(placed.size());
         m_inserted += static_cast<std::int64_t>(placed.size());
         for (particles::GrainInit const& g : placed) {

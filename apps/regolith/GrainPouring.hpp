@@ -41,6 +41,7 @@ private:
     SceneDescription const* m_scene;
     std::vector<std::int64_t> m_batch; ///< per entry, the grains one batch brings
     std::vector<std::int64_t> m_next;  ///< per entry, the next grain's number
+    std::vector<bool> m_warnedShort;   ///< per entry, whether a batch short of room was reported
     std::int64_t m_inserted = 0;
 };
 

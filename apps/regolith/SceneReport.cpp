@@ -46,13 +46,14 @@ void printSceneReport(core::AppContext const& ctx, SceneDescription const& scene
     text +=
         fmt::format("  domain [{}, {}, {}] - [{}, {}, {}], periodic: {}\n", d.min.x(), d.min.y(),
                     d.min.z(), d.max.x(), d.max.y(), d.max.z(), axes(forest.periodic()));
-    text += fmt::format(
-        "  {} blocks ({} x {} x {} root, deepest level {}) on {} ranks, {} idle; "
-        "the particles on {} subdomain{} ({})\n",
-        forest.globalBlockCount(), n[0], n[1], n[2], forest.maxLevel(), ctx.world.size(),
-        forest.idleRankCount(), particleSubdomains, particleSubdomains == 1 ? "" : "s",
-        scene.sync.subdomains == domain::Subdomains::RankBoxes ? "each rank's blocks merged"
-                                                               : "one per block");
+    text += fmt::format("  {} blocks ({} x {} x {} root, deepest level {}) on {} rank{}, {} idle; "
+                        "the particles on {} subdomain{} ({})\n",
+                        forest.globalBlockCount(), n[0], n[1], n[2], forest.maxLevel(),
+                        ctx.world.size(), ctx.world.size() == 1 ? "" : "s", forest.idleRankCount(),
+                        particleSubdomains, particleSubdomains == 1 ? "" : "s",
+                        scene.sync.subdomains == domain::Subdomains::RankBoxes
+                            ? "each rank's blocks merged"
+                            : "one per block");
     // A restart runs the steps from the checkpoint's on (time.steps is a total).
     std::string const steps =
         startStep > 0 ? fmt::format("{} steps (from step {} to {})", scene.time.steps - startStep,
