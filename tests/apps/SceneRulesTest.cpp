@@ -152,7 +152,7 @@ TEST(SceneSections, ParticleTomlRules) {
               "non-negative integer, got -1");
     EXPECT_EQ(errorWith("particles.1.radius=[1.0,\"x\"]"),
               "--set particles.1.radius=[1.0,\"x\"]: particles[1].radius: expected an array of "
-              "numbers, got [1, \"x\"]");
+              "numbers, got [1.0, \"x\"]");
     EXPECT_EQ(errorWith("particles.2.count=1.5"),
               "--set particles.2.count=1.5: particles[2].count: expected an integer, got 1.5 (a "
               "number)");
