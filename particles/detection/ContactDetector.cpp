@@ -158,55 +158,6 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
         sortByUid(ps, out);
 }
 
-ContactDetector::ListOutlook ContactDetector::prepareList(ParticleStorage& ps,
-                                                          core::AABB const& region,
-                                                          PeriodicFrame const& frame) {
-    if (!listed() || m_config.sortByUid)
-        return {}; // detect uses no list
-    decideRebuild(ps, region, frame, kHalfway);
-    m_prepared = true;
-    return {m_rebuildDue, m_rebuildDue || m_list.moved() >= kHalfway * m_list.budget()};
-}
-
-void ContactDetector::decideRebuild(ParticleStorage& ps, core::AABB const& region,
-                                    PeriodicFrame const& frame, double share) {
-    // The settled pairs (classifyListed) hold for one region and frame only.
-    bool const sameFrame = region.min == m_listRegion.min && region.max == m_listRegion.max &&
-                           frame.domain.min == m_listFrame.domain.min &&
-                           frame.domain.max == m_listFrame.domain.max &&
-                           frame.periodic == m_listFrame.periodic;
-    double const moved = std::exchange(m_movedAtMost, std::numeric_limits<double>::infinity());
-    bool const follows = m_list.follow(ps, m_fresh);
-    if (!follows && m_springsLive)
-        throw core::Error("contact detection: the storage changed beyond the Verlet list's "
-                          "trace while it kept springs that were not written back");
-    m_listedBefore = m_list.numPairs();
-    if (follows)
-        forgetDeadFaceTwins(ps);
-    m_rebuildDue = !sameFrame || !follows ||
-                   m_list.arrivals().size() > 64 + m_list.builtSize() / 16 ||
-                   m_list.movedTooFar(ps, moved, share) || !addArrivals(ps, region, frame);
-}
-
-void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
-                                 PeriodicFrame const& frame) {
-    if (!std::exchange(m_prepared, false))
-        decideRebuild(ps, region, frame, 1.0);
-    bool const rebuild = m_rebuildDue;
-    if (rebuild) {
-        writeBackSprings(ps); // while the list still follows the storage
-        rebuildList(ps, region, frame);
-    }
-    m_fillFrom = m_springsLive && !rebuild ? m_listedBefore : 0;
-    m_stats.rebuilt = rebuild;
-    m_stats.arrivals = rebuild ? 0 : m_fresh.size();
-    m_stats.overlapsFound = 0;
-    m_stats.listedPairs = m_list.numPairs();
-    m_stats.settledPairs = m_list.numOwned();
-    m_stats.keptPairs = m_list.numKept();
-    m_stats.faceTwins = m_twins.size();
-}
-
 void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
                                   PeriodicFrame const& frame) {
     m_listRegion = region;

@@ -191,6 +191,16 @@ public:
                             PeriodicFrame const& frame);
     /// After prepareList: the next detect rebuilds the list (the contacts are the same).
     void rebuildNext() { m_rebuildDue = m_prepared; }
+    /// The largest bound for the next noteMotion under which the next prepareList on
+    /// `particles` (the same region and frame) cannot find the list due, provided the storage
+    /// does not change before it: every copy then stays within the skin's budget
+    /// (VerletList::quietMotion). -inf if it may come due whatever the motion (a change since
+    /// the last detect, another region), +inf if there is no list to rebuild. So that the
+    /// ranks need not agree on rebuilds in a step no list can come due (DemStep). Not
+    /// collective.
+    [[nodiscard]] double quietMotion(ParticleStorage const& particles,
+                                     core::AABB const& evaluationRegion,
+                                     PeriodicFrame const& frame) const;
 
     /// Before a synchronisation after which noteMotion(movedAtMost) will be called: writes the
     /// kept springs back to the histories of `particles` if a copy may then have moved skin / 2
@@ -235,6 +245,10 @@ private:
     /// prepareList decided, if it was called).
     void updateList(ParticleStorage& particles, core::AABB const& region,
                     PeriodicFrame const& frame);
+    /// Whether the list was built for `region` and `frame` (its settled pairs hold for them).
+    [[nodiscard]] bool listedFor(core::AABB const& region, PeriodicFrame const& frame) const;
+    /// Whether the copies that arrived since the list's rebuild are too many to add one by one.
+    [[nodiscard]] bool tooManyArrivals() const;
     /// updateList's decision: follows the storage, adds the arrivals' pairs, sets m_rebuildDue;
     /// the positions are compared from `share` x the skin budget on (VerletList::movedTooFar).
     void decideRebuild(ParticleStorage& particles, core::AABB const& region,

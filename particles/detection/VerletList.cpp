@@ -111,6 +111,13 @@ bool VerletList::mayMoveTooFar(double movedAtMost, double share) const {
     return !(half > 0.0) || !(boundAfter(m_moved, movedAtMost) * (1.0 + 1e-9) < share * half);
 }
 
+double VerletList::quietMotion() const {
+    // movedAtMost <= room: (m_moved + movedAtMost) (1 + 1e-9) <= budget (1 - 1e-6) (1 + 1e-9)
+    // plus a few roundings of the budget's size, below the budget: mayMoveTooFar is false.
+    double const room = budget() * (1.0 - 1e-6) - m_moved;
+    return room >= 0.0 && std::isfinite(room) ? room : -std::numeric_limits<double>::infinity();
+}
+
 bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost, double share) {
     double const half = budget();
     if (!(half > 0.0))

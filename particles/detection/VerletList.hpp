@@ -124,6 +124,12 @@ public:
     /// has an id afterwards, and `fresh` receives the storage indices of the copies that got
     /// one now (their pairs are the caller's to add, addPair with idOf()). Not collective.
     bool follow(ParticleStorage& ps, std::vector<std::size_t>& fresh);
+    /// Whether follow(ps) would find nothing to follow: the same storage and trace, whole, and
+    /// no change since the last restart or follow.
+    [[nodiscard]] bool followsUnchanged(ParticleStorage const& ps) const {
+        return m_storage == &ps && ps.traceSession() == m_session && !ps.traceBroken() &&
+               ps.traceJournal().empty();
+    }
 
     /// Whether some copy may have moved skin / 2 or more from its reference position (or is
     /// not finite): the list may then miss a pair and must be rebuilt. `movedAtMost` bounds
@@ -137,6 +143,12 @@ public:
     /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
     /// may then be skin / 2 or more from its reference position.
     [[nodiscard]] bool mayMoveTooFar(double movedAtMost, double share = 1.0) const;
+    /// The largest `movedAtMost` for which the next movedTooFar(ps, movedAtMost, share) is
+    /// false at any share, if the bound holds: mayMoveTooFar(movedAtMost) is false, so every
+    /// copy stays within the budget, whether the positions are compared or not. A relative
+    /// 1e-6 of the budget below the exact limit (the rounding of the sums); -inf if no bound
+    /// is small enough.
+    [[nodiscard]] double quietMotion() const;
     /// The bound on every copy's distance from its reference after the last movedTooFar (the
     /// largest distance found if it compared the positions) [length].
     [[nodiscard]] double moved() const { return m_moved; }

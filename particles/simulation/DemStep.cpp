@@ -2,6 +2,7 @@
 
 #include "core/Error.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
+#include "particles/simulation/StepAgreement.hpp"
 
 #include <algorithm>
 #include <array>
@@ -220,32 +221,39 @@ void DemStep::releaseWorkspace() {
         std::vector<ForceRecord>().swap(r);
 }
 
-void DemStep::agreeOnListRebuilds() {
+bool DemStep::agreeAfterSync() {
+    bool const quiet = std::exchange(m_listsQuiet, false);
     if (m_comm->size() == 1)
-        return;
+        return m_sync->listHoldsHere(*m_local);
     auto blocks = m_local->blocks();
-    int due = 0;
+    AfterSyncAgreement agreed{.bodyForceVote = m_bodyForceVote,
+                              .syncListHolds = m_sync->listHoldsHere(*m_local)};
     m_listHalfway.assign(blocks.size(), 0);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         auto const outlook =
             m_detectors[b].prepareList(blocks[b].particles, blocks[b].block->aabb, m_frame);
-        due = std::max(due, outlook.due ? 1 : 0);
+        agreed.listDue = agreed.listDue || outlook.due;
         m_listHalfway[b] = outlook.halfway ? 1 : 0;
     }
-    // One reduction: the lists' verdict and the body force's vote (0 or 1, and any numbers).
-    std::array<double, 3> votes{static_cast<double>(due), m_bodyForceVote[0], m_bodyForceVote[1]};
-    m_comm->allReduceInPlace(std::span<double>(votes), core::ReduceOp::Max);
-    m_bodyForceVote = {votes[1], votes[2]};
-    if (votes[0] == 0.0)
-        return;
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-        if (m_listHalfway[b] != 0)
-            m_detectors[b].rebuildNext();
+    if (quiet && !m_bodyForceShare) { // StepAgreement.hpp: nothing to agree on
+        if (agreed.listDue)
+            throw core::Error("DemStep: a Verlet list came due although every copy moved less "
+                              "than its quiet motion");
+        return true;
+    }
+    agreed.reduce(*m_comm);
+    m_bodyForceVote = agreed.bodyForceVote;
+    if (agreed.listDue)
+        for (std::size_t b = 0; b < blocks.size(); ++b)
+            if (m_listHalfway[b] != 0)
+                m_detectors[b].rebuildNext();
+    return agreed.syncListHolds;
 }
 
 void DemStep::computeForces(std::uint32_t stamp) {
     bool const reproducible = m_sync->config().reproducible;
     bool const keepPairs = m_config.keepContacts || stamp == 0;
+    bool syncListHolds = false; // on every rank (agreeAfterSync)
     m_bodyForceVote = {};
     if (m_bodyForceShare) {
         auto const t = m_timers->scope(kBodyForceTimer);
@@ -254,7 +262,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
     {
         auto const t = m_timers->scope(kContactTimer);
         auto blocks = m_local->blocks();
-        agreeOnListRebuilds();
+        syncListHolds = agreeAfterSync();
         m_walls.moveTo(time());
         m_walls.resetForces();
         for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -277,7 +285,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
         if (reproducible)
             m_sync->reduceForces(*m_local, m_records, stamp);
         else
-            m_sync->reduceForces(*m_local, stamp);
+            m_sync->reduceForces(*m_local, stamp, syncListHolds);
     }
     // After the reduction: in reproducible mode it sums every master's force from zero.
     if (m_bodyForces) {

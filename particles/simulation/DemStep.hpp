@@ -69,9 +69,11 @@ struct DemStepConfig {
 /// The step (every member below that says so is COLLECTIVE over the communicator of `sync`):
 ///
 ///     integrator.preForce    on every block          (timer "integrate"; moves masters only)
-///     sync.sync(local)                               (timer "sync")
+///     the agreement before the sync                  (one all-reduce, more than one rank)
+///     sync.syncOn(local, its verdict)                (timer "sync")
 ///     the body forces' vote share (setBodyForceVote)  (timer "gravity")
-///     the vote on list rebuilds, with that share     (one all-reduce, more than one rank)
+///     the agreement after the sync: list rebuilds,   (one all-reduce, more than one rank, in
+///     that share, the sync list's hold               the steps that need it)
 ///     per block: resetForces, detect (region = block box, periodic frame of the forest),
 ///                evaluate with stamp = step number   (timer "contact")
 ///     sync.reduceForces(local[, records], stamp)     (timer "sync")
@@ -90,8 +92,9 @@ struct DemStepConfig {
 /// copy (Integrator) bounds every master's displacement, and every shadow's (a copy of its
 /// master, shifted by a period), so the sync skin and the Verlet lists are told that bound
 /// instead of comparing every position with their references each step. On more than one rank
-/// the bound is the largest over all ranks (one all-reduce of a double per step: a block's
-/// shadows may have their masters elsewhere), as LAMMPS's Neighbor::decide does.
+/// the bound is the largest over all ranks (a block's shadows may have their masters
+/// elsewhere), as LAMMPS's Neighbor::decide does. What the ranks agree on, and when:
+/// StepAgreement.hpp.
 ///
 /// With DemStepConfig::checkInvariants (the default in builds with REGOLITH_CHECK_INVARIANTS)
 /// the synchronisation invariants are checked over all ranks after every sync call, where
@@ -259,12 +262,14 @@ private:
     void writeBackSprings();
     /// Detection, evaluation and reduction with stamp `stamp`. COLLECTIVE.
     void computeForces(std::uint32_t stamp);
-    /// On several ranks, before the detections: when some block's Verlet list is due for a
+    /// On several ranks, before the detections, the step's agreement after the sync
+    /// (StepAgreement.hpp), where one is needed: when some block's Verlet list is due for a
     /// rebuild on some rank, every block whose list has used half its skin rebuilds it in this
     /// step too (ContactDetector::prepareList). Lists that rebuild at their own steps keep
     /// the other ranks waiting, in turns, at the force reduction; moving bodies use their
-    /// skins at similar rates, so after one common rebuild they stay in step. COLLECTIVE.
-    void agreeOnListRebuilds();
+    /// skins at similar rates, so after one common rebuild they stay in step. Returns whether
+    /// the sync skin's list holds on every rank (ParticleSync::listHoldsHere). COLLECTIVE.
+    bool agreeAfterSync();
 
     core::Comm const* m_comm;
     ParticleSync* m_sync;
@@ -276,7 +281,7 @@ private:
     core::TimerTree* m_timers;
     PeriodicFrame m_frame;
     std::vector<ContactDetector> m_detectors;        ///< one per local block
-    std::vector<char> m_listHalfway;                 ///< agreeOnListRebuilds, per block
+    std::vector<char> m_listHalfway;                 ///< agreeAfterSync, per block
     std::vector<ContactList> m_contacts;             ///< one per local block
     std::vector<std::vector<ForceRecord>> m_records; ///< one per local block (reproducible)
     std::unique_ptr<BlockContactLoop> m_loop;        ///< m_model's per-block contact loop
@@ -292,6 +297,9 @@ private:
     /// Per local block, the smallest edge of it and its neighbours: a master that moves
     /// farther in one step may skip the neighbour blocks the sync reaches.
     std::vector<double> m_reachEdge;
+    /// This step's agreement before the sync found that no Verlet list can come due
+    /// (BeforeSyncAgreement::listsMayComeDue): agreeAfterSync needs no reduction.
+    bool m_listsQuiet = false;
     bool m_kickPending = false; ///< the last step ended Open
     std::uint64_t m_steps = 0;
     std::uint64_t m_startStep = 0; ///< the step at m_startTime (set-up's or resume's)

@@ -1,17 +1,16 @@
-// The synchronisation phase of DemStep::step: the motion bound checked on every rank before
-// the sync (a grain that moved beyond the neighbour blocks is refused, by uid, on any layout),
-// the kept springs written back where a copy may migrate, the sync itself, and the departures
-// through open faces and walls counted.
+// The synchronisation phase of DemStep::step: the step's agreement before the sync
+// (StepAgreement.hpp: the motion bound, checked on every rank -- a grain that moved beyond the
+// neighbour blocks is refused, by uid, on any layout --, the sync verdict, the Verlet lists'
+// quiet motion), the kept springs written back where a copy may migrate, the sync itself, and
+// the departures through open faces and walls counted.
 #include "core/Error.hpp"
 #include "particles/simulation/DemStep.hpp"
+#include "particles/simulation/StepAgreement.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -49,12 +48,8 @@ double stayingShare(ParticleStorage const& ps, domain::ForestGeometry const& geo
 void DemStep::syncParticles() {
     {
         auto const t = m_timers->scope(kSyncTimer);
-        // Over all ranks before the sync, so that every rank refuses a step that moved a
-        // grain beyond what the sync reaches (else an internal error on one rank mid-sync).
-        // motion: the bound, then the largest share of a block's reach and that block's edge
-        // (the reach as a negative, so that one Max reduction finds the largest share and,
-        // among equal shares, the smallest edge).
-        std::array<double, 3> motion{m_moved, 0.0, -std::numeric_limits<double>::infinity()};
+        // This rank's share of the step's agreement before the sync (StepAgreement.hpp).
+        BeforeSyncAgreement agreed{.moved = m_moved};
         auto const blocks = m_local->blocks();
         std::vector<Uid> fastest(m_movedSinceSync.size(), kInvalidUid);
         for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
@@ -64,20 +59,25 @@ void DemStep::syncParticles() {
                                  m_reachEdge[b], fastest[b]);
         Uid mine = kInvalidUid; // the grain behind this rank's largest share, if measured
         for (std::size_t b = 0; b < m_movedSinceSync.size(); ++b)
-            if (m_movedSinceSync[b] > motion[1] || !(m_movedSinceSync[b] <= motion[1])) {
-                motion[1] = m_movedSinceSync[b];
-                motion[2] = -m_reachEdge[b];
+            if (m_movedSinceSync[b] > agreed.share || !(m_movedSinceSync[b] <= agreed.share)) {
+                agreed.share = m_movedSinceSync[b];
+                agreed.edge = m_reachEdge[b];
                 mine = fastest[b];
             }
-        double const myShare = motion[1];
+        double const myShare = agreed.share;
+        agreed.verdict = m_sync->verdictHere(*m_local, m_moved);
+        if (m_comm->size() > 1)
+            for (std::size_t b = 0; b < blocks.size(); ++b)
+                agreed.quiet = std::min(agreed.quiet,
+                                        m_detectors[b].quietMotion(blocks[b].particles,
+                                                                   blocks[b].block->aabb, m_frame));
+        agreed.reduce(*m_comm);
         // The lowest of every rank's `candidate` (kInvalidUid: none here). COLLECTIVE.
         auto const lowestUid = [this](Uid candidate) {
             auto const uids = m_comm->allGather<Uid>(candidate);
             return *std::min_element(uids.begin(), uids.end());
         };
-        if (m_comm->size() > 1)
-            m_comm->allReduceInPlace(std::span<double>(motion), core::ReduceOp::Max);
-        if (!std::isfinite(motion[1])) { // LargestMove: +inf for a non-finite displacement
+        if (!std::isfinite(agreed.share)) { // LargestMove: +inf for a non-finite displacement
             // Every rank is here: the lowest uid of a master gone non-finite, on any layout.
             Uid worst = kInvalidUid;
             for (BlockParticles const& bp : blocks)
@@ -94,9 +94,9 @@ void DemStep::syncParticles() {
                 uid == kInvalidUid ? std::string("a grain's")
                                    : "particle uid " + std::to_string(uid) + "'s"));
         }
-        if (!(motion[1] < 1.0)) {
+        if (!(agreed.share < 1.0)) {
             // Every rank is here (the shares are reduced): the uid from those that hold it.
-            Uid const uid = lowestUid(myShare == motion[1] ? mine : kInvalidUid);
+            Uid const uid = lowestUid(myShare == agreed.share ? mine : kInvalidUid);
             throw core::InputError(fmt::format(
                 "step {}: {} moved {:.6g} block edges in one step, beyond the neighbour "
                 "blocks the synchronisation reaches (the smallest edge around it is {:.6g}): "
@@ -104,14 +104,14 @@ void DemStep::syncParticles() {
                 "velocities, forces and stiffness that drive the grains)",
                 m_steps + 1,
                 uid == kInvalidUid ? std::string("a grain") : "particle uid " + std::to_string(uid),
-                motion[1], -motion[2]));
+                agreed.share, agreed.edge));
         }
         // A grain that may move skin / 2 from its list's reference may migrate or wrap in
         // this sync: the springs kept beside that block's list go back to the histories first.
         for (std::size_t b = 0; b < blocks.size(); ++b)
-            m_detectors[b].beforeSync(blocks[b].particles, motion[0]);
+            m_detectors[b].beforeSync(blocks[b].particles, agreed.moved);
         try {
-            m_sync->sync(*m_local, m_moved);
+            m_sync->syncOn(*m_local, agreed.verdict);
         } catch (core::RankInputError const& e) { // found mid-sync by one rank: name the step
             throw core::RankInputError(fmt::format("step {}: {}", m_steps + 1, e.what()));
         }
@@ -128,7 +128,8 @@ void DemStep::syncParticles() {
                     break;
                 }
         // The detectors' bound covers the copies of other ranks' masters too.
-        m_moved = motion[0];
+        m_listsQuiet = !agreed.listsMayComeDue();
+        m_moved = agreed.moved;
         for (ContactDetector& d : m_detectors)
             d.noteMotion(m_moved);
         m_moved = 0.0;

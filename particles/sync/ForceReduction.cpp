@@ -149,11 +149,20 @@ std::vector<Contribution> exchangeShadowShares(ParticleSync::Impl& engine, Local
 
 } // namespace
 
+bool ParticleSync::listHoldsHere(LocalParticles const& local) const {
+    return m_updateList && m_updateList->holds(local);
+}
+
 void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp) {
+    // Along the update list if it holds on every rank (no storage changed since the last sync
+    // anywhere): the same shares, without looking the masters up.
+    bool const here = listHoldsHere(local);
+    reduceForces(local, stamp, m_updateList && m_comm->size() > 1 ? m_comm->allTrue(here) : here);
+}
+
+void ParticleSync::reduceForces(LocalParticles& local, std::uint32_t stamp, bool listEverywhere) {
     core::CommStats stats;
-    // Along the update list if no storage changed since the last sync on any rank: the same
-    // shares, without looking the masters up.
-    m_reducedAlongList = m_updateList && m_updateList->reduce(local, stamp, stats);
+    m_reducedAlongList = m_updateList && m_updateList->reduce(local, stamp, stats, listEverywhere);
     if (m_reducedAlongList)
         pruneMasterHistories(local, stamp);
     else

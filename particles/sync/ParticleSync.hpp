@@ -9,6 +9,7 @@
 #include "particles/kernels/ForceRecord.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/SyncMethod.hpp"
+#include "particles/sync/SyncVerdict.hpp"
 
 #include <cstdint>
 #include <limits>
@@ -42,7 +43,7 @@ struct SyncStats {
     /// list for the others (SyncConfig::skin).
     bool leaversOnly = false;
     /// A full call without the skin's growth: some rank held an SOS-class copy at the last
-    /// refresh, which no list can carry (UpdateList::Verdict::Idle).
+    /// refresh, which no list can carry (SyncVerdict::Idle).
     bool skinIdle = false;
 };
 
@@ -86,6 +87,12 @@ public:
     /// integrator's, DemStep::step), +inf if unknown. With a skin it spares the check of every
     /// master against its reference (UpdateList::check); it must hold, or copies go missing.
     void sync(LocalParticles& local, double movedAtMost = std::numeric_limits<double>::infinity());
+    /// sync() in two parts, for a caller that reduces the verdict with values of its own
+    /// (DemStep, StepAgreement.hpp): verdictHere() is this rank's (SyncVerdict.hpp; local,
+    /// Refresh without a sync skin), syncOn() acts on `agreed`, the maximum of every rank's.
+    /// sync(local, movedAtMost) is syncOn(local, that maximum). syncOn is COLLECTIVE.
+    [[nodiscard]] SyncVerdict verdictHere(LocalParticles const& local, double movedAtMost);
+    void syncOn(LocalParticles& local, SyncVerdict agreed);
 
     /// Calls sync() until no shadow was created anywhere (at most `maxCalls` calls; one
     /// all-reduce per call). For set-up: a large grain spanning k block layers needs k calls.
@@ -98,6 +105,13 @@ public:
     /// drops on masters every history entry not stamped `stamp`. Shadows' forces are zeroed.
     /// COLLECTIVE.
     void reduceForces(LocalParticles& local, std::uint32_t stamp);
+    /// The same, the caller knowing whether listHoldsHere() on every rank (`listEverywhere`,
+    /// from a reduction it makes anyway: DemStep): one all-reduce fewer. The shares go along
+    /// the update list if so, by key otherwise. COLLECTIVE.
+    void reduceForces(LocalParticles& local, std::uint32_t stamp, bool listEverywhere);
+    /// Whether the update list of a sync skin holds here for reduceForces: valid, and no
+    /// storage changed since its last refresh (false without one). Local.
+    [[nodiscard]] bool listHoldsHere(LocalParticles const& local) const;
 
     /// Passes between two prunes of the masters' contact histories. An entry left over from a
     /// broken contact is harmless meanwhile: ContactHistory::touch restarts an entry that the

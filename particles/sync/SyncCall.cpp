@@ -1,24 +1,33 @@
 // ParticleSync::sync: one call, along the update list of a sync skin where it holds, for the
 // masters that left their blocks only, or in full (UpdateList.hpp, docs/sync.md).
+#include "core/Error.hpp"
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncEngine.hpp"
 #include "particles/sync/UpdateList.hpp"
 
 namespace regolith::particles {
 
+SyncVerdict ParticleSync::verdictHere(LocalParticles const& local, double movedAtMost) {
+    return m_updateList ? m_updateList->check(local, movedAtMost) : SyncVerdict::Refresh;
+}
+
 void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
+    SyncVerdict const own = verdictHere(local, movedAtMost);
+    syncOn(local, m_updateList ? m_updateList->agree(own) : own);
+}
+
+void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
     // Every rank acts on the same verdict: a refresh and the leavers' Alg. 1 are collective.
-    UpdateList::Verdict const verdict =
-        m_updateList ? m_updateList->agree(m_updateList->check(local, movedAtMost))
-                     : UpdateList::Verdict::Refresh;
-    if (verdict == UpdateList::Verdict::Holds) {
+    if (!m_updateList && verdict != SyncVerdict::Refresh)
+        throw core::Error("sync: a verdict along an update list, but there is none");
+    if (verdict == SyncVerdict::Holds) {
         m_last = SyncStats{};
         m_last.updated = m_updateList->update(local, m_last.comm);
         m_last.alongList = true;
         m_counters.record(m_last.comm);
         return;
     }
-    if (verdict == UpdateList::Verdict::Leavers) {
+    if (verdict == SyncVerdict::Leavers) {
         // Every shadow along the list while the indices hold, then Alg. 1 for the masters
         // that left their blocks only; the others keep their shadows on what budget is left.
         core::CommStats along;
@@ -31,7 +40,7 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
         m_counters.record(along);
         return;
     }
-    if (verdict == UpdateList::Verdict::Idle) {
+    if (verdict == SyncVerdict::Idle) {
         // An SOS-class copy somewhere: a list would not hold, so neither growth (more shadows)
         // nor a refresh (a pass and a key exchange) would pay. The list retries later.
         syncInFull(local, {}, 0.0);

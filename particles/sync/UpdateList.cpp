@@ -182,7 +182,7 @@ bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byI
     return found;
 }
 
-bool UpdateList::unchanged(LocalParticles const& local) const {
+bool UpdateList::holds(LocalParticles const& local) const {
     auto const blocks = local.blocks();
     if (!m_valid || blocks.size() != m_blocks.size())
         return false;
@@ -197,7 +197,7 @@ UpdateList::Verdict UpdateList::check(LocalParticles const& local, double movedA
         --m_idleCalls;
         return Verdict::Idle;
     }
-    if (!unchanged(local) || !(m_budget > 0.0))
+    if (!holds(local) || !(m_budget > 0.0))
         return Verdict::Refresh;
     auto const blocks = local.blocks();
     m_leavers.resize(blocks.size());
@@ -334,10 +334,13 @@ std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
     return updated;
 }
 
-bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats) {
-    bool const here = unchanged(local);
-    if (m_comm.size() > 1 ? !m_comm.allTrue(here) : !here)
+bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats,
+                        bool everywhere) {
+    if (!everywhere)
         return false;
+    if (!holds(local))
+        throw core::Error("sync: the force reduction along the update list was agreed, but a "
+                          "storage changed since");
     auto blocks = local.blocks();
     std::vector<HistoryEntry> entries;
     if (m_exchange) { // the remote shadows' shares, by their place in the owner's list

@@ -41,6 +41,7 @@
 #include "domain/BlockForest.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/SyncMethod.hpp"
+#include "particles/sync/SyncVerdict.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -70,20 +71,8 @@ public:
     /// COLLECTIVE.
     void rebuild(LocalParticles const& local, double budget, core::CommStats& stats);
 
-    /// In increasing demand (agree() takes the maximum).
-    enum class Verdict : int {
-        Holds,   ///< every master within the budget of its reference and inside its block
-        Leavers, ///< within the budget, but some masters left their blocks (leavers())
-        Refresh, ///< invalid, a storage changed (add, remove, re-key), or a master moved too far
-        /// A refresh found an SOS-class copy (hybrid), which the list cannot carry: for the
-        /// next calls (kIdleCalls, twice as many after each refresh that met such a copy on
-        /// this rank again, up to kMaxIdleCalls; the longest stretch over the ranks counts),
-        /// full calls without the skin's growth and no refresh, then a refresh is tried again.
-        /// Without this, every call would be a full one with grown balls plus a refresh: slower
-        /// than no skin (1.4x on the bidisperse scene with r = 16); each retry adds and removes the
-        /// grown balls' shadows.
-        Idle,
-    };
+    /// SyncVerdict.hpp; agree() takes the maximum over the ranks.
+    using Verdict = SyncVerdict;
     static constexpr int kIdleCalls = 32;
     static constexpr int kMaxIdleCalls = 1024;
     /// Where `local` stands against the list, given that no master moved more than
@@ -112,12 +101,17 @@ public:
     /// Pre: agree() said Holds or Leavers, and no storage changed since. COLLECTIVE.
     std::size_t update(LocalParticles& local, core::CommStats& stats);
 
+    /// Whether the list holds here for the force reduction: valid, and no storage changed
+    /// since rebuild(). Local.
+    [[nodiscard]] bool holds(LocalParticles const& local) const;
     /// ParticleSync::reduceForces' in-place path along the list: adds every shadow's force and
     /// torque and its history entries stamped `stamp` to its master and zeroes the shadow's
-    /// force and torque. Returns false on every rank, doing nothing, unless on every rank the
-    /// list is valid and no storage changed since rebuild(). Adds the traffic to `stats`.
+    /// force and torque. `everywhere`: whether holds() on every rank (the caller's reduction);
+    /// returns it, doing nothing if false. Throws core::Error if `everywhere` but not holds()
+    /// here (a storage changed after the caller's reduction). Adds the traffic to `stats`.
     /// COLLECTIVE.
-    bool reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats);
+    bool reduce(LocalParticles& local, std::uint32_t stamp, core::CommStats& stats,
+                bool everywhere);
 
 private:
     struct Shadow {
@@ -136,7 +130,6 @@ private:
         Uid uid = kInvalidUid;
     };
 
-    [[nodiscard]] bool unchanged(LocalParticles const& local) const;
     /// rebuild()'s exchange: sends each owner the keys of this rank's remote shadows (m_from)
     /// and turns the keys received into m_to (`byId`: the local blocks by raw id, ascending).
     /// False if some key names no master here.
