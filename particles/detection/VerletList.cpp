@@ -114,8 +114,12 @@ bool VerletList::mayMoveTooFar(double movedAtMost, double share) const {
 double VerletList::quietMotion() const {
     // movedAtMost <= room: (m_moved + movedAtMost) (1 + 1e-9) <= budget (1 - 1e-6) (1 + 1e-9)
     // plus a few roundings of the budget's size, below the budget: mayMoveTooFar is false.
-    double const room = budget() * (1.0 - 1e-6) - m_moved;
-    return room >= 0.0 && std::isfinite(room) ? room : -std::numeric_limits<double>::infinity();
+    // Without a budget (no skin: an empty block's list) movedTooFar is true at any motion.
+    double const half = budget();
+    double const room = half * (1.0 - 1e-6) - m_moved;
+    return half > 0.0 && room >= 0.0 && std::isfinite(room)
+               ? room
+               : -std::numeric_limits<double>::infinity();
 }
 
 bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost, double share) {

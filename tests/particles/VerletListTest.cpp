@@ -269,4 +269,61 @@ TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHal
     EXPECT_TRUE(list.movedTooFar(ps, -1.0));
 }
 
+TEST(VerletList, WithinTheQuietMotionNoListComesDue) {
+    ParticleStorage ps;
+    for (Uid u = 1; u <= 8; ++u)
+        ps.add(sphere(u, Vec3(double(u), 0.0, 0.0), 0.4, 1.0));
+    double const skin = 0.1;
+    VerletList list;
+    list.restart(ps, skin);
+    // Moves that add up to the quiet motion: never too far, whether the positions are compared
+    // (share 0.5) or not; the motion's bound then leaves less room.
+    double const quiet = list.quietMotion();
+    EXPECT_GT(quiet, 0.49 * skin);
+    EXPECT_LT(quiet, list.budget());
+    EXPECT_FALSE(list.mayMoveTooFar(quiet));
+    ps.position(3) += Vec3(0.5 * quiet, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, 0.5 * quiet, 0.5));
+    double const rest = list.quietMotion();
+    EXPECT_LT(rest, quiet);
+    ps.position(3) += Vec3(rest, 0.0, 0.0);
+    EXPECT_FALSE(list.movedTooFar(ps, rest, 0.5));
+    // Beyond it the list may come due: here it does.
+    ps.position(3) += Vec3(0.02 * skin, 0.0, 0.0);
+    EXPECT_TRUE(list.movedTooFar(ps, 0.02 * skin, 0.5));
+    // A list without a skin (an empty block's) is due at any motion: no quiet motion.
+    list.restart(ps, 0.0);
+    EXPECT_EQ(list.quietMotion(), -std::numeric_limits<double>::infinity());
+}
+
+TEST(VerletList, TheDetectorsQuietMotionEndsWithAChangeOfItsStorage) {
+    Scene s;
+    ParticleStorage ps;
+    for (int k = 0; k < 50; ++k)
+        ps.add(s.randomCopy());
+    double const inf = std::numeric_limits<double>::infinity();
+    ContactList out;
+    EXPECT_EQ(ContactDetector().quietMotion(ps, s.region, s.frame), inf); // no list
+    DetectorConfig withSkin;
+    withSkin.relativeSkin = 0.5;
+    ContactDetector listed(withSkin);
+    EXPECT_EQ(listed.quietMotion(ps, s.region, s.frame), -inf); // none built yet
+    listed.detect(ps, {}, s.region, s.frame, out);
+    double const quiet = listed.quietMotion(ps, s.region, s.frame);
+    EXPECT_GT(quiet, 0.0);
+    EXPECT_LT(quiet, inf);
+    // Moved within it: prepareList finds the list not due, and the detect keeps it.
+    listed.noteMotion(quiet);
+    EXPECT_FALSE(listed.prepareList(ps, s.region, s.frame).due);
+    listed.detect(ps, {}, s.region, s.frame, out);
+    EXPECT_FALSE(listed.stats().rebuilt);
+    // Another region, or a copy added since the last detect: no motion rules a rebuild out.
+    AABB const other{Vec3::Zero(), Vec3(3.0, 6.0, 6.0)};
+    EXPECT_EQ(listed.quietMotion(ps, other, s.frame), -inf);
+    ps.add(s.randomCopy());
+    EXPECT_EQ(listed.quietMotion(ps, s.region, s.frame), -inf);
+    listed.detect(ps, {}, s.region, s.frame, out);
+    EXPECT_GT(listed.quietMotion(ps, s.region, s.frame), 0.0);
+}
+
 } // namespace
