@@ -12,7 +12,10 @@ per-repeat ratios). --ranks 2 runs the weak-scaled scenes (the box doubled along
 ranks, LAMMPS on two too. --subdomains blocks adds the runs with one particle subdomain per
 block (sync.subdomains = "blocks", the synchronisation crossing every block face), to show what
 merging a rank's blocks saves. --chart draws PUpCS against blocks per rank with LAMMPS's as a
-line (docs/images/dem-blocks-per-rank.png).
+line (docs/images/dem-blocks-per-rank.png). --against DIR runs a second build's regolith right
+after each of this build's runs, with the same keys, and reports this build's PUpCS over it
+(median of the per-repeat ratios, and the range): a change measured side by side on a shared
+machine.
 
 LAMMPS: pair_style gran/hooke/history with Regolith's spring-dashpot numbers (k_t = 2/7 k_n,
 gamma_t = gamma_n / 2), neighbor 0.1 (bin for A and B; multi with comm_modify mode multi for C),
@@ -20,7 +23,7 @@ neigh_modify delay 0 every 1 check yes, fix nve/sphere; decks granular.in, ramp.
 
 usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
-                          [--subdomains merged [blocks]] [--small]
+                          [--subdomains merged [blocks]] [--small] [--against DIR]
                           [--chart PNG [--chart-from CSV...]]
 """
 import argparse
@@ -133,6 +136,8 @@ def chart(path, csv_paths):
     ranks = rows[0]["ranks"]
     ours, theirs = {}, {}
     for r in rows:
+        if r.get("build") == "against":
+            continue
         if r["subdomains"] == "lammps":
             theirs.setdefault(r["scene"], []).append(float(r["pupcs"]))
         else:
@@ -176,6 +181,7 @@ def main():
     p.add_argument("--subdomains", nargs="*", default=["merged"])
     p.add_argument("--small", action="store_true",
                    help="every scene in a box of a few hundred grains (a check, not a figure)")
+    p.add_argument("--against", help="a second build directory, run alternating with --build")
     p.add_argument("--chart", help="PNG to draw from this run's CSV")
     p.add_argument("--chart-from", nargs="+",
                    help="draw --chart from these CSVs instead of running")
@@ -187,6 +193,8 @@ def main():
         for scene, small in SMALL.items():
             SCENES[scene].update(small)
     app = os.path.join(a.build, "bin", "regolith")
+    builds = [("this", app)] + ([("against", os.path.join(a.against, "bin", "regolith"))]
+                                if a.against else [])
     os.makedirs(a.out, exist_ok=True)
     theirs, rows = {}, []
     print(f"ranks {a.ranks}, {a.steps} steps, {a.repeats} repeats, defaults only")
@@ -213,26 +221,37 @@ def main():
             runs = {}
             for repeat in range(a.repeats):
                 for subdomains in a.subdomains:
-                    for b in a.blocks:
+                    for b, (build, path) in ((b, x) for b in a.blocks for x in builds):
                         args = base + ["--set", blocks_arg(b, a.ranks),
                                        "--set", f'sync.subdomains="{subdomains}"']
-                        s = regolith(app, scene, a.ranks, args, os.path.join(tmp, "run.json"))
+                        s = regolith(path, scene, a.ranks, args, os.path.join(tmp, "run.json"))
                         if s["particles"] != grains:
                             sys.exit(f"blocks_per_rank: {s['particles']} grains, the dump "
                                      f"{grains}")
-                        runs.setdefault((subdomains, b), []).append(s["pupcs"])
+                        key = (subdomains, b) if build == "this" else (subdomains, b, build)
+                        runs.setdefault(key, []).append(s["pupcs"])
                         rows.append([scene, a.ranks, subdomains, b, repeat, grains, a.steps,
                                      s["wall_s"], s["pupcs"], s["timing_s"].get("sync", ""),
                                      s["timing_s"].get("contact", ""),
                                      s["timing_s"].get("integrate", ""), s["shadows"],
-                                     s["peak_rss_bytes"]])
+                                     s["peak_rss_bytes"], build])
                 loop, atoms = lammps(scene, a.ranks, data, params, a.steps, tmp)
                 if atoms != grains:
                     sys.exit(f"blocks_per_rank: LAMMPS ran {atoms} atoms, Regolith {grains}")
                 theirs.setdefault(scene, []).append(a.steps * atoms / (loop * a.ranks))
                 rows.append([scene, a.ranks, "lammps", "", repeat, grains, a.steps, loop,
-                             theirs[scene][-1], "", "", "", "", ""])
-            for (subdomains, b), pupcs in sorted(runs.items()):
+                             theirs[scene][-1], "", "", "", "", "", ""])
+            for key, pupcs in sorted(runs.items(), key=lambda kv: (len(kv[0]), kv[0])):
+                subdomains, b = key[:2]
+                if len(key) == 3:  # --against: its LAMMPS ratio, and this build's over it
+                    ours = [x / y for x, y in zip(runs[(subdomains, b)], pupcs)]
+                    vs_lmp = statistics.median(x / y for x, y in zip(pupcs, theirs[scene]))
+                    print(f"| {scene.upper()} | {grains} | {b} | {subdomains}, --against | "
+                          f"{statistics.median(pupcs):.3e} | {min(pupcs):.3e}–{max(pupcs):.3e} "
+                          f"| | {vs_lmp:.2f} |  this build / --against: "
+                          f"{statistics.median(ours):.3f} ({min(ours):.3f}–{max(ours):.3f})",
+                          flush=True)
+                    continue
                 one = runs[(subdomains, a.blocks[0])]
                 vs_one = statistics.median(x / y for x, y in zip(pupcs, one))
                 vs_lmp = statistics.median(x / y for x, y in zip(pupcs, theirs[scene]))
@@ -247,7 +266,7 @@ def main():
         w = csv.writer(f)
         w.writerow(["scene", "ranks", "subdomains", "blocks_per_rank", "repeat", "grains",
                     "steps", "loop_s", "pupcs", "sync_s", "contact_s", "integrate_s",
-                    "shadows", "peak_rss_bytes"])
+                    "shadows", "peak_rss_bytes", "build"])
         w.writerows(rows)
     if a.chart:
         chart(a.chart, [csv_path])

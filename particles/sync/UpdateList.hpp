@@ -32,9 +32,9 @@
 /// sends those masters' motion and history in that order, and receives back the forces,
 /// torques and touched history entries of the shadows that have any, by their place in it
 /// (LAMMPS's send lists, Comm::borders then forward_comm / reverse_comm). No decision,
-/// look-up or key per call. Whether the
-/// list holds is decided by every rank together (agree(): the most demanding verdict wins),
-/// since a refresh is collective.
+/// look-up or key per call. Whether the list holds is decided by every rank together (agree(),
+/// or a reduction of the caller's: the most demanding verdict wins), since a refresh is
+/// collective.
 #include "core/mpi/Comm.hpp"
 #include "core/mpi/CommCounters.hpp"
 #include "core/mpi/NeighbourExchange.hpp"
@@ -98,7 +98,7 @@ public:
     /// Copies every master's motion and contact history to its shadows, as Alg. 1's update
     /// does (flags and owner stay as the refresh left them: nothing changes them between
     /// refreshes); returns the number of shadows updated here. Adds the traffic to `stats`.
-    /// Pre: agree() said Holds or Leavers, and no storage changed since. COLLECTIVE.
+    /// Pre: the ranks agreed on Holds or Leavers, and no storage changed since. COLLECTIVE.
     std::size_t update(LocalParticles& local, core::CommStats& stats);
 
     /// Whether the list holds here for the force reduction: valid, and no storage changed

@@ -1,7 +1,8 @@
 // DemStep around the synchronisation, on 1-8 ranks: grains leaving an open domain are counted
 // and leave no copy behind; NNS refuses a grain larger than the blocks before the first step; a
-// bad time step is refused; the ranks rebuild their Verlet lists in the same step, and lists at
-// rest are not rebuilt for others; the body forces' vote is the maximum over the ranks.
+// bad time step is refused; the ranks rebuild their Verlet lists in the same step (the same
+// steps where the agreement on it is skipped), and lists at rest are not rebuilt for others; the
+// body forces' vote is the maximum over the ranks.
 #include "core/Error.hpp"
 #include "core/mpi/Comm.hpp"
 #include "core/timing/TimerTree.hpp"
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 using namespace regolith;
 using namespace regolith::particles;
@@ -28,9 +30,11 @@ namespace {
 /// Grains of radius 0.2 at {1, 3, 5, 7}^3 in a periodic [0, 8]^3 of 2 x 2 x 2 blocks, moving
 /// along y at speed(rank that holds them) for 150 steps (at most 0.3: none leaves its block, no
 /// contacts); `rebuilt(step, yes)` is called after every step with whether this rank's lists
-/// were rebuilt in it. Returns this rank's list rebuilds after the set-up's. COLLECTIVE.
+/// were rebuilt in it; `syncSkin`: SyncConfig::skin. Returns this rank's list rebuilds after
+/// the set-up's. COLLECTIVE.
 template <class Speed, class OnStep>
-std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& rebuilt) {
+std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& rebuilt,
+                               double syncSkin = 0.0) {
     domain::ForestSpec spec;
     spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
     spec.rootBlocks = {2, 2, 2};
@@ -42,7 +46,7 @@ std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& reb
         for (double y = 1.0; y < 8.0; y += 2.0)
             for (double z = 1.0; z < 8.0; z += 2.0)
                 local.addMaster(grain(uid++, {x, y, z}, {0.0, speed(comm.rank()), 0.0}, 0.2));
-    ParticleSync sync(comm, forest, SyncConfig{});
+    ParticleSync sync(comm, forest, SyncConfig{.skin = syncSkin});
     core::TimerTree timers;
     DemStepConfig c;
     c.dt = kDt;
@@ -145,7 +149,7 @@ TEST(DemStep, RejectsABadTimeStep) {
 TEST(DemStep, ListsOfMovingBodiesRebuildInTheSameStep) {
     // Each rank's grains move at their own speed (1 or 0.75): the slower lists have used three
     // quarters of their skin when the faster are due, so every rank rebuilds in that step
-    // (DemStep::agreeOnListRebuilds), not in turns that keep the others waiting.
+    // (DemStep::agreeAfterSync), not in turns that keep the others waiting.
     core::Comm const world;
     int disagreements = 0;
     std::uint64_t const rebuilds = runMovingLattice(
@@ -161,6 +165,20 @@ TEST(DemStep, ListsOfMovingBodiesRebuildInTheSameStep) {
         });
     EXPECT_EQ(disagreements, 0);
     EXPECT_GE(rebuilds, 2u) << "the lists must be rebuilt while moving for the test to mean much";
+}
+
+TEST(DemStep, StepsWithoutTheRebuildAgreementRebuildAsWithIt) {
+    // With a sync skin the sync goes along its list (no storage changes), so in the steps
+    // whose motion stays within every list's quiet motion the ranks skip the agreement after
+    // the sync (StepAgreement.hpp); without one they agree every step. The same rebuilds.
+    core::Comm const world;
+    auto const speed = [](int rank) { return rank % 2 == 0 ? 1.0 : 0.75; };
+    std::vector<int> every, skipping;
+    runMovingLattice(world, speed, [&](int, bool rebuilt) { every.push_back(rebuilt); });
+    std::uint64_t const rebuilds = runMovingLattice(
+        world, speed, [&](int, bool rebuilt) { skipping.push_back(rebuilt); }, 0.05);
+    EXPECT_EQ(skipping, every);
+    EXPECT_GE(rebuilds, 2u);
 }
 
 TEST(DemStep, ListsAtRestAreNotRebuiltForOthers) {
