@@ -89,6 +89,8 @@ SMALL = {
     "load_balance.py": ["--ranks", "2", "--steps", "5", "--repeats", "1",
                         "--out", "{tmp}/bench/out"],
     "regolith": ["--output", "{tmp}/out"],
+    "collectives_per_step.py": ["--steps", "2", "--blocks", "1", "--small",
+                                "--out", "{tmp}/bench/out"],
     "instruction_counts.py": ["--steps", "1", "--sync-steps", "1",
                               "--set", "domain.max=[8.0,8.0,8.0]", "--out", "{tmp}/bench/out"],
     "tutorial_figures.py": ["--pull-steps", "2000", "--spin-sites", "6", "--spin-steps", "600",
