@@ -240,10 +240,16 @@ TEST(VerletList, FloatReferencesNeverHideAMoveOfHalfTheSkin) {
     EXPECT_GT(hidden, 150);
 }
 
-TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHalfTheSkin) {
+/// Eight grains of radius 0.4 on the x axis, one apart.
+ParticleStorage rowOfEight() {
     ParticleStorage ps;
     for (Uid u = 1; u <= 8; ++u)
         ps.add(sphere(u, Vec3(double(u), 0.0, 0.0), 0.4, 1.0));
+    return ps;
+}
+
+TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHalfTheSkin) {
+    ParticleStorage ps = rowOfEight();
     double const skin = 0.1;
     VerletList list;
     list.restart(ps, skin);
@@ -270,9 +276,7 @@ TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHal
 }
 
 TEST(VerletList, WithinTheQuietMotionNoListComesDue) {
-    ParticleStorage ps;
-    for (Uid u = 1; u <= 8; ++u)
-        ps.add(sphere(u, Vec3(double(u), 0.0, 0.0), 0.4, 1.0));
+    ParticleStorage ps = rowOfEight();
     double const skin = 0.1;
     VerletList list;
     list.restart(ps, skin);
