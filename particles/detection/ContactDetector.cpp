@@ -171,6 +171,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
         m_cells.build({}, {}, {}, 1.0, 1);
         m_listScale = 0.0; // the first arrival rebuilds
         m_list.restart(ps, 0.0);
+        m_depth.clear(); // no depth left for the ids the arrivals get
         return;
     }
     // A skin for the scene: every kSkinChoiceEvery-th rebuild bins with the widest one and
