@@ -54,15 +54,7 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
 }
 
 void ContactDetector::startDepths(core::AABB const& region, PeriodicFrame const& frame) {
-    // Where the rule emits: the region, and on a periodic axis the domain too (settleOwnership).
-    m_emits = region;
-    for (std::size_t d = 0; d < 3; ++d) {
-        if (!frame.periodic[d])
-            continue;
-        int const a = static_cast<int>(d);
-        m_emits.min[a] = std::max(m_emits.min[a], frame.domain.min[a]);
-        m_emits.max[a] = std::min(m_emits.max[a], frame.domain.max[a]);
-    }
+    m_emits = emittingBox(region, frame);
     m_period = frame.period();
     m_depth.assign(m_list.builtSize(), kUnmeasured);
 }

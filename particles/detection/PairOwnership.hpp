@@ -40,6 +40,11 @@ enum class Settled {
     return 0.5 * skin + 0.5 * dr + rounding;
 }
 
+/// Where the contact-point rule emits a pair whose ownership point lies there: `region`, and on
+/// a periodic axis of `frame` the domain too (a point outside it wraps to another image:
+/// ContactDetector's `image(i) == -o`).
+[[nodiscard]] core::AABB emittingBox(core::AABB const& region, PeriodicFrame const& frame);
+
 /// Settles the rule for a pair whose reference midpoint, in the frame of the copy of i the
 /// block holds (its local position), is `mid`, and whose ownership point stays within `reach`
 /// of it (ownershipReach). `region` is the block's evaluation region, `frame` the detection's
