@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +17,7 @@
 #include <string>
 #include <type_traits>
 #include <typeinfo>
+#include <utility>
 #include <vector>
 
 namespace regolith::core {
@@ -23,30 +25,61 @@ namespace regolith::core {
 template <class T>
 concept Packable = std::is_trivially_copyable_v<T>;
 
+/// The bytes are written into storage that only grows (zero-filled once, when it grows), so
+/// that a value of known size packs as one store: a shadow's state goes out every step.
 class SendBuffer {
 public:
     void writeBytes(void const* data, std::size_t n) {
-        auto const* p = static_cast<std::byte const*>(data);
-        m_data.insert(m_data.end(), p, p + n);
+        if (n > m_data.size() - m_size) [[unlikely]]
+            grow(n);
+        if (n > 0) // an empty vector or string: memcpy from a null pointer is undefined
+            std::memcpy(m_data.data() + m_size, data, n);
+        m_size += n;
     }
-    [[nodiscard]] std::size_t size() const { return m_data.size(); }
-    [[nodiscard]] bool empty() const { return m_data.empty(); }
+    [[nodiscard]] std::size_t size() const { return m_size; }
+    [[nodiscard]] bool empty() const { return m_size == 0; }
     [[nodiscard]] std::byte const* data() const { return m_data.data(); }
-    [[nodiscard]] std::span<std::byte const> bytes() const { return m_data; }
-    void clear() { m_data.clear(); }
-    void reserve(std::size_t n) { m_data.reserve(n); }
+    [[nodiscard]] std::span<std::byte const> bytes() const { return {m_data.data(), m_size}; }
+    /// Empties the buffer and keeps its storage.
+    void clear() { m_size = 0; }
+    void reserve(std::size_t n) {
+        if (n > m_data.size())
+            m_data.resize(n);
+    }
     /// Moves the bytes out (e.g. into an exchange); the buffer is empty afterwards.
-    [[nodiscard]] std::vector<std::byte> release() { return std::move(m_data); }
+    [[nodiscard]] std::vector<std::byte> release();
 
 private:
-    std::vector<std::byte> m_data;
+    void grow(std::size_t n);
+
+    std::vector<std::byte> m_data; ///< storage; the first m_size bytes are the message
+    std::size_t m_size = 0;
 };
 
 class RecvBuffer {
 public:
     RecvBuffer() = default;
     explicit RecvBuffer(std::vector<std::byte> data)
-        : m_data(std::move(data)) {}
+        : m_data(std::move(data))
+        , m_size(m_data.size()) {}
+    /// The first `size` bytes of `storage` are the message (storage kept for the next one).
+    RecvBuffer(std::vector<std::byte> storage, std::size_t size)
+        : m_data(std::move(storage))
+        , m_size(std::min(size, m_data.size())) {}
+    RecvBuffer(RecvBuffer const&) = default;
+    RecvBuffer& operator=(RecvBuffer const&) = default;
+    /// A moved-from buffer is empty (its length goes with the bytes).
+    RecvBuffer(RecvBuffer&& o) noexcept
+        : m_data(std::move(o.m_data))
+        , m_size(std::exchange(o.m_size, 0))
+        , m_pos(std::exchange(o.m_pos, 0)) {}
+    RecvBuffer& operator=(RecvBuffer&& o) noexcept {
+        m_data = std::move(o.m_data);
+        m_size = std::exchange(o.m_size, 0);
+        m_pos = std::exchange(o.m_pos, 0);
+        return *this;
+    }
+    ~RecvBuffer() = default;
 
     /// Copies n bytes out; throws BufferError if fewer remain.
     void readBytes(void* out, std::size_t n, char const* what) {
@@ -65,15 +98,21 @@ public:
             throwCorrupt(n, elementBytes, what);
         return static_cast<std::size_t>(n);
     }
-    [[nodiscard]] std::size_t remaining() const { return m_data.size() - m_pos; }
+    [[nodiscard]] std::size_t remaining() const { return m_size - m_pos; }
     [[nodiscard]] bool exhausted() const { return remaining() == 0; }
-    [[nodiscard]] std::size_t size() const { return m_data.size(); }
+    [[nodiscard]] std::size_t size() const { return m_size; }
+    /// The storage, for the next message (the buffer is empty afterwards).
+    [[nodiscard]] std::vector<std::byte> takeStorage() {
+        m_size = m_pos = 0;
+        return std::move(m_data);
+    }
 
 private:
     [[noreturn]] void throwShort(std::size_t n, char const* what) const;
     [[noreturn]] void throwCorrupt(std::uint64_t n, std::size_t bytes, char const* what) const;
 
     std::vector<std::byte> m_data;
+    std::size_t m_size = 0;
     std::size_t m_pos = 0;
 };
 

@@ -246,6 +246,7 @@ void NeighbourExchange::start() {
     for (std::size_t i = 0; i < n; ++i) {
         if (static_cast<int>(i) == m_selfIndex) {
             m_recv[i] = m_send[i].release();
+            m_recvSizes[i] = m_recv[i].size();
             m_ready[i] = true;
             continue;
         }
@@ -283,11 +284,12 @@ void NeighbourExchange::onCompleted(std::size_t i) {
     }
     std::uint64_t const size = m_recvSizes[i];
     if (size == 0 || size > m_maxMessageBytes) { // over the limit: no payload follows
-        m_recv[i].clear();
         m_ready[i] = true;
         return;
     }
-    m_recv[i].resize(static_cast<std::size_t>(size));
+    // The storage only grows: zero-filled once, not for every message.
+    if (m_recv[i].size() < size)
+        m_recv[i].resize(static_cast<std::size_t>(size));
     mpiCheck(MPI_Irecv(m_recv[i].data(), static_cast<int>(size), MPI_BYTE, m_peers[i],
                        toInt(Tag::ExchangeData), m_comm.raw(), &m_requests[n + i]),
              "MPI_Irecv");
@@ -310,11 +312,11 @@ void NeighbourExchange::waitImpl(Delivery deliver) {
                 if (static_cast<int>(next) != m_selfIndex && m_recvSizes[next] > m_maxMessageBytes)
                     throw Error(tooLargeMessage(m_peers[next], m_comm.rank(), m_recvSizes[next],
                                                 m_maxMessageBytes));
-                RecvBuffer in(std::move(m_recv[next]));
-                m_recv[next] = {};
+                RecvBuffer in(std::move(m_recv[next]), m_recvSizes[next]);
                 int const from = m_peers[next];
-                ++next;
                 deliver(from, in);
+                m_recv[next] = in.takeStorage(); // for the next call (empty if moved out)
+                ++next;
                 continue;
             }
             // Something is outstanding, else peer `next` would be ready.
@@ -380,10 +382,8 @@ void NeighbourExchange::drain() noexcept {
 
 void NeighbourExchange::endCall() noexcept {
     m_sendRequests.clear();
-    for (auto& b : m_send)
+    for (auto& b : m_send) // both keep their storage for the next call
         b.clear();
-    for (auto& r : m_recv)
-        r = {};
     m_sendError.clear();
     m_inFlight = false;
 }

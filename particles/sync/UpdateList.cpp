@@ -267,17 +267,20 @@ namespace {
 /// copyMotion through a message: what the owner sends of master i (its position is every
 /// copy's canonical position; its orientation only if its storage keeps any, else it is the
 /// identity), and what the shadow's rank makes of it, with copyMotion's bits.
-void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i) {
+/// `fields`: grainFieldComponents(), asked once per message (most scenes declare none).
+void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+                 std::size_t fields) {
     bool const oriented = ps.storesOrientations();
     b << ps.position(i) << ps.velocity(i) << ps.angularVelocity(i) << oriented;
     if (oriented)
         b << ps.orientation(i);
     b << ps.history(i).entries();
-    sync_detail::writeFields(b, ps, i);
+    if (fields > 0)
+        sync_detail::writeFields(b, ps, i);
 }
 
 void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
-                std::vector<HistoryEntry>& history) {
+                std::vector<HistoryEntry>& history, std::size_t fields) {
     bool oriented = false;
     b >> ps.position(k) >> ps.velocity(k) >> ps.angularVelocity(k) >> oriented;
     core::Quat q = core::Quat::Identity();
@@ -287,19 +290,21 @@ void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
     ps.setOrientation(k, q);
     if (!history.empty() || !ps.history(k).empty())
         ps.history(k).assign(history);
-    ps.setFieldValues(k, sync_detail::readFields(b));
+    if (fields > 0)
+        ps.setFieldValues(k, sync_detail::readFields(b));
 }
 
 } // namespace
 
 std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
     auto blocks = local.blocks();
+    std::size_t const fields = grainFieldComponents();
     if (m_exchange) { // the remote shadows' messages travel while the local ones are copied
         auto const& peers = m_exchange->peers();
         for (std::size_t p = 0; p < peers.size(); ++p) {
             core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
             for (CopyAt const& m : m_to[p])
-                writeMotion(out, blocks[m.block].particles, m.index);
+                writeMotion(out, blocks[m.block].particles, m.index, fields);
         }
         m_exchange->start();
     }
@@ -320,7 +325,7 @@ std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
         m_exchange->wait([&](int from, core::RecvBuffer& in) {
             for (CopyAt const& s : m_from[static_cast<std::size_t>(peerSlot(from))]) {
                 BlockParticles& target = blocks[s.block];
-                readMotion(in, target.particles, s.index, history);
+                readMotion(in, target.particles, s.index, history, fields);
                 if (!target.sent.empty())
                     forgetSent(target, target.particles.uid(s.index));
                 ++updated;

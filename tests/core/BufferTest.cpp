@@ -98,3 +98,45 @@ TEST(Buffer, ShortReadMessageNamesOffsetAndSize) {
         EXPECT_NE(msg.find("4-byte buffer"), std::string::npos) << msg;
     }
 }
+
+TEST(Buffer, ASendBufferClearedAndRefilledHoldsOnlyTheNewBytes) {
+    SendBuffer s;
+    s << std::vector<double>(1000, 1.0); // grows the storage
+    s.clear();
+    EXPECT_TRUE(s.empty());
+    s << 7 << 2.5;
+    EXPECT_EQ(s.size(), sizeof(int) + sizeof(double));
+    EXPECT_EQ(s.bytes().size(), s.size());
+    RecvBuffer r = toRecv(s);
+    EXPECT_EQ(r.size(), sizeof(int) + sizeof(double));
+    EXPECT_EQ(read<int>(r), 7);
+    EXPECT_EQ(read<double>(r), 2.5);
+    EXPECT_TRUE(r.exhausted());
+    EXPECT_TRUE(s.empty()) << "release() leaves the buffer empty";
+}
+
+TEST(Buffer, ARecvBufferOnLargerStorageReadsOnlyItsMessage) {
+    SendBuffer s;
+    s << 1 << 2 << 3;
+    std::vector<std::byte> storage = s.release();
+    storage.resize(storage.size() + 64, std::byte{0xff}); // a longer earlier message's tail
+    RecvBuffer r(std::move(storage), 2 * sizeof(int));
+    EXPECT_EQ(read<int>(r), 1);
+    EXPECT_EQ(read<int>(r), 2);
+    EXPECT_TRUE(r.exhausted());
+    EXPECT_THROW(read<int>(r), BufferError) << "the tail beyond the message is not readable";
+    std::vector<std::byte> const back = r.takeStorage();
+    EXPECT_EQ(back.size(), 3 * sizeof(int) + 64) << "the storage comes back whole, for reuse";
+    EXPECT_EQ(r.size(), 0U);
+}
+
+TEST(Buffer, AMovedFromRecvBufferIsEmpty) {
+    SendBuffer s;
+    s << 1.5;
+    RecvBuffer a = toRecv(s);
+    RecvBuffer b(std::move(a));
+    EXPECT_EQ(a.size(), 0U); // a moved-from buffer is specified empty
+    EXPECT_TRUE(a.exhausted());
+    EXPECT_THROW(read<double>(a), BufferError);
+    EXPECT_EQ(read<double>(b), 1.5);
+}
