@@ -69,6 +69,7 @@ ForestSpec parseForestSpec(core::ConfigTable const& section) {
         fmt::format("an array of 3 positive integers (at most {} each)", kMaxRootBlocksPerAxis));
     for (std::size_t a = 0; a < 3; ++a)
         spec.rootBlocks[a] = static_cast<int>(blocks[a]);
+    spec.rootBlocksAuto = !section.has("blocks");
     std::uint64_t const total = static_cast<std::uint64_t>(spec.rootBlocks[0]) *
                                 static_cast<std::uint64_t>(spec.rootBlocks[1]) *
                                 static_cast<std::uint64_t>(spec.rootBlocks[2]);

@@ -19,6 +19,9 @@ struct RefineRegion {
 struct ForestSpec {
     core::AABB domain{core::Vec3::Zero(), core::Vec3::Ones()};
     std::array<int, 3> rootBlocks{1, 1, 1};
+    /// No `blocks` in the scene: the run chooses the root grid (one block per rank, cut
+    /// with the least surface; apps resolve it before the forest is built).
+    bool rootBlocksAuto = false;
     std::array<bool, 3> periodic{false, false, false};
     std::vector<RefineRegion> refine;
     /// Cells per block and axis for grid fields; zero when no grid is used.

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <array>
+#include <limits>
 #include <string>
 
 namespace regolith::apps {
@@ -82,7 +84,55 @@ void resolveSplit(core::Comm const& comm, SceneDescription& scene, std::vector<A
                         balance.splitLevels, why));
 }
 
+/// The factorisation n of `ranks` whose blocks (extent / n per axis) have the least surface;
+/// ties go to the first found, the larger count along the lower axis.
+std::array<int, 3> leastSurfaceGrid(core::Vec3 const& extent, int ranks) {
+    std::array<int, 3> best{ranks, 1, 1};
+    double bestSurface = std::numeric_limits<double>::infinity();
+    for (int nx = ranks; nx >= 1; --nx) {
+        if (ranks % nx != 0)
+            continue;
+        for (int ny = ranks / nx; ny >= 1; --ny) {
+            if (ranks / nx % ny != 0)
+                continue;
+            int const nz = ranks / nx / ny;
+            double const bx = extent.x() / nx, by = extent.y() / ny, bz = extent.z() / nz;
+            double const surface = bx * by + by * bz + bz * bx;
+            if (surface < bestSurface * (1.0 - 1e-12)) {
+                bestSurface = surface;
+                best = {nx, ny, nz};
+            }
+        }
+    }
+    return best;
+}
+
 } // namespace
+
+AutoChoice resolveRootBlocks(core::Comm const& comm, SceneDescription& scene) {
+    domain::ForestSpec& forest = scene.forest;
+    auto const value = [&forest] {
+        auto const& n = forest.rootBlocks;
+        return fmt::format("[{}, {}, {}]", n[0], n[1], n[2]);
+    };
+    if (!forest.rootBlocksAuto)
+        return {};
+    forest.rootBlocksAuto = false;
+    coupling::GravityMethodEntry const* gravity = coupling::findGravityMethod(scene.gravity.self);
+    bool const cells = forest.cellsPerBlock[0] > 0 || (gravity && gravity->usesGrid);
+    char const* why = comm.size() == 1         ? "one rank"
+                      : cells                  ? "the grid's cells are counted per block: set "
+                                                 "domain.blocks to cut the grid for the ranks"
+                      : !forest.refine.empty() ? "[[domain.refine]] levels count from the root "
+                                                 "blocks: set domain.blocks for the ranks"
+                                               : nullptr;
+    if (why)
+        return {"domain.blocks", value(), why};
+    forest.rootBlocks = leastSurfaceGrid(forest.domain.extent(), comm.size());
+    return {"domain.blocks", value(),
+            "one block per rank, the rank grid whose blocks have the least surface; more blocks "
+            "split where the loads need them (balance.split_levels)"};
+}
 
 std::vector<AutoChoice> resolveBalanceChoices(core::Comm const& comm, SceneDescription& scene) {
     std::vector<AutoChoice> out;

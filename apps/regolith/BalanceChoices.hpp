@@ -14,6 +14,14 @@ namespace regolith::apps {
 /// radius, docs/results.md "Load balance").
 inline constexpr std::int64_t kAutoSplitLevels = 4;
 
+/// domain.blocks where the scene gives none: on more than one rank one root block per rank,
+/// the grid of ranks[0] x ranks[1] x ranks[2] = ranks whose blocks have the least surface
+/// (LAMMPS's `processors * * *`), so that the ranks' regions are cuboids cut across the
+/// domain's longest extents; [1, 1, 1] on one rank, and where the blocks fix more than where
+/// the work runs: grid cells per block (domain.cells_per_block, a grid gravity method) or
+/// refinement levels counted from the root blocks ([[domain.refine]]). Not collective.
+[[nodiscard]] AutoChoice resolveRootBlocks(core::Comm const& comm, SceneDescription& scene);
+
 /// Resolves balance.every and balance.split_levels where "auto" and returns the decisions:
 ///  - balance.every: autoBalanceEvery(time.steps) on more than one rank (0 on one, or with
 ///    domain.balance = "blocks"); an explicit interval above 0 on one rank or with

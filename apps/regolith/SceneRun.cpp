@@ -110,6 +110,7 @@ PreparedRun prepareRun(core::AppContext& ctx) {
 
     // The grains are placed on equally weighted blocks, then the blocks are re-assigned by
     // their load.
+    AutoChoice rootBlocks = resolveRootBlocks(world, scene);
     run.placement = uniformPlacement(world, scene);
     // Before any grain is made: the blocks' geometry is final here (balancing moves owners).
     requireSkinBelowBlockEdges(world, *run.placement.forest, scene.contact.neighbourSkin);
@@ -129,6 +130,8 @@ PreparedRun prepareRun(core::AppContext& ctx) {
         run.text = withAutoChoices(std::move(run.text), run.choices);
     }
     // Not in the checkpoint's scene text: they change the speed, not the trajectory.
+    if (!rootBlocks.key.empty())
+        run.choices.push_back(std::move(rootBlocks));
     for (AutoChoice& c : resolveBalanceChoices(world, scene))
         run.choices.push_back(std::move(c));
     balanceByLoad(world, scene, run.placement);

@@ -15,7 +15,8 @@ merging a rank's blocks saves. --chart draws PUpCS against blocks per rank with 
 line (docs/images/dem-blocks-per-rank.png). --against DIR runs a second build's regolith right
 after each of this build's runs, with the same keys, and reports this build's PUpCS over it
 (median of the per-repeat ratios, and the range): a change measured side by side on a shared
-machine.
+machine. A block count of 0 leaves domain.blocks unset: the run's own choice (one block per
+rank, cut with the least surface), what a user gets without the key.
 
 LAMMPS: pair_style gran/hooke/history with Regolith's spring-dashpot numbers (k_t = 2/7 k_n,
 gamma_t = gamma_n / 2), neighbor 0.1 (bin for A and B; multi with comm_modify mode multi for C),
@@ -222,8 +223,8 @@ def main():
             for repeat in range(a.repeats):
                 for subdomains in a.subdomains:
                     for b, (build, path) in ((b, x) for b in a.blocks for x in builds):
-                        args = base + ["--set", blocks_arg(b, a.ranks),
-                                       "--set", f'sync.subdomains="{subdomains}"']
+                        layout = ["--set", blocks_arg(b, a.ranks)] if b else []
+                        args = base + layout + ["--set", f'sync.subdomains="{subdomains}"']
                         s = regolith(path, scene, a.ranks, args, os.path.join(tmp, "run.json"))
                         if s["particles"] != grains:
                             sys.exit(f"blocks_per_rank: {s['particles']} grains, the dump "
