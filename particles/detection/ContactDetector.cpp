@@ -151,7 +151,6 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
     }
     out.clear();
     updateList(ps, region, frame);
-    writeBackCarried(ps); // no fill: the pass reads the histories
     listedPass(
         ps, region, frame, out, [](Contact const&, std::uint8_t&) {}, true);
     wallPass(ps, walls, out);
@@ -348,11 +347,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_listings.capacity() * sizeof(Listing) + m_depth.capacity() * sizeof(double) +
-           (m_carried.capacity() + m_carriedListed.capacity()) * sizeof(CarriedPair) +
-           (m_carriedFrom.capacity() + m_carriedRank.capacity()) * sizeof(std::uint32_t) +
-           m_carriedSprings.capacity() * sizeof(KeptSpring) + m_carriedHints.capacity() +
-           m_staying.capacity();
+           m_listings.capacity() * sizeof(Listing) + m_depth.capacity() * sizeof(double);
 }
 
 } // namespace regolith::particles

@@ -202,13 +202,12 @@ public:
                                      core::AABB const& evaluationRegion,
                                      PeriodicFrame const& frame) const;
 
-    /// Before a synchronisation after which noteMotion(movedAtMost) will be called, on
-    /// `particles` as the integrator left them: if a copy may then have moved skin / 2, writes
-    /// back to the histories the kept springs of the pairs with a copy that may migrate or wrap
-    /// in that synchronisation (see "Springs carried across a rebuild"). Not collective.
+    /// Before a synchronisation after which noteMotion(movedAtMost) will be called: writes the
+    /// kept springs back to the histories of `particles` if a copy may then have moved skin / 2
+    /// (it may migrate or wrap in that synchronisation). Not collective.
     void beforeSync(ParticleStorage& particles, double movedAtMost) {
         if (m_springsLive && m_list.mayMoveTooFar(movedAtMost))
-            writeBackMovable(particles);
+            writeBackSprings(particles);
     }
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
@@ -346,32 +345,8 @@ private:
     /// Whether a listed pair whose reference centres are `apart` overlaps (reach r_a + r_b)
     /// while the list holds.
     [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;
-    /// Fills the kept springs of the pairs from the `first`-th on: those carried from the list
-    /// before the rebuild (carrySprings), the others from the histories.
+    /// Fills the kept springs of the pairs from the `first`-th on from the histories.
     void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
-    /// A kept spring carried across a rebuild: its pair's storage indices after the
-    /// synchronisation (canonical i) and its place in m_carriedSprings, m_carriedHints.
-    struct CarriedPair {
-        static constexpr std::uint32_t kTaken = VerletList::kDead; ///< j once the new list took it
-        std::uint32_t i, j, pair;
-    };
-    /// Marks in m_staying the copies that stay in the block through the synchronisation and
-    /// whose pairs this block alone evaluates: masters at image zero inside the box where the
-    /// contact-point rule emits, by the rule's rounding (see "Springs carried across a
-    /// rebuild").
-    void markStaying(ParticleStorage const& particles);
-    /// beforeSync's: writes back the kept springs of the pairs with a copy that does not stay;
-    /// the springs stay live.
-    void writeBackMovable(ParticleStorage& particles);
-    /// At a rebuild, in place of writeBackSprings: moves the live kept springs between two
-    /// staying copies to m_carried (by i, for fillKeptSprings) and writes the others back.
-    void carrySprings(ParticleStorage& particles, core::AABB const& region,
-                      PeriodicFrame const& frame);
-    /// The fill's index of the carried pairs (m_carried, m_carriedFrom, m_carriedRank) after
-    /// the rebuild.
-    void indexCarried(ParticleStorage const& particles);
-    /// Writes the carried springs the new list did not take back to the histories.
-    void writeBackCarried(ParticleStorage& particles);
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
     bool addArrivals(ParticleStorage const& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
@@ -406,14 +381,6 @@ private:
     bool m_springsLive = false;     ///< the kept springs hold what the histories lack
     std::size_t m_fillFrom = 0;     ///< the first pair whose kept spring the next pass fills
     std::uint32_t m_pass = 0;       ///< the pass of the last detect that kept springs
-    std::vector<CarriedPair> m_carriedListed; ///< carrySprings', in list order
-    std::vector<CarriedPair> m_carried;       ///< the same by m_carriedRank[i] (indexCarried)
-    std::vector<std::uint32_t> m_carriedFrom; ///< per rank: where its carried pairs start
-    std::vector<std::uint32_t> m_carriedRank; ///< per copy: its place in the cells' order
-    std::vector<KeptSpring> m_carriedSprings; ///< the list's before the rebuild, per pair
-    std::vector<std::uint8_t> m_carriedHints; ///< likewise
-    std::vector<std::uint8_t> m_staying;      ///< markStaying's, per copy
-    bool m_movableWrittenBack = false;        ///< beforeSync wrote them back for this detect
 };
 
 } // namespace regolith::particles

@@ -75,11 +75,6 @@ struct DetectorStats {
     /// (ContactDetector, "Pairs across a periodic face").
     std::size_t faceTwins = 0;
     std::size_t arrivals = 0;
-    /// At a rebuild: the kept springs the new list took from the old one (ContactDetector,
-    /// "Springs carried across a rebuild"), and those carried that it does not keep, written
-    /// back to the histories.
-    std::size_t springsCarried = 0;
-    std::size_t springsCarriedBack = 0;
 };
 
 } // namespace regolith::particles

@@ -35,16 +35,12 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
     }
     out.clear();
     updateList(ps, region, frame);
-    // Only a callback that takes kept springs fills them: the others see the histories.
-    bool fills = false;
-    if constexpr (TakesKeptSprings<std::remove_cvref_t<OnPair>>)
-        fills = m_config.keepSprings;
-    if (fills)
-        fillKeptSprings(ps, m_fillFrom);
-    writeBackCarried(ps); // those the new list did not take (stamped as of the last pass)
-    if constexpr (TakesKeptSprings<std::remove_cvref_t<OnPair>>)
-        if (fills)
+    if constexpr (TakesKeptSprings<std::remove_cvref_t<OnPair>>) {
+        if (m_config.keepSprings) { // only a callback that takes them: the others see histories
+            fillKeptSprings(ps, m_fillFrom);
             m_pass = onPair.pass();
+        }
+    }
     listedPass(ps, region, frame, out, onPair, keepPairs);
     wallPass(ps, walls, out);
 }

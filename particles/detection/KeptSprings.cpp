@@ -1,6 +1,6 @@
 /// The tangential springs the Verlet list keeps beside its settled pairs deep inside the block
 /// (ContactDetector's class comment, "Springs kept beside the list"): which pairs keep one,
-/// and how they are written back to the grains' histories (filled in CarriedSprings.cpp).
+/// how they are filled from the grains' histories and written back.
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
@@ -62,6 +62,26 @@ bool ContactDetector::pressedWhileListed(double apart, double reach, double roun
     // slacks; the relative 1e-9 covers the rounding of the test in the lanes (PairRule.hpp's
     // overlapping, sqrt(d2) < r_a + r_b).
     return apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
+}
+
+void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {
+    if (m_list.numKept() == 0) {
+        m_springsLive = true;
+        return;
+    }
+    m_list.forEachPair(
+        [&](std::size_t i, std::size_t j, std::size_t p) {
+            if (!keepsSpring(m_list.mode(p)))
+                return;
+            ContactHistory const& history = ps.history(i);
+            HistoryEntry const* e = history.find(ps.uid(j));
+            m_list.spring(p) = e != nullptr ? KeptSpring{e->spring, e->stamp} : KeptSpring{};
+            if (e != nullptr) // the slot, for writeBackSpring (a hint: verified there)
+                m_list.hint(p) =
+                    static_cast<std::uint8_t>(std::min<std::ptrdiff_t>(e - history.begin(), 255));
+        },
+        first);
+    m_springsLive = true;
 }
 
 void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid partner,

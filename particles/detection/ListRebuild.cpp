@@ -60,10 +60,9 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
         decideRebuild(ps, region, frame, 1.0);
     bool const rebuild = m_rebuildDue;
     if (rebuild) {
-        carrySprings(ps, region, frame); // while the list still follows the storage
+        writeBackSprings(ps); // while the list still follows the storage
         rebuildList(ps, region, frame);
     }
-    m_movableWrittenBack = false;
     m_fillFrom = m_springsLive && !rebuild ? m_listedBefore : 0;
     m_stats.rebuilt = rebuild;
     m_stats.arrivals = rebuild ? 0 : m_fresh.size();
@@ -72,8 +71,6 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
     m_stats.settledPairs = m_list.numOwned();
     m_stats.keptPairs = m_list.numKept();
     m_stats.faceTwins = m_twins.size();
-    m_stats.springsCarried = 0;
-    m_stats.springsCarriedBack = 0;
 }
 
 } // namespace regolith::particles

@@ -194,13 +194,6 @@ public:
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
     [[nodiscard]] KeptSpring const& spring(std::size_t p) const { return m_springs[p]; }
-    /// Exchanges the kept springs and the hints, per pair, with `springs` and `hints`: the list
-    /// is left without them until the next restart (which clears them, keeping the capacity).
-    /// For a caller that carries the springs into the list it rebuilds next.
-    void swapSprings(std::vector<KeptSpring>& springs, std::vector<std::uint8_t>& hints) {
-        m_springs.swap(springs);
-        m_hint.swap(hints);
-    }
     /// Starts loading spring(p) (if p is a pair) into the cache, for writing.
     void prefetchSpring(std::size_t p) const {
         if (p < m_springs.size())

@@ -232,15 +232,6 @@ public:
     /// their twins (ContactDetector, "Pairs across a periodic face"), as of the last force
     /// computation. Local.
     [[nodiscard]] std::size_t faceTwins() const { return detectorSum(&DetectorStats::faceTwins); }
-    /// Kept springs the local blocks' rebuilt Verlet lists took from the lists before, and those
-    /// carried that the new lists do not keep (ContactDetector, "Springs carried across a
-    /// rebuild"), in the last force computation. Local.
-    [[nodiscard]] std::size_t springsCarried() const {
-        return detectorSum(&DetectorStats::springsCarried);
-    }
-    [[nodiscard]] std::size_t springsCarriedBack() const {
-        return detectorSum(&DetectorStats::springsCarriedBack);
-    }
     /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
     /// (DemStepConfig::detector without a skin). Local.
     [[nodiscard]] double listSkin() const;
