@@ -186,9 +186,11 @@ public:
     /// that the ranks can agree to rebuild their lists in the same step (DemStep): a rebuild
     /// costs about eight steps of the list, and a rank that rebuilds alone keeps the others
     /// waiting at the next exchange. Without a list (no skin, sortByUid) nothing is decided
-    /// ({false, false}). Not collective.
+    /// ({false, false}). Not collective. Without `halfwayNeeded` (a step in which no list can
+    /// come due on any rank: nobody reads it) "halfway" is not worth comparing the positions
+    /// for: they are compared only where the bound reaches the whole budget, as in updateList.
     ListOutlook prepareList(ParticleStorage& particles, core::AABB const& evaluationRegion,
-                            PeriodicFrame const& frame);
+                            PeriodicFrame const& frame, bool halfwayNeeded = true);
     /// After prepareList: the next detect rebuilds the list (the contacts are the same).
     void rebuildNext() { m_rebuildDue = m_prepared; }
     /// The largest bound for the next noteMotion under which the next prepareList on

@@ -32,10 +32,11 @@ double ContactDetector::quietMotion(ParticleStorage const& ps, core::AABB const&
 
 ContactDetector::ListOutlook ContactDetector::prepareList(ParticleStorage& ps,
                                                           core::AABB const& region,
-                                                          PeriodicFrame const& frame) {
+                                                          PeriodicFrame const& frame,
+                                                          bool halfwayNeeded) {
     if (!listed() || m_config.sortByUid)
         return {}; // detect uses no list
-    decideRebuild(ps, region, frame, kHalfway);
+    decideRebuild(ps, region, frame, halfwayNeeded ? kHalfway : 1.0);
     m_prepared = true;
     return {m_rebuildDue, m_rebuildDue || m_list.moved() >= kHalfway * m_list.budget()};
 }

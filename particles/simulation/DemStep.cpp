@@ -230,8 +230,9 @@ bool DemStep::agreeAfterSync() {
                               .syncListHolds = m_sync->listHoldsHere(*m_local)};
     m_listHalfway.assign(blocks.size(), 0);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
+        // In a quiet step no list comes due anywhere, so no list is asked to join a rebuild.
         auto const outlook =
-            m_detectors[b].prepareList(blocks[b].particles, blocks[b].block->aabb, m_frame);
+            m_detectors[b].prepareList(blocks[b].particles, blocks[b].block->aabb, m_frame, !quiet);
         agreed.listDue = agreed.listDue || outlook.due;
         m_listHalfway[b] = outlook.halfway ? 1 : 0;
     }
