@@ -13,6 +13,7 @@
 #include "core/math/Vec3.hpp"
 #include "particles/detection/LocalPositions.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -85,6 +86,14 @@ private:
         double const reach = double{a.radius} + double{b.radius} + m_testSlack;
         return dx * dx + dy * dy + dz * dz < reach * reach;
     }
+    /// f(member of slot s, member of slot t) for every slot t in [t0, t1) that may overlap
+    /// slot s, in slot order. The tests come first, without a branch per candidate (whether two
+    /// grains of a packing are within reach is a coin toss for the branch predictor), then the
+    /// calls for the hits.
+    template <class F>
+    void testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const;
+    static constexpr std::uint32_t kRangeChunk = 64;
+    static constexpr std::uint32_t kShortRange = 8;
     /// Cell coordinate of `x` along `axis`, clamped to the grid (clamped in floating point,
     /// so far-away query points cannot overflow the integer conversion).
     [[nodiscard]] std::int64_t coord(double x, int axis) const {
@@ -116,9 +125,8 @@ private:
 template <class F>
 void LinkedCells::forEachOverlap(F&& f) const {
     auto const nx = m_dims[0], ny = m_dims[1], nz = m_dims[2];
-    auto test = [&](std::uint32_t s, std::uint32_t t) {
-        if (mayOverlap(m_sphere[s], m_sphere[t]))
-            f(m_member[s], m_member[t]);
+    auto test = [&](std::uint32_t s, std::uint32_t t0, std::uint32_t t1) {
+        testRange(s, t0, t1, f);
     };
     // The half shell of 13 forward neighbours, grouped into 5 slot ranges: cell x+1 of the
     // same row, and the cells x-1..x+1 of the rows (dy, dz) = (1, 0), (-1, 1), (0, 1), (1, 1),
@@ -132,12 +140,10 @@ void LinkedCells::forEachOverlap(F&& f) const {
                 if (begin == end)
                     continue;
                 for (std::uint32_t s = begin; s < end; ++s)
-                    for (std::uint32_t t = s + 1; t < end; ++t)
-                        test(s, t);
+                    test(s, s + 1, end);
                 if (x + 1 < nx)
                     for (std::uint32_t s = begin; s < end; ++s)
-                        for (std::uint32_t t = end; t < m_start[c + 2]; ++t)
-                            test(s, t);
+                        test(s, end, m_start[c + 2]);
                 std::int64_t const x0 = x > 0 ? x - 1 : 0, x1 = x + 1 < nx ? x + 1 : x;
                 for (auto const& row : kRows) {
                     std::int64_t const oy = y + row[0], oz = z + row[1];
@@ -146,10 +152,31 @@ void LinkedCells::forEachOverlap(F&& f) const {
                     std::uint32_t const rowBegin = m_start[cellIndex(x0, oy, oz)];
                     std::uint32_t const rowEnd = m_start[cellIndex(x1, oy, oz) + 1];
                     for (std::uint32_t s = begin; s < end; ++s)
-                        for (std::uint32_t t = rowBegin; t < rowEnd; ++t)
-                            test(s, t);
+                        test(s, rowBegin, rowEnd);
                 }
             }
+}
+
+template <class F>
+void LinkedCells::testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const {
+    Sphere const a = m_sphere[s];
+    if (t1 - t0 < kShortRange) { // a gas's rows: few candidates, mostly apart (predictable)
+        for (std::uint32_t t = t0; t < t1; ++t)
+            if (mayOverlap(a, m_sphere[t]))
+                f(m_member[s], m_member[t]);
+        return;
+    }
+    std::array<std::uint8_t, kRangeChunk> hit;
+    for (std::uint32_t t = t0; t < t1; t += kRangeChunk) {
+        std::uint32_t const n = std::min<std::uint32_t>(kRangeChunk, t1 - t);
+        std::uint32_t hits = 0;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            hit[hits] = static_cast<std::uint8_t>(k);
+            hits += mayOverlap(a, m_sphere[t + k]) ? 1 : 0;
+        }
+        for (std::uint32_t h = 0; h < hits; ++h)
+            f(m_member[s], m_member[t + hit[h]]);
+    }
 }
 
 template <class F>

@@ -55,11 +55,12 @@ bool touches(Spheres const& s, std::size_t a, std::size_t b, double slack) {
     return (s.x[a] - s.x[b]).squaredNorm() < reach * reach;
 }
 
-void checkPairs(double offset) {
+/// `extent`: the box's edge; `edge`: the cells' (at least the reach, 2 * 0.5 + slack).
+void checkPairs(double offset, double extent = 20.0, double edge = 1.05) {
     double const slack = 0.05;
-    Spheres const s = sample(3000, 20.0, offset, slack, 7);
+    Spheres const s = sample(3000, extent, offset, slack, 7);
     LinkedCells cells;
-    cells.build(s.x, s.r, s.members, 2 * 0.5 + slack, 8 * s.x.size(), slack);
+    cells.build(s.x, s.r, s.members, edge, 8 * s.x.size(), slack);
     EXPECT_GT(cells.roundingSlack(), 0.0);
     std::set<std::pair<std::size_t, std::size_t>> found;
     cells.forEachOverlap([&](std::size_t a, std::size_t b) {
@@ -83,6 +84,11 @@ TEST(LinkedCells, FindsEveryTouchingPairDespiteSinglePrecisionCopies) {
 
 TEST(LinkedCells, FindsEveryTouchingPairFarFromTheOrigin) {
     checkPairs(1.0e4); // coordinates where a float's ulp (1e-3) exceeds the ulp-sized gaps
+}
+
+TEST(LinkedCells, FindsEveryTouchingPairInCrowdedCells) {
+    // Hundreds of members per cell: the candidates are tested in chunks, not one by one.
+    checkPairs(0.0, 6.0, 3.0);
 }
 
 TEST(LinkedCells, BallQueryFindsEveryTouchingMember) {
