@@ -2,13 +2,14 @@
 """The points per time step where the ranks wait for each other: calls of MPI_Allreduce and of
 the neighbour exchanges inside DemStep::step, counted by valgrind's callgrind on every rank
 (machine-independent: what a step's synchronisation costs on a busy machine is mostly these
-waits). The first paper's scenes A and B weak-scaled on --ranks ranks, as
+waits), and the instructions the step executes outside the MPI libraries (theirs are mostly
+the polling of a rank that waits, which varies from run to run). The first paper's scenes A and B weak-scaled on --ranks ranks, as
 bench/peers/blocks_per_rank.py runs them, with Hertz contacts (the spring-dashpot's batch
 kernel uses AVX-512, which valgrind cannot run; the step's collectives are the same), the
-default mode, --steps steps.
+default mode, --steps steps; 0 blocks per rank leaves domain.blocks to the run.
 
 writing bench/out/framework/collectives_per_step.csv (scene, blocks per rank, rank, steps,
-all-reduces, neighbour exchanges, sparse exchanges, checksum).
+all-reduces, neighbour exchanges, sparse exchanges, instructions outside MPI, checksum).
 
 usage: collectives_per_step.py [--bin build/default/bin/regolith] [--out bench/out/framework]
                                [--scenes a b] [--blocks 1 32] [--ranks 2] [--steps 200]
@@ -50,6 +51,25 @@ def calls(profile):
     return counts
 
 
+MPI_OBJECTS = re.compile(r"openmpi|libopen-pal|libopen-rte|libmpi|mca_|libevent|libhwloc")
+
+
+def instructions_outside_mpi(profile):
+    """The self instructions of every function in one callgrind profile whose object is not an
+    MPI library (callgrind_annotate's per-function list)."""
+    listing = subprocess.run(["callgrind_annotate", "--auto=no", "--threshold=100", profile],
+                             capture_output=True, text=True, check=True).stdout
+    total, listed = 0, False
+    for line in listing.splitlines():
+        if "file:function" in line:
+            listed = True
+            continue
+        m = re.match(r"\s*([\d,]+) \(", line)
+        if listed and m and not MPI_OBJECTS.search(line):
+            total += int(m.group(1).replace(",", ""))
+    return total
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--bin", default="build/default/bin/regolith")
@@ -84,21 +104,23 @@ def main():
                        "--toggle-collect=regolith::particles::DemStep::step*",
                        os.path.abspath(args.bin), path,
                        *scene_args(scene, args.ranks, args.steps),
-                       "--set", blocks_arg(blocks, args.ranks), "--quiet", "--json", summary]
+                       *(["--set", blocks_arg(blocks, args.ranks)] if blocks else []),
+                       "--quiet", "--json", summary]
                 run = subprocess.run(cmd, capture_output=True, text=True, env=ENV, check=False)
                 if run.returncode != 0:
                     sys.exit(f"{' '.join(cmd)} failed:\n{run.stderr[-2000:]}")
                 checksum = json.load(open(summary, encoding="utf-8"))["checksum"]
                 for rank, profile in enumerate(sorted(glob.glob(os.path.join(work, "cg.*")))):
                     c = calls(profile)
+                    own = instructions_outside_mpi(profile)
                     rows.append({"scene": scene, "blocks_per_rank": blocks, "rank": rank,
                                  "steps": args.steps, **{k: c[k] for k in COUNTED.values()},
-                                 "checksum": checksum})
+                                 "instructions_outside_mpi": own, "checksum": checksum})
                     print(f"scene {scene.upper()}, {blocks} blocks per rank, rank {rank}: "
                           f"{c['allreduce'] / args.steps:.3f} all-reduces, "
                           f"{c['neighbour_exchanges'] / args.steps:.3f} neighbour and "
-                          f"{c['sparse_exchanges'] / args.steps:.3f} sparse exchanges per step",
-                          flush=True)
+                          f"{c['sparse_exchanges'] / args.steps:.3f} sparse exchanges per step, "
+                          f"{own / 1e6:.1f} M instructions outside MPI", flush=True)
     out = os.path.join(args.out, "collectives_per_step.csv")
     with open(out, "w", newline="", encoding="utf-8") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
