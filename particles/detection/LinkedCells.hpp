@@ -125,9 +125,6 @@ private:
 template <class F>
 void LinkedCells::forEachOverlap(F&& f) const {
     auto const nx = m_dims[0], ny = m_dims[1], nz = m_dims[2];
-    auto test = [&](std::uint32_t s, std::uint32_t t0, std::uint32_t t1) {
-        testRange(s, t0, t1, f);
-    };
     // The half shell of 13 forward neighbours, grouped into 5 slot ranges: cell x+1 of the
     // same row, and the cells x-1..x+1 of the rows (dy, dz) = (1, 0), (-1, 1), (0, 1), (1, 1),
     // which are consecutive in memory, so each row is one contiguous range of slots.
@@ -140,10 +137,10 @@ void LinkedCells::forEachOverlap(F&& f) const {
                 if (begin == end)
                     continue;
                 for (std::uint32_t s = begin; s < end; ++s)
-                    test(s, s + 1, end);
+                    testRange(s, s + 1, end, f);
                 if (x + 1 < nx)
                     for (std::uint32_t s = begin; s < end; ++s)
-                        test(s, end, m_start[c + 2]);
+                        testRange(s, end, m_start[c + 2], f);
                 std::int64_t const x0 = x > 0 ? x - 1 : 0, x1 = x + 1 < nx ? x + 1 : x;
                 for (auto const& row : kRows) {
                     std::int64_t const oy = y + row[0], oz = z + row[1];
@@ -152,7 +149,7 @@ void LinkedCells::forEachOverlap(F&& f) const {
                     std::uint32_t const rowBegin = m_start[cellIndex(x0, oy, oz)];
                     std::uint32_t const rowEnd = m_start[cellIndex(x1, oy, oz) + 1];
                     for (std::uint32_t s = begin; s < end; ++s)
-                        test(s, rowBegin, rowEnd);
+                        testRange(s, rowBegin, rowEnd, f);
                 }
             }
 }
