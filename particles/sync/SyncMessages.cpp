@@ -1,5 +1,9 @@
 #include "particles/sync/SyncMessages.hpp"
 
+#include "core/Error.hpp"
+
+#include <string>
+
 namespace regolith::particles::sync_detail {
 
 void writeFields(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i) {
@@ -131,6 +135,51 @@ void addShadowShare(ParticleStorage& ps, std::size_t i, std::span<HistoryEntry c
     addShare(master, m, ps.force(i), ps.torque(i), entries);
     ps.force(i).setZero();
     ps.torque(i).setZero();
+}
+
+void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
+                 std::size_t fields) {
+    core::Vec3 const& x = ps.position(i);
+    core::Vec3 const& v = ps.velocity(i);
+    core::Vec3 const& w = ps.angularVelocity(i);
+    double const motion[9] = {x.x(), x.y(), x.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()};
+    std::span<HistoryEntry const> const history = ps.history(i).entries();
+    bool const oriented = ps.storesOrientations();
+    std::uint32_t const head[2] = {static_cast<std::uint32_t>(history.size()), oriented ? 1U : 0U};
+    b.writeBytes(motion, sizeof motion);
+    b.writeBytes(head, sizeof head);
+    if (oriented)
+        b << ps.orientation(i);
+    b.writeBytes(history.data(), history.size_bytes());
+    if (fields > 0)
+        writeFields(b, ps, i);
+}
+
+void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
+                std::vector<HistoryEntry>& history, std::size_t fields) {
+    double motion[9];
+    std::uint32_t head[2];
+    b.readBytes(motion, sizeof motion, "a shadow's motion");
+    b.readBytes(head, sizeof head, "a shadow's motion");
+    ps.position(k) = core::Vec3(motion[0], motion[1], motion[2]);
+    ps.velocity(k) = core::Vec3(motion[3], motion[4], motion[5]);
+    ps.angularVelocity(k) = core::Vec3(motion[6], motion[7], motion[8]);
+    if (head[1] != 0) {
+        core::Quat q;
+        b >> q;
+        ps.setOrientation(k, q);
+    } else if (ps.storesOrientations()) {
+        ps.setOrientation(k, core::Quat::Identity());
+    }
+    if (head[0] > b.remaining() / sizeof(HistoryEntry))
+        throw core::Error("sync: malformed update message: a shadow's history claims " +
+                          std::to_string(head[0]) + " entries");
+    history.resize(head[0]);
+    b.readBytes(history.data(), history.size() * sizeof(HistoryEntry), "a shadow's history");
+    if (!history.empty() || !ps.history(k).empty())
+        ps.history(k).assign(history);
+    if (fields > 0)
+        ps.setFieldValues(k, readFields(b));
 }
 
 } // namespace regolith::particles::sync_detail

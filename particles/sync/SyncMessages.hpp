@@ -117,6 +117,16 @@ void copyUpdate(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
 void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
                 ParticleStorage& to, std::size_t k);
 
+/// copyMotion through a message: what the owner sends of master i (its position is every
+/// copy's canonical position; its orientation only if its storage keeps any, else it is the
+/// identity), and what the shadow's rank makes of it, with copyMotion's bits. One record:
+/// position, velocity and angular velocity in one piece, then the number of history entries
+/// and whether an orientation follows, then those. `fields`: grainFieldComponents(), asked once
+/// per message (most scenes declare none).
+void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i, std::size_t fields);
+void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
+                std::vector<HistoryEntry>& history, std::size_t fields);
+
 /// The history entries of copy i of `ps` stamped `stamp` (evaluated in this pass), into `out`.
 void touchedEntries(ParticleStorage const& ps, std::size_t i, std::uint32_t stamp,
                     std::vector<HistoryEntry>& out);

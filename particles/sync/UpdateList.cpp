@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -264,61 +263,6 @@ UpdateList::Verdict UpdateList::agree(Verdict own) const {
     return static_cast<Verdict>(m_comm.allReduce(static_cast<int>(own), core::ReduceOp::Max));
 }
 
-namespace {
-
-/// copyMotion through a message: what the owner sends of master i (its position is every
-/// copy's canonical position; its orientation only if its storage keeps any, else it is the
-/// identity), and what the shadow's rank makes of it, with copyMotion's bits. One record:
-/// position, velocity and angular velocity in one piece, then the number of history entries
-/// and whether an orientation follows, then those. `fields`: grainFieldComponents(), asked once
-/// per message (most scenes declare none).
-void writeMotion(core::SendBuffer& b, ParticleStorage const& ps, std::size_t i,
-                 std::size_t fields) {
-    core::Vec3 const& x = ps.position(i);
-    core::Vec3 const& v = ps.velocity(i);
-    core::Vec3 const& w = ps.angularVelocity(i);
-    double const motion[9] = {x.x(), x.y(), x.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z()};
-    std::span<HistoryEntry const> const history = ps.history(i).entries();
-    bool const oriented = ps.storesOrientations();
-    std::uint32_t const head[2] = {static_cast<std::uint32_t>(history.size()), oriented ? 1U : 0U};
-    b.writeBytes(motion, sizeof motion);
-    b.writeBytes(head, sizeof head);
-    if (oriented)
-        b << ps.orientation(i);
-    b.writeBytes(history.data(), history.size_bytes());
-    if (fields > 0)
-        sync_detail::writeFields(b, ps, i);
-}
-
-void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
-                std::vector<HistoryEntry>& history, std::size_t fields) {
-    double motion[9];
-    std::uint32_t head[2];
-    b.readBytes(motion, sizeof motion, "a shadow's motion");
-    b.readBytes(head, sizeof head, "a shadow's motion");
-    ps.position(k) = core::Vec3(motion[0], motion[1], motion[2]);
-    ps.velocity(k) = core::Vec3(motion[3], motion[4], motion[5]);
-    ps.angularVelocity(k) = core::Vec3(motion[6], motion[7], motion[8]);
-    if (head[1] != 0) {
-        core::Quat q;
-        b >> q;
-        ps.setOrientation(k, q);
-    } else if (ps.storesOrientations()) {
-        ps.setOrientation(k, core::Quat::Identity());
-    }
-    if (head[0] > b.remaining() / sizeof(HistoryEntry))
-        throw core::Error("sync: malformed update message: a shadow's history claims " +
-                          std::to_string(head[0]) + " entries");
-    history.resize(head[0]);
-    b.readBytes(history.data(), history.size() * sizeof(HistoryEntry), "a shadow's history");
-    if (!history.empty() || !ps.history(k).empty())
-        ps.history(k).assign(history);
-    if (fields > 0)
-        ps.setFieldValues(k, sync_detail::readFields(b));
-}
-
-} // namespace
-
 std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
     auto blocks = local.blocks();
     std::size_t const fields = grainFieldComponents();
@@ -327,7 +271,7 @@ std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
         for (std::size_t p = 0; p < peers.size(); ++p) {
             core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
             for (CopyAt const& m : m_to[p])
-                writeMotion(out, blocks[m.block].particles, m.index, fields);
+                sync_detail::writeMotion(out, blocks[m.block].particles, m.index, fields);
         }
         m_exchange->start();
     }
@@ -348,7 +292,7 @@ std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
         m_exchange->wait([&](int from, core::RecvBuffer& in) {
             for (CopyAt const& s : m_from[static_cast<std::size_t>(peerSlot(from))]) {
                 BlockParticles& target = blocks[s.block];
-                readMotion(in, target.particles, s.index, history, fields);
+                sync_detail::readMotion(in, target.particles, s.index, history, fields);
                 if (!target.sent.empty())
                     forgetSent(target, target.particles.uid(s.index));
                 ++updated;
