@@ -42,6 +42,9 @@ struct SyncStats {
     /// The call ran Alg. 1 only for the masters that left their blocks, and copied along the
     /// list for the others (SyncConfig::skin).
     bool leaversOnly = false;
+    /// And the list then followed the slots that call wrote (UpdateList::followLeavers)
+    /// instead of deciding every copy again.
+    bool listFollowed = false;
     /// A full call without the skin's growth: some rank held an SOS-class copy at the last
     /// refresh, which no list can carry (SyncVerdict::Idle).
     bool skinIdle = false;

@@ -35,7 +35,7 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
         syncInFull(local, m_updateList->leavers(), m_config.skin);
         m_last.updated += updated;
         m_last.leaversOnly = true;
-        m_updateList->rebuild(local, m_updateList->budgetLeft(), along);
+        m_last.listFollowed = m_updateList->followLeavers(local, along);
         m_last.comm += along;
         m_counters.record(along);
         return;

@@ -13,21 +13,15 @@
 
 namespace regolith::particles {
 
-namespace {
-
-/// Whether a master at `x` may leave `box` by moving less than `budget`: within twice the
-/// budget of a face (the factor and the relative 1e-9 of the coordinates cover the rounding of
-/// the distances; a master outside already, or not finite, counts too).
-bool mayLeave(core::AABB const& box, core::Vec3 const& x, double budget) {
+/// Within twice the budget of a face (the factor and the relative 1e-9 of the coordinates cover
+/// the rounding of the distances; a master outside already, or not finite, counts too).
+bool UpdateList::mayLeave(core::AABB const& box, core::Vec3 const& x, double budget) {
     double const toFace = std::min((x - box.min).minCoeff(), (box.max - x).minCoeff());
     double const scale = x.cwiseAbs().maxCoeff() + box.max.cwiseAbs().maxCoeff();
     return !(toFace >= 2.0 * budget + 1e-9 * scale);
 }
 
-/// The local blocks by raw id, ascending (id, index into local.blocks()).
-using BlocksById = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
-
-BlocksById blocksById(LocalParticles const& local) {
+UpdateList::BlocksById UpdateList::blocksById(LocalParticles const& local) {
     BlocksById byId;
     auto const blocks = local.blocks();
     for (std::size_t b = 0; b < blocks.size(); ++b)
@@ -36,9 +30,9 @@ BlocksById blocksById(LocalParticles const& local) {
     return byId;
 }
 
-/// Where the master `uid` of local block `blockId` is: (block index, storage index), or false.
-bool findMaster(LocalParticles const& local, BlocksById const& byId, std::uint64_t blockId, Uid uid,
-                std::uint32_t& block, std::uint32_t& index) {
+bool UpdateList::findMaster(LocalParticles const& local, BlocksById const& byId,
+                            std::uint64_t blockId, Uid uid, std::uint32_t& block,
+                            std::uint32_t& index) {
     auto const m = std::lower_bound(byId.begin(), byId.end(), std::pair(blockId, std::uint32_t{0}));
     if (m == byId.end() || m->first != blockId)
         return false;
@@ -50,8 +44,6 @@ bool findMaster(LocalParticles const& local, BlocksById const& byId, std::uint64
     index = static_cast<std::uint32_t>(k);
     return true;
 }
-
-} // namespace
 
 std::unique_ptr<UpdateList> UpdateList::forConfig(SyncConfig const& config, core::Comm const& comm,
                                                   domain::BlockForest const& forest) {
@@ -91,6 +83,7 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
     m_valid = false;
     m_budget = budget;
     m_largestMove = 0.0;
+    m_followedMove = 0.0;
     m_blocks.resize(blocks.size());
     BlocksById const byId = blocksById(local);
     std::vector<std::vector<Key>> keys(m_from.size());
@@ -149,6 +142,7 @@ void UpdateList::rebuild(LocalParticles const& local, double budget, core::CommS
 
 bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byId,
                               std::vector<std::vector<Key>> const& keys, core::CommStats& stats) {
+    auto const blocks = local.blocks();
     auto const& peers = m_exchange->peers();
     for (std::size_t p = 0; p < peers.size(); ++p) {
         core::SendBuffer& out = m_exchange->sendBuffer(peers[p]);
@@ -160,7 +154,26 @@ bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byI
     m_exchange->start();
     m_exchange->wait([&](int from, core::RecvBuffer& in) {
         std::vector<CopyAt>& to = m_to[static_cast<std::size_t>(peerSlot(from))];
-        to.clear();
+        // The keys come mostly in the order of the last exchange: each is first looked for
+        // where the last list went on (the master found there is the one find() finds:
+        // (uid, image) is unique), then in the index.
+        std::vector<CopyAt> const last = std::exchange(to, {});
+        std::size_t next = 0;
+        auto const guess = [&](Key const& k, CopyAt& m) {
+            for (std::size_t g = next; g < std::min(next + 4, last.size()); ++g) {
+                CopyAt const& c = last[g];
+                if (c.block >= blocks.size() || blocks[c.block].block->id.raw() != k.block)
+                    continue;
+                ParticleStorage const& ps = blocks[c.block].particles;
+                if (c.index < ps.size() && ps.uid(c.index) == k.uid && isZero(ps.image(c.index)) &&
+                    ps.flags(c.index).isMaster()) {
+                    m = c;
+                    next = g + 1;
+                    return true;
+                }
+            }
+            return false;
+        };
         std::uint64_t n = 0;
         if (!in.exhausted())
             in >> n;
@@ -168,7 +181,7 @@ bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byI
             Key k;
             in >> k.block >> k.uid;
             CopyAt m;
-            if (findMaster(local, byId, k.block, k.uid, m.block, m.index))
+            if (guess(k, m) || findMaster(local, byId, k.block, k.uid, m.block, m.index))
                 to.push_back(m);
             else
                 found = false;
@@ -249,7 +262,7 @@ UpdateList::Verdict UpdateList::check(LocalParticles const& local, double movedA
                     m_leavers[b].push_back(static_cast<std::uint32_t>(i));
         }
     }
-    m_largestMove = std::sqrt(largest);
+    m_largestMove = std::sqrt(largest) + m_followedMove;
     // Strictly within the budget, with room for the rounding of the distances the full
     // synchronisation compared (relative 1e-12, far below ParticleSync::kOverlapMargin).
     if (!(m_largestMove < m_budget * (1.0 - 1e-9)))

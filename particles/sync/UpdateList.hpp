@@ -71,6 +71,17 @@ public:
     /// COLLECTIVE.
     void rebuild(LocalParticles const& local, double budget, core::CommStats& stats);
 
+    /// After a call that synchronised the leavers only (check() said Leavers): brings the list
+    /// up to date with what that call changed -- the slots named by the storages' trace
+    /// journals (ParticleStorage::startTracing) and the leavers' own -- instead of a pass over
+    /// every copy. The lists of shadows come out as rebuild() would leave them; the budget and
+    /// the references of the copies not changed stay (the masters decided now at their
+    /// positions now, with the whole skin). A rank with a storage not traced, or that meets an
+    /// SOS-class copy or a shadow without its master, rebuilds (rebuild(local, budgetLeft())).
+    /// Adds the traffic to `stats`; returns whether it followed (false: rebuilt). COLLECTIVE
+    /// (the key exchange, as rebuild()).
+    bool followLeavers(LocalParticles const& local, core::CommStats& stats);
+
     /// SyncVerdict.hpp; agree() takes the maximum over the ranks.
     using Verdict = SyncVerdict;
     static constexpr int kIdleCalls = 32;
@@ -130,11 +141,24 @@ private:
         Uid uid = kInvalidUid;
     };
 
+    /// The local blocks by raw id, ascending (id, index into local.blocks()).
+    using BlocksById = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+    static BlocksById blocksById(LocalParticles const& local);
+    /// Where the master `uid` of local block `blockId` is: (block index, storage index), or
+    /// false.
+    static bool findMaster(LocalParticles const& local, BlocksById const& byId,
+                           std::uint64_t blockId, Uid uid, std::uint32_t& block,
+                           std::uint32_t& index);
+    /// Whether a master at `x` may leave `box` by moving less than `budget`.
+    static bool mayLeave(core::AABB const& box, core::Vec3 const& x, double budget);
+    /// followLeavers() without the key exchange; false if this rank must rebuild instead.
+    bool followStorages(LocalParticles const& local, BlocksById const& byId,
+                        std::vector<std::vector<Key>>& keys);
+
     /// rebuild()'s exchange: sends each owner the keys of this rank's remote shadows (m_from)
     /// and turns the keys received into m_to (`byId`: the local blocks by raw id, ascending).
     /// False if some key names no master here.
-    bool exchangeKeys(LocalParticles const& local,
-                      std::vector<std::pair<std::uint64_t, std::uint32_t>> const& byId,
+    bool exchangeKeys(LocalParticles const& local, BlocksById const& byId,
                       std::vector<std::vector<Key>> const& keys, core::CommStats& stats);
     /// Index of `rank` in the exchange's peers, or -1.
     [[nodiscard]] int peerSlot(int rank) const;
@@ -151,7 +175,10 @@ private:
     std::vector<std::vector<std::uint32_t>> m_leavers;
     double m_budget = 0.0;
     double m_largestMove = 0.0; ///< bound on a master's distance from its reference (check())
-    core::Comm m_comm;          ///< a duplicate of the run's
+    /// The bound at the last followLeavers(): the copies moved to another slot since the
+    /// refresh have their reference there, up to this far from the true one.
+    double m_followedMove = 0.0;
+    core::Comm m_comm;                                   ///< a duplicate of the run's
     std::unique_ptr<core::NeighbourExchange> m_exchange; ///< with the peers; none on one rank
     std::vector<std::vector<CopyAt>> m_from; ///< per peer: its masters' shadows here, in order
     std::vector<std::vector<CopyAt>> m_to;   ///< per peer: masters here with shadows there
