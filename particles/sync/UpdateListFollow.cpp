@@ -89,7 +89,7 @@ bool UpdateList::followStorages(LocalParticles const& local, BlocksById const& b
         std::sort(a.begin(), a.end());
         a.erase(std::unique(a.begin(), a.end()), a.end());
         // Each as rebuild() decides it; a master at its position now, with the whole budget
-        // (it was decided there with the whole skin, and m_budget is no more).
+        // (the leavers' call decided it there with the whole skin, and m_budget <= the skin).
         s.reference.resize(ps.size());
         std::vector<Shadow> found;
         std::vector<std::uint32_t> near;
