@@ -3,10 +3,11 @@
 the neighbour exchanges inside DemStep::step, counted by valgrind's callgrind on every rank
 (machine-independent: what a step's synchronisation costs on a busy machine is mostly these
 waits), and the instructions the step executes outside the MPI libraries (theirs are mostly
-the polling of a rank that waits, which varies from run to run). The first paper's scenes A and B weak-scaled on --ranks ranks, as
-bench/peers/blocks_per_rank.py runs them, with Hertz contacts (the spring-dashpot's batch
-kernel uses AVX-512, which valgrind cannot run; the step's collectives are the same), the
-default mode, --steps steps; 0 blocks per rank leaves domain.blocks to the run.
+the polling of a rank that waits, which varies from run to run). The first paper's scenes A
+and B weak-scaled on --ranks ranks, as bench/peers/blocks_per_rank.py runs them, with Hertz
+contacts (the spring-dashpot's batch kernel uses AVX-512, which valgrind cannot run; the
+step's collectives are the same), the default mode, --steps steps; 0 blocks per rank leaves
+domain.blocks to the run.
 
 writing bench/out/framework/collectives_per_step.csv (scene, blocks per rank, rank, steps,
 all-reduces, neighbour exchanges, sparse exchanges, instructions outside MPI, checksum).

@@ -158,6 +158,7 @@ bool UpdateList::exchangeKeys(LocalParticles const& local, BlocksById const& byI
         // where the last list went on (the master found there is the one find() finds:
         // (uid, image) is unique), then in the index.
         std::vector<CopyAt> const last = std::exchange(to, {});
+        to.reserve(last.size());
         std::size_t next = 0;
         auto const guess = [&](Key const& k, CopyAt& m) {
             for (std::size_t g = next; g < std::min(next + 4, last.size()); ++g) {
