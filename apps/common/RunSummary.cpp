@@ -84,6 +84,7 @@ std::string toJson(RunSummary const& s) {
         .beginObject()
         .member("skin", s.neighbourList.skin)
         .member("rebuilds", s.neighbourList.rebuilds)
+        .member("shifts", s.neighbourList.shifts)
         .endObject();
     auto const conserved = [&w](char const* key, RunSummary::Conserved const& c) {
         w.key(key)

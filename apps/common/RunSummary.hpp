@@ -86,10 +86,12 @@ struct RunSummary {
 
     /// The contact detection's Verlet lists (JSON key "neighbour_list", beyond the contract's
     /// keys): the largest skin of the blocks' last rebuilds (0: no list, contact.neighbour_skin
-    /// = 0) and the rebuilds during the loop, over all blocks and ranks.
+    /// = 0), the rebuilds during the loop and the shifts with the grains' drift that took a
+    /// rebuild's place, over all blocks and ranks.
     struct NeighbourList {
         double skin = 0.0;
         std::int64_t rebuilds = 0;
+        std::int64_t shifts = 0;
     } neighbourList;
 
     struct Communication {

@@ -72,6 +72,7 @@ void fillLoopSummary(core::Comm const& comm, coupling::RunStats const& loop,
     summary.comm.maxPeers = loop.comm.maxPeers;
     summary.neighbourList.skin = loop.listSkin;
     summary.neighbourList.rebuilds = loop.listRebuilds;
+    summary.neighbourList.shifts = loop.listShifts;
 }
 
 } // namespace regolith::apps

@@ -22,6 +22,7 @@ struct RunStats {
     std::int64_t leftThroughWalls = 0;
     std::string firstWallCrossing;
     std::int64_t listRebuilds = 0; ///< Verlet-list rebuilds, over all blocks and ranks
+    std::int64_t listShifts = 0;   ///< Verlet-list shifts with the grains' drift, likewise
     double listSkin = 0.0;         ///< the largest skin of the blocks' last rebuilds
 };
 

@@ -175,6 +175,7 @@ RunStats Simulation::run(std::int64_t steps) {
     std::uint64_t const leftBefore = dem.leftDomain();
     std::uint64_t const crossedBefore = dem.wallCrossings().count;
     std::uint64_t const rebuildsBefore = dem.listRebuilds();
+    std::uint64_t const shiftsBefore = dem.listShifts();
     m_comm->barrier(); // every rank starts the clock together
     double const started = MPI_Wtime();
     for (std::int64_t n = 0; n < steps; ++n) {
@@ -196,13 +197,15 @@ RunStats Simulation::run(std::int64_t steps) {
     out.timers = m_timers.reduce(*m_comm);
     out.comm = m_sync->counters().reduce(*m_comm);
     auto const& crossings = dem.wallCrossings();
-    std::array<long long, 3> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
+    std::array<long long, 4> counts{static_cast<long long>(dem.leftDomain() - leftBefore),
                                     static_cast<long long>(dem.listRebuilds() - rebuildsBefore),
-                                    static_cast<long long>(crossings.count - crossedBefore)};
+                                    static_cast<long long>(crossings.count - crossedBefore),
+                                    static_cast<long long>(dem.listShifts() - shiftsBefore)};
     m_comm->allReduceInPlace(std::span<long long>(counts), core::ReduceOp::Sum);
     out.leftDomain = counts[0];
     out.listRebuilds = counts[1];
     out.leftThroughWalls = counts[2];
+    out.listShifts = counts[3];
     if (out.leftThroughWalls > 0) { // the earliest step's, lowest uid's (every rank is here)
         bool const mine = crossings.count > crossedBefore;
         auto const when = m_comm->allGather<std::uint64_t>(

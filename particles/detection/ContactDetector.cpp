@@ -164,6 +164,8 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_listFrame = frame;
     m_largeIds.clear();
     m_twins.clear();
+    m_shifted = 0.0; // a new list has moved no reference
+    m_margin.clear();
     if (ps.empty()) {
         m_stats = DetectorStats{};
         m_small.clear();
@@ -219,6 +221,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
     double const reachSlack = m_stats.slack + m_listSkin + m_list.referenceSlack() + m_config.range;
     auto const arrivals = m_list.arrivals();
     std::size_t const firstNew = arrivals.size() - m_fresh.size();
+    core::Vec3 const drift = m_list.drift();
     // Local reference position and radius of a live id (its image is that of its copy now).
     auto referenceOf = [&](VerletList::Id id, std::size_t k) {
         return localPosition(m_list.reference(id), ps.image(k), period);
@@ -238,8 +241,9 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
             if ((referenceOf(id, k) - xf).squaredNorm() < reach * reach)
                 m_list.addPair(idF, id);
         };
-        // The cells hold the small spheres' local reference positions, by id.
-        m_cells.forEachOverlapWith(xf, rf, [&](std::size_t id) {
+        // The cells hold the small spheres' local positions at the rebuild, by id: their
+        // references less the list's drift since (VerletList::shift).
+        m_cells.forEachOverlapWith(xf - drift, rf, [&](std::size_t id) {
             if (m_list.indexOf(static_cast<VerletList::Id>(id)) != VerletList::kDead)
                 m_list.addPair(idF, static_cast<VerletList::Id>(id));
         });

@@ -204,13 +204,14 @@ public:
                                      core::AABB const& evaluationRegion,
                                      PeriodicFrame const& frame) const;
 
-    /// Before a synchronisation after which noteMotion(movedAtMost) will be called: writes the
-    /// kept springs back to the histories of `particles` if a copy may then have moved skin / 2
-    /// (it may migrate or wrap in that synchronisation). Not collective.
-    void beforeSync(ParticleStorage& particles, double movedAtMost) {
-        if (m_springsLive && m_list.mayMoveTooFar(movedAtMost))
-            writeBackSprings(particles);
-    }
+    /// Before a synchronisation after which noteMotion(movedAtMost) will be called (the
+    /// masters moved, the shadows not yet): where a copy may then have moved skin / 2 from
+    /// its reference, compares the positions; if the copies moved together, shifts the list's
+    /// references by their drift and settles its pairs again instead of rebuilding it ("A
+    /// list that follows a drift"); otherwise writes the kept springs back to the histories of
+    /// `particles` (a grain may migrate or wrap in that synchronisation, and the next detect
+    /// rebuilds). Returns whether the list shifted. Not collective.
+    bool beforeSync(ParticleStorage& particles, double movedAtMost);
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
     /// overwritten, one that does not is added if the last pass touched it (an older one is a
@@ -349,6 +350,15 @@ private:
     [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;
     /// Fills the kept springs of the pairs from the `first`-th on from the histories.
     void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
+    /// The spring of copy i's history for partner j as a kept one, and its slot in `hint`.
+    [[nodiscard]] static KeptSpring springFromHistory(ParticleStorage const& particles,
+                                                      std::size_t i, std::size_t j,
+                                                      std::uint8_t& hint);
+    /// Shifts the list's references by `drift` (every copy within `spread` of its shifted
+    /// reference) and settles its pairs again (ListShift.cpp).
+    void shiftList(ParticleStorage& particles, core::Vec3 const& drift, double spread);
+    /// The largest share of the budget a list's copies may spread over for it to shift.
+    static constexpr double kShiftSpread = 0.9;
     /// Adds the pairs of the copies in m_fresh; false if one lies beyond m_listScale.
     bool addArrivals(ParticleStorage const& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
@@ -368,7 +378,12 @@ private:
     std::vector<Listing> m_listings;        ///< findFaceTwins' settlements, one per listed pair
     static constexpr double kUnmeasured = -1.0;
     mutable std::vector<double> m_depth; ///< depthOf's, per id of the last rebuild (a cache)
-    core::AABB m_emits;                  ///< where the rule emits (startDepths)
+    double m_shifted = 0.0; ///< largest coordinate of the list's drift since the rebuild
+    /// Per listed pair (the first ones), how much deeper inside the block than its settlement
+    /// needs both its copies lay at the rebuild: while the drift stays below it, the list's
+    /// shifts need not settle it again (ListShift.cpp). Empty until the first shift.
+    std::vector<float> m_margin;
+    core::AABB m_emits; ///< where the rule emits (startDepths)
     core::Vec3 m_period = core::Vec3::Zero();
     double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;

@@ -71,17 +71,22 @@ void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t fir
     }
     m_list.forEachPair(
         [&](std::size_t i, std::size_t j, std::size_t p) {
-            if (!keepsSpring(m_list.mode(p)))
-                return;
-            ContactHistory const& history = ps.history(i);
-            HistoryEntry const* e = history.find(ps.uid(j));
-            m_list.spring(p) = e != nullptr ? KeptSpring{e->spring, e->stamp} : KeptSpring{};
-            if (e != nullptr) // the slot, for writeBackSpring (a hint: verified there)
-                m_list.hint(p) =
-                    static_cast<std::uint8_t>(std::min<std::ptrdiff_t>(e - history.begin(), 255));
+            if (keepsSpring(m_list.mode(p)))
+                m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
         },
         first);
     m_springsLive = true;
+}
+
+KeptSpring ContactDetector::springFromHistory(ParticleStorage const& ps, std::size_t i,
+                                              std::size_t j, std::uint8_t& hint) {
+    ContactHistory const& history = ps.history(i);
+    HistoryEntry const* e = history.find(ps.uid(j));
+    if (e == nullptr)
+        return KeptSpring{};
+    // The slot, for writeBackSpring (a hint: verified there).
+    hint = static_cast<std::uint8_t>(std::min<std::ptrdiff_t>(e - history.begin(), 255));
+    return KeptSpring{e->spring, e->stamp};
 }
 
 void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid partner,

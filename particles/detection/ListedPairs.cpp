@@ -68,7 +68,8 @@ double ContactDetector::depthOf(ParticleStorage const& ps, VerletList::Id id) co
     std::uint32_t const k = m_list.indexOf(id);
     if (k == VerletList::kDead)
         return depth = 0.0;
-    core::Vec3 const x = localPosition(m_list.reference(id), ps.image(k), m_period);
+    // Measured where the references stood at the rebuild (deeperThan allows for the shifts).
+    core::Vec3 const x = localPosition(m_list.unshiftedReference(id), ps.image(k), m_period);
     depth = std::numeric_limits<double>::infinity();
     for (int d = 0; d < 3 && depth > 0.0; ++d) {
         double const below = x[d] - m_emits.min[d], above = m_emits.max[d] - x[d];
@@ -79,6 +80,9 @@ double ContactDetector::depthOf(ParticleStorage const& ps, VerletList::Id id) co
 
 bool ContactDetector::deeperThan(ParticleStorage const& ps, VerletList::Id a, VerletList::Id b,
                                  double depth) const {
+    // The list's shifts moved every reference by at most m_shifted along each axis since the
+    // depths were measured.
+    depth += m_shifted;
     return depthOf(ps, a) > depth && depthOf(ps, b) > depth;
 }
 

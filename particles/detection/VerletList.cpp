@@ -3,13 +3,14 @@
 #include "core/Error.hpp"
 #include "core/memory/GentleGrowth.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace regolith::particles {
 
 void VerletList::restart(ParticleStorage& ps, double skin) {
-    if (ps.size() >= kDead)
+    if (ps.size() >= kDead - 1)
         throw core::Error("VerletList: too many copies for 32-bit ids");
     m_session = ps.startTracing();
     m_storage = &ps;
@@ -17,6 +18,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_moved = 0.0;
     m_built = ps.size();
     m_pairs.clear();
+    m_parked.clear();
     m_owned = 0;
     m_kept = 0;
     m_mode.clear();
@@ -40,11 +42,15 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
             hi = hi.cwiseMax(x);
         }
     m_origin = m_built != 0 && lo.x() <= hi.x() ? core::Vec3(0.5 * (lo + hi)) : core::Vec3::Zero();
+    m_builtOrigin = m_origin;
     m_extent = 0.0;
     m_referenceSlack = 0.0;
     m_reference.clear();
     for (core::Vec3 const& x : ps.positions())
         pushReference(x);
+    m_hole = static_cast<Id>(m_built); // the arrivals' ids follow it
+    m_indexOf.push_back(kDead);
+    m_reference.push_back({0.0F, 0.0F, 0.0F});
 }
 
 void VerletList::pushReference(core::Vec3 const& x) {
@@ -54,13 +60,59 @@ void VerletList::pushReference(core::Vec3 const& x) {
     double const far = d.cwiseAbs().maxCoeff();
     if (far > m_extent) { // false for NaN: movedTooFar reports those
         m_extent = far;
-        // Per coordinate: x - origin rounds by <= u |d|, the float by <= 2^-24 |d|, origin + f
-        // by <= u (|origin| + |d|) (u = 2^-53); doubled for the three coordinates (sqrt 3 < 2)
-        // and the rest for good measure.
-        double const u = 0x1p-53;
-        double const o = m_origin.cwiseAbs().maxCoeff();
-        m_referenceSlack = 2.0 * (0x1p-23 * m_extent + 4.0 * u * (o + m_extent));
+        widenSlack();
     }
+}
+
+void VerletList::widenSlack() {
+    // Per coordinate: x - origin rounds by <= u |d|, the float by <= 2^-24 |d|, origin + f by
+    // <= u (|origin| + |d|) (u = 2^-53); doubled for the three coordinates (sqrt 3 < 2) and
+    // the rest for good measure. Never narrowed: the budget only shrinks.
+    double const u = 0x1p-53;
+    double const o = m_origin.cwiseAbs().maxCoeff();
+    m_referenceSlack =
+        std::max(m_referenceSlack, 2.0 * (0x1p-23 * m_extent + 4.0 * u * (o + m_extent)));
+}
+
+VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) const {
+    auto const& x = ps.positions();
+    core::Vec3 lo = core::Vec3::Constant(std::numeric_limits<double>::infinity());
+    core::Vec3 hi = -lo;
+    double largest = 0.0;
+    bool finite = true;
+    for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
+        Reference const& r = m_reference[ps.traceTag(k)];
+        core::Vec3 const d =
+            (x[k] - m_origin) - core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
+        double const d2 = d.squaredNorm();
+        finite = finite & !std::isnan(d2);
+        largest = std::max(largest, d2);
+        lo = lo.cwiseMin(d);
+        hi = hi.cwiseMax(d);
+    }
+    Displacements out;
+    out.finite = finite && std::isfinite(largest);
+    if (ps.size() == 0 || !out.finite)
+        return out;
+    out.largest = std::sqrt(largest);
+    // The centre of the bounding box, and the farthest displacement from it (at most half
+    // the box's diagonal, often much less).
+    out.drift = 0.5 * (lo + hi);
+    core::Vec3 const centre = m_origin + out.drift;
+    double spread = 0.0;
+    for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
+        Reference const& r = m_reference[ps.traceTag(k)];
+        core::Vec3 const d = (x[k] - centre) - core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
+        spread = std::max(spread, d.squaredNorm());
+    }
+    out.spread = std::sqrt(spread) * (1.0 + 1e-12);
+    return out;
+}
+
+void VerletList::shift(core::Vec3 const& drift, double moved) {
+    m_origin += drift;
+    widenSlack(); // reference() now adds a larger origin
+    m_moved = moved + m_referenceSlack;
 }
 
 bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
@@ -150,7 +202,8 @@ std::size_t VerletList::bytes() const {
     return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
            m_springs.capacity() * sizeof(KeptSpring) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
-           m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id);
+           m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id) +
+           (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]);
 }
 
 } // namespace regolith::particles

@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace regolith::particles {
@@ -93,17 +94,19 @@ public:
         m_hint.push_back(0);
     }
     /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
-    /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or drops it
-    /// (kDrop), preserving order. A pair that keeps its spring (keepsSpring) gets a slot,
-    /// spring(p), for the caller to fill.
+    /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or parks it
+    /// (kDrop: out of the per-step loop, but decided again by resettle), preserving order. A
+    /// pair that keeps its spring (keepsSpring) gets a slot, spring(p), for the caller to fill.
     template <class D>
     void classifyFrom(std::size_t first, D&& decide) {
         std::size_t out = first;
         for (std::size_t p = first; p < m_pairs.size(); ++p) {
             auto pair = m_pairs[p];
             int const mode = decide(pair[0], pair[1]);
-            if (mode == kDrop)
+            if (mode == kDrop) {
+                m_parked.push_back(pair);
                 continue;
+            }
             m_pairs[out] = pair;
             m_mode[out] = static_cast<PairMode>(mode);
             m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
@@ -117,6 +120,15 @@ public:
         if (m_kept != 0) // parallel to the pairs once one is kept (most lists keep none)
             m_springs.resize(out);
     }
+
+    /// After shift(): calls `decide(a, b, listed, was, spring, hint)` for every pair whose two
+    /// copies live, the listed ones first unless `unchanged(p)` (listed = true, `was` their
+    /// mode, `spring` and `hint` theirs, in place), then the parked ones (listed = false,
+    /// PairMode::Check, an empty spring, hint 0), and lists each with the mode returned and
+    /// `spring` and `hint` as `decide` left them (a listed pair in its place, a parked one
+    /// appended), or parks it (kDrop; a listed pair leaves a hole).
+    template <class S, class D>
+    void resettle(S&& unchanged, D&& decide);
 
     /// Catches up with the storage's changes since the last restart or follow (see the class
     /// comment). Returns false if the list cannot follow: never restarted, another storage
@@ -143,6 +155,31 @@ public:
     /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
     /// may then be skin / 2 or more from its reference position.
     [[nodiscard]] bool mayMoveTooFar(double movedAtMost, double share = 1.0) const;
+    /// Where the copies stand against their references: the largest distance, and the
+    /// smallest ball that holds every displacement (its centre, the drift, and a bound on its
+    /// radius, half the diagonal of their bounding box), all within referenceSlack(). Pre:
+    /// followsUnchanged(ps).
+    struct Displacements {
+        double largest = 0.0;
+        core::Vec3 drift = core::Vec3::Zero();
+        double spread = 0.0;
+        bool finite = true;
+    };
+    [[nodiscard]] Displacements displacements(ParticleStorage const& ps) const;
+    /// Moves every reference by `drift` (the list's frame follows the copies' common motion):
+    /// the pairs listed stay a superset of the overlapping ones as long as no copy moves the
+    /// budget from its moved reference, because a pair's distance changes by at most the sum
+    /// of the two displacements less any common drift. `moved` becomes the bound on every
+    /// copy's distance from its moved reference (Displacements::spread). The caller settles
+    /// the pairs again (resettle): what was decided from the old references may not hold.
+    void shift(core::Vec3 const& drift, double moved);
+    /// The references' total shift since the last restart (the cells of that rebuild hold the
+    /// copies where they were then) [length].
+    [[nodiscard]] core::Vec3 drift() const { return m_origin - m_builtOrigin; }
+    /// Sets the bound on every copy's distance from its reference to `moved` (measured:
+    /// displacements()) plus the reference slack.
+    void setMoved(double moved) { m_moved = moved + m_referenceSlack; }
+
     /// The largest `movedAtMost` for which the next movedTooFar(ps, movedAtMost, share) is
     /// false at any share, if the bound holds: mayMoveTooFar(movedAtMost) is false, so every
     /// copy stays within the budget, whether the positions are compared or not. A relative
@@ -164,6 +201,12 @@ public:
     [[nodiscard]] core::Vec3 reference(Id id) const {
         Reference const& r = m_reference[id];
         return m_origin + core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
+    }
+    /// reference(id) less drift(): where id's reference stood before the shifts since the last
+    /// restart, within referenceSlack() [length].
+    [[nodiscard]] core::Vec3 unshiftedReference(Id id) const {
+        Reference const& r = m_reference[id];
+        return m_builtOrigin + core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
     }
     /// Bound on |reference(id) - the position it stands for| over all ids [length]: the
     /// rounding to float of coordinates up to m_extent from the origin, and of the two
@@ -216,6 +259,9 @@ private:
     std::size_t m_owned = 0;
     std::size_t m_kept = 0;
     std::vector<std::array<Id, 2>> m_pairs;
+    std::vector<std::array<Id, 2>> m_parked;      ///< pairs dropped from the loop (classifyFrom)
+    std::vector<std::array<Id, 2>> m_parkedAgain; ///< resettle's, swapped with m_parked
+    Id m_hole = 0; ///< an id that is never alive (a parked pair's place in m_pairs names it)
     std::vector<PairMode> m_mode;           ///< per pair
     std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
     std::vector<KeptSpring> m_springs;      ///< per pair once one is kept: the kept springs
@@ -223,12 +269,69 @@ private:
     using Reference = std::array<float, 3>; ///< position - m_origin, rounded to nearest
     /// Stores x's reference and widens the slack if x lies farther from the origin.
     void pushReference(core::Vec3 const& x);
+    /// Widens the reference slack to the current origin and extent.
+    void widenSlack();
 
     std::vector<Reference> m_reference; ///< per id
     core::Vec3 m_origin = core::Vec3::Zero();
+    core::Vec3 m_builtOrigin = core::Vec3::Zero(); ///< m_origin at the last restart
     double m_extent = 0.0; ///< largest |coordinate - origin| of a stored reference
     double m_referenceSlack = 0.0;
     std::vector<Id> m_arrivals;
 };
+
+template <class S, class D>
+void VerletList::resettle(S&& unchanged, D&& decide) {
+    // In place: the pairs keep their places (a parked one leaves a hole that forEachPair
+    // skips, as a dead one), the revived ones are appended.
+    m_parkedAgain.clear();
+    auto const count = [&](PairMode m) {
+        m_owned += m != PairMode::Check ? 1 : 0;
+        m_kept += keepsSpring(m) ? 1 : 0;
+    };
+    std::size_t const listed = m_pairs.size();
+    for (std::size_t p = 0; p < listed; ++p) {
+        auto& pair = m_pairs[p];
+        if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead || unchanged(p))
+            continue;
+        KeptSpring spare{};
+        KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
+        int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);
+        if (mode == kDrop) {
+            m_parkedAgain.push_back(pair);
+            pair[0] = m_hole;
+            continue;
+        }
+        auto const m = static_cast<PairMode>(mode);
+        if (m != m_mode[p])
+            count(m);
+        m_mode[p] = m;
+        if (keepsSpring(m) && p >= m_springs.size()) {
+            m_springs.resize(m_pairs.size()); // parallel to the pairs from the first kept one
+            m_springs[p] = spare;
+        }
+    }
+    for (auto pair : m_parked) {
+        if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
+            continue;
+        KeptSpring spring{};
+        std::uint8_t hint = 0;
+        int const mode = decide(pair[0], pair[1], false, PairMode::Check, spring, hint);
+        if (mode == kDrop) {
+            m_parkedAgain.push_back(pair);
+            continue;
+        }
+        auto const m = static_cast<PairMode>(mode);
+        count(m);
+        m_pairs.push_back(pair);
+        m_mode.push_back(m);
+        m_hint.push_back(hint);
+        if (!m_springs.empty() || keepsSpring(m)) {
+            m_springs.resize(m_pairs.size() - 1);
+            m_springs.push_back(spring);
+        }
+    }
+    m_parked.swap(m_parkedAgain);
+}
 
 } // namespace regolith::particles

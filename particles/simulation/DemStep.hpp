@@ -225,6 +225,9 @@ public:
     /// block's rebuild counts once; a block without copies counts none). Local: sum over
     /// ranks for the run's total.
     [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
+    /// Verlet-list shifts instead of rebuilds (ContactDetector::beforeSync), counted as
+    /// listRebuilds. Local.
+    [[nodiscard]] std::uint64_t listShifts() const { return m_listShifts; }
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
     [[nodiscard]] std::size_t keptPairs() const { return detectorSum(&DetectorStats::keptPairs); }
@@ -307,6 +310,7 @@ private:
     std::uint64_t m_leftDomain = 0;
     WallCrossings m_wallCrossings;
     std::uint64_t m_listRebuilds = 0;
+    std::uint64_t m_listShifts = 0;
 };
 
 } // namespace regolith::particles

@@ -107,9 +107,10 @@ void DemStep::syncParticles() {
                 agreed.share, agreed.edge));
         }
         // A grain that may move skin / 2 from its list's reference may migrate or wrap in
-        // this sync: the springs kept beside that block's list go back to the histories first.
+        // this sync: that block's list shifts with the grains' drift, or the springs kept
+        // beside it go back to the histories first.
         for (std::size_t b = 0; b < blocks.size(); ++b)
-            m_detectors[b].beforeSync(blocks[b].particles, agreed.moved);
+            m_listShifts += m_detectors[b].beforeSync(blocks[b].particles, agreed.moved) ? 1 : 0;
         try {
             m_sync->syncOn(*m_local, agreed.verdict);
         } catch (core::RankInputError const& e) { // found mid-sync by one rank: name the step

@@ -29,12 +29,14 @@ namespace {
 
 /// Grains of radius 0.2 at {1, 3, 5, 7}^3 in a periodic [0, 8]^3 of 2 x 2 x 2 blocks, moving
 /// along y at speed(rank that holds them) for 150 steps (at most 0.3: none leaves its block, no
-/// contacts); `rebuilt(step, yes)` is called after every step with whether this rank's lists
-/// were rebuilt in it; `syncSkin`: SyncConfig::skin. Returns this rank's list rebuilds after
-/// the set-up's. COLLECTIVE.
+/// contacts), every other one (by uid) backwards unless `drift` (then the lists shift with the
+/// grains instead of rebuilding); `rebuilt(step, yes)` is called after every step with whether
+/// this rank's lists were rebuilt in it; `syncSkin`: SyncConfig::skin. Returns this rank's
+/// list rebuilds after the set-up's, and its shifts in `shifts`. COLLECTIVE.
 template <class Speed, class OnStep>
 std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& rebuilt,
-                               double syncSkin = 0.0) {
+                               double syncSkin = 0.0, bool drift = false,
+                               std::uint64_t* shifts = nullptr) {
     domain::ForestSpec spec;
     spec.domain = core::AABB{Vec3::Zero(), Vec3::Constant(8.0)};
     spec.rootBlocks = {2, 2, 2};
@@ -44,8 +46,10 @@ std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& reb
     Uid uid = 0;
     for (double x = 1.0; x < 8.0; x += 2.0)
         for (double y = 1.0; y < 8.0; y += 2.0)
-            for (double z = 1.0; z < 8.0; z += 2.0)
-                local.addMaster(grain(uid++, {x, y, z}, {0.0, speed(comm.rank()), 0.0}, 0.2));
+            for (double z = 1.0; z < 8.0; z += 2.0, ++uid) {
+                double const v = (drift || uid % 2 == 0 ? 1.0 : -1.0) * speed(comm.rank());
+                local.addMaster(grain(uid, {x, y, z}, {0.0, v, 0.0}, 0.2));
+            }
     ParticleSync sync(comm, forest, SyncConfig{.skin = syncSkin});
     core::TimerTree timers;
     DemStepConfig c;
@@ -58,6 +62,8 @@ std::uint64_t runMovingLattice(core::Comm const& comm, Speed speed, OnStep&& reb
         dem.step();
         rebuilt(n + 1, dem.listRebuilds() > before);
     }
+    if (shifts != nullptr)
+        *shifts = dem.listShifts();
     return dem.listRebuilds() - setUp;
 }
 
@@ -191,6 +197,18 @@ TEST(DemStep, ListsAtRestAreNotRebuiltForOthers) {
         EXPECT_GE(rebuilds, 2u);
     else
         EXPECT_EQ(rebuilds, 0u);
+}
+
+TEST(DemStep, ListsOfADriftingLatticeShiftInsteadOfRebuilding) {
+    // Every grain of a rank at the same velocity: its lists follow the drift by shifting their
+    // references (ContactDetector::beforeSync), none is rebuilt after the set-up.
+    core::Comm const world;
+    std::uint64_t shifts = 0;
+    std::uint64_t const rebuilds = runMovingLattice(
+        world, [](int rank) { return rank % 2 == 0 ? 1.0 : 0.75; }, [](int, bool) {}, 0.0, true,
+        &shifts);
+    EXPECT_EQ(rebuilds, 0u);
+    EXPECT_GE(shifts, 2u);
 }
 
 TEST(DemStep, BodyForceVoteIsTheMaximumOverRanks) {

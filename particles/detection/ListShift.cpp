@@ -1,0 +1,115 @@
+/// A Verlet list that follows a drift (ContactDetector's class comment, "A list that follows a
+/// drift"): before a synchronisation in which some copy may reach skin / 2 from its reference,
+/// the positions are compared; where the copies moved together, the references move by their
+/// common drift and the pairs are settled again, which keeps the pairs found and the springs
+/// of the pairs deep inside the block.
+#include "particles/detection/ContactDetector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace regolith::particles {
+
+bool ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
+    if (!listed() || m_config.sortByUid || !m_list.mayMoveTooFar(movedAtMost))
+        return false;
+    // The list names every copy (nothing changed the storage since the last detect) and the
+    // shadows of other ranks' masters move up to movedAtMost in the synchronisation.
+    if (m_list.followsUnchanged(ps) && std::isfinite(movedAtMost) && movedAtMost >= 0.0) {
+        VerletList::Displacements const d = m_list.displacements(ps);
+        double const half = m_list.budget();
+        double const rounding = 1.0 + 1e-9; // the sums' rounding, as VerletList's tests
+        if (d.finite && (d.largest + movedAtMost) * rounding < half) {
+            m_list.setMoved(d.largest); // no copy can leave the block: the springs stay
+            return false;
+        }
+        double const room = kShiftSpread * half - (d.spread + movedAtMost) * rounding;
+        if (d.finite && room > 0.0) {
+            // The references lead the copies along their drift, by as far as they drifted
+            // (within the room): a steady drift then carries the copies through their
+            // references and as far beyond before the next shift, twice as long as from
+            // references where the copies stand.
+            double const drifted = d.drift.norm();
+            core::Vec3 const lead = drifted > 0.0
+                                        ? core::Vec3(std::min(room, drifted) / drifted * d.drift)
+                                        : core::Vec3::Zero();
+            shiftList(ps, d.drift + lead, d.spread + lead.norm());
+            return true;
+        }
+    }
+    writeBackSprings(ps); // the next detect rebuilds
+    return false;
+}
+
+void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, double spread) {
+    double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack(); // classifyListed's
+    // Both copies of a settled pair deeper inside the block than its ownership reach and the
+    // list's motion (with the rounding): settleListed answers Always for it, and settledMode
+    // as before, whose other conditions do not depend on where the pair lies. Measured once
+    // per rebuild, at the first shift, as a margin against the drift.
+    if (m_margin.empty()) {
+        double const motion = listMotion(rounding) + rounding;
+        m_margin.assign(m_list.numPairs(), -std::numeric_limits<float>::infinity());
+        m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
+            PairMode const mode = m_list.mode(p);
+            if (mode == PairMode::Check || mode == PairMode::KeptPressedAcross)
+                return; // the rule per step holds anywhere; a face pair's twins come back
+            double const ri = ps.radius(ka), rj = ps.radius(kb);
+            double const reach =
+                ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
+            double const need = std::max(reach + rounding, motion);
+            auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
+            double const margin = std::min(depthOf(ps, a), depthOf(ps, b)) - need;
+            // Rounded down, and by one ulp more: never above the double.
+            m_margin[p] =
+                std::nextafter(static_cast<float>(margin), -std::numeric_limits<float>::infinity());
+        });
+    }
+    m_list.shift(drift, spread);
+    m_shifted = m_list.drift().cwiseAbs().maxCoeff();
+    // The settled face pairs end here: the copy j's settlement counted on may now leave before
+    // the list does. Every instance keeps the rule from now on (their twins come back from the
+    // parked pairs); the springs, and i's images' histories, go back as when a grain wraps.
+    if (m_springsLive)
+        for (FaceTwin const& t : m_twins)
+            if (faceTwinAlive(t) && keepsSpring(m_list.mode(t.pair))) {
+                writeBackSpring(ps, m_list.indexOf(t.a), t.key.j, m_list.spring(t.pair),
+                                m_list.hint(t.pair));
+                writeBackFaceTwin(ps, t);
+            }
+    m_twins.clear();
+    auto const unchanged = [&](std::size_t p) {
+        return p < m_margin.size() && m_margin[p] > m_shifted;
+    };
+    m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, bool listed, PairMode was,
+                                   KeptSpring& spring, std::uint8_t& hint) {
+        if (listed && was == PairMode::Check)
+            return static_cast<int>(PairMode::Check); // the rule per step holds in any frame
+        std::size_t ka = 0, kb = 0;
+        int mode = static_cast<int>(PairMode::Check);
+        switch (settleListed(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding)) {
+        case Listing::Drop:
+            mode = VerletList::kDrop;
+            break;
+        case Listing::Always:
+            mode = static_cast<int>(
+                settledMode(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding));
+            break;
+        case Listing::Check:
+        case Listing::Open:
+            break;
+        }
+        // A spring beside the list goes back to the history, or comes from it, where the
+        // pair's mode changes (the canonical i's history: settleListed ordered ka, kb).
+        bool const had = listed && keepsSpring(was);
+        bool const has = mode != VerletList::kDrop && keepsSpring(static_cast<PairMode>(mode));
+        if (m_springsLive && had && !has)
+            writeBackSpring(ps, ka, ps.uid(kb), spring, hint);
+        else if (m_springsLive && has && !had)
+            spring = springFromHistory(ps, ka, kb, hint);
+        return mode;
+    });
+}
+
+} // namespace regolith::particles
