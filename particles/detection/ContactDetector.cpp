@@ -218,7 +218,10 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
                                   PeriodicFrame const& frame) {
     core::Vec3 const period = frame.period();
     std::size_t const firstPair = m_list.numPairs();
-    double const reachSlack = m_stats.slack + m_listSkin + m_list.referenceSlack() + m_config.range;
+    // Both sides of a test are references, each within the reference slack of the position it
+    // stands for.
+    double const referenceSlack = m_list.referenceSlack();
+    double const reachSlack = m_stats.slack + m_listSkin + 2.0 * referenceSlack + m_config.range;
     auto const arrivals = m_list.arrivals();
     std::size_t const firstNew = arrivals.size() - m_fresh.size();
     core::Vec3 const drift = m_list.drift();
@@ -229,7 +232,9 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
     for (std::size_t n = 0; n < m_fresh.size(); ++n) {
         std::size_t const f = m_fresh[n];
         VerletList::Id const idF = VerletList::idOf(ps, f);
-        core::Vec3 const xf = localPosition(ps.position(f), ps.image(f), period);
+        // Its reference: where it stands less the copies' common displacement (VerletList::
+        // follow), so that it moves with them.
+        core::Vec3 const xf = referenceOf(idF, f);
         double const rf = ps.radius(f);
         if (!(xf.cwiseAbs().maxCoeff() + 2.0 * rf <= m_listScale))
             return false; // beyond the rounding slack of the last rebuild (or not finite)
@@ -243,7 +248,7 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
         };
         // The cells hold the small spheres' local positions at the rebuild, by id: their
         // references less the list's drift since (VerletList::shift).
-        m_cells.forEachOverlapWith(xf - drift, rf, [&](std::size_t id) {
+        m_cells.forEachOverlapWith(xf - drift, rf + referenceSlack, [&](std::size_t id) {
             if (m_list.indexOf(static_cast<VerletList::Id>(id)) != VerletList::kDead)
                 m_list.addPair(idF, static_cast<VerletList::Id>(id));
         });

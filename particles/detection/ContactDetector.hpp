@@ -210,8 +210,8 @@ public:
     /// references by their drift and settles its pairs again instead of rebuilding it ("A
     /// list that follows a drift"); otherwise writes the kept springs back to the histories of
     /// `particles` (a grain may migrate or wrap in that synchronisation, and the next detect
-    /// rebuilds). Returns whether the list shifted. Not collective.
-    bool beforeSync(ParticleStorage& particles, double movedAtMost);
+    /// rebuilds). Not collective.
+    void beforeSync(ParticleStorage& particles, double movedAtMost);
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
     /// overwritten, one that does not is added if the last pass touched it (an older one is a
@@ -354,6 +354,19 @@ private:
     [[nodiscard]] static KeptSpring springFromHistory(ParticleStorage const& particles,
                                                       std::size_t i, std::size_t j,
                                                       std::uint8_t& hint);
+    /// Where a list stands after followDrift.
+    enum class DriftOutlook : std::uint8_t {
+        Holds,   ///< no copy can reach the budget after `motion` more
+        Shifted, ///< the copies moved together: the references followed them (shiftList)
+        Due,     ///< the copies spread too far apart: the list must be rebuilt
+    };
+    /// Compares every copy with its reference and shifts the list where the copies, after
+    /// `motion` more, could reach the budget but moved together (ListShift.cpp). Pre: the
+    /// list follows the storage.
+    DriftOutlook followDrift(ParticleStorage& particles, double motion);
+    /// In decideRebuild, after the list followed the storage: followDrift if the step's
+    /// motion `moved` once more could bring the list to its budget.
+    void shiftAhead(ParticleStorage& particles, double moved);
     /// Shifts the list's references by `drift` (every copy within `spread` of its shifted
     /// reference) and settles its pairs again (ListShift.cpp).
     void shiftList(ParticleStorage& particles, core::Vec3 const& drift, double spread);
@@ -389,6 +402,7 @@ private:
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)
+    std::uint32_t m_shifts = 0;   ///< list shifts since the last detect (DetectorStats)
     double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect
     bool m_prepared = false;        ///< prepareList decided for the next detect
     bool m_rebuildDue = false;      ///< the next (or this) detect rebuilds the list

@@ -64,6 +64,9 @@ struct DetectorStats {
     /// were added to the list in this call.
     double skin = 0.0;
     bool rebuilt = false;
+    /// Shifts of the list with the copies' drift since the last detect (ContactDetector,
+    /// "A list that follows a drift").
+    std::uint32_t shifts = 0;
     std::size_t listedPairs = 0;
     /// Listed pairs whose contact this block evaluates whenever they overlap, decided when
     /// they were listed (no contact-point rule per step; see ContactDetector, "Verlet list").

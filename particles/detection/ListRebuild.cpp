@@ -51,6 +51,8 @@ void ContactDetector::decideRebuild(ParticleStorage& ps, core::AABB const& regio
     m_listedBefore = m_list.numPairs();
     if (follows)
         forgetDeadFaceTwins(ps);
+    if (follows && listedFor(region, frame) && !tooManyArrivals())
+        shiftAhead(ps, moved);
     m_rebuildDue = !listedFor(region, frame) || !follows || tooManyArrivals() ||
                    m_list.movedTooFar(ps, moved, share) || !addArrivals(ps, region, frame);
 }
@@ -66,6 +68,7 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
     }
     m_fillFrom = m_springsLive && !rebuild ? m_listedBefore : 0;
     m_stats.rebuilt = rebuild;
+    m_stats.shifts = std::exchange(m_shifts, 0);
     m_stats.arrivals = rebuild ? 0 : m_fresh.size();
     m_stats.overlapsFound = 0;
     m_stats.listedPairs = m_list.numPairs();

@@ -11,38 +11,54 @@
 
 namespace regolith::particles {
 
-bool ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
+void ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
     if (!listed() || m_config.sortByUid || !m_list.mayMoveTooFar(movedAtMost))
-        return false;
-    // The list names every copy (nothing changed the storage since the last detect) and the
-    // shadows of other ranks' masters move up to movedAtMost in the synchronisation.
+        return;
+    // The list names every copy (nothing changed the storage since the last detect). The
+    // masters have moved, and no more in the synchronisation: if none is the budget from its
+    // reference, none of a kept pair leaves the block (it lies deeper), and the next detect
+    // decides, with every copy where the synchronisation put it (shiftAhead).
     if (m_list.followsUnchanged(ps) && std::isfinite(movedAtMost) && movedAtMost >= 0.0) {
         VerletList::Displacements const d = m_list.displacements(ps);
-        double const half = m_list.budget();
-        double const rounding = 1.0 + 1e-9; // the sums' rounding, as VerletList's tests
-        if (d.finite && (d.largest + movedAtMost) * rounding < half) {
-            m_list.setMoved(d.largest); // no copy can leave the block: the springs stay
-            return false;
-        }
-        double const room = kShiftSpread * half - (d.spread + movedAtMost) * rounding;
-        if (d.finite && room > 0.0) {
-            // The references lead the copies along their drift, by as far as they drifted
-            // (within the room): a steady drift then carries the copies through their
-            // references and as far beyond before the next shift, twice as long as from
-            // references where the copies stand.
-            double const drifted = d.drift.norm();
-            core::Vec3 const lead = drifted > 0.0
-                                        ? core::Vec3(std::min(room, drifted) / drifted * d.drift)
-                                        : core::Vec3::Zero();
-            shiftList(ps, d.drift + lead, d.spread + lead.norm());
-            return true;
-        }
+        if (d.finite && d.largestMaster * (1.0 + 1e-9) < m_list.budget())
+            return;
     }
-    writeBackSprings(ps); // the next detect rebuilds
-    return false;
+    writeBackSprings(ps); // the next detect rebuilds or shifts
+}
+
+void ContactDetector::shiftAhead(ParticleStorage& ps, double moved) {
+    // The step's motion again would bring the list to its budget: measured now, while every
+    // copy is where the synchronisation put it (before the sync the shadows lag a step).
+    if (std::isfinite(moved) && moved >= 0.0 && m_list.mayMoveTooFar(2.0 * moved))
+        followDrift(ps, moved);
+}
+
+ContactDetector::DriftOutlook ContactDetector::followDrift(ParticleStorage& ps, double motion) {
+    VerletList::Displacements const d = m_list.displacements(ps);
+    if (!d.finite)
+        return DriftOutlook::Due;
+    m_list.setCommonDisplacement(d.drift);
+    double const half = m_list.budget();
+    double const rounding = 1.0 + 1e-9; // the sums' rounding, as VerletList's tests
+    if ((d.largest + motion) * rounding < half) {
+        m_list.setMoved(d.largest); // no copy can leave the block: the springs stay
+        return DriftOutlook::Holds;
+    }
+    double const room = kShiftSpread * half - (d.spread + motion) * rounding;
+    if (!(room > 0.0))
+        return DriftOutlook::Due;
+    // The references lead the copies along their drift, by as far as they drifted (within
+    // the room): a steady drift then carries the copies through their references and as far
+    // beyond before the next shift, twice as long as from references where they stand.
+    double const drifted = d.drift.norm();
+    core::Vec3 const lead = drifted > 0.0 ? core::Vec3(std::min(room, drifted) / drifted * d.drift)
+                                          : core::Vec3::Zero();
+    shiftList(ps, d.drift + lead, d.spread + lead.norm());
+    return DriftOutlook::Shifted;
 }
 
 void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, double spread) {
+    ++m_shifts;
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack(); // classifyListed's
     // Both copies of a settled pair deeper inside the block than its ownership reach and the
     // list's motion (with the rounding): settleListed answers Always for it, and settledMode

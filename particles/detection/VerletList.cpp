@@ -43,6 +43,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
         }
     m_origin = m_built != 0 && lo.x() <= hi.x() ? core::Vec3(0.5 * (lo + hi)) : core::Vec3::Zero();
     m_builtOrigin = m_origin;
+    m_common = core::Vec3::Zero();
     m_extent = 0.0;
     m_referenceSlack = 0.0;
     m_reference.clear();
@@ -78,8 +79,9 @@ VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) c
     auto const& x = ps.positions();
     core::Vec3 lo = core::Vec3::Constant(std::numeric_limits<double>::infinity());
     core::Vec3 hi = -lo;
-    double largest = 0.0;
+    double largest = 0.0, largestMaster = 0.0;
     bool finite = true;
+    auto const flags = ps.allFlags();
     for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
         Reference const& r = m_reference[ps.traceTag(k)];
         core::Vec3 const d =
@@ -87,6 +89,7 @@ VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) c
         double const d2 = d.squaredNorm();
         finite = finite & !std::isnan(d2);
         largest = std::max(largest, d2);
+        largestMaster = std::max(largestMaster, flags[k].isMaster() ? d2 : 0.0);
         lo = lo.cwiseMin(d);
         hi = hi.cwiseMax(d);
     }
@@ -95,6 +98,7 @@ VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) c
     if (ps.size() == 0 || !out.finite)
         return out;
     out.largest = std::sqrt(largest);
+    out.largestMaster = std::sqrt(largestMaster);
     // The centre of the bounding box, and the farthest displacement from it (at most half
     // the box's diagonal, often much less).
     out.drift = 0.5 * (lo + hi);
@@ -111,6 +115,7 @@ VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) c
 
 void VerletList::shift(core::Vec3 const& drift, double moved) {
     m_origin += drift;
+    m_common -= drift;
     widenSlack(); // reference() now adds a larger origin
     m_moved = moved + m_referenceSlack;
 }
@@ -137,7 +142,11 @@ bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
             core::reserveForAppend(m_indexOf); // per-copy arrays sized at restart: no doubling
             core::reserveForAppend(m_reference);
             m_indexOf.push_back(kDead);
-            pushReference(ps.position(c.index));
+            // Referenced as if it had moved with the others since their references: their
+            // common displacement, which the bound must then cover.
+            pushReference(ps.position(c.index) - m_common);
+            if (!m_common.isZero())
+                m_moved = std::max(m_moved, m_common.norm() + m_referenceSlack);
             m_arrivals.push_back(id);
             fresh.push_back(c.index);
         }

@@ -161,6 +161,7 @@ public:
     /// followsUnchanged(ps).
     struct Displacements {
         double largest = 0.0;
+        double largestMaster = 0.0; ///< the largest distance of a master (Flags::isMaster)
         core::Vec3 drift = core::Vec3::Zero();
         double spread = 0.0;
         bool finite = true;
@@ -176,6 +177,10 @@ public:
     /// The references' total shift since the last restart (the cells of that rebuild hold the
     /// copies where they were then) [length].
     [[nodiscard]] core::Vec3 drift() const { return m_origin - m_builtOrigin; }
+    /// The copies' common displacement from their references, as last measured
+    /// (displacements().drift, less the shifts since): a copy that arrives is referenced
+    /// there, not where it stands, so that it moves with the others.
+    void setCommonDisplacement(core::Vec3 const& common) { m_common = common; }
     /// Sets the bound on every copy's distance from its reference to `moved` (measured:
     /// displacements()) plus the reference slack.
     void setMoved(double moved) { m_moved = moved + m_referenceSlack; }
@@ -275,6 +280,7 @@ private:
     std::vector<Reference> m_reference; ///< per id
     core::Vec3 m_origin = core::Vec3::Zero();
     core::Vec3 m_builtOrigin = core::Vec3::Zero(); ///< m_origin at the last restart
+    core::Vec3 m_common = core::Vec3::Zero();      ///< setCommonDisplacement, less the shifts since
     double m_extent = 0.0; ///< largest |coordinate - origin| of a stored reference
     double m_referenceSlack = 0.0;
     std::vector<Id> m_arrivals;

@@ -279,6 +279,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
                                        reproducible ? &m_records[b] : nullptr});
             // A block without copies "rebuilds" an empty list every call: not counted.
             m_listRebuilds += m_detectors[b].stats().rebuilt && !ps.empty() ? 1 : 0;
+            m_listShifts += m_detectors[b].stats().shifts;
         }
     }
     {

@@ -110,7 +110,7 @@ void DemStep::syncParticles() {
         // this sync: that block's list shifts with the grains' drift, or the springs kept
         // beside it go back to the histories first.
         for (std::size_t b = 0; b < blocks.size(); ++b)
-            m_listShifts += m_detectors[b].beforeSync(blocks[b].particles, agreed.moved) ? 1 : 0;
+            m_detectors[b].beforeSync(blocks[b].particles, agreed.moved);
         try {
             m_sync->syncOn(*m_local, agreed.verdict);
         } catch (core::RankInputError const& e) { // found mid-sync by one rank: name the step
