@@ -18,7 +18,10 @@
 /// (+ the caller's rounding slack). As long as no copy moved skin / 2 or more from its
 /// reference position (movedTooFar), every pair that overlaps now is therefore in the list.
 /// A copy's image never changes under one id (setImage makes it fresh), so canonical
-/// displacements equal local ones.
+/// displacements equal local ones. shift() moves every reference by a common drift: the
+/// pairs' distances change by the displacements less that drift, so the same argument holds
+/// for the displacements from the moved references (ContactDetector, "A list that follows a
+/// drift").
 ///
 /// Reference positions are kept in single precision relative to an origin (12 bytes per id,
 /// not 24): reference() is within referenceSlack() of the true reference position, so
@@ -298,8 +301,8 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
     std::size_t const listed = m_pairs.size();
     for (std::size_t p = 0; p < listed; ++p) {
         auto& pair = m_pairs[p];
-        if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead || unchanged(p))
-            continue;
+        if (unchanged(p) || m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
+            continue; // (in that order: most pairs are unchanged, and their ids are not read)
         KeptSpring spare{};
         KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
         int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);

@@ -225,8 +225,8 @@ public:
     /// block's rebuild counts once; a block without copies counts none). Local: sum over
     /// ranks for the run's total.
     [[nodiscard]] std::uint64_t listRebuilds() const { return m_listRebuilds; }
-    /// Verlet-list shifts instead of rebuilds (ContactDetector::beforeSync), counted as
-    /// listRebuilds. Local.
+    /// Verlet-list shifts with the grains' drift instead of rebuilds (ContactDetector, "A list
+    /// that follows a drift"), counted as listRebuilds. Local.
     [[nodiscard]] std::uint64_t listShifts() const { return m_listShifts; }
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
