@@ -166,6 +166,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_twins.clear();
     m_shifted = 0.0; // a new list has moved no reference
     m_margin.clear();
+    m_spreadOut = false;
     if (ps.empty()) {
         m_stats = DetectorStats{};
         m_small.clear();

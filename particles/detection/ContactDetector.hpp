@@ -420,6 +420,8 @@ private:
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)
     std::uint32_t m_shifts = 0;   ///< list shifts since the last detect (DetectorStats)
+    /// The copies spread too far apart for the list to shift (a gas): it is rebuilt as before.
+    bool m_spreadOut = false;
     double m_movedAtMost = std::numeric_limits<double>::infinity(); ///< noteMotion, one detect
     bool m_prepared = false;        ///< prepareList decided for the next detect
     bool m_rebuildDue = false;      ///< the next (or this) detect rebuilds the list

@@ -18,7 +18,8 @@ void ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
     // masters have moved, and no more in the synchronisation: if none is the budget from its
     // reference, none of a kept pair leaves the block (it lies deeper), and the next detect
     // decides, with every copy where the synchronisation put it (shiftAhead).
-    if (m_list.followsUnchanged(ps) && std::isfinite(movedAtMost) && movedAtMost >= 0.0) {
+    if (!m_spreadOut && m_list.followsUnchanged(ps) && std::isfinite(movedAtMost) &&
+        movedAtMost >= 0.0) {
         VerletList::Displacements const d = m_list.displacements(ps);
         if (d.finite && d.largestMaster * (1.0 + 1e-9) < m_list.budget())
             return;
@@ -29,7 +30,7 @@ void ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
 void ContactDetector::shiftAhead(ParticleStorage& ps, double moved) {
     // The step's motion again would bring the list to its budget: measured now, while every
     // copy is where the synchronisation put it (before the sync the shadows lag a step).
-    if (std::isfinite(moved) && moved >= 0.0 && m_list.mayMoveTooFar(2.0 * moved))
+    if (!m_spreadOut && std::isfinite(moved) && moved >= 0.0 && m_list.mayMoveTooFar(2.0 * moved))
         followDrift(ps, moved);
 }
 
@@ -45,8 +46,10 @@ ContactDetector::DriftOutlook ContactDetector::followDrift(ParticleStorage& ps, 
         return DriftOutlook::Holds;
     }
     double const room = kShiftSpread * half - (d.spread + motion) * rounding;
-    if (!(room > 0.0))
+    if (!(room > 0.0)) {
+        m_spreadOut = true; // until the rebuild it soon needs: no more comparisons for a shift
         return DriftOutlook::Due;
+    }
     // The references lead the copies along their drift, by as far as they drifted (within
     // the room): a steady drift then carries the copies through their references and as far
     // beyond before the next shift, twice as long as from references where they stand.
