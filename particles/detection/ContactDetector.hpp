@@ -222,12 +222,11 @@ public:
                                      PeriodicFrame const& frame) const;
 
     /// Before a synchronisation after which noteMotion(movedAtMost) will be called (the
-    /// masters moved, the shadows not yet): where a copy may then have moved skin / 2 from
-    /// its reference, compares the positions; if the copies moved together, shifts the list's
-    /// references by their drift and settles its pairs again instead of rebuilding it ("A
-    /// list that follows a drift"); otherwise writes the kept springs back to the histories of
-    /// `particles` (a grain may migrate or wrap in that synchronisation, and the next detect
-    /// rebuilds). Not collective.
+    /// masters moved, and do not move in it): where a copy may then have moved skin / 2 from
+    /// its reference, compares the masters with their references, and if one moved skin / 2,
+    /// writes the kept springs back to the histories of `particles` (a grain may migrate or
+    /// wrap in that synchronisation). The next detect shifts the list or rebuilds it ("A list
+    /// that follows a drift"). Not collective.
     void beforeSync(ParticleStorage& particles, double movedAtMost);
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
@@ -371,16 +370,10 @@ private:
     [[nodiscard]] static KeptSpring springFromHistory(ParticleStorage const& particles,
                                                       std::size_t i, std::size_t j,
                                                       std::uint8_t& hint);
-    /// Where a list stands after followDrift.
-    enum class DriftOutlook : std::uint8_t {
-        Holds,   ///< no copy can reach the budget after `motion` more
-        Shifted, ///< the copies moved together: the references followed them (shiftList)
-        Due,     ///< the copies spread too far apart: the list must be rebuilt
-    };
     /// Compares every copy with its reference and shifts the list where the copies, after
-    /// `motion` more, could reach the budget but moved together (ListShift.cpp). Pre: the
-    /// list follows the storage.
-    DriftOutlook followDrift(ParticleStorage& particles, double motion);
+    /// `motion` more, could reach the budget but moved together (ListShift.cpp); the bound on
+    /// their motion restarts from the comparison. Pre: the list follows the storage.
+    void followDrift(ParticleStorage& particles, double motion);
     /// In decideRebuild, after the list followed the storage: followDrift if the step's
     /// motion `moved` once more could bring the list to its budget.
     void shiftAhead(ParticleStorage& particles, double moved);

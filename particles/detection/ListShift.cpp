@@ -1,8 +1,9 @@
 /// A Verlet list that follows a drift (ContactDetector's class comment, "A list that follows a
-/// drift"): before a synchronisation in which some copy may reach skin / 2 from its reference,
-/// the positions are compared; where the copies moved together, the references move by their
-/// common drift and the pairs are settled again, which keeps the pairs found and the springs
-/// of the pairs deep inside the block.
+/// drift"): at a detect after which the step's motion could bring a copy to skin / 2 from its
+/// reference, the positions are compared; where the copies moved together, the references
+/// move by their common drift and the pairs are settled again, which keeps the pairs found
+/// and the springs of the pairs deep inside the block. Before the synchronisation, whether a
+/// kept spring must go back to the histories.
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
@@ -34,21 +35,21 @@ void ContactDetector::shiftAhead(ParticleStorage& ps, double moved) {
         followDrift(ps, moved);
 }
 
-ContactDetector::DriftOutlook ContactDetector::followDrift(ParticleStorage& ps, double motion) {
+void ContactDetector::followDrift(ParticleStorage& ps, double motion) {
     VerletList::Displacements const d = m_list.displacements(ps);
     if (!d.finite)
-        return DriftOutlook::Due;
+        return; // movedTooFar finds it
     m_list.setCommonDisplacement(d.drift);
     double const half = m_list.budget();
     double const rounding = 1.0 + 1e-9; // the sums' rounding, as VerletList's tests
     if ((d.largest + motion) * rounding < half) {
-        m_list.setMoved(d.largest); // no copy can leave the block: the springs stay
-        return DriftOutlook::Holds;
+        m_list.setMoved(d.largest); // the bound restarts from the comparison
+        return;
     }
     double const room = kShiftSpread * half - (d.spread + motion) * rounding;
     if (!(room > 0.0)) {
         m_spreadOut = true; // until the rebuild it soon needs: no more comparisons for a shift
-        return DriftOutlook::Due;
+        return;
     }
     // The references lead the copies along their drift, by as far as they drifted (within
     // the room): a steady drift then carries the copies through their references and as far
@@ -57,7 +58,6 @@ ContactDetector::DriftOutlook ContactDetector::followDrift(ParticleStorage& ps, 
     core::Vec3 const lead = drifted > 0.0 ? core::Vec3(std::min(room, drifted) / drifted * d.drift)
                                           : core::Vec3::Zero();
     shiftList(ps, d.drift + lead, d.spread + lead.norm());
-    return DriftOutlook::Shifted;
 }
 
 void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, double spread) {

@@ -43,7 +43,6 @@
 #include <cstdint>
 #include <limits>
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace regolith::particles {
@@ -158,10 +157,10 @@ public:
     /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
     /// may then be skin / 2 or more from its reference position.
     [[nodiscard]] bool mayMoveTooFar(double movedAtMost, double share = 1.0) const;
-    /// Where the copies stand against their references: the largest distance, and the
-    /// smallest ball that holds every displacement (its centre, the drift, and a bound on its
-    /// radius, half the diagonal of their bounding box), all within referenceSlack(). Pre:
-    /// followsUnchanged(ps).
+    /// Where the copies stand against their references: the largest distance, and a ball that
+    /// holds every displacement (its centre, the drift, is the centre of their bounding box;
+    /// its radius, the spread, the largest distance from it), all within referenceSlack().
+    /// Pre: followsUnchanged(ps).
     struct Displacements {
         double largest = 0.0;
         double largestMaster = 0.0; ///< the largest distance of a master (Flags::isMaster)
