@@ -18,7 +18,7 @@ SCHEMA = {
     "peak_rss_bytes": int,
     "timing_s": {"sync": NUMBER, "contact": NUMBER, "gravity": NUMBER, "integrate": NUMBER},
     "comm": {"messages_per_step": NUMBER, "bytes_per_step": NUMBER, "max_peers": int},
-    "neighbour_list": {"skin": NUMBER, "rebuilds": int},
+    "neighbour_list": {"skin": NUMBER, "rebuilds": int, "shifts": int},
     "time": NUMBER,
     "conserved": {"momentum": list, "angular_momentum": list, "kinetic_energy": NUMBER,
                   "potential_energy": NUMBER, "center_of_mass": list},
