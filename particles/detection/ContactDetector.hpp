@@ -85,22 +85,10 @@ core::AABB everywhere();
 /// (plus 64), or when an arrival lies beyond the coordinate scale of the last rebuild (its
 /// rounding slack).
 ///
-/// A list that follows a drift (ListShift.cpp). A pair's distance changes by at most the two
-/// copies' displacements less any common one, so the list stays a superset of the overlapping
-/// pairs while every copy lies within the budget (skin / 2) of its reference moved by a
-/// common drift. When the step's motion could use up the budget, the copies are compared with
-/// their references (at the detect, where the synchronisation put them; before the
-/// synchronisation, only whether a master may leave with a kept spring); if they moved
-/// together (they fit in a ball of 0.9 budget around their drift), the references move by the
-/// drift, and ahead along it by as much again (within that share), instead of a rebuild. The
-/// candidates stay; what was settled from the old references is settled again: pairs whose
-/// two copies lay deeper inside the block at the rebuild than their settlement needs plus the
-/// drift since keep their mode and kept spring (a margin per pair, measured once), the others
-/// and the pairs parked at listing (VerletList::resettle) are settled anew, springs going back
-/// to the histories or coming from them where a mode changes, and the settled face pairs end
-/// (their twins keep the rule). An arriving copy is referenced where the others' common
-/// displacement puts it. A sliding pack (the first paper's scene B) rebuilt 153 times in
-/// 1,000 steps, and now 52 times with 191 shifts.
+/// A list that follows a drift (ListShift.cpp; docs/sync.md, "A list follows a drift"): where
+/// the copies moved together, the references shift by their common drift instead of a
+/// rebuild, the candidates stay, and only the pairs near a face and the parked ones are
+/// settled again (a margin per pair against the drift).
 ///
 /// A skin for the scene (DetectorConfig::widestRelativeSkin): a packing lists its first shell
 /// with a wider skin at no cost per step and rebuilds less often; a gas keeps relativeSkin.
