@@ -23,7 +23,7 @@ struct RunStats {
     std::string firstWallCrossing;
     std::int64_t listRebuilds = 0; ///< Verlet-list rebuilds, over all blocks and ranks
     std::int64_t listShifts = 0;   ///< Verlet-list shifts with the grains' drift, likewise
-    double listSkin = 0.0;         ///< the largest skin of the blocks' last rebuilds
+    double listSkin = 0.0;         ///< the largest over the ranks of DemStep::listSkin
 };
 
 } // namespace regolith::coupling

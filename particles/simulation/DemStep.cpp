@@ -191,13 +191,6 @@ double DemStep::copySkin() const {
     return m_sync->config().skin + 0.5 * m_sync->config().reach;
 }
 
-double DemStep::listSkin() const {
-    double skin = 0.0;
-    for (ContactDetector const& d : m_detectors)
-        skin = std::max(skin, d.listSkin());
-    return skin;
-}
-
 std::size_t DemStep::detectorSum(std::size_t DetectorStats::*count) const {
     std::size_t sum = 0;
     for (ContactDetector const& d : m_detectors)
@@ -266,6 +259,7 @@ void DemStep::computeForces(std::uint32_t stamp) {
         syncListHolds = agreeAfterSync();
         m_walls.moveTo(time());
         m_walls.resetForces();
+        double rebuiltSkin = 0.0; // the largest skin of this step's rebuilds
         for (std::size_t b = 0; b < blocks.size(); ++b) {
             ParticleStorage& ps = blocks[b].particles;
             ps.resetForces();
@@ -278,9 +272,12 @@ void DemStep::computeForces(std::uint32_t stamp) {
                                        m_contacts[b], m_config.dt, stamp, keepPairs,
                                        reproducible ? &m_records[b] : nullptr});
             // A block without copies "rebuilds" an empty list every call: not counted.
-            m_listRebuilds += m_detectors[b].stats().rebuilt && !ps.empty() ? 1 : 0;
+            bool const rebuilt = m_detectors[b].stats().rebuilt && !ps.empty();
+            m_listRebuilds += rebuilt ? 1 : 0;
+            rebuiltSkin = rebuilt ? std::max(rebuiltSkin, m_detectors[b].listSkin()) : rebuiltSkin;
             m_listShifts += m_detectors[b].stats().shifts;
         }
+        m_listSkin = rebuiltSkin > 0.0 ? rebuiltSkin : m_listSkin;
     }
     {
         auto const t = m_timers->scope(kSyncTimer);

@@ -235,9 +235,10 @@ public:
     /// their twins (ContactDetector, "Pairs across a periodic face"), as of the last force
     /// computation. Local.
     [[nodiscard]] std::size_t faceTwins() const { return detectorSum(&DetectorStats::faceTwins); }
-    /// The largest skin of the local blocks' last list rebuilds [length]; 0 without a list
-    /// (DemStepConfig::detector without a skin). Local.
-    [[nodiscard]] double listSkin() const;
+    /// The skin of the local blocks' last list rebuild (the largest, if several rebuilt in that
+    /// step) [length], kept across a relocation that renews the lists; 0 without a list
+    /// (DemStepConfig::detector without a skin) or before the first rebuild. Local.
+    [[nodiscard]] double listSkin() const { return m_listSkin; }
     /// The contacts each local block evaluated in the last force computation (indices into
     /// that block's storage; valid until the next synchronisation), in the order of
     /// LocalParticles::blocks(). With DemStepConfig::keepContacts false, the pair contacts
@@ -311,6 +312,7 @@ private:
     WallCrossings m_wallCrossings;
     std::uint64_t m_listRebuilds = 0;
     std::uint64_t m_listShifts = 0;
+    double m_listSkin = 0.0; ///< listSkin()
 };
 
 } // namespace regolith::particles
