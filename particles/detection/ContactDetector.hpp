@@ -332,6 +332,17 @@ private:
                                         std::size_t kb, VerletList::Id a, VerletList::Id b,
                                         PeriodicFrame const& frame, double rounding) const;
     [[nodiscard]] bool faceTwinAlive(FaceTwin const& t) const;
+    /// Whether copy kb (id b) of a face pair's j lives as long as the list: j's master, or a
+    /// copy whose ball reaches into `region` by more than the list's motion from its reference.
+    [[nodiscard]] bool copyOutlivesList(ParticleStorage const& particles, std::size_t kb,
+                                        VerletList::Id b, core::AABB const& region,
+                                        PeriodicFrame const& frame, double rounding) const;
+    /// The settled face pair of the instance ka, kb (canonical), or nullptr.
+    [[nodiscard]] FaceTwin* faceTwinOf(ParticleStorage const& particles, std::size_t ka,
+                                       std::size_t kb);
+    /// At a shift: forgets the settled face pairs that are no longer open or whose j's copy may
+    /// no longer outlive the list (from the shifted references), writing their springs back.
+    void keepFaceTwinsAtShift(ParticleStorage& particles, double rounding);
     /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped),
     /// writing their kept springs back first.
     void forgetDeadFaceTwins(ParticleStorage& particles);

@@ -16,8 +16,6 @@ bool ContactDetector::holdsFaceTwins(core::AABB const& region, PeriodicFrame con
 
 void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const& region,
                                     PeriodicFrame const& frame, double rounding) {
-    core::Vec3 const period = frame.period();
-    double const motion = listMotion(rounding);
     m_listings.assign(m_list.numPairs(), Listing::Drop);
     m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
         VerletList::Id a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
@@ -29,19 +27,8 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
             return;
         if (!oneImageInstance(ps.radius(ka) + ps.radius(kb) + m_config.range, frame, rounding))
             return;
-        // j's copy at its image exists while the list holds: its ball reaches into the
-        // block by more than the motion (the synchronisation keeps a copy wherever a ball
-        // overlaps a block). j's master always does.
-        if (!ps.flags(kb).isMaster() || !isZero(ps.image(kb))) {
-            core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
-            double outside2 = 0.0;
-            for (int d = 0; d < 3; ++d) {
-                double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
-                outside2 += out * out;
-            }
-            if (!(std::sqrt(outside2) + motion < ps.radius(kb)))
-                return;
-        }
+        if (!copyOutlivesList(ps, kb, b, region, frame, rounding))
+            return;
         m_twins.push_back(
             {FaceTwinKey{ps.uid(ka), ps.uid(kb),
                          detection_detail::imageDifference(ps.image(kb), ps.image(ka))},
@@ -49,6 +36,53 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
     });
     std::sort(m_twins.begin(), m_twins.end(),
               [](FaceTwin const& x, FaceTwin const& y) { return x.key < y.key; });
+}
+
+bool ContactDetector::copyOutlivesList(ParticleStorage const& ps, std::size_t kb, VerletList::Id b,
+                                       core::AABB const& region, PeriodicFrame const& frame,
+                                       double rounding) const {
+    // j's copy at its image exists while the list holds: its ball reaches into the block by
+    // more than the motion from its reference (the synchronisation keeps a copy wherever a
+    // ball overlaps a block). j's master always does.
+    if (ps.flags(kb).isMaster() && isZero(ps.image(kb)))
+        return true;
+    core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), frame.period());
+    double outside2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+        double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
+        outside2 += out * out;
+    }
+    return std::sqrt(outside2) + listMotion(rounding) < ps.radius(kb);
+}
+
+ContactDetector::FaceTwin* ContactDetector::faceTwinOf(ParticleStorage const& ps, std::size_t ka,
+                                                       std::size_t kb) {
+    FaceTwinKey const key{ps.uid(ka), ps.uid(kb),
+                          detection_detail::imageDifference(ps.image(kb), ps.image(ka))};
+    auto const t =
+        std::lower_bound(m_twins.begin(), m_twins.end(), key,
+                         [](FaceTwin const& x, FaceTwinKey const& k) { return x.key < k; });
+    return t == m_twins.end() || t->key != key ? nullptr : &*t;
+}
+
+void ContactDetector::keepFaceTwinsAtShift(ParticleStorage& ps, double rounding) {
+    // A settled face pair holds on while it is open and j's copy still outlives the list, now
+    // measured from the shifted references. The others end here: every instance keeps the
+    // rule from now on (their twins come back from the parked pairs); the springs, and i's
+    // images' histories, go back as when a grain wraps.
+    std::erase_if(m_twins, [&](FaceTwin const& t) {
+        VerletList::Id a = t.a, b = t.b;
+        std::size_t ka = 0, kb = 0;
+        if (settleListed(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding) == Listing::Open &&
+            copyOutlivesList(ps, kb, b, m_listRegion, m_listFrame, rounding))
+            return false;
+        if (m_springsLive && keepsSpring(m_list.mode(t.pair))) {
+            writeBackSpring(ps, m_list.indexOf(t.a), t.key.j, m_list.spring(t.pair),
+                            m_list.hint(t.pair));
+            writeBackFaceTwin(ps, t);
+        }
+        return true;
+    });
 }
 
 PairMode ContactDetector::faceTwinMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,

@@ -73,7 +73,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
         m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
             PairMode const mode = m_list.mode(p);
             if (mode == PairMode::Check || mode == PairMode::KeptPressedAcross)
-                return; // the rule per step holds anywhere; a face pair's twins come back
+                return; // the rule per step holds anywhere; a face pair is settled again
             double const ri = ps.radius(ka), rj = ps.radius(kb);
             double const reach =
                 ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
@@ -86,17 +86,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     }
     m_list.shift(drift, spread);
     m_shifted = m_list.drift().cwiseAbs().maxCoeff();
-    // The settled face pairs end here: the copy j's settlement counted on may now leave before
-    // the list does. Every instance keeps the rule from now on (their twins come back from the
-    // parked pairs); the springs, and i's images' histories, go back as when a grain wraps.
-    if (m_springsLive)
-        for (FaceTwin const& t : m_twins)
-            if (faceTwinAlive(t) && keepsSpring(m_list.mode(t.pair))) {
-                writeBackSpring(ps, m_list.indexOf(t.a), t.key.j, m_list.spring(t.pair),
-                                m_list.hint(t.pair));
-                writeBackFaceTwin(ps, t);
-            }
-    m_twins.clear();
+    keepFaceTwinsAtShift(ps, rounding);
     auto const unchanged = [&](std::size_t p) {
         return p < m_margin.size() && m_margin[p] > m_shifted;
     };
@@ -114,8 +104,15 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
             mode = static_cast<int>(
                 settledMode(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding));
             break;
-        case Listing::Check:
         case Listing::Open:
+            // A settled face pair keeps its mode, its twins stay dropped (decided by i's master,
+            // as when listed: see classifyListed).
+            if (FaceTwin const* t = faceTwinOf(ps, ka, kb))
+                mode = listed && t->a == a && t->b == b
+                           ? static_cast<int>(faceTwinMode(ps, ka, kb, a, b, m_listFrame, rounding))
+                           : VerletList::kDrop;
+            break;
+        case Listing::Check:
             break;
         }
         // A spring beside the list goes back to the history, or comes from it, where the

@@ -10,8 +10,6 @@
 
 namespace regolith::particles {
 
-using detection_detail::imageDifference;
-
 void ContactDetector::orderListed(ParticleStorage const& ps, VerletList::Id& a, VerletList::Id& b,
                                   std::size_t& ka, std::size_t& kb) const {
     ka = m_list.indexOf(a);
@@ -121,12 +119,8 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
         case Listing::Open:
             if (!twins)
                 break;
-            FaceTwinKey const key{ps.uid(ka), ps.uid(kb),
-                                  imageDifference(ps.image(kb), ps.image(ka))};
-            auto const t =
-                std::lower_bound(m_twins.begin(), m_twins.end(), key,
-                                 [](FaceTwin const& x, FaceTwinKey const& k) { return x.key < k; });
-            if (t == m_twins.end() || t->key != key)
+            FaceTwin* const t = faceTwinOf(ps, ka, kb);
+            if (t == nullptr)
                 break;
             if (t->a == a && t->b == b) { // the instance the block evaluates
                 t->pair = place;
