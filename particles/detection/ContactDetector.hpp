@@ -74,16 +74,11 @@ core::AABB everywhere();
 /// instances of the pair inside one block, one instance is therefore emitted, once. Without
 /// periodic axes this is region.contains(q).
 ///
-/// Verlet list. With a skin (DetectorConfig), `detect` on a mutable storage builds the same
-/// candidates with the reach r_a + r_b + skin into a VerletList and, in later calls, tests only
-/// the listed pairs (the contact decision above is unchanged, so the contacts are the same
-/// set). The list follows the storage's changes through its trace (VerletList.hpp): a copy
-/// that arrived since the last call is tested against the cells of the last rebuild (which
-/// hold the reference positions), the large spheres and the other arrivals, with the same
-/// reach. It is rebuilt when some copy moved skin / 2 since its reference time, when the
-/// trace broke (permute, clear, a radius changed), when the arrivals exceed 1/16 of the copies
-/// (plus 64), or when an arrival lies beyond the coordinate scale of the last rebuild (its
-/// rounding slack).
+/// Verlet list. With a skin (DetectorConfig), `detect` on a mutable storage lists the
+/// candidates with the reach r_a + r_b + skin (VerletList) and later tests only the listed
+/// pairs, with the decision above: the same contacts as a full pass. The list follows the
+/// storage's changes through its trace; arrivals, and when it is rebuilt: ListRebuild.cpp,
+/// docs/sync.md "Neighbour lists across sync calls".
 ///
 /// A list that follows a drift (ListShift.cpp; docs/sync.md, "A list follows a drift"): where
 /// the copies moved together, the references shift by their common drift instead of a
@@ -106,20 +101,16 @@ core::AABB everywhere();
 /// history beside each pair does the same in one loop). The contacts are the same set as the
 /// full rule finds (tests/particles/VerletListTest.cpp).
 ///
-/// Springs kept beside the list (DetectorConfig::keepSprings). A settled pair of two masters
-/// (image zero) whose reference centres lie deeper than skin / 2 inside the block, on a domain
-/// whose periods exceed twice the pair's reach (no second image instance of the pair), cannot
-/// migrate, wrap or change hands while the list holds, and nothing else evaluates it: its
-/// tangential spring is then kept beside the pair (PairMode::Kept, VerletList::spring) and
-/// handed to the callback in place of the history hint, as LAMMPS's fix neigh/history keeps
-/// its shear history; so is a settled face pair's (below), whose wraps are handled there. Why:
-/// touching the grain's history per contact cost a quarter of a static packing's pair loop
-/// (docs/notes/contact-loop.md). The grains' histories
-/// are stale for those pairs until writeBackSprings(), which the caller must call before anything
-/// reads or changes them or moves a copy out of the block: before a synchronisation whose motion
-/// could reach skin / 2 (beforeSync), a checkpoint, release(). The next detect fills the springs
-/// from the histories again (kept entry = the history entry, with stamps as ContactHistory's), so
-/// every step computes the same bits as with the histories.
+/// Springs kept beside the list (DetectorConfig::keepSprings; KeptSprings.cpp, docs/sync.md
+/// "Tangential springs beside the Verlet list"). A settled pair that cannot migrate, wrap or
+/// change hands while the list holds (two masters deeper than skin / 2 inside the block, one
+/// image instance), and a settled face pair, keep their tangential spring beside the pair
+/// (PairMode::Kept, VerletList::spring), handed to the callback in place of the history hint,
+/// as LAMMPS's fix neigh/history keeps its shear history. The grains' histories are stale for
+/// those pairs until writeBackSprings(), which the caller must call before anything reads or
+/// changes them or moves a copy out of the block: before a synchronisation whose motion could
+/// reach skin / 2 (beforeSync), a checkpoint, release(). Every step computes the same bits as
+/// with the histories.
 ///
 /// Pairs across a periodic face of a block that is the whole domain (a run on one block;
 /// DetectorConfig::settleFaceTwins): the block holds every image instance of such a pair, and
