@@ -197,15 +197,19 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_listSkin = m_stats.skin;
     m_list.restart(ps, m_listSkin); // ids = indices, as the cells' members
     // Binned wider than the list's skin: the candidates beyond it are left out (in the local
-    // frame, which the slack covers, as the cells' own test).
+    // frame, which the slack covers, as the cells' own test). The cells' bound on how far
+    // apart a pair is tells the per-step pass when it may first overlap
+    // (VerletList::forEachNearPair); the large pass does not measure it.
     double const slack = m_stats.slack;
-    auto const add = [&](std::size_t a, std::size_t b) {
+    auto const add = [&](std::size_t a, std::size_t b,
+                         double apart = -std::numeric_limits<double>::infinity()) {
         if (m_listSkin < binned) {
             double const reach = ps.radius(a) + ps.radius(b) + m_listSkin + m_config.range + slack;
             if (!((positions[a] - positions[b]).squaredNorm() < reach * reach))
                 return;
         }
-        m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b));
+        m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b),
+                       VerletList::gapBelow(apart - m_config.range - slack));
     };
     m_cells.forEachOverlap(add);
     largePass(positions, ps, slack + binned + m_config.range, add);

@@ -76,7 +76,8 @@ core::AABB everywhere();
 ///
 /// Verlet list. With a skin (DetectorConfig), `detect` on a mutable storage lists the
 /// candidates with the reach r_a + r_b + skin (VerletList) and later tests only the listed
-/// pairs, with the decision above: the same contacts as a full pass. The list follows the
+/// pairs, with the decision above: the same contacts as a full pass; of those, only the pairs
+/// the copies' motion may have closed (VerletList::forEachNearPair). The list follows the
 /// storage's changes through its trace; arrivals, and when it is rebuilt: ListRebuild.cpp,
 /// docs/sync.md "Neighbour lists across sync calls".
 ///

@@ -111,7 +111,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             out.pairs.push_back(c);
         detection_detail::handOver(onPair, c, m_list.hint(p), kept);
     };
-    m_list.forEachPair(eachPair);
+    m_list.forEachNearPair(eachPair);
     if constexpr (TakesPairOverlaps<OnPair>)
         overlaps += screen.flush(ps, period, onPair);
     m_stats.overlapsFound += overlaps;

@@ -84,6 +84,8 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
     m_roundingSlack = std::ldexp(extent.maxCoeff(), -21) +
                       8.0 * std::numeric_limits<double>::epsilon() * magnitude;
     m_testSlack = m_slack + m_roundingSlack;
+    // The largest radius as the floats round it up (relative 2^-24), with room to spare.
+    m_perSquare = 0.5 / (2.0 * m_maxRadius * (1.0 + 1e-6) + m_testSlack);
 
     // Counting sort by cell (stable: members of one cell stay in input order).
     std::size_t const numCells = static_cast<std::size_t>(m_dims[0] * m_dims[1] * m_dims[2]);

@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace regolith::particles {
@@ -47,7 +48,11 @@ public:
     /// Calls `f(a, b)` (original indices) once for every unordered pair of members whose
     /// spheres overlap (|x_a - x_b| < r_a + r_b + slack), and possibly for pairs within
     /// roundingSlack() of that: same cell, then the 13 forward neighbours of the half shell,
-    /// so each pair is visited at most once. Order: by cell, then slot.
+    /// so each pair is visited at most once. Order: by cell, then slot. An `f` that takes a
+    /// third argument gets `apart` [length]: where positive, the surfaces are at least that
+    /// far apart (|x_a - x_b| - r_a - r_b >= apart); where they may touch, it is not
+    /// positive. Without a root: d - t = (d^2 - t^2) / (d + t), and d + t < 2 (2 r_max +
+    /// slack) for a pair reported.
     template <class F>
     void forEachOverlap(F&& f) const;
 
@@ -80,11 +85,9 @@ private:
     };
     /// Whether the spheres may overlap: |x_a - x_b| < r_a + r_b + slack + roundingSlack, in
     /// double from the floats (the differences of two floats are exact in double).
-    [[nodiscard]] bool mayOverlap(Sphere const& a, Sphere const& b) const {
-        double const dx = double{b.x} - double{a.x}, dy = double{b.y} - double{a.y},
-                     dz = double{b.z} - double{a.z};
+    [[nodiscard]] bool mayOverlap(Sphere const& a, Sphere const& b, double d2) const {
         double const reach = double{a.radius} + double{b.radius} + m_testSlack;
-        return dx * dx + dy * dy + dz * dz < reach * reach;
+        return d2 < reach * reach;
     }
     /// f(member of slot s, member of slot t) for every slot t in [t0, t1) that may overlap
     /// slot s, in slot order. The tests come first, without a branch per candidate (whether two
@@ -92,6 +95,26 @@ private:
     /// calls for the hits.
     template <class F>
     void testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const;
+    [[nodiscard]] static double squaredDistance(Sphere const& a, Sphere const& b) {
+        double const dx = double{b.x} - double{a.x}, dy = double{b.y} - double{a.y},
+                     dz = double{b.z} - double{a.z};
+        return dx * dx + dy * dy + dz * dz;
+    }
+    /// f(member of slot s, member of slot t), with forEachOverlap's `apart` if f takes it.
+    template <class F>
+    void report(F& f, std::uint32_t s, std::uint32_t t, double d2) const {
+        if constexpr (std::is_invocable_v<F&, std::uint32_t, std::uint32_t, double>) {
+            Sphere const& a = m_sphere[s];
+            Sphere const& b = m_sphere[t];
+            double const touch = double{a.radius} + double{b.radius};
+            // The float centres are within the rounding slack of the true distance; the float
+            // radii are rounded up.
+            f(m_member[s], m_member[t], (d2 - touch * touch) * m_perSquare - m_roundingSlack);
+        } else {
+            (void)d2;
+            f(m_member[s], m_member[t]);
+        }
+    }
     static constexpr std::uint32_t kRangeChunk = 64;
     static constexpr std::uint32_t kShortRange = 8;
     /// Cell coordinate of `x` along `axis`, clamped to the grid (clamped in floating point,
@@ -113,6 +136,7 @@ private:
     double m_slack = 0.0;
     double m_roundingSlack = 0.0; ///< bound on the float rounding of two centres' distance
     double m_testSlack = 0.0;     ///< m_slack + m_roundingSlack
+    double m_perSquare = 0.0;     ///< 1 / (2 (2 r_max + m_testSlack)), r_max as a float rounds it
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
     std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
     std::vector<std::uint32_t> m_member; ///< original index of each slot (< 2^32 copies)
@@ -158,21 +182,26 @@ template <class F>
 void LinkedCells::testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const {
     Sphere const a = m_sphere[s];
     if (t1 - t0 < kShortRange) { // a gas's rows: few candidates, mostly apart (predictable)
-        for (std::uint32_t t = t0; t < t1; ++t)
-            if (mayOverlap(a, m_sphere[t]))
-                f(m_member[s], m_member[t]);
+        for (std::uint32_t t = t0; t < t1; ++t) {
+            double const d2 = squaredDistance(a, m_sphere[t]);
+            if (mayOverlap(a, m_sphere[t], d2))
+                report(f, s, t, d2);
+        }
         return;
     }
     std::array<std::uint8_t, kRangeChunk> hit;
+    std::array<double, kRangeChunk> hitD2;
     for (std::uint32_t t = t0; t < t1; t += kRangeChunk) {
         std::uint32_t const n = std::min<std::uint32_t>(kRangeChunk, t1 - t);
         std::uint32_t hits = 0;
         for (std::uint32_t k = 0; k < n; ++k) {
+            double const d2 = squaredDistance(a, m_sphere[t + k]);
             hit[hits] = static_cast<std::uint8_t>(k);
-            hits += mayOverlap(a, m_sphere[t + k]) ? 1 : 0;
+            hitD2[hits] = d2;
+            hits += mayOverlap(a, m_sphere[t + k], d2) ? 1 : 0;
         }
         for (std::uint32_t h = 0; h < hits; ++h)
-            f(m_member[s], m_member[t + hit[h]]);
+            report(f, s, t + hit[h], hitD2[h]);
     }
 }
 

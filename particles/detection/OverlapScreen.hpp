@@ -33,8 +33,9 @@ public:
     /// `kept` is not null, if it overlaps: now, or at the flush that tests its block. Returns
     /// how many pairs this call handed on.
     template <class OnPair>
-    std::size_t offer(ParticleStorage const& ps, core::Vec3 const& period, std::size_t i,
-                      std::size_t j, std::uint8_t& hint, KeptSpring* kept, OnPair& onPair) {
+    [[gnu::always_inline]] std::size_t offer(ParticleStorage const& ps, core::Vec3 const& period,
+                                             std::size_t i, std::size_t j, std::uint8_t& hint,
+                                             KeptSpring* kept, OnPair& onPair) {
         if (m_direct) {
             auto const s = detection_detail::separation(ps, i, j, period);
             bool const hit = detection_detail::overlapping(s);

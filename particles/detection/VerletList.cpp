@@ -18,6 +18,8 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_moved = 0.0;
     m_built = ps.size();
     m_pairs.clear();
+    m_gap.clear();
+    m_apart = 0;
     m_parked.clear();
     m_owned = 0;
     m_kept = 0;
@@ -207,9 +209,19 @@ bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost, doub
     return !finite || !(moved < half);
 }
 
+float VerletList::nearReach() const {
+    // Each copy lies within moved() of its reference, which lies within the reference slack
+    // of where it stood when its pair's gap was measured.
+    double const reach = 2.0 * (m_moved + m_referenceSlack);
+    auto const rounded = static_cast<float>(reach);
+    return static_cast<double>(rounded) >= reach
+               ? rounded
+               : std::nextafter(rounded, std::numeric_limits<float>::infinity());
+}
+
 std::size_t VerletList::bytes() const {
-    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_mode.capacity() + m_hint.capacity() +
-           m_springs.capacity() * sizeof(KeptSpring) +
+    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_gap.capacity() * sizeof(float) +
+           m_mode.capacity() + m_hint.capacity() + m_springs.capacity() * sizeof(KeptSpring) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id) +
            (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]);

@@ -38,7 +38,9 @@
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -89,11 +91,24 @@ public:
     /// Forgets the list: the next follow() returns false.
     void invalidate() { m_storage = nullptr; }
 
-    /// Adds a pair in mode Check (any order).
-    void addPair(Id a, Id b) {
+    /// A pair's gap not known: forEachNearPair always offers it.
+    static constexpr float kNoGap = -std::numeric_limits<float>::infinity();
+    /// `gap` as addPair takes it: in single precision, rounded down.
+    [[nodiscard]] static float gapBelow(double gap) {
+        auto const rounded = static_cast<float>(gap);
+        return static_cast<double>(rounded) <= gap
+                   ? rounded
+                   : std::nextafter(rounded, -std::numeric_limits<float>::infinity());
+    }
+    /// Adds a pair in mode Check (any order). `gap` [length]: how much farther apart than
+    /// they need to be to overlap the two copies stand now, less the caller's rounding, and
+    /// rounded down (forEachNearPair); kNoGap if not known.
+    void addPair(Id a, Id b, float gap = kNoGap) {
         m_pairs.push_back({a, b});
         m_mode.push_back(PairMode::Check);
         m_hint.push_back(0);
+        m_gap.push_back(gap);
+        m_apart += gap >= kApart * static_cast<float>(m_skin) ? 1 : 0;
     }
     /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
     /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or parks it
@@ -110,6 +125,7 @@ public:
                 continue;
             }
             m_pairs[out] = pair;
+            m_gap[out] = m_gap[p];
             m_mode[out] = static_cast<PairMode>(mode);
             m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
             m_kept += keepsSpring(static_cast<PairMode>(mode)) ? 1 : 0;
@@ -117,6 +133,7 @@ public:
             ++out;
         }
         m_pairs.resize(out);
+        m_gap.resize(out);
         m_mode.resize(out);
         m_hint.resize(out);
         if (m_kept != 0) // parallel to the pairs once one is kept (most lists keep none)
@@ -237,6 +254,44 @@ public:
                 f(std::size_t{a}, std::size_t{b}, p);
         }
     }
+    /// forEachPair over the pairs that may overlap now: those whose gap (addPair) is less than
+    /// twice the bound on every copy's distance from its reference, moved() (+ the reference
+    /// slack); the others cannot have closed it. In list order, so the same pairs overlap in
+    /// the same order as with forEachPair. Early in a list's life most pairs of a gas are
+    /// skipped; whether a pair is near is a coin toss for the predictor later on, so each
+    /// block of pairs is selected without a branch per pair. Where few pairs were listed far
+    /// apart (a packing's first shell), the selection would skip too few to pay for itself,
+    /// and every pair is offered.
+    template <class F>
+    void forEachNearPair(F&& f) const {
+        if (m_apart * kFewApart < m_pairs.size()) {
+            forEachPair(f);
+            return;
+        }
+        float const reach = nearReach();
+        std::size_t const n = m_pairs.size();
+        std::array<std::uint32_t, kNearBlock> near;
+        for (std::size_t first = 0; first < n; first += kNearBlock) {
+            std::size_t const m = std::min(kNearBlock, n - first);
+            std::size_t count = 0;
+            for (std::size_t q = 0; q < m; ++q) {
+                near[count] = static_cast<std::uint32_t>(first + q);
+                count += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
+            }
+            auto const visit = [&](std::size_t p) __attribute__((always_inline)) {
+                std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
+                if (a != kDead && b != kDead)
+                    f(std::size_t{a}, std::size_t{b}, p);
+            };
+            if (count == m) { // a packing's blocks: every pair near, walked as forEachPair
+                for (std::size_t p = first; p < first + m; ++p)
+                    visit(p);
+                continue;
+            }
+            for (std::size_t h = 0; h < count; ++h)
+                visit(near[h]);
+        }
+    }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
     /// Pair p's history slot hint (ContactHistory::touch).
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
@@ -269,6 +324,16 @@ private:
     std::vector<std::array<Id, 2>> m_parked;      ///< pairs dropped from the loop (classifyFrom)
     std::vector<std::array<Id, 2>> m_parkedAgain; ///< resettle's, swapped with m_parked
     Id m_hole = 0; ///< an id that is never alive (a parked pair's place in m_pairs names it)
+    std::vector<float> m_gap; ///< per pair: addPair's (forEachNearPair)
+    /// Pairs listed since the restart with a gap of kApart x skin or more: skipped by
+    /// forEachNearPair for the first half of the list's life at least. Fewer than one in
+    /// kFewApart: forEachNearPair offers every pair.
+    std::size_t m_apart = 0;
+    static constexpr float kApart = 0.25F;
+    static constexpr std::size_t kFewApart = 4;
+    static constexpr std::size_t kNearBlock = 64;
+    /// forEachNearPair's bound on the gap a pair may have closed, rounded up.
+    [[nodiscard]] float nearReach() const;
     std::vector<PairMode> m_mode;           ///< per pair
     std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
     std::vector<KeptSpring> m_springs;      ///< per pair once one is kept: the kept springs
@@ -332,6 +397,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         auto const m = static_cast<PairMode>(mode);
         count(m);
         m_pairs.push_back(pair);
+        m_gap.push_back(kNoGap);
         m_mode.push_back(m);
         m_hint.push_back(hint);
         if (!m_springs.empty() || keepsSpring(m)) {

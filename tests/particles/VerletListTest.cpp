@@ -275,6 +275,34 @@ TEST(VerletList, MotionBoundsAddUpAndThePositionsAreComparedOnlyOnceTheyReachHal
     EXPECT_TRUE(list.movedTooFar(ps, -1.0));
 }
 
+TEST(VerletList, OffersThePairsTheMotionMayHaveClosedAndNoOther) {
+    // The row's neighbours one apart: their surfaces 0.2 apart. Listed with that gap, and one
+    // pair of unknown gap, which is always offered.
+    ParticleStorage ps = rowOfEight();
+    VerletList list;
+    list.restart(ps, 0.5);
+    for (VerletList::Id k = 0; k + 1 < 8; ++k)
+        list.addPair(k, k + 1, VerletList::gapBelow(0.2));
+    list.addPair(0, 7);
+    auto offered = [&] {
+        std::vector<std::size_t> pairs;
+        list.forEachNearPair([&](std::size_t, std::size_t, std::size_t p) { pairs.push_back(p); });
+        return pairs;
+    };
+    EXPECT_EQ(offered(), std::vector<std::size_t>{7});
+    // Every copy within 0.09 of its reference: no pair 0.2 apart can have closed its gap.
+    EXPECT_FALSE(list.movedTooFar(ps, 0.09));
+    EXPECT_EQ(offered(), std::vector<std::size_t>{7});
+    // Within 0.11: two copies 0.2 apart may now touch; all offered, in list order.
+    EXPECT_FALSE(list.movedTooFar(ps, 0.02));
+    EXPECT_EQ(offered(), (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7}));
+    // A list of near pairs only (a packing's first shell): every pair offered at once.
+    list.restart(ps, 0.5);
+    for (VerletList::Id k = 0; k + 1 < 8; ++k)
+        list.addPair(k, k + 1, VerletList::gapBelow(k == 0 ? 0.2 : 0.01));
+    EXPECT_EQ(offered().size(), 7U);
+}
+
 TEST(VerletList, WithinTheQuietMotionNoListComesDue) {
     ParticleStorage ps = rowOfEight();
     double const skin = 0.1;
