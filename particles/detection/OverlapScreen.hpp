@@ -59,7 +59,8 @@ public:
     /// order (before a pair that bypasses the screen, and at the end of the list). Returns how
     /// many overlapped.
     template <class OnPair>
-    std::size_t flush(ParticleStorage const& ps, core::Vec3 const& period, OnPair& onPair) {
+    [[gnu::noinline]] std::size_t flush(ParticleStorage const& ps, core::Vec3 const& period,
+                                        OnPair& onPair) {
         if (m_size == 0)
             return 0;
         std::size_t const overlaps = test(ps, period);
