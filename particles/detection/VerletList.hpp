@@ -278,18 +278,12 @@ public:
                 near[count] = static_cast<std::uint32_t>(first + q);
                 count += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
             }
-            auto const visit = [&](std::size_t p) __attribute__((always_inline)) {
+            for (std::size_t h = 0; h < count; ++h) {
+                std::size_t const p = near[h];
                 std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
                 if (a != kDead && b != kDead)
                     f(std::size_t{a}, std::size_t{b}, p);
-            };
-            if (count == m) { // a packing's blocks: every pair near, walked as forEachPair
-                for (std::size_t p = first; p < first + m; ++p)
-                    visit(p);
-                continue;
             }
-            for (std::size_t h = 0; h < count; ++h)
-                visit(near[h]);
         }
     }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
