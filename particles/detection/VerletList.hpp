@@ -100,9 +100,8 @@ public:
                    ? rounded
                    : std::nextafter(rounded, -std::numeric_limits<float>::infinity());
     }
-    /// Adds a pair in mode Check (any order). `gap` [length]: how much farther apart than
-    /// they need to be to overlap the two copies stand now, less the caller's rounding, and
-    /// rounded down (forEachNearPair); kNoGap if not known.
+    /// Adds a pair in mode Check (any order). `gap` [length]: a lower bound on how much farther
+    /// apart than touching the two copies stand now (gapBelow), or kNoGap.
     void addPair(Id a, Id b, float gap = kNoGap) {
         m_pairs.push_back({a, b});
         m_mode.push_back(PairMode::Check);
@@ -254,14 +253,10 @@ public:
                 f(std::size_t{a}, std::size_t{b}, p);
         }
     }
-    /// forEachPair over the pairs that may overlap now: those whose gap (addPair) is less than
-    /// twice the bound on every copy's distance from its reference, moved() (+ the reference
-    /// slack); the others cannot have closed it. In list order, so the same pairs overlap in
-    /// the same order as with forEachPair. Early in a list's life most pairs of a gas are
-    /// skipped; whether a pair is near is a coin toss for the predictor later on, so each
-    /// block of pairs is selected without a branch per pair. Where few pairs were listed far
-    /// apart (a packing's first shell), the selection would skip too few to pay for itself,
-    /// and every pair is offered.
+    /// forEachPair over the pairs whose gap (addPair) is below twice moved() (+ the reference
+    /// slack): the others cannot have closed it. Same pairs overlapping, same order. Blocks of
+    /// pairs are selected without a branch per pair (near or not is a coin toss as the list
+    /// ages); a list with few pairs far apart (a packing's first shell) offers every pair.
     template <class F>
     void forEachNearPair(F&& f) const {
         if (m_apart * kFewApart < m_pairs.size()) {
@@ -319,9 +314,8 @@ private:
     std::vector<std::array<Id, 2>> m_parkedAgain; ///< resettle's, swapped with m_parked
     Id m_hole = 0; ///< an id that is never alive (a parked pair's place in m_pairs names it)
     std::vector<float> m_gap; ///< per pair: addPair's (forEachNearPair)
-    /// Pairs listed since the restart with a gap of kApart x skin or more: skipped by
-    /// forEachNearPair for the first half of the list's life at least. Fewer than one in
-    /// kFewApart: forEachNearPair offers every pair.
+    /// Pairs listed since the restart with a gap of kApart x skin or more (skipped for half the
+    /// list's life at least); fewer than one in kFewApart: forEachNearPair offers every pair.
     std::size_t m_apart = 0;
     static constexpr float kApart = 0.25F;
     static constexpr std::size_t kFewApart = 4;
