@@ -113,13 +113,13 @@ core::AABB everywhere();
 /// reach skin / 2 (beforeSync), a checkpoint, release(). Every step computes the same bits as
 /// with the histories.
 ///
-/// Pairs across a periodic face of a block that is the whole domain (a run on one block;
-/// DetectorConfig::settleFaceTwins): the block holds every image instance of such a pair, and
-/// any instance gives the same bits, so the list settles the one whose i is i's master when its
-/// copies will live as long as the list, and drops its twins (same uids and image difference;
-/// FaceTwins.cpp, docs/sync.md "Pairs across a periodic face of a one-block domain"). On
-/// MESA-PD's lattice the rule per step for them was a tenth of the step
-/// (docs/notes/contact-loop.md).
+/// Pairs across a periodic face of a region that spans the domain along that axis (one rank's;
+/// DetectorConfig::settleFaceTwins): the region holds every image instance of such a pair that
+/// lies inside it along the other axes, and any instance gives the same bits, so the list
+/// settles the one whose i is i's master when its copies will live as long as the list, and
+/// drops its twins (same uids and image difference; FaceTwins.cpp, docs/sync.md "Pairs across
+/// a periodic face of a spanning region"). On MESA-PD's lattice the rule per step for them was
+/// a tenth of the step (docs/notes/contact-loop.md).
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -310,8 +310,8 @@ private:
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;
     /// Whether the block settles the pairs across its periodic faces (see "Pairs across a
-    /// periodic face"): configured to, and `region` is the whole of `frame`'s domain with a
-    /// periodic axis.
+    /// periodic face"): configured to, and `region` spans `frame`'s domain along a periodic
+    /// axis.
     [[nodiscard]] bool holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const;
     /// Lists in m_twins the open pairs of a new list that the block evaluates in place of their
     /// twins (canonical ka, kb; i's master and j's copy that is sure to live as long as the list),
@@ -324,11 +324,13 @@ private:
                                         std::size_t kb, VerletList::Id a, VerletList::Id b,
                                         PeriodicFrame const& frame, double rounding) const;
     [[nodiscard]] bool faceTwinAlive(FaceTwin const& t) const;
-    /// Whether copy kb (id b) of a face pair's j lives as long as the list: j's master, or a
-    /// copy whose ball reaches into `region` by more than the list's motion from its reference.
-    [[nodiscard]] bool copyOutlivesList(ParticleStorage const& particles, std::size_t kb,
-                                        VerletList::Id b, core::AABB const& region,
-                                        PeriodicFrame const& frame, double rounding) const;
+    /// Whether the region holds face pair ka, kb (canonical; ids a, b) for the list's life: no
+    /// other region evaluates it, and j's copy lives (j's master, or a copy whose ball reaches
+    /// into `region` by more than the list's motion).
+    [[nodiscard]] bool holdsFacePair(ParticleStorage const& particles, std::size_t ka,
+                                     std::size_t kb, VerletList::Id a, VerletList::Id b,
+                                     core::AABB const& region, PeriodicFrame const& frame,
+                                     double rounding) const;
     /// The settled face pair of the instance ka, kb (canonical), or nullptr.
     [[nodiscard]] FaceTwin* faceTwinOf(ParticleStorage const& particles, std::size_t ka,
                                        std::size_t kb);

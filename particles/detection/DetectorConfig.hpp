@@ -31,8 +31,8 @@ struct DetectorConfig {
     /// callback takes them (TakesKeptSprings). That caller must write them back
     /// (ContactDetector::beforeSync, writeBackSprings) before anything reads the histories.
     bool keepSprings = false;
-    /// Settle the pairs across a periodic face of a block that is the whole domain
-    /// (ContactDetector, "Pairs across a periodic face"). It relies on the synchronisation's
+    /// Settle the pairs across a periodic face of a block that spans the domain along that
+    /// axis (ContactDetector, "Pairs across a periodic face"). It relies on the synchronisation's
     /// copies (one wherever a ball overlaps a block, at every image), which a storage filled
     /// otherwise need not hold: set by DemStep, whose storages are the synchronisation's.
     bool settleFaceTwins = false;

@@ -1,6 +1,6 @@
-/// Pairs across a periodic face of a block that is the whole domain (ContactDetector's class
-/// comment, "Pairs across a periodic face"): which instance of such a pair the list settles,
-/// and when the settlement breaks.
+/// Pairs across a periodic face of a region that spans the domain along that axis
+/// (ContactDetector's class comment, "Pairs across a periodic face"): which instance of such a
+/// pair the list settles, and when the settlement breaks.
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
@@ -8,10 +8,21 @@
 
 namespace regolith::particles {
 
+namespace {
+
+/// Whether `region` covers `frame`'s domain along axis d: the region then holds every image
+/// instance of a pair that lies inside it along the other axes.
+bool spans(core::AABB const& region, PeriodicFrame const& frame, int d) {
+    return region.min[d] <= frame.domain.min[d] && region.max[d] >= frame.domain.max[d];
+}
+
+} // namespace
+
 bool ContactDetector::holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const {
-    bool const periodic = frame.periodic[0] || frame.periodic[1] || frame.periodic[2];
-    return m_config.settleFaceTwins && periodic && region.min == frame.domain.min &&
-           region.max == frame.domain.max;
+    bool periodicSpan = false;
+    for (int d = 0; d < 3; ++d)
+        periodicSpan |= frame.periodic[static_cast<std::size_t>(d)] && spans(region, frame, d);
+    return m_config.settleFaceTwins && periodicSpan;
 }
 
 void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const& region,
@@ -27,7 +38,7 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
             return;
         if (!oneImageInstance(ps.radius(ka) + ps.radius(kb) + m_config.range, frame, rounding))
             return;
-        if (!copyOutlivesList(ps, kb, b, region, frame, rounding))
+        if (!holdsFacePair(ps, ka, kb, a, b, region, frame, rounding))
             return;
         m_twins.push_back(
             {FaceTwinKey{ps.uid(ka), ps.uid(kb),
@@ -38,15 +49,32 @@ void ContactDetector::findFaceTwins(ParticleStorage const& ps, core::AABB const&
               [](FaceTwin const& x, FaceTwin const& y) { return x.key < y.key; });
 }
 
-bool ContactDetector::copyOutlivesList(ParticleStorage const& ps, std::size_t kb, VerletList::Id b,
-                                       core::AABB const& region, PeriodicFrame const& frame,
-                                       double rounding) const {
-    // j's copy at its image exists while the list holds: its ball reaches into the block by
+bool ContactDetector::holdsFacePair(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                    VerletList::Id a, VerletList::Id b, core::AABB const& region,
+                                    PeriodicFrame const& frame, double rounding) const {
+    core::Vec3 const period = frame.period();
+    core::Vec3 const xi = localPosition(m_list.reference(a), ps.image(ka), period);
+    core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
+    // Along an axis the region does not span (a face shared with another region), the pair's
+    // ownership point and i's master stay inside the region while the list holds: every
+    // instance's point wraps into this region, so no other evaluates the pair, and i's master
+    // neither migrates nor wraps there.
+    double const ri = ps.radius(ka), rj = ps.radius(kb);
+    double const reach =
+        ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin)) + rounding;
+    double const motion = listMotion(rounding) + rounding;
+    for (int d = 0; d < 3; ++d) {
+        double const mid = 0.5 * (xi[d] + x[d]);
+        if (!spans(region, frame, d) &&
+            !(mid - reach > region.min[d] && mid + reach < region.max[d] &&
+              xi[d] - motion > region.min[d] && xi[d] + motion < region.max[d]))
+            return false;
+    }
+    // j's copy at its image exists while the list holds: its ball reaches into the region by
     // more than the motion from its reference (the synchronisation keeps a copy wherever a
-    // ball overlaps a block). j's master always does.
+    // ball overlaps a region). j's master always does.
     if (ps.flags(kb).isMaster() && isZero(ps.image(kb)))
         return true;
-    core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), frame.period());
     double outside2 = 0.0;
     for (int d = 0; d < 3; ++d) {
         double const out = std::max({region.min[d] - x[d], x[d] - region.max[d], 0.0});
@@ -74,7 +102,7 @@ void ContactDetector::keepFaceTwinsAtShift(ParticleStorage& ps, double rounding)
         VerletList::Id a = t.a, b = t.b;
         std::size_t ka = 0, kb = 0;
         if (settleListed(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding) == Listing::Open &&
-            copyOutlivesList(ps, kb, b, m_listRegion, m_listFrame, rounding))
+            holdsFacePair(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding))
             return false;
         if (m_springsLive && keepsSpring(m_list.mode(t.pair))) {
             writeBackSpring(ps, m_list.indexOf(t.a), t.key.j, m_list.spring(t.pair),
@@ -120,7 +148,7 @@ void ContactDetector::forgetDeadFaceTwins(ParticleStorage& ps) {
 void ContactDetector::writeBackFaceTwin(ParticleStorage& ps, FaceTwin const& t) const {
     if (!keepsSpring(m_list.mode(t.pair)))
         return;
-    // i's master, found by uid once a wrap replaced it (the block is the whole domain).
+    // i's master, found by uid once a wrap replaced it (in this region: holdsFacePair).
     std::size_t const i =
         faceTwinAlive(t) ? std::size_t{m_list.indexOf(t.a)} : ps.find(t.key.i, kNoImage);
     if (i == ParticleStorage::kNotFound)
