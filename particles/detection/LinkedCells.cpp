@@ -1,6 +1,7 @@
 #include "particles/detection/LinkedCells.hpp"
 
 #include "core/Error.hpp"
+#include "core/math/FloatBounds.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,16 +10,6 @@
 #include <string>
 
 namespace regolith::particles {
-
-namespace {
-/// The smallest float not below r (r >= 0 and finite).
-float roundedUp(double r) {
-    float f = static_cast<float>(r);
-    if (static_cast<double>(f) < r)
-        f = std::nextafter(f, std::numeric_limits<float>::infinity());
-    return f;
-}
-} // namespace
 
 void LinkedCells::build(LocalPositions const& positions, std::span<double const> radii,
                         std::span<std::uint32_t const> members, double minEdge,
@@ -108,7 +99,7 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
         m_member[slot] = members[k];
         core::Vec3 const x = positions[members[k]] - lo;
         m_sphere[slot] = Sphere{static_cast<float>(x.x()), static_cast<float>(x.y()),
-                                static_cast<float>(x.z()), roundedUp(radii[members[k]])};
+                                static_cast<float>(x.z()), core::floatNotBelow(radii[members[k]])};
     }
     for (std::size_t c = numCells; c > 0; --c)
         m_start[c] = m_start[c - 1];

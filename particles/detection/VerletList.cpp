@@ -212,11 +212,7 @@ bool VerletList::movedTooFar(ParticleStorage const& ps, double movedAtMost, doub
 float VerletList::nearReach() const {
     // Each copy lies within moved() of its reference, which lies within the reference slack
     // of where it stood when its pair's gap was measured.
-    double const reach = 2.0 * (m_moved + m_referenceSlack);
-    auto const rounded = static_cast<float>(reach);
-    return static_cast<double>(rounded) >= reach
-               ? rounded
-               : std::nextafter(rounded, std::numeric_limits<float>::infinity());
+    return core::floatNotBelow(2.0 * (m_moved + m_referenceSlack));
 }
 
 std::size_t VerletList::bytes() const {

@@ -34,6 +34,7 @@
 /// time (ContactHistory::touch with a hint), so that the per-step loop neither repeats the
 /// rule nor searches the history. For the pairs kept (PairMode::Kept) it holds the tangential
 /// spring itself (ContactDetector, "Springs kept beside the list").
+#include "core/math/FloatBounds.hpp"
 #include "core/math/Vec3.hpp"
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/ParticleStorage.hpp"
@@ -94,12 +95,7 @@ public:
     /// A pair's gap not known: forEachNearPair always offers it.
     static constexpr float kNoGap = -std::numeric_limits<float>::infinity();
     /// `gap` as addPair takes it: in single precision, rounded down.
-    [[nodiscard]] static float gapBelow(double gap) {
-        auto const rounded = static_cast<float>(gap);
-        return static_cast<double>(rounded) <= gap
-                   ? rounded
-                   : std::nextafter(rounded, -std::numeric_limits<float>::infinity());
-    }
+    [[nodiscard]] static float gapBelow(double gap) { return core::floatNotAbove(gap); }
     /// Adds a pair in mode Check (any order). `gap` [length]: a lower bound on how much farther
     /// apart than touching the two copies stand now (gapBelow), or kNoGap.
     void addPair(Id a, Id b, float gap = kNoGap) {
