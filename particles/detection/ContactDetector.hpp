@@ -337,8 +337,8 @@ private:
     /// At a shift: forgets the settled face pairs that are no longer open or whose j's copy may
     /// no longer outlive the list (from the shifted references), writing their springs back.
     void keepFaceTwinsAtShift(ParticleStorage& particles, double rounding);
-    /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped),
-    /// writing their kept springs back first.
+    /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped,
+    /// or j's master migrated), writing their kept springs back first.
     void forgetDeadFaceTwins(ParticleStorage& particles);
     /// Writes settled face pair t's kept spring (if it keeps one and t died; a live one's goes
     /// back with the other kept pairs') back to i's master, and the master's history to i's

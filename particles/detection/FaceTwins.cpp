@@ -56,9 +56,10 @@ bool ContactDetector::holdsFacePair(ParticleStorage const& ps, std::size_t ka, s
     core::Vec3 const xi = localPosition(m_list.reference(a), ps.image(ka), period);
     core::Vec3 const x = localPosition(m_list.reference(b), ps.image(kb), period);
     // Along an axis the region does not span (a face shared with another region), the pair's
-    // ownership point and i's master stay inside the region while the list holds: every
-    // instance's point wraps into this region, so no other evaluates the pair, and i's master
-    // neither migrates nor wraps there.
+    // ownership point and i's master stay inside where the region emits while the list holds:
+    // every instance's point wraps into this region, so no other evaluates the pair, and i's
+    // master neither migrates nor wraps there.
+    core::AABB const emits = emittingBox(region, frame);
     double const ri = ps.radius(ka), rj = ps.radius(kb);
     double const reach =
         ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin)) + rounding;
@@ -66,13 +67,14 @@ bool ContactDetector::holdsFacePair(ParticleStorage const& ps, std::size_t ka, s
     for (int d = 0; d < 3; ++d) {
         double const mid = 0.5 * (xi[d] + x[d]);
         if (!spans(region, frame, d) &&
-            !(mid - reach > region.min[d] && mid + reach < region.max[d] &&
-              xi[d] - motion > region.min[d] && xi[d] + motion < region.max[d]))
+            !(mid - reach > emits.min[d] && mid + reach < emits.max[d] &&
+              xi[d] - motion > emits.min[d] && xi[d] + motion < emits.max[d]))
             return false;
     }
     // j's copy at its image exists while the list holds: its ball reaches into the region by
     // more than the motion from its reference (the synchronisation keeps a copy wherever a
-    // ball overlaps a region). j's master always does.
+    // ball overlaps a region). j's master lives until it wraps or migrates, which kills the
+    // pair (forgetDeadFaceTwins).
     if (ps.flags(kb).isMaster() && isZero(ps.image(kb)))
         return true;
     double outside2 = 0.0;
@@ -135,7 +137,10 @@ void ContactDetector::forgetDeadFaceTwins(ParticleStorage& ps) {
     // A settled face pair dies with a grain that wraps: the synchronisation then replaces every
     // copy of that grain in the block, so every instance of the pair dies with it (its twins
     // too), and the instances of the new copies arrive, keeping the rule (PairMode::Check)
-    // until the next rebuild. The spring goes back to the histories now, where they read it.
+    // until the next rebuild. It dies too when j's master at image zero migrates (its copy
+    // here is replaced): the instance that arrives keeps the rule, and its parked twins are not
+    // needed, as the point of two copies at image zero lies in the domain. The spring goes
+    // back to the histories now, where they read it.
     std::erase_if(m_twins, [&](FaceTwin const& t) {
         if (faceTwinAlive(t))
             return false;

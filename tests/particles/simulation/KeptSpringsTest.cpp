@@ -322,12 +322,13 @@ TEST(KeptSprings, ChangeNoBitWhenAStepOutrunsTheSkin) {
 }
 
 TEST(KeptSprings, FacePairsOfASpanningRegionChangeNoBit) {
-    // A block spanning the periodic domain along an axis (the whole domain, or a strip along x)
-    // settles the instance of each pair across such a face whose i is i's master, and drops its
-    // twin (ContactDetector, "Pairs across a periodic face"); blocks that tile the domain along
-    // every axis settle none. In reproducible mode the layouts must end with the same bits: a
-    // face contact doubled or missed shows, and so does a strip's settled pair that another
-    // strip evaluates too (on several ranks, or on one with a block per strip). A drift
+    // A block spanning the periodic domain along an axis (the whole domain, or one of three
+    // strips along y, each spanning x) settles the instance of each pair across such a face
+    // whose i is i's master, and drops its twin (ContactDetector, "Pairs across a periodic
+    // face"); blocks that tile the domain along every axis settle none. In reproducible mode the
+    // layouts must end with the same bits: a face contact doubled or missed shows, and so does a
+    // strip's settled pair that another strip evaluates too (on several ranks, or on one with a
+    // block per strip). A drift
     // carries the grains across the x and y faces while they touch: settled face pairs die as
     // grains wrap (their kept springs go back to the grains' copies by uid), and twins arrive
     // as grains start to cross a face (drifting down x and y: the lower uid of a face pair,
