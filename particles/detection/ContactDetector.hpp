@@ -113,13 +113,10 @@ core::AABB everywhere();
 /// reach skin / 2 (beforeSync), a checkpoint, release(). Every step computes the same bits as
 /// with the histories.
 ///
-/// Pairs across a periodic face of a region that spans the domain along that axis (one rank's;
-/// DetectorConfig::settleFaceTwins): the region holds every image instance of such a pair that
-/// lies inside it along the other axes, and any instance gives the same bits, so the list
-/// settles the one whose i is i's master when its copies will live as long as the list, and
-/// drops its twins (same uids and image difference; FaceTwins.cpp, docs/sync.md "Pairs across
-/// a periodic face of a spanning region"). On MESA-PD's lattice the rule per step for them was
-/// a tenth of the step (docs/notes/contact-loop.md).
+/// Pairs across a periodic face of a region that spans the domain along that axis
+/// (DetectorConfig::settleFaceTwins; FaceTwins.cpp, docs/sync.md "Pairs across a periodic face
+/// of a spanning region"): the list settles the instance whose i is i's master and drops its
+/// twins (same uids and image difference), which give the same bits.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -306,6 +303,10 @@ private:
     /// Whether ids a and b both lie deeper than `depth` (depthOf).
     [[nodiscard]] bool deeperThan(ParticleStorage const& particles, VerletList::Id a,
                                   VerletList::Id b, double depth) const;
+    /// The ownership reach of listed pair ka, kb (ownershipReach with the list's skin, the
+    /// rounding widened by the pair's scale).
+    [[nodiscard]] double listedReach(ParticleStorage const& particles, std::size_t ka,
+                                     std::size_t kb, double rounding) const;
     Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;

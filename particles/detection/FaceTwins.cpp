@@ -60,9 +60,7 @@ bool ContactDetector::holdsFacePair(ParticleStorage const& ps, std::size_t ka, s
     // every instance's point wraps into this region, so no other evaluates the pair, and i's
     // master neither migrates nor wraps there.
     core::AABB const emits = emittingBox(region, frame);
-    double const ri = ps.radius(ka), rj = ps.radius(kb);
-    double const reach =
-        ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin)) + rounding;
+    double const reach = listedReach(ps, ka, kb, rounding) + rounding;
     double const motion = listMotion(rounding) + rounding;
     for (int d = 0; d < 3; ++d) {
         double const mid = 0.5 * (xi[d] + x[d]);

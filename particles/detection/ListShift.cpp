@@ -74,10 +74,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
             PairMode const mode = m_list.mode(p);
             if (mode == PairMode::Check || mode == PairMode::KeptPressedAcross)
                 return; // the rule per step holds anywhere; a face pair is settled again
-            double const ri = ps.radius(ka), rj = ps.radius(kb);
-            double const reach =
-                ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
-            double const need = std::max(reach + rounding, motion);
+            double const need = std::max(listedReach(ps, ka, kb, rounding) + rounding, motion);
             auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
             double const margin = std::min(depthOf(ps, a), depthOf(ps, b)) - need;
             // Less a millionth (a float rounds by less): never above the double.

@@ -30,9 +30,7 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
         return Listing::Drop; // a grain and its own periodic image: never a contact
     if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
         return Listing::Check; // rare: the rule skips them
-    double const ri = ps.radius(ka), rj = ps.radius(kb);
-    double const reach =
-        ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
+    double const reach = listedReach(ps, ka, kb, rounding);
     // Both reference centres deeper than the reach (with the rounding once more): so is their
     // midpoint, and settleOwnership answers Always.
     if (deeperThan(ps, a, b, reach + rounding))
@@ -49,6 +47,12 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
         break;
     }
     return Listing::Open;
+}
+
+double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                    double rounding) const {
+    double const ri = ps.radius(ka), rj = ps.radius(kb);
+    return ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
 }
 
 void ContactDetector::startDepths(core::AABB const& region, PeriodicFrame const& frame) {
