@@ -57,12 +57,13 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     auto const& x = ps.positions();
     std::size_t overlaps = 0;
     Contact c;
-    // A consumer that computes the geometry itself gets the owned pairs screened a block at
-    // a time (OverlapScreen), those known to overlap (KeptPressed) untested; a pair that
-    // bypasses the screen first flushes the block, so that every pair still reaches onPair in
-    // list order. Always inlined into the list's loop: left to itself, the compiler kept it
-    // out of line for some models (the per-contact Hertz loop ran 2 % more instructions).
-    OverlapScreen screen;
+    // A consumer that computes the geometry itself gets the listed pairs screened a block at
+    // a time (OverlapScreen; those that keep the rule, PairMode::Check, also ruled on there),
+    // those known to overlap (KeptPressed) untested; a pair that bypasses the screen first
+    // flushes the block, so that every pair still reaches onPair in list order. Always inlined into
+    // the list's loop: left to itself, the compiler kept it out of line for some models (the
+    // per-contact Hertz loop ran 2 % more instructions).
+    OverlapScreen screen(&rule);
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p)
         __attribute__((always_inline)) {
         PairMode const mode = m_list.mode(p);
@@ -85,11 +86,9 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                         return;
                     }
                 }
-                if (mode != PairMode::Check) {
-                    overlaps += screen.offer(ps, period, a, b, m_list.hint(p), kept, onPair);
-                    return;
-                }
-                overlaps += screen.flush(ps, period, onPair);
+                overlaps += screen.offer(ps, period, a, b, m_list.hint(p), kept, onPair,
+                                         mode == PairMode::Check);
+                return;
             }
         }
         if (mode != PairMode::Check) {

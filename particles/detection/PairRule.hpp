@@ -117,6 +117,17 @@ public:
         return owns(c);
     }
 
+    /// The rule for listed copies i, j in canonical order (uid(i) < uid(j)) known to overlap
+    /// (OverlapScreen decided it with the same bits): not both Fixed, and the ownership point
+    /// in this block. Counts nothing: the screen counted the overlap.
+    [[nodiscard]] bool emitsOverlapping(std::size_t i, std::size_t j) const {
+        ParticleStorage const& ps = m_ps;
+        if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
+            return false;
+        Contact c;
+        return overlapGeometry(ps, i, j, m_period, c, m_range) && owns(c);
+    }
+
     /// Appends the contact of a and b to `out` if this block evaluates it.
     void operator()(std::size_t a, std::size_t b, std::vector<Contact>& out) const {
         Contact c;

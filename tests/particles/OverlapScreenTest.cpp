@@ -1,9 +1,11 @@
 // OverlapScreen (the fused contact loop's block-wise overlap test) against the scalar test of
 // PairRule.hpp: the same pairs, in the same order, with the same shift bits, whether the
-// screen tests in lanes or (while whole blocks overlap) pair by pair.
+// screen tests in lanes or (while whole blocks overlap) pair by pair; a pair offered as ruled
+// only where the full contact-point rule emits it.
 #include "particles/detection/OverlapScreen.hpp"
 
 #include "particles/detection/PairRule.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <gtest/gtest.h>
@@ -123,6 +125,67 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
     EXPECT_GT(borderline, 500U);
     EXPECT_LT(expected.size(), pairs.size() * 3 / 4);
     EXPECT_GT(expected.size(), pairs.size() / 3);
+}
+
+TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
+    // Every third pair in canonical order is ruled (as PairMode::Check pairs are): the block
+    // is half of the periodic box, and half of the copies are Fixed, so that the rule drops
+    // many overlapping pairs, for either reason.
+    core::Vec3 const period(10.0, 10.0, 10.0);
+    ParticleStorage ps = copies(4000, 11);
+    auto const pairs = pairsOf(ps, period);
+    for (std::size_t k = 0; k < ps.size(); k += 4) { // pairs (k, k + 1) both Fixed
+        ps.setFlags(k, Flag::Fixed);
+        ps.setFlags(k + 1, Flag::Fixed);
+    }
+    PeriodicFrame const frame(core::AABB{core::Vec3::Zero(), period}, {true, true, true});
+    core::AABB const block{core::Vec3::Zero(), core::Vec3(5.0, 10.0, 10.0)};
+    DetectorStats stats;
+    detection_detail::PairRule const rule(ps, block, frame, stats);
+    std::vector<std::uint8_t> hints(pairs.size(), 0);
+    auto const ruled = [&](std::size_t p) {
+        return p % 3 == 0 && ps.uid(pairs[p].first) < ps.uid(pairs[p].second);
+    };
+
+    std::vector<Handed> expected;
+    std::size_t overlapping = 0, dropped = 0, droppedFixed = 0;
+    for (std::size_t p = 0; p < pairs.size(); ++p) {
+        auto const [i, j] = pairs[p];
+        auto const s = detection_detail::separation(ps, i, j, period);
+        if (!detection_detail::overlapping(s))
+            continue;
+        ++overlapping;
+        Contact c;
+        if (ruled(p) && !rule(i, j, c)) {
+            ++dropped;
+            droppedFixed += ps.flags(i).isFixed() && ps.flags(j).isFixed() ? 1 : 0;
+            continue;
+        }
+        expected.push_back({i, j, s.shiftJ, &hints[p]});
+    }
+
+    std::vector<Handed> got;
+    auto onPair = [&](PairOverlap const& o, std::uint8_t& hint) {
+        got.push_back({o.i, o.j, o.shiftJ, &hint});
+    };
+    OverlapScreen screen(&rule);
+    std::size_t counted = 0;
+    for (std::size_t p = 0; p < pairs.size(); ++p)
+        counted += screen.offer(ps, period, pairs[p].first, pairs[p].second, hints[p], nullptr,
+                                onPair, ruled(p));
+    counted += screen.flush(ps, period, onPair);
+
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_EQ(counted, overlapping); // a ruled pair that overlaps counts, emitted or not
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        EXPECT_EQ(got[k].i, expected[k].i) << k;
+        EXPECT_EQ(got[k].j, expected[k].j) << k;
+        EXPECT_EQ(got[k].hint, expected[k].hint) << k;
+        EXPECT_TRUE(sameBits(got[k].shift, expected[k].shift)) << k;
+    }
+    EXPECT_GT(droppedFixed, 10U);
+    EXPECT_GT(dropped - droppedFixed, 100U);
+    EXPECT_GT(overlapping - dropped, expected.size() / 2);
 }
 
 } // namespace
