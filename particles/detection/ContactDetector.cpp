@@ -164,7 +164,6 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_listFrame = frame;
     m_largeIds.clear();
     m_twins.clear();
-    m_shifted = 0.0; // a new list has moved no reference
     m_margin.clear();
     m_spreadOut = false;
     if (ps.empty()) {
@@ -174,7 +173,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
         m_cells.build({}, {}, {}, 1.0, 1);
         m_listScale = 0.0; // the first arrival rebuilds
         m_list.restart(ps, 0.0);
-        m_depth.clear(); // no depth left for the ids the arrivals get
+        m_depths.clear();
         return;
     }
     // A skin for the scene: every kSkinChoiceEvery-th rebuild bins with the widest one and
@@ -215,7 +214,7 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     largePass(positions, ps, slack + binned + m_config.range, add);
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
-    startDepths(region, frame);
+    m_depths.start(m_list, region, frame);
     classifyListed(ps, region, frame, 0);
 }
 
@@ -361,7 +360,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_listings.capacity() * sizeof(Listing) + m_depth.capacity() * sizeof(double);
+           m_listings.capacity() * sizeof(Listing) + m_depths.bytes();
 }
 
 } // namespace regolith::particles

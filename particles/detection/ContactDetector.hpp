@@ -11,6 +11,7 @@
 #include "particles/detection/PairOwnership.hpp"
 #include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
+#include "particles/detection/ReferenceDepths.hpp"
 #include "particles/detection/VerletList.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
@@ -293,16 +294,6 @@ private:
     /// order (uid(ka) <= uid(kb)).
     void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                      std::size_t& ka, std::size_t& kb) const;
-    /// At a rebuild: the box where the rule emits (`region`, and the domain on `frame`'s
-    /// periodic axes) and no depth measured yet.
-    void startDepths(core::AABB const& region, PeriodicFrame const& frame);
-    /// How deep the local reference position of id (of the last rebuild) lies inside that box,
-    /// measured once: 0 outside it, if not finite, or for an arrival. Lets settleListed and
-    /// settledMode settle the pairs of two deep copies without their midpoint.
-    [[nodiscard]] double depthOf(ParticleStorage const& particles, VerletList::Id id) const;
-    /// Whether ids a and b both lie deeper than `depth` (depthOf).
-    [[nodiscard]] bool deeperThan(ParticleStorage const& particles, VerletList::Id a,
-                                  VerletList::Id b, double depth) const;
     /// The ownership reach of listed pair ka, kb (ownershipReach with the list's skin, the
     /// rounding widened by the pair's scale).
     [[nodiscard]] double listedReach(ParticleStorage const& particles, std::size_t ka,
@@ -393,15 +384,11 @@ private:
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
     std::vector<FaceTwin> m_twins;          ///< sorted by key
     std::vector<Listing> m_listings;        ///< findFaceTwins' settlements, one per listed pair
-    static constexpr double kUnmeasured = -1.0;
-    mutable std::vector<double> m_depth; ///< depthOf's, per id of the last rebuild (a cache)
-    double m_shifted = 0.0; ///< largest coordinate of the list's drift since the rebuild
+    ReferenceDepths m_depths;               ///< of the last rebuild's copies, and the shifts since
     /// Per listed pair (the first ones), how much deeper inside the block than its settlement
     /// needs both its copies lay at the rebuild: while the drift stays below it, the list's
     /// shifts need not settle it again (ListShift.cpp). Empty until the first shift.
     std::vector<float> m_margin;
-    core::AABB m_emits; ///< where the rule emits (startDepths)
-    core::Vec3 m_period = core::Vec3::Zero();
     double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")

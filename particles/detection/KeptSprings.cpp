@@ -24,7 +24,7 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     // (The depths from the region's faces, with the rounding once more, answer for most pairs:
     // the region holds the box they are measured in.)
     double const depth = listMotion(rounding);
-    if (!deeperThan(ps, a, b, depth + rounding))
+    if (!m_depths.deeperThan(m_list, ps, a, b, depth + rounding))
         for (VerletList::Id id : {a, b}) {
             core::Vec3 const x = m_list.reference(id);
             for (int d = 0; d < 3; ++d)

@@ -76,16 +76,17 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
                 return; // the rule per step holds anywhere; a face pair is settled again
             double const need = std::max(listedReach(ps, ka, kb, rounding) + rounding, motion);
             auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
-            double const margin = std::min(depthOf(ps, a), depthOf(ps, b)) - need;
+            double const margin =
+                std::min(m_depths.of(m_list, ps, a), m_depths.of(m_list, ps, b)) - need;
             // Less a millionth (a float rounds by less): never above the double.
             m_margin[p] = static_cast<float>(margin - 1e-6 * (std::abs(margin) + m_listSkin));
         });
     }
     m_list.shift(drift, spread);
-    m_shifted = m_list.drift().cwiseAbs().maxCoeff();
+    m_depths.setShifted(m_list.drift().cwiseAbs().maxCoeff());
     keepFaceTwinsAtShift(ps, rounding);
     auto const unchanged = [&](std::size_t p) {
-        return p < m_margin.size() && m_margin[p] > m_shifted;
+        return p < m_margin.size() && m_margin[p] > m_depths.shifted();
     };
     m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, bool listed, PairMode was,
                                    KeptSpring& spring, std::uint8_t& hint) {

@@ -4,8 +4,6 @@
 /// KeptSprings.cpp, the face pairs' in FaceTwins.cpp).
 #include "particles/detection/ContactDetector.hpp"
 
-#include <algorithm>
-#include <limits>
 #include <utility>
 
 namespace regolith::particles {
@@ -33,7 +31,7 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
     double const reach = listedReach(ps, ka, kb, rounding);
     // Both reference centres deeper than the reach (with the rounding once more): so is their
     // midpoint, and settleOwnership answers Always.
-    if (deeperThan(ps, a, b, reach + rounding))
+    if (m_depths.deeperThan(m_list, ps, a, b, reach + rounding))
         return Listing::Always;
     core::Vec3 const period = frame.period();
     core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
@@ -53,39 +51,6 @@ double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, s
                                     double rounding) const {
     double const ri = ps.radius(ka), rj = ps.radius(kb);
     return ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
-}
-
-void ContactDetector::startDepths(core::AABB const& region, PeriodicFrame const& frame) {
-    m_emits = emittingBox(region, frame);
-    m_period = frame.period();
-    m_depth.assign(m_list.builtSize(), kUnmeasured);
-}
-
-double ContactDetector::depthOf(ParticleStorage const& ps, VerletList::Id id) const {
-    if (id >= m_depth.size())
-        return 0.0; // an arrival: the full rule decides
-    double& depth = m_depth[id];
-    if (depth != kUnmeasured)
-        return depth;
-    std::uint32_t const k = m_list.indexOf(id);
-    if (k == VerletList::kDead)
-        return depth = 0.0;
-    // Measured where the references stood at the rebuild (deeperThan allows for the shifts).
-    core::Vec3 const x = localPosition(m_list.unshiftedReference(id), ps.image(k), m_period);
-    depth = std::numeric_limits<double>::infinity();
-    for (int d = 0; d < 3 && depth > 0.0; ++d) {
-        double const below = x[d] - m_emits.min[d], above = m_emits.max[d] - x[d];
-        depth = below > 0.0 && above > 0.0 ? std::min({depth, below, above}) : 0.0;
-    } // outside, or not finite: 0, and the full rule decides
-    return depth;
-}
-
-bool ContactDetector::deeperThan(ParticleStorage const& ps, VerletList::Id a, VerletList::Id b,
-                                 double depth) const {
-    // The list's shifts moved every reference by at most m_shifted along each axis since the
-    // depths were measured.
-    depth += m_shifted;
-    return depthOf(ps, a) > depth && depthOf(ps, b) > depth;
 }
 
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
