@@ -58,11 +58,11 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     std::size_t overlaps = 0;
     Contact c;
     // A consumer that computes the geometry itself gets the listed pairs screened a block at
-    // a time (OverlapScreen; those that keep the rule, PairMode::Check, also ruled on there),
+    // a time (OverlapScreen; those that keep the rule, PairMode::Check, ruled on there too),
     // those known to overlap (KeptPressed) untested; a pair that bypasses the screen first
-    // flushes the block, so that every pair still reaches onPair in list order. Always inlined into
-    // the list's loop: left to itself, the compiler kept it out of line for some models (the
-    // per-contact Hertz loop ran 2 % more instructions).
+    // flushes the block, so that every pair still reaches onPair in list order. Always
+    // inlined into the list's loop: left to itself, the compiler kept it out of line for some
+    // models (the per-contact Hertz loop ran 2 % more instructions).
     OverlapScreen screen(&rule);
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p)
         __attribute__((always_inline)) {
