@@ -4,6 +4,7 @@
 /// list's settled pairs (ContactDetector, "Settled pairs and the fused loop"). Inline, in a
 /// header, because every contact model instantiates them with its own callback. Included by
 /// ContactDetector.hpp, after the class; include that one.
+#include "core/Error.hpp"
 #include "core/math/AABB.hpp"
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/ContactDetector.hpp"
@@ -64,6 +65,10 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     // inlined into the list's loop: left to itself, the compiler kept it out of line for some
     // models (the per-contact Hertz loop ran 2 % more instructions).
     OverlapScreen screen(&rule);
+    if constexpr (TakesPairOverlaps<OnPair>) // the screen decides overlap, not the range
+        if (!keepPairs && range != 0.0)
+            throw core::Error("contact detection: a pair callback that takes overlaps only "
+                              "needs a contact model acting in overlap only (range 0)");
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p)
         __attribute__((always_inline)) {
         PairMode const mode = m_list.mode(p);

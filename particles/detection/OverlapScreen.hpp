@@ -1,5 +1,5 @@
 #pragma once
-/// The per-step overlap test of the Verlet list's owned pairs, a block of pairs at a time: the
+/// The per-step overlap test of the Verlet list's pairs, a block of pairs at a time: the
 /// fused contact loop (ContactDetector::listedPass) offers the pairs, their separations are
 /// computed in structure-of-arrays lanes that the compiler vectorises, and the overlapping ones
 /// are handed on in list order, from a list built without a branch per pair. Most listed pairs
@@ -19,6 +19,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -41,6 +42,7 @@ public:
     [[gnu::always_inline]] std::size_t offer(ParticleStorage const& ps, core::Vec3 const& period,
                                              std::size_t i, std::size_t j, std::uint8_t& hint,
                                              KeptSpring* kept, OnPair& onPair, bool ruled = false) {
+        assert(!ruled || m_rule != nullptr);
         if (m_direct) {
             auto const s = detection_detail::separation(ps, i, j, period);
             bool const hit = detection_detail::overlapping(s);

@@ -133,6 +133,8 @@ TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
     // many overlapping pairs, for either reason.
     core::Vec3 const period(10.0, 10.0, 10.0);
     ParticleStorage ps = copies(4000, 11);
+    for (std::size_t k = 0; k < ps.size(); k += 3) // image zero: the block holds their points
+        ps.setImage(k, kNoImage);                  // where they lie in its half of the domain
     auto const pairs = pairsOf(ps, period);
     for (std::size_t k = 0; k < ps.size(); k += 4) { // pairs (k, k + 1) both Fixed
         ps.setFlags(k, Flag::Fixed);
@@ -148,7 +150,7 @@ TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
     };
 
     std::vector<Handed> expected;
-    std::size_t overlapping = 0, dropped = 0, droppedFixed = 0;
+    std::size_t overlapping = 0, dropped = 0, droppedFixed = 0, emittedRuled = 0;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         auto const [i, j] = pairs[p];
         auto const s = detection_detail::separation(ps, i, j, period);
@@ -161,6 +163,7 @@ TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
             droppedFixed += ps.flags(i).isFixed() && ps.flags(j).isFixed() ? 1 : 0;
             continue;
         }
+        emittedRuled += ruled(p) ? 1 : 0;
         expected.push_back({i, j, s.shiftJ, &hints[p]});
     }
 
@@ -183,9 +186,11 @@ TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
         EXPECT_EQ(got[k].hint, expected[k].hint) << k;
         EXPECT_TRUE(sameBits(got[k].shift, expected[k].shift)) << k;
     }
+    // The rule dropped ruled pairs for both reasons (two Fixed grains; the ownership point in
+    // another block or image instance) and emitted others.
     EXPECT_GT(droppedFixed, 10U);
     EXPECT_GT(dropped - droppedFixed, 100U);
-    EXPECT_GT(overlapping - dropped, expected.size() / 2);
+    EXPECT_GT(emittedRuled, 50U);
 }
 
 } // namespace
