@@ -15,7 +15,10 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
                         std::span<std::uint32_t const> members, double minEdge,
                         std::size_t maxCells, double slack) {
     m_member.clear();
-    m_sphere.clear();
+    m_x.clear();
+    m_y.clear();
+    m_z.clear();
+    m_radius.clear();
     m_start.clear();
     m_maxRadius = 0.0;
     m_slack = slack;
@@ -92,14 +95,19 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
     for (std::size_t c = 0; c < numCells; ++c)
         m_start[c + 1] += m_start[c];
     m_member.resize(members.size());
-    m_sphere.resize(members.size());
+    m_x.resize(members.size());
+    m_y.resize(members.size());
+    m_z.resize(members.size());
+    m_radius.resize(members.size());
     // Fill using m_start[c] as the running insertion point, then shift back.
     for (std::size_t k = 0; k < members.size(); ++k) {
         std::uint32_t const slot = m_start[m_cellOf[k]]++;
         m_member[slot] = members[k];
         core::Vec3 const x = positions[members[k]] - lo;
-        m_sphere[slot] = Sphere{static_cast<float>(x.x()), static_cast<float>(x.y()),
-                                static_cast<float>(x.z()), core::floatNotBelow(radii[members[k]])};
+        m_x[slot] = static_cast<float>(x.x());
+        m_y[slot] = static_cast<float>(x.y());
+        m_z[slot] = static_cast<float>(x.z());
+        m_radius[slot] = core::floatNotBelow(radii[members[k]]);
     }
     for (std::size_t c = numCells; c > 0; --c)
         m_start[c] = m_start[c - 1];

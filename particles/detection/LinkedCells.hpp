@@ -11,6 +11,7 @@
 /// but never miss one; the callers test pairs exactly (the contact rule) or list candidates
 /// (the Verlet list, whose extra pairs then cannot touch before its next rebuild).
 #include "core/math/Vec3.hpp"
+#include "particles/detection/CellCandidates.hpp"
 #include "particles/detection/LocalPositions.hpp"
 
 #include <algorithm>
@@ -74,39 +75,21 @@ public:
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const {
         return m_start.capacity() * sizeof(std::uint32_t) +
-               m_member.capacity() * sizeof(std::uint32_t) + m_sphere.capacity() * sizeof(Sphere) +
+               m_member.capacity() * sizeof(std::uint32_t) + 4 * m_x.capacity() * sizeof(float) +
                m_cellOf.capacity() * sizeof(std::uint32_t);
     }
 
 private:
-    /// Centre relative to m_origin, rounded to nearest; radius rounded up.
-    struct Sphere {
-        float x, y, z, radius;
-    };
-    /// Whether the spheres may overlap: |x_a - x_b| < r_a + r_b + slack + roundingSlack, in
-    /// double from the floats (the differences of two floats are exact in double).
-    [[nodiscard]] bool mayOverlap(Sphere const& a, Sphere const& b, double d2) const {
-        double const reach = double{a.radius} + double{b.radius} + m_testSlack;
-        return d2 < reach * reach;
-    }
-    /// f(member of slot s, member of slot t) for every slot t in [t0, t1) that may overlap
-    /// slot s, in slot order. The tests come first, without a branch per candidate (whether two
-    /// grains of a packing are within reach is a coin toss for the branch predictor), then the
-    /// calls for the hits.
-    template <class F>
-    void testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const;
-    [[nodiscard]] static double squaredDistance(Sphere const& a, Sphere const& b) {
-        double const dx = double{b.x} - double{a.x}, dy = double{b.y} - double{a.y},
-                     dz = double{b.z} - double{a.z};
-        return dx * dx + dy * dy + dz * dz;
+    /// The spheres in slot order, as lanes: centres relative to m_origin rounded to nearest,
+    /// radii rounded up.
+    [[nodiscard]] cells_detail::SphereLanes lanes() const {
+        return {m_x.data(), m_y.data(), m_z.data(), m_radius.data()};
     }
     /// f(member of slot s, member of slot t), with forEachOverlap's `apart` if f takes it.
     template <class F>
     void report(F& f, std::uint32_t s, std::uint32_t t, double d2) const {
         if constexpr (std::is_invocable_v<F&, std::uint32_t, std::uint32_t, double>) {
-            Sphere const& a = m_sphere[s];
-            Sphere const& b = m_sphere[t];
-            double const touch = double{a.radius} + double{b.radius};
+            double const touch = double{m_radius[s]} + double{m_radius[t]};
             // The float centres are within the rounding slack of the true distance; the float
             // radii are rounded up.
             f(m_member[s], m_member[t], (d2 - touch * touch) * m_perSquare - m_roundingSlack);
@@ -115,8 +98,6 @@ private:
             f(m_member[s], m_member[t]);
         }
     }
-    static constexpr std::uint32_t kRangeChunk = 64;
-    static constexpr std::uint32_t kShortRange = 8;
     /// Cell coordinate of `x` along `axis`, clamped to the grid (clamped in floating point,
     /// so far-away query points cannot overflow the integer conversion).
     [[nodiscard]] std::int64_t coord(double x, int axis) const {
@@ -140,7 +121,8 @@ private:
     std::array<std::int64_t, 3> m_dims{0, 0, 0};
     std::vector<std::uint32_t> m_start;  ///< cell c holds slots [m_start[c], m_start[c+1])
     std::vector<std::uint32_t> m_member; ///< original index of each slot (< 2^32 copies)
-    std::vector<Sphere> m_sphere;        ///< sphere of each slot
+    std::vector<float> m_x, m_y, m_z;    ///< centre of each slot (lanes())
+    std::vector<float> m_radius;         ///< radius of each slot, rounded up
     std::vector<std::uint32_t> m_cellOf; ///< scratch: cell of each member, in input order
 };
 
@@ -151,8 +133,14 @@ void LinkedCells::forEachOverlap(F&& f) const {
     auto const nx = m_dims[0], ny = m_dims[1], nz = m_dims[2];
     // The half shell of 13 forward neighbours, grouped into 5 slot ranges: cell x+1 of the
     // same row, and the cells x-1..x+1 of the rows (dy, dz) = (1, 0), (-1, 1), (0, 1), (1, 1),
-    // which are consecutive in memory, so each row is one contiguous range of slots.
+    // which are consecutive in memory, so each row is one contiguous range of slots. A cell's
+    // candidates are tested range by range in lanes (CellCandidates.hpp; whether two grains of
+    // a packing are within reach is a coin toss for the branch predictor), then reported.
     static constexpr std::int64_t kRows[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    cells_detail::SphereLanes const spheres = lanes();
+    cells_detail::CellScratch scratch;
+    std::vector<cells_detail::SlotPair> hits;
+    std::array<cells_detail::SlotRange, 5> forward{};
     for (std::int64_t z = 0; z < nz; ++z)
         for (std::int64_t y = 0; y < ny; ++y)
             for (std::int64_t x = 0; x < nx; ++x) {
@@ -160,49 +148,24 @@ void LinkedCells::forEachOverlap(F&& f) const {
                 std::uint32_t const begin = m_start[c], end = m_start[c + 1];
                 if (begin == end)
                     continue;
-                for (std::uint32_t s = begin; s < end; ++s)
-                    testRange(s, s + 1, end, f);
+                std::size_t ranges = 0;
                 if (x + 1 < nx)
-                    for (std::uint32_t s = begin; s < end; ++s)
-                        testRange(s, end, m_start[c + 2], f);
+                    forward[ranges++] = {end, m_start[c + 2]};
                 std::int64_t const x0 = x > 0 ? x - 1 : 0, x1 = x + 1 < nx ? x + 1 : x;
                 for (auto const& row : kRows) {
                     std::int64_t const oy = y + row[0], oz = z + row[1];
                     if (oy < 0 || oy >= ny || oz >= nz)
                         continue;
-                    std::uint32_t const rowBegin = m_start[cellIndex(x0, oy, oz)];
-                    std::uint32_t const rowEnd = m_start[cellIndex(x1, oy, oz) + 1];
-                    for (std::uint32_t s = begin; s < end; ++s)
-                        testRange(s, rowBegin, rowEnd, f);
+                    forward[ranges++] = {m_start[cellIndex(x0, oy, oz)],
+                                         m_start[cellIndex(x1, oy, oz) + 1]};
                 }
+                hits.clear();
+                cells_detail::appendCellOverlaps(spheres, {begin, end},
+                                                 std::span(forward.data(), ranges), m_testSlack,
+                                                 scratch, hits);
+                for (cells_detail::SlotPair const& h : hits)
+                    report(f, h.s, h.t, h.d2);
             }
-}
-
-template <class F>
-void LinkedCells::testRange(std::uint32_t s, std::uint32_t t0, std::uint32_t t1, F& f) const {
-    Sphere const a = m_sphere[s];
-    if (t1 - t0 < kShortRange) { // a gas's rows: few candidates, mostly apart (predictable)
-        for (std::uint32_t t = t0; t < t1; ++t) {
-            double const d2 = squaredDistance(a, m_sphere[t]);
-            if (mayOverlap(a, m_sphere[t], d2))
-                report(f, s, t, d2);
-        }
-        return;
-    }
-    std::array<std::uint8_t, kRangeChunk> hit;
-    std::array<double, kRangeChunk> hitD2;
-    for (std::uint32_t t = t0; t < t1; t += kRangeChunk) {
-        std::uint32_t const n = std::min<std::uint32_t>(kRangeChunk, t1 - t);
-        std::uint32_t hits = 0;
-        for (std::uint32_t k = 0; k < n; ++k) {
-            double const d2 = squaredDistance(a, m_sphere[t + k]);
-            hit[hits] = static_cast<std::uint8_t>(k);
-            hitD2[hits] = d2;
-            hits += mayOverlap(a, m_sphere[t + k], d2) ? 1 : 0;
-        }
-        for (std::uint32_t h = 0; h < hits; ++h)
-            report(f, s, t + hit[h], hitD2[h]);
-    }
 }
 
 template <class F>
@@ -242,10 +205,9 @@ std::size_t LinkedCells::forEachOverlapWith(core::Vec3 const& centre, double rad
             std::uint32_t const end = m_start[cellIndex(x1, y, z) + 1];
             // Cells of one row are consecutive, so the row is one contiguous slot range.
             for (std::uint32_t t = begin; t < end; ++t) {
-                Sphere const& b = m_sphere[t];
-                double const dx = double{b.x} - rel.x(), dy = double{b.y} - rel.y(),
-                             dz = double{b.z} - rel.z();
-                double const touch = radius + double{b.radius} + m_testSlack;
+                double const dx = double{m_x[t]} - rel.x(), dy = double{m_y[t]} - rel.y(),
+                             dz = double{m_z[t]} - rel.z();
+                double const touch = radius + double{m_radius[t]} + m_testSlack;
                 if (dx * dx + dy * dy + dz * dz < touch * touch)
                     f(m_member[t]);
             }

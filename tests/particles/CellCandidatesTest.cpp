@@ -1,0 +1,105 @@
+// The cells' candidate sweep (lanes where the build has AVX-512) against its scalar
+// definition: the same pairs, in the same order, with the same squared distances, bit for bit,
+// for cells with one grain to many and ranges shorter and longer than a lane block.
+#include "particles/detection/CellCandidates.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace regolith::particles::cells_detail {
+namespace {
+
+struct Slots {
+    std::vector<float> x, y, z, radius;
+    [[nodiscard]] SphereLanes lanes() const {
+        return {x.data(), y.data(), z.data(), radius.data()};
+    }
+};
+
+/// `n` spheres in a 3 x 3 x 3 box, radii in [0.3, 0.5]: about half of the pairs within reach.
+Slots sample(std::size_t n, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> at(0.0F, 3.0F);
+    std::uniform_real_distribution<float> r(0.3F, 0.5F);
+    Slots s;
+    for (std::size_t k = 0; k < n; ++k) {
+        s.x.push_back(at(rng));
+        s.y.push_back(at(rng));
+        s.z.push_back(at(rng));
+        s.radius.push_back(r(rng));
+    }
+    return s;
+}
+
+/// The definition: own pairs (t > s), then each forward range, s by s, t ascending.
+std::vector<SlotPair> scalarSweep(Slots const& s, SlotRange own,
+                                  std::vector<SlotRange> const& forward, double slack) {
+    std::vector<SlotPair> out;
+    auto each = [&](std::uint32_t t0, std::uint32_t t1) {
+        for (std::uint32_t a = own.begin; a < own.end; ++a)
+            for (std::uint32_t t = std::max(t0, a + 1); t < t1; ++t) {
+                double const dx = double{s.x[t]} - double{s.x[a]};
+                double const dy = double{s.y[t]} - double{s.y[a]};
+                double const dz = double{s.z[t]} - double{s.z[a]};
+                double const d2 = dx * dx + dy * dy + dz * dz;
+                double const reach = double{s.radius[a]} + double{s.radius[t]} + slack;
+                if (d2 < reach * reach)
+                    out.push_back({a, t, d2});
+            }
+    };
+    each(own.begin, own.end);
+    for (SlotRange const& r : forward)
+        each(r.begin, r.end);
+    return out;
+}
+
+TEST(CellCandidates, SweepsACellAsTheScalarDefinitionInOrderAndBitForBit) {
+    double const slack = 0.01;
+    std::size_t compared = 0;
+    std::size_t hits = 0;
+    for (std::uint32_t members : {1U, 2U, 3U, 8U, 9U, 17U}) {
+        for (std::uint32_t seed = 1; seed <= 5; ++seed) {
+            Slots const s = sample(200, seed * 31 + members);
+            // The cell, then forward ranges of 0 to 20 slots (lane blocks of eight and a rest).
+            SlotRange const own{10, 10 + members};
+            std::vector<SlotRange> forward;
+            std::uint32_t next = own.end;
+            for (std::uint32_t length : {1U, 0U, 7U, 8U, 9U, 20U}) {
+                forward.push_back({next, next + length});
+                next += length + 3;
+            }
+            std::vector<SlotPair> got;
+            CellScratch scratch;
+            appendCellOverlaps(s.lanes(), own, forward, slack, scratch, got);
+            std::vector<SlotPair> const want = scalarSweep(s, own, forward, slack);
+            ASSERT_EQ(got.size(), want.size()) << members << " members, seed " << seed;
+            for (std::size_t k = 0; k < want.size(); ++k) {
+                EXPECT_EQ(got[k].s, want[k].s);
+                EXPECT_EQ(got[k].t, want[k].t);
+                EXPECT_EQ(got[k].d2, want[k].d2); // bit for bit: the same operations
+            }
+            compared += 1;
+            hits += want.size();
+        }
+    }
+    EXPECT_EQ(compared, 30U);
+    EXPECT_GT(hits, 300U); // the comparisons had pairs to compare
+}
+
+TEST(CellCandidates, AppendsAfterWhatTheListHolds) {
+    Slots const s = sample(40, 7);
+    std::vector<SlotPair> got{{99, 100, 1.5}};
+    CellScratch scratch;
+    std::vector<SlotRange> const forward{{5, 40}};
+    appendCellOverlaps(s.lanes(), {0, 5}, forward, 0.0, scratch, got);
+    ASSERT_GT(got.size(), 1U);
+    EXPECT_EQ(got[0].s, 99U);
+    EXPECT_EQ(got[0].d2, 1.5);
+}
+
+} // namespace
+} // namespace regolith::particles::cells_detail
