@@ -1,11 +1,10 @@
 #pragma once
 /// The candidate test of LinkedCells' pair sweep, one cell at a time and several candidates at
-/// once: in 512-bit lanes where the building machine has AVX-512, one by one otherwise. Both
-/// give the same pairs in the same order with the same squared distances: the lanes do the
-/// scalar test's IEEE operations in its order (no contraction, cmake/RegolithTargets.cmake).
-///
-/// Apart from LinkedCells.hpp so that it compiles with the lane code generation and without
-/// Eigen (GCC bug 105593, cmake/RegolithTargets.cmake).
+/// once: in 512-bit lanes where the build and the processor have AVX-512 (CellCandidatesLanes.cpp,
+/// compiled with the lane code generation and without Eigen: GCC bug 105593,
+/// cmake/RegolithTargets.cmake), one by one otherwise (also under valgrind, whose processor
+/// has no AVX-512). Both give the same pairs in the same order with the same squared distances:
+/// the lanes do the scalar test's IEEE operations in its order (no contraction).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -46,5 +45,21 @@ struct CellScratch {
 /// s of `own` the range's slots t ascending.
 void appendCellOverlaps(SphereLanes const& lanes, SlotRange own, std::span<SlotRange const> forward,
                         double slack, CellScratch& scratch, std::vector<SlotPair>& out);
+
+/// appendCellOverlaps one candidate at a time.
+void appendCellOverlapsOneByOne(SphereLanes const& lanes, SlotRange own,
+                                std::span<SlotRange const> forward, double slack,
+                                std::vector<SlotPair>& out);
+
+/// Whether the build compiled appendCellOverlapsInLanes for AVX-512 (CellCandidatesLanes.cpp).
+[[nodiscard]] bool cellLanesCompiled();
+
+/// Whether appendCellOverlapsInLanes runs here: the build has it and the processor AVX-512.
+[[nodiscard]] bool cellLanesAvailable();
+
+/// appendCellOverlaps in lanes. Pre: cellLanesAvailable().
+void appendCellOverlapsInLanes(SphereLanes const& lanes, SlotRange own,
+                               std::span<SlotRange const> forward, double slack,
+                               CellScratch& scratch, std::vector<SlotPair>& out);
 
 } // namespace regolith::particles::cells_detail

@@ -1,6 +1,7 @@
-// The cells' candidate sweep (lanes where the build has AVX-512) against its scalar
-// definition: the same pairs, in the same order, with the same squared distances, bit for bit,
-// for cells with one grain to many and ranges shorter and longer than a lane block.
+// The cells' candidate sweep, one by one and in lanes (where the build and the processor have
+// AVX-512), against its definition: the same pairs, in the same order, with the same squared
+// distances, bit for bit, for cells with one grain to many and ranges shorter and longer than a
+// lane block.
 #include "particles/detection/CellCandidates.hpp"
 
 #include <gtest/gtest.h>
@@ -72,22 +73,35 @@ TEST(CellCandidates, SweepsACellAsTheScalarDefinitionInOrderAndBitForBit) {
                 forward.push_back({next, next + length});
                 next += length + 3;
             }
-            std::vector<SlotPair> got;
-            CellScratch scratch;
-            appendCellOverlaps(s.lanes(), own, forward, slack, scratch, got);
             std::vector<SlotPair> const want = scalarSweep(s, own, forward, slack);
-            ASSERT_EQ(got.size(), want.size()) << members << " members, seed " << seed;
-            for (std::size_t k = 0; k < want.size(); ++k) {
-                EXPECT_EQ(got[k].s, want[k].s);
-                EXPECT_EQ(got[k].t, want[k].t);
-                EXPECT_EQ(got[k].d2, want[k].d2); // bit for bit: the same operations
+            std::vector<std::vector<SlotPair>> paths(2);
+            appendCellOverlapsOneByOne(s.lanes(), own, forward, slack, paths[0]);
+            CellScratch scratch;
+            if (cellLanesAvailable())
+                appendCellOverlapsInLanes(s.lanes(), own, forward, slack, scratch, paths[1]);
+            else
+                paths.pop_back();
+            for (std::vector<SlotPair> const& got : paths) {
+                ASSERT_EQ(got.size(), want.size()) << members << " members, seed " << seed;
+                for (std::size_t k = 0; k < want.size(); ++k) {
+                    EXPECT_EQ(got[k].s, want[k].s);
+                    EXPECT_EQ(got[k].t, want[k].t);
+                    EXPECT_EQ(got[k].d2, want[k].d2); // bit for bit: the same operations
+                }
             }
-            compared += 1;
+            compared += paths.size();
             hits += want.size();
         }
     }
-    EXPECT_EQ(compared, 30U);
+    EXPECT_EQ(compared, cellLanesAvailable() ? 60U : 30U);
     EXPECT_GT(hits, 300U); // the comparisons had pairs to compare
+}
+
+TEST(CellCandidates, UsesTheLanesWhereTheBuildAndTheProcessorHaveThem) {
+    __builtin_cpu_init();
+    bool const processor =
+        __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512vl") != 0;
+    EXPECT_EQ(cellLanesAvailable(), cellLanesCompiled() && processor);
 }
 
 TEST(CellCandidates, AppendsAfterWhatTheListHolds) {

@@ -1,0 +1,115 @@
+// appendCellOverlapsInLanes (CellCandidates.hpp): compiled with the lane code generation
+// (cmake/RegolithTargets.cmake); without AVX-512 in the build, cellLanesCompiled() says so.
+#include "particles/detection/CellCandidates.hpp"
+
+#include <algorithm>
+
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
+
+namespace regolith::particles::cells_detail {
+
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+
+namespace {
+
+/// One sphere s, broadcast to every lane, in double.
+struct Centre {
+    __m512d x, y, z, radius;
+};
+
+/// The sphere whose x, y, z, radius in double are at `c`.
+Centre centreAt(double const* c) {
+    return {_mm512_set1_pd(c[0]), _mm512_set1_pd(c[1]), _mm512_set1_pd(c[2]), _mm512_set1_pd(c[3])};
+}
+
+/// Up to eight floats from `p` (lanes beyond `live` neither read nor faulted on), in double.
+/// The full-width conversion of GCC 12's headers trips its false maybe-uninitialized warning
+/// (bug 105593); the zero-masked one is the same instruction.
+__m512d load(float const* p, __mmask8 live) {
+    return _mm512_maskz_cvtps_pd(0xFF, _mm256_maskz_loadu_ps(live, p));
+}
+
+/// The lanes of `live` (candidates at x, y, z, radius + k) that may overlap `a`, and every
+/// lane's squared distance in `d2` (the scalar test's operations, in its order).
+__mmask8 test(Centre const& a, SphereLanes const& candidates, std::uint32_t k, __mmask8 live,
+              __m512d slack, __m512d& d2) {
+    __m512d const dx = _mm512_sub_pd(load(candidates.x + k, live), a.x);
+    __m512d const dy = _mm512_sub_pd(load(candidates.y + k, live), a.y);
+    __m512d const dz = _mm512_sub_pd(load(candidates.z + k, live), a.z);
+    d2 = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)),
+                       _mm512_mul_pd(dz, dz));
+    __m512d const reach =
+        _mm512_add_pd(_mm512_add_pd(a.radius, load(candidates.radius + k, live)), slack);
+    return _mm512_mask_cmp_pd_mask(live, d2, _mm512_mul_pd(reach, reach), _CMP_LT_OQ);
+}
+
+__mmask8 firstLanes(std::uint32_t n) {
+    return static_cast<__mmask8>(n >= 8 ? 0xFFU : (1U << n) - 1U);
+}
+
+/// Calls emit(lane, d2 of the lane) for the lanes of `hit`, ascending.
+template <class Emit>
+void eachHit(__mmask8 hit, __m512d d2, Emit&& emit) {
+    if (hit == 0)
+        return;
+    alignas(64) double d2s[8];
+    _mm512_store_pd(d2s, d2);
+    for (unsigned bits = hit; bits != 0; bits &= bits - 1)
+        emit(static_cast<std::uint32_t>(__builtin_ctz(bits)), d2s[__builtin_ctz(bits)]);
+}
+
+} // namespace
+
+bool cellLanesCompiled() {
+    return true;
+}
+
+void appendCellOverlapsInLanes(SphereLanes const& lanes, SlotRange own,
+                               std::span<SlotRange const> forward, double slack,
+                               CellScratch& scratch, std::vector<SlotPair>& out) {
+    __m512d const slackLanes = _mm512_set1_pd(slack);
+    __m512d d2;
+    // The cell's spheres broadcast once (a cell holds a few), then range by range as the
+    // scalar sweep: for each s, the range's slots in lanes of eight.
+    std::uint32_t const members = own.end - own.begin;
+    scratch.centres.resize(4 * std::size_t{members});
+    for (std::uint32_t m = 0; m < members; ++m) {
+        std::uint32_t const s = own.begin + m;
+        double* const c = &scratch.centres[4 * std::size_t{m}];
+        c[0] = static_cast<double>(lanes.x[s]);
+        c[1] = static_cast<double>(lanes.y[s]);
+        c[2] = static_cast<double>(lanes.z[s]);
+        c[3] = static_cast<double>(lanes.radius[s]);
+    }
+    auto sweep = [&](std::uint32_t t0, std::uint32_t t1) {
+        for (std::uint32_t m = 0; m < members; ++m) {
+            std::uint32_t const s = own.begin + m;
+            Centre const a = centreAt(&scratch.centres[4 * std::size_t{m}]);
+            for (std::uint32_t t = std::max(t0, s + 1); t < t1; t += 8) {
+                __mmask8 const hit = test(a, lanes, t, firstLanes(t1 - t), slackLanes, d2);
+                eachHit(hit, d2, [&](std::uint32_t k, double d) { out.push_back({s, t + k, d}); });
+            }
+        }
+    };
+    sweep(own.begin, own.end);
+    for (SlotRange const& r : forward)
+        sweep(r.begin, r.end);
+}
+
+#else
+
+bool cellLanesCompiled() {
+    return false;
+}
+
+void appendCellOverlapsInLanes(SphereLanes const& lanes, SlotRange own,
+                               std::span<SlotRange const> forward, double slack,
+                               CellScratch& /*scratch*/, std::vector<SlotPair>& out) {
+    appendCellOverlapsOneByOne(lanes, own, forward, slack, out);
+}
+
+#endif
+
+} // namespace regolith::particles::cells_detail
