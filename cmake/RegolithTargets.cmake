@@ -32,7 +32,9 @@ if(REGOLITH_NATIVE)
 endif()
 
 # REGOLITH_LANE_CODEGEN, for the files whose loops run over structure-of-arrays lanes
-# (SpringDashpotBatch, OverlapScreen): 512-bit AVX-512 where the building machine has it.
+# (SpringDashpotBatch, OverlapScreen, CellCandidatesLanes): 512-bit AVX-512 where the building
+# machine has it. The cells' candidate sweep also checks the processor at run time and sweeps
+# one by one without it (so that valgrind, which has no AVX-512, runs the other scenes' paths).
 # Those loops are latency-bound, not throughput-bound: one contact's chain of roots and
 # divisions is longer than the reorder window can hide, so eight lanes per instruction instead
 # of four cut the batch model's time by a third even on Zen 4, which splits a 512-bit operation

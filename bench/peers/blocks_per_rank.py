@@ -20,8 +20,9 @@ rank, cut with the least surface), what a user gets without the key.
 
 LAMMPS: pair_style gran/hooke/history with Regolith's spring-dashpot numbers (k_t = 2/7 k_n,
 gamma_t = gamma_n / 2), neighbor 0.1 (bin for A and B; multi with comm_modify mode multi for C),
-neigh_modify delay 0 every 1 check yes, newton on (the issue's settings; for B newton off runs
-~1.2x longer), fix nve/sphere; decks granular.in, ramp.in, boulder.in.
+neigh_modify delay 0 every 1 check yes, newton on (with newton off LAMMPS computes each pair
+across a periodic face twice: B runs ~1.2x longer), fix nve/sphere; decks granular.in, ramp.in,
+boulder.in.
 
 usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]

@@ -7,8 +7,9 @@ namespace regolith::particles::cells_detail {
 bool cellLanesAvailable() {
     static bool const available = [] {
         __builtin_cpu_init();
+        // The lane code generation's instruction sets (cmake/RegolithTargets.cmake).
         return cellLanesCompiled() && __builtin_cpu_supports("avx512f") != 0 &&
-               __builtin_cpu_supports("avx512vl") != 0;
+               __builtin_cpu_supports("avx512vl") != 0 && __builtin_cpu_supports("avx512dq") != 0;
     }();
     return available;
 }

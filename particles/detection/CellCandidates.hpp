@@ -41,7 +41,7 @@ struct CellScratch {
 /// Appends to `out` the pairs of one cell's sweep whose spheres may overlap, d2 < (r_s + r_t +
 /// slack)^2 with d2 = dx dx + dy dy + dz dz and d = x_t - x_s from the floats in double (exact
 /// differences), in the scalar sweep's order: the cell's slots `own` with each other (for each
-/// s, the t > s), then each range of `forward` in turn (at most 8, each after `own`), for each
+/// s, the t > s), then each range of `forward` in turn (each after `own`), for each
 /// s of `own` the range's slots t ascending.
 void appendCellOverlaps(SphereLanes const& lanes, SlotRange own, std::span<SlotRange const> forward,
                         double slack, CellScratch& scratch, std::vector<SlotPair>& out);
@@ -54,7 +54,8 @@ void appendCellOverlapsOneByOne(SphereLanes const& lanes, SlotRange own,
 /// Whether the build compiled appendCellOverlapsInLanes for AVX-512 (CellCandidatesLanes.cpp).
 [[nodiscard]] bool cellLanesCompiled();
 
-/// Whether appendCellOverlapsInLanes runs here: the build has it and the processor AVX-512.
+/// Whether appendCellOverlapsInLanes runs here: the build has it and the processor AVX-512
+/// (F, VL and DQ, the lane code generation's).
 [[nodiscard]] bool cellLanesAvailable();
 
 /// appendCellOverlaps in lanes. Pre: cellLanesAvailable().

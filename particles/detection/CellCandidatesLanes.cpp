@@ -83,19 +83,21 @@ void appendCellOverlapsInLanes(SphereLanes const& lanes, SlotRange own,
         c[2] = static_cast<double>(lanes.z[s]);
         c[3] = static_cast<double>(lanes.radius[s]);
     }
-    auto sweep = [&](std::uint32_t t0, std::uint32_t t1) {
+    auto each = [&](std::uint32_t t0, std::uint32_t t1) {
         for (std::uint32_t m = 0; m < members; ++m) {
             std::uint32_t const s = own.begin + m;
             Centre const a = centreAt(&scratch.centres[4 * std::size_t{m}]);
-            for (std::uint32_t t = std::max(t0, s + 1); t < t1; t += 8) {
+            // 64-bit: t1 may lie within a block of eight of the slots' 32-bit limit.
+            for (std::uint64_t block = std::max(t0, s + 1); block < t1; block += 8) {
+                auto const t = static_cast<std::uint32_t>(block);
                 __mmask8 const hit = test(a, lanes, t, firstLanes(t1 - t), slackLanes, d2);
                 eachHit(hit, d2, [&](std::uint32_t k, double d) { out.push_back({s, t + k, d}); });
             }
         }
     };
-    sweep(own.begin, own.end);
+    each(own.begin, own.end);
     for (SlotRange const& r : forward)
-        sweep(r.begin, r.end);
+        each(r.begin, r.end);
 }
 
 #else
