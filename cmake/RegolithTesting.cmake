@@ -1,10 +1,12 @@
 # regolith_add_mpi_test(<target> RANKS 1 2 4 [LABELS unit mpi] [ARGS ...] [TIMEOUT s])
 # Registers <target> once per rank count as <target>.np<N>, run through mpiexec with
 # --oversubscribe and the variables Open MPI needs when run as root.
+# The tests run on one node: Open MPI's ob1 messaging over shared memory, without probing for
+# UCX's network transports first (0.2 s less per mpiexec; ~300 tests start one or more).
 set(REGOLITH_MPI_TEST_ENV
     OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
     OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
-    ASAN_OPTIONS=detect_leaks=0)
+    OMPI_MCA_pml=ob1 ASAN_OPTIONS=detect_leaks=0)
 
 function(regolith_add_mpi_test target)
   cmake_parse_arguments(ARG "" "TIMEOUT;NAME" "RANKS;LABELS;ARGS" ${ARGN})
