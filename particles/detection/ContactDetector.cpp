@@ -163,7 +163,6 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_listRegion = region;
     m_listFrame = frame;
     m_largeIds.clear();
-    m_twins.clear();
     m_margin.clear();
     m_spreadOut = false;
     if (ps.empty()) {
@@ -360,7 +359,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_listings.capacity() * sizeof(Listing) + m_depths.bytes();
+           m_depths.bytes();
 }
 
 } // namespace regolith::particles

@@ -106,18 +106,13 @@ core::AABB everywhere();
 /// Springs kept beside the list (DetectorConfig::keepSprings; KeptSprings.cpp, docs/sync.md
 /// "Tangential springs beside the Verlet list"). A settled pair that cannot migrate, wrap or
 /// change hands while the list holds (two masters deeper than skin / 2 inside the block, one
-/// image instance), and a settled face pair, keep their tangential spring beside the pair
+/// image instance) keeps its tangential spring beside the pair
 /// (PairMode::Kept, VerletList::spring), handed to the callback in place of the history hint,
 /// as LAMMPS's fix neigh/history keeps its shear history. The grains' histories are stale for
 /// those pairs until writeBackSprings(), which the caller must call before anything reads or
 /// changes them or moves a copy out of the block: before a synchronisation whose motion could
 /// reach skin / 2 (beforeSync), a checkpoint, release(). Every step computes the same bits as
 /// with the histories.
-///
-/// Pairs across a periodic face of a region that spans the domain along that axis
-/// (DetectorConfig::settleFaceTwins; FaceTwins.cpp, docs/sync.md "Pairs across a periodic face
-/// of a spanning region"): the list settles the instance whose i is i's master and drops its
-/// twins (same uids and image difference), which give the same bits.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -229,14 +224,6 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
-    /// A settled face pair (see "Pairs across a periodic face"): its twin's key, its ids and
-    /// its place in the list.
-    struct FaceTwin {
-        FaceTwinKey key;
-        VerletList::Id a, b;
-        std::size_t pair;
-    };
-
     [[nodiscard]] bool listed() const { return m_config.skin > 0.0 || m_config.relativeSkin > 0.0; }
     /// Follows the storage's changes, adds the arrivals' pairs or rebuilds the list (as
     /// prepareList decided, if it was called).
@@ -301,41 +288,6 @@ private:
     Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;
-    /// Whether the block settles the pairs across its periodic faces (see "Pairs across a
-    /// periodic face"): configured to, and `region` spans `frame`'s domain along a periodic
-    /// axis.
-    [[nodiscard]] bool holdsFaceTwins(core::AABB const& region, PeriodicFrame const& frame) const;
-    /// Lists in m_twins the open pairs of a new list that the block evaluates in place of their
-    /// twins (canonical ka, kb; i's master and j's copy that is sure to live as long as the list),
-    /// and in m_listings every pair's settleListed, for classifyListed to take.
-    void findFaceTwins(ParticleStorage const& particles, core::AABB const& region,
-                       PeriodicFrame const& frame, double rounding);
-    /// The mode of a settled face pair (canonical ka, kb; ids a, b): Owned, or Kept or
-    /// KeptPressedAcross if it keeps its spring beside the list.
-    [[nodiscard]] PairMode faceTwinMode(ParticleStorage const& particles, std::size_t ka,
-                                        std::size_t kb, VerletList::Id a, VerletList::Id b,
-                                        PeriodicFrame const& frame, double rounding) const;
-    [[nodiscard]] bool faceTwinAlive(FaceTwin const& t) const;
-    /// Whether the region holds face pair ka, kb (canonical; ids a, b) for the list's life: no
-    /// other region evaluates it, and j's copy lives (j's master, or a copy whose ball reaches
-    /// into `region` by more than the list's motion).
-    [[nodiscard]] bool holdsFacePair(ParticleStorage const& particles, std::size_t ka,
-                                     std::size_t kb, VerletList::Id a, VerletList::Id b,
-                                     core::AABB const& region, PeriodicFrame const& frame,
-                                     double rounding) const;
-    /// The settled face pair of the instance ka, kb (canonical), or nullptr.
-    [[nodiscard]] FaceTwin* faceTwinOf(ParticleStorage const& particles, std::size_t ka,
-                                       std::size_t kb);
-    /// At a shift: forgets the settled face pairs that are no longer open or whose j's copy may
-    /// no longer outlive the list (from the shifted references), writing their springs back.
-    void keepFaceTwinsAtShift(ParticleStorage& particles, double rounding);
-    /// Forgets the settled face pairs whose copies died since the last call (a grain wrapped,
-    /// or j's master migrated), writing their kept springs back first.
-    void forgetDeadFaceTwins(ParticleStorage& particles);
-    /// Writes settled face pair t's kept spring (if it keeps one and t died; a live one's goes
-    /// back with the other kept pairs') back to i's master, and the master's history to i's
-    /// other images.
-    void writeBackFaceTwin(ParticleStorage& particles, FaceTwin const& t) const;
     /// Writes a kept spring back to the history of copy i, for partner `partner` (whose entry
     /// fillKeptSprings found in slot `hint`).
     void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,
@@ -382,8 +334,6 @@ private:
     VerletList m_list;
     std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
     std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
-    std::vector<FaceTwin> m_twins;          ///< sorted by key
-    std::vector<Listing> m_listings;        ///< findFaceTwins' settlements, one per listed pair
     ReferenceDepths m_depths;               ///< of the last rebuild's copies, and the shifts since
     /// Per listed pair (the first ones), how much deeper inside the block than its settlement
     /// needs both its copies lay at the rebuild: while the drift stays below it, the list's

@@ -31,11 +31,6 @@ struct DetectorConfig {
     /// callback takes them (TakesKeptSprings). That caller must write them back
     /// (ContactDetector::beforeSync, writeBackSprings) before anything reads the histories.
     bool keepSprings = false;
-    /// Settle the pairs across a periodic face of a block that spans the domain along that
-    /// axis (ContactDetector, "Pairs across a periodic face"). It relies on the synchronisation's
-    /// copies (one wherever a ball overlaps a block, at every image), which a storage filled
-    /// otherwise need not hold: set by DemStep, whose storages are the synchronisation's.
-    bool settleFaceTwins = false;
     /// The contact model's interaction range [length] (AnyContactModel::interactionRange):
     /// pairs up to this gap apart are contacts too (penetration -gap), for a model that acts
     /// before grains touch (cohesion). Every candidate search, the Verlet list and the
@@ -74,9 +69,6 @@ struct DetectorStats {
     /// Of those, the pairs whose tangential spring is kept beside the list
     /// (DetectorConfig::keepSprings).
     std::size_t keptPairs = 0;
-    /// Of those, the pairs across a periodic face settled in place of their twins
-    /// (ContactDetector, "Pairs across a periodic face").
-    std::size_t faceTwins = 0;
     std::size_t arrivals = 0;
 };
 

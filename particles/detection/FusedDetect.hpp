@@ -80,14 +80,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                 if constexpr (TakesKeptSprings<OnPair>) {
                     if (isPressed(mode) && kept != nullptr) { // overlaps: no test
                         overlaps += screen.flush(ps, period, onPair) + 1;
-                        // One image (+0), or j's shift as the canonical geometry takes it.
-                        onPair.kept(a, b,
-                                    mode == PairMode::KeptPressed
-                                        ? core::Vec3::Zero()
-                                        : imageOffset(detection_detail::imageDifference(
-                                                          ps.image(b), ps.image(a)),
-                                                      period),
-                                    *kept);
+                        onPair.kept(a, b, core::Vec3::Zero(), *kept); // two masters: one image
                         return;
                     }
                 }

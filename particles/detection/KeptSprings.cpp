@@ -113,8 +113,6 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         if (keepsSpring(m_list.mode(p)))
             writeBackSpring(ps, i, ps.uid(j), m_list.spring(p), m_list.hint(p));
     });
-    for (FaceTwin const& t : m_twins) // their images need the master's history too
-        writeBackFaceTwin(ps, t);
 }
 
 } // namespace regolith::particles

@@ -49,8 +49,6 @@ void ContactDetector::decideRebuild(ParticleStorage& ps, core::AABB const& regio
         throw core::Error("contact detection: the storage changed beyond the Verlet list's "
                           "trace while it kept springs that were not written back");
     m_listedBefore = m_list.numPairs();
-    if (follows)
-        forgetDeadFaceTwins(ps);
     if (follows && listedFor(region, frame) && !tooManyArrivals())
         shiftAhead(ps, moved);
     m_rebuildDue = !listedFor(region, frame) || !follows || tooManyArrivals() ||
@@ -74,7 +72,6 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
     m_stats.listedPairs = m_list.numPairs();
     m_stats.settledPairs = m_list.numOwned();
     m_stats.keptPairs = m_list.numKept();
-    m_stats.faceTwins = m_twins.size();
 }
 
 } // namespace regolith::particles

@@ -72,8 +72,8 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
         m_margin.assign(m_list.numPairs(), -std::numeric_limits<float>::infinity());
         m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
             PairMode const mode = m_list.mode(p);
-            if (mode == PairMode::Check || mode == PairMode::KeptPressedAcross)
-                return; // the rule per step holds anywhere; a face pair is settled again
+            if (mode == PairMode::Check)
+                return; // the rule per step holds anywhere
             double const need = std::max(listedReach(ps, ka, kb, rounding) + rounding, motion);
             auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
             double const margin =
@@ -84,7 +84,6 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     }
     m_list.shift(drift, spread);
     m_depths.setShifted(m_list.drift().cwiseAbs().maxCoeff());
-    keepFaceTwinsAtShift(ps, rounding);
     auto const unchanged = [&](std::size_t p) {
         return p < m_margin.size() && m_margin[p] > m_depths.shifted();
     };
@@ -103,13 +102,6 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
                 settledMode(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding));
             break;
         case Listing::Open:
-            // A settled face pair keeps its mode, its twins stay dropped (decided by i's master,
-            // as when listed: see classifyListed).
-            if (FaceTwin const* t = faceTwinOf(ps, ka, kb))
-                mode = listed && t->a == a && t->b == b
-                           ? static_cast<int>(faceTwinMode(ps, ka, kb, a, b, m_listFrame, rounding))
-                           : VerletList::kDrop;
-            break;
         case Listing::Check:
             break;
         }

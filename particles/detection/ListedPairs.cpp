@@ -1,7 +1,7 @@
 /// Settling the Verlet list's pairs when they are listed (ContactDetector's class comment,
 /// "Settled pairs and the fused loop"): what the contact-point rule will answer for a pair while
 /// the list holds, and the mode each pair gets from it (PairMode; the kept springs' modes in
-/// KeptSprings.cpp, the face pairs' in FaceTwins.cpp).
+/// KeptSprings.cpp).
 #include "particles/detection/ContactDetector.hpp"
 
 #include <utility>
@@ -59,49 +59,18 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     // midpoint, the ownership point and the wrap, which are a few ulps of the same numbers.
     // The list's reference positions are floats: the midpoint is off by at most their slack.
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
-    bool const twins = holdsFaceTwins(region, frame);
-    // Arrivals are never settled face pairs, only their dropped twins. A new list's pairs are
-    // settled once, by findFaceTwins (which must know every twin before the first is dropped).
-    bool const settled = twins && first == 0;
-    if (settled)
-        findFaceTwins(ps, region, frame, rounding);
-    std::size_t place = first; // where classifyFrom puts the pair it is deciding
-    std::size_t offered = 0;   // the pairs classifyFrom offered so far
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = 0, kb = 0;
-        int mode = static_cast<int>(PairMode::Check);
-        Listing listing = Listing::Check;
-        if (settled) {
-            orderListed(ps, a, b, ka, kb);
-            listing = m_listings[offered++];
-        } else {
-            listing = settleListed(ps, a, b, ka, kb, region, frame, rounding);
-        }
-        switch (listing) {
+        switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
         case Listing::Drop:
             return VerletList::kDrop;
-        case Listing::Check:
-            break;
         case Listing::Always:
-            mode = static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
-            break;
+            return static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
+        case Listing::Check:
         case Listing::Open:
-            if (!twins)
-                break;
-            FaceTwin* const t = faceTwinOf(ps, ka, kb);
-            if (t == nullptr)
-                break;
-            if (t->a == a && t->b == b) { // the instance the block evaluates
-                t->pair = place;
-                mode = static_cast<int>(faceTwinMode(ps, ka, kb, a, b, frame, rounding));
-            } else if (m_list.indexOf(t->a) != VerletList::kDead &&
-                       m_list.indexOf(t->b) != VerletList::kDead) {
-                return VerletList::kDrop; // its twin, evaluated in its place
-            }
             break;
         }
-        ++place;
-        return mode;
+        return static_cast<int>(PairMode::Check);
     });
 }
 

@@ -18,8 +18,8 @@ template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
 /// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
 /// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
-/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed,
-/// KeptPressedAcross), as `kept(i, j, shiftJ, spring)` with the pair's storage indices
+/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
+/// as `kept(i, j, shiftJ, spring)` with the pair's storage indices
 /// (canonical order) and j's periodic shift; and
 /// tells the pass (ContactHistory stamp) it evaluates, `pass()`.
 template <class OnPair>

@@ -8,20 +8,8 @@
 #include "core/math/AABB.hpp"
 #include "core/math/Vec3.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
-#include "particles/storage/CopyImage.hpp"
-#include "particles/storage/Uid.hpp"
-
-#include <compare>
 
 namespace regolith::particles {
-
-/// A contact's identity whatever image instance of its pair evaluates it: the canonical uids
-/// (uid i < uid j) and image(j) - image(i) (ContactDetector, "Pairs across a periodic face").
-struct FaceTwinKey {
-    Uid i = kInvalidUid, j = kInvalidUid;
-    CopyImage e = kNoImage;
-    friend auto operator<=>(FaceTwinKey const&, FaceTwinKey const&) = default;
-};
 
 enum class Settled {
     Never,  ///< another block or image instance evaluates the pair, whatever happens

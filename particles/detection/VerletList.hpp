@@ -64,14 +64,11 @@ enum class PairMode : std::uint8_t {
     /// Kept, and overlapping for the list's whole life (it overlapped by more than the skin
     /// when listed): evaluated without testing it.
     KeptPressed = 3,
-    /// KeptPressed across a periodic face: j's copy at another image than i's (a settled face
-    /// pair, ContactDetector's "Pairs across a periodic face"), its shift taken from the images.
-    KeptPressedAcross = 4,
 };
 
 /// Whether a pair of mode `m` is evaluated untested (it overlaps while the list holds).
 [[nodiscard]] constexpr bool isPressed(PairMode m) {
-    return m == PairMode::KeptPressed || m == PairMode::KeptPressedAcross;
+    return m == PairMode::KeptPressed;
 }
 
 /// Whether a pair of mode `m` keeps its spring beside the list.

@@ -200,8 +200,8 @@ public:
         m_batch.addKept(p.i, p.j, p.shiftJ, kept, m_stamp);
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
-    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed,
-    /// KeptPressedAcross), by its storage indices and j's periodic shift.
+    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
+    /// by its storage indices and j's periodic shift.
     [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, core::Vec3 const& shiftJ,
                                      KeptSpring& spring) {
         if (m_batch.full())

@@ -54,7 +54,6 @@ void DemStep::placeOnBlocks() {
     // which stays in the histories).
     DetectorConfig detector = m_config.detector;
     detector.keepSprings = m_config.keepSprings && m_model.batched() && !m_model.hasRollingSpring();
-    detector.settleFaceTwins = true; // the storages are the synchronisation's
     detector.range = m_model.interactionRange();
     m_detectors.assign(blocks, ContactDetector(detector));
     m_contacts.assign(blocks, ContactList{});

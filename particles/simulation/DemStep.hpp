@@ -231,10 +231,6 @@ public:
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
     [[nodiscard]] std::size_t keptPairs() const { return detectorSum(&DetectorStats::keptPairs); }
-    /// Pairs across a periodic face that the local blocks' Verlet lists settled in place of
-    /// their twins (ContactDetector, "Pairs across a periodic face"), as of the last force
-    /// computation. Local.
-    [[nodiscard]] std::size_t faceTwins() const { return detectorSum(&DetectorStats::faceTwins); }
     /// The skin of the local blocks' last list rebuild (the largest, if several rebuilt in that
     /// step) [length], kept across a relocation that renews the lists; 0 without a list
     /// (DemStepConfig::detector without a skin) or before the first rebuild. Local.

@@ -78,9 +78,6 @@ Outcome run(core::Comm const& comm, Scene const& scene, SyncConfig config, bool 
             out.keptMost =
                 std::max(out.keptMost, comm.allReduce(static_cast<long long>(dem.keptPairs()),
                                                       core::ReduceOp::Sum));
-            out.twinsMost =
-                std::max(out.twinsMost, comm.allReduce(static_cast<long long>(dem.faceTwins()),
-                                                       core::ReduceOp::Sum));
         }
         dem.step(DemStep::StepEnd::Open);
         dem.completeStep(); // writes the springs back after an Open step

@@ -29,7 +29,6 @@ struct Outcome {
     std::vector<std::uint64_t> bits; ///< every master's x, v, w in uid order, as bits
     std::vector<LiveEntry> live;     ///< entries stamped by the last pass, by (owner, partner)
     long long keptMost = 0;          ///< most pairs kept in one step, over all ranks
-    long long twinsMost = 0;         ///< most face pairs settled in one step, over all ranks
     long long rebuilds = 0;
     long long shifts = 0; ///< lists shifted with the grains' drift instead of rebuilt
     std::string error;
