@@ -106,13 +106,13 @@ core::AABB everywhere();
 /// Springs kept beside the list (DetectorConfig::keepSprings; KeptSprings.cpp, docs/sync.md
 /// "Tangential springs beside the Verlet list"). A settled pair that cannot migrate, wrap or
 /// change hands while the list holds (two masters deeper than skin / 2 inside the block, one
-/// image instance) keeps its tangential spring beside the pair
-/// (PairMode::Kept, VerletList::spring), handed to the callback in place of the history hint,
-/// as LAMMPS's fix neigh/history keeps its shear history. The grains' histories are stale for
-/// those pairs until writeBackSprings(), which the caller must call before anything reads or
-/// changes them or moves a copy out of the block: before a synchronisation whose motion could
-/// reach skin / 2 (beforeSync), a checkpoint, release(). Every step computes the same bits as
-/// with the histories.
+/// image instance) keeps its tangential spring beside the pair (PairMode::Kept,
+/// VerletList::spring), handed to the callback in place of the history hint, as LAMMPS's fix
+/// neigh/history keeps its shear history. The grains' histories are stale for those pairs until
+/// writeBackSprings(), which the caller must call before anything reads or changes them or moves
+/// a copy out of the block: before a synchronisation whose motion could reach skin / 2
+/// (beforeSync), a checkpoint, release(). Every step computes the same bits as with the
+/// histories.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -275,8 +275,9 @@ private:
                                        core::AABB const& region, PeriodicFrame const& frame,
                                        double rounding) const;
     /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
-    /// order, with their storage indices ka, kb) while the list holds.
-    enum class Listing : std::uint8_t { Drop, Check, Always, Open };
+    /// order, with their storage indices ka, kb) while the list holds: never emits it, must
+    /// decide every step, or emits it whenever the two overlap.
+    enum class Listing : std::uint8_t { Drop, Check, Always };
     /// Looks up the storage indices ka, kb of the listed ids a, b and puts both in canonical
     /// order (uid(ka) <= uid(kb)).
     void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,

@@ -80,7 +80,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                 if constexpr (TakesKeptSprings<OnPair>) {
                     if (isPressed(mode) && kept != nullptr) { // overlaps: no test
                         overlaps += screen.flush(ps, period, onPair) + 1;
-                        onPair.kept(a, b, core::Vec3::Zero(), *kept); // two masters: one image
+                        onPair.kept(a, b, *kept);
                         return;
                     }
                 }

@@ -101,7 +101,6 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
             mode = static_cast<int>(
                 settledMode(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding));
             break;
-        case Listing::Open:
         case Listing::Check:
             break;
         }

@@ -44,7 +44,7 @@ ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps
     case Settled::Open:
         break;
     }
-    return Listing::Open;
+    return Listing::Check;
 }
 
 double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
@@ -67,7 +67,6 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
         case Listing::Always:
             return static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
         case Listing::Check:
-        case Listing::Open:
             break;
         }
         return static_cast<int>(PairMode::Check);

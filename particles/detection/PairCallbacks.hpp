@@ -2,7 +2,6 @@
 /// What the fused detect (ContactDetector::detect with a pair callback) hands a callback, by
 /// what the callback takes: Contact or PairOverlap, with the history slot hint or a kept
 /// spring (DetectorConfig::keepSprings).
-#include "core/math/Vec3.hpp"
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/VerletList.hpp"
 
@@ -18,13 +17,12 @@ template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
 /// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
 /// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
-/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed),
-/// as `kept(i, j, shiftJ, spring)` with the pair's storage indices
-/// (canonical order) and j's periodic shift; and
-/// tells the pass (ContactHistory stamp) it evaluates, `pass()`.
+/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed:
+/// two masters, one image), as `kept(i, j, spring)` with the pair's storage indices (canonical
+/// order); and tells the pass (ContactHistory stamp) it evaluates, `pass()`.
 template <class OnPair>
 concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
-    f.kept(i, i, core::Vec3::Zero(), spring);
+    f.kept(i, i, spring);
     { f.pass() } -> std::convertible_to<std::uint32_t>; // the stamp it evaluates with
 };
 template <class OnPair>

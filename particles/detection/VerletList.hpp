@@ -277,10 +277,8 @@ public:
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
     /// Pair p's history slot hint (ContactHistory::touch).
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
-    [[nodiscard]] std::uint8_t hint(std::size_t p) const { return m_hint[p]; }
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
-    [[nodiscard]] KeptSpring const& spring(std::size_t p) const { return m_springs[p]; }
     /// Starts loading spring(p) (if p is a pair) into the cache, for writing.
     void prefetchSpring(std::size_t p) const {
         if (p < m_springs.size())

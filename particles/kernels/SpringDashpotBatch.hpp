@@ -201,12 +201,11 @@ public:
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
     /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
-    /// by its storage indices and j's periodic shift.
-    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, core::Vec3 const& shiftJ,
-                                     KeptSpring& spring) {
+    /// by its storage indices (two masters: one image, no shift).
+    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, KeptSpring& spring) {
         if (m_batch.full())
             finish();
-        m_batch.addKept(i, j, shiftJ, spring, m_stamp);
+        m_batch.addKept(i, j, core::Vec3::Zero(), spring, m_stamp);
     }
 
     /// The pass (ContactHistory stamp) this evaluates.
