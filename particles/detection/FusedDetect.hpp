@@ -58,37 +58,80 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
     auto const& x = ps.positions();
     std::size_t overlaps = 0;
     Contact c;
-    // A consumer that computes the geometry itself gets the listed pairs screened a block at
-    // a time (OverlapScreen; those that keep the rule, PairMode::Check, ruled on there too),
-    // those known to overlap (KeptPressed) untested; a pair that bypasses the screen first
-    // flushes the block, so that every pair still reaches onPair in list order. Always
-    // inlined into the list's loop: left to itself, the compiler kept it out of line for some
-    // models (the per-contact Hertz loop ran 2 % more instructions).
-    OverlapScreen screen(&rule);
-    if constexpr (TakesPairOverlaps<OnPair>) // the screen decides overlap, not the range
-        if (!keepPairs && range != 0.0)
-            throw core::Error("contact detection: a pair callback that takes overlaps only "
-                              "needs a contact model acting in overlap only (range 0)");
+    // A consumer that computes the geometry itself gets the listed pairs screened a block of
+    // the list at a time (OverlapScreen), those that keep the rule (PairMode::Check) ruled on
+    // where they overlap; every pair reaches onPair in list order.
+    if constexpr (TakesPairOverlaps<OnPair>) {
+        if (!keepPairs) {
+            if (range != 0.0)
+                throw core::Error("contact detection: a pair callback that takes overlaps only "
+                                  "needs a contact model acting in overlap only (range 0)");
+            static_assert(OverlapScreen::kCapacity >= VerletList::kBlock);
+            OverlapScreen screen;
+            bool const springsLive = m_springsLive;
+            // Pairs known to overlap while the list holds (KeptPressed: two masters, one
+            // image) are handed on untested, in their places among the tested ones.
+            bool const pressedListed = springsLive && m_list.numPressed() != 0;
+            PairMode const* const modes = m_list.modes().data();
+            std::uint8_t* const hints = m_list.hints().data();
+            KeptSpring* const springs = m_list.springs().data();
+            m_list.forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b,
+                                        std::uint32_t const* at, std::size_t n) {
+                auto const handOn = [&](std::size_t k, PairOverlap const& o)
+                    __attribute__((always_inline)) {
+                    std::size_t const p = at[k];
+                    PairMode const mode = modes[p];
+                    if (mode == PairMode::Check && !rule.emitsOverlapping(o.i, o.j))
+                        return;
+                    if constexpr (TakesKeptSprings<OnPair>) {
+                        if (springsLive && keepsSpring(mode)) {
+                            onPair(o, springs[p]);
+                            return;
+                        }
+                    }
+                    onPair(o, hints[p]);
+                };
+                if (!pressedListed) {
+                    overlaps += screen.test(ps, period, a, b, n, handOn);
+                    return;
+                }
+                std::array<bool, VerletList::kBlock> pressed;
+                std::array<std::uint32_t, VerletList::kBlock> slot, ta, tb;
+                std::size_t tested = 0;
+                for (std::size_t k = 0; k < n; ++k) {
+                    pressed[k] = isPressed(modes[at[k]]);
+                    slot[tested] = static_cast<std::uint32_t>(k);
+                    ta[tested] = a[k];
+                    tb[tested] = b[k];
+                    tested += pressed[k] ? 0 : 1;
+                }
+                std::size_t next = 0; // the block's first pair not yet handed on or passed
+                auto const pressedUpTo = [&](std::size_t end) {
+                    for (; next < end; ++next)
+                        if (pressed[next]) {
+                            handOn(next, PairOverlap{a[next], b[next], core::Vec3::Zero()});
+                            ++overlaps;
+                        }
+                };
+                if (tested != 0)
+                    overlaps += screen.test(
+                        ps, period, ta.data(), tb.data(), tested,
+                        [&](std::size_t t, PairOverlap const& o) __attribute__((always_inline)) {
+                            pressedUpTo(slot[t]);
+                            next = slot[t] + 1;
+                            handOn(slot[t], o);
+                        });
+                pressedUpTo(n);
+            });
+            m_stats.overlapsFound += overlaps;
+            return;
+        }
+    }
+    // Else pair by pair, the geometry computed here and handed over as a Contact.
     auto eachPair = [&](std::size_t a, std::size_t b, std::size_t p)
         __attribute__((always_inline)) {
         PairMode const mode = m_list.mode(p);
         KeptSpring* const kept = m_springsLive && keepsSpring(mode) ? &m_list.spring(p) : nullptr;
-        if (kept != nullptr)
-            m_list.prefetchSpring(p + 16); // read in list order: a stream from memory
-        if constexpr (TakesPairOverlaps<OnPair>) {
-            if (!keepPairs) {
-                if constexpr (TakesKeptSprings<OnPair>) {
-                    if (isPressed(mode) && kept != nullptr) { // overlaps: no test
-                        overlaps += screen.flush(ps, period, onPair) + 1;
-                        onPair.kept(a, b, *kept);
-                        return;
-                    }
-                }
-                overlaps += screen.offer(ps, period, a, b, m_list.hint(p), kept, onPair,
-                                         mode == PairMode::Check);
-                return;
-            }
-        }
         if (mode != PairMode::Check) {
             if (!detection_detail::overlapGeometry(ps, a, b, period, c, range))
                 return;
@@ -109,8 +152,6 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         detection_detail::handOver(onPair, c, m_list.hint(p), kept);
     };
     m_list.forEachNearPair(eachPair);
-    if constexpr (TakesPairOverlaps<OnPair>)
-        overlaps += screen.flush(ps, period, onPair);
     m_stats.overlapsFound += overlaps;
 }
 

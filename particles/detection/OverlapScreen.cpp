@@ -4,11 +4,11 @@
 
 namespace regolith::particles {
 
-std::size_t OverlapScreen::test(ParticleStorage const& ps, core::Vec3 const& period) {
-    std::size_t const n = m_size;
+std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& period,
+                                 std::uint32_t const* is, std::uint32_t const* js, std::size_t n) {
     // Gather: centres, images (as PairRule's imageDifference: the int8 difference), reach.
     for (std::size_t k = 0; k < n; ++k) {
-        std::size_t const i = m_i[k], j = m_j[k];
+        std::size_t const i = is[k], j = js[k];
         core::Vec3 const& xi = ps.position(i);
         core::Vec3 const& xj = ps.position(j);
         CopyImage const& ki = ps.image(i);

@@ -16,19 +16,14 @@ namespace regolith::particles {
 template <class OnPair>
 concept TakesPairOverlaps = std::invocable<OnPair&, PairOverlap const&, std::uint8_t&>;
 /// A pair callback that also takes a kept pair's spring (KeptSpring&, beside the list:
-/// DetectorConfig::keepSprings) in place of the history hint: with the contact found, and, on
-/// the fused path that keeps no contacts, for a pair known to overlap (PairMode::KeptPressed:
-/// two masters, one image), as `kept(i, j, spring)` with the pair's storage indices (canonical
-/// order); and tells the pass (ContactHistory stamp) it evaluates, `pass()`.
+/// DetectorConfig::keepSprings) in place of the history hint, and tells the pass
+/// (ContactHistory stamp) it evaluates, `pass()`.
 template <class OnPair>
-concept TakesKeptPairs = requires(OnPair& f, std::size_t i, KeptSpring& spring) {
-    f.kept(i, i, spring);
+concept TakesKeptSprings = requires(OnPair& f) {
     { f.pass() } -> std::convertible_to<std::uint32_t>; // the stamp it evaluates with
-};
-template <class OnPair>
-concept TakesKeptSprings = TakesKeptPairs<OnPair> &&
-    (std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
-     std::invocable<OnPair&, Contact const&, KeptSpring&>);
+}
+&&(std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
+   std::invocable<OnPair&, Contact const&, KeptSpring&>);
 
 namespace detection_detail {
 /// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one

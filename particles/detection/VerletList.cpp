@@ -23,6 +23,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_parked.clear();
     m_owned = 0;
     m_kept = 0;
+    m_pressed = 0;
     m_mode.clear();
     m_hint.clear();
     m_springs.clear();

@@ -82,6 +82,8 @@ public:
     static constexpr std::uint32_t kDead = std::numeric_limits<std::uint32_t>::max();
     /// Returned by a classifier (classifyFrom) to drop a pair from the list.
     static constexpr int kDrop = -1;
+    /// The most pairs forEachNearBlock hands over at once.
+    static constexpr std::size_t kBlock = 64;
 
     /// Starts a new, empty list over `ps` as it is now: id = index for every copy, reference
     /// positions = current positions. The caller adds the pairs (addPair, ids = indices).
@@ -121,6 +123,7 @@ public:
             m_mode[out] = static_cast<PairMode>(mode);
             m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
             m_kept += keepsSpring(static_cast<PairMode>(mode)) ? 1 : 0;
+            m_pressed += isPressed(static_cast<PairMode>(mode)) ? 1 : 0;
             m_hint[out] = 0;
             ++out;
         }
@@ -274,21 +277,70 @@ public:
             }
         }
     }
+    /// forEachNearPair's pairs a block at a time: calls f(a, b, p, n) with the storage indices
+    /// a[k], b[k] and list positions p[k], k < n <= kBlock, of the next n live near pairs, in
+    /// order; every block but the last holds kBlock. The near ones of each stretch of the list
+    /// are picked by their gaps first, without a branch per pair (unless every pair is
+    /// offered), then those alive.
+    template <class F>
+    void forEachNearBlock(F&& f) const {
+        bool const every = m_apart * kFewApart < m_pairs.size();
+        float const reach = every ? 0.0F : nearReach();
+        std::size_t const n = m_pairs.size();
+        std::array<std::uint32_t, kBlock> near;
+        std::array<std::uint32_t, 2 * kBlock> a, b, at; // a block, and what the next stretch adds
+        std::size_t count = 0;
+        auto const take = [&](std::size_t p) {
+            std::uint32_t const ka = m_indexOf[m_pairs[p][0]], kb = m_indexOf[m_pairs[p][1]];
+            if (ka == kDead || kb == kDead) [[unlikely]]
+                return; // (a copy left since the rebuild: rare, a branch predicted)
+            a[count] = ka;
+            b[count] = kb;
+            at[count] = static_cast<std::uint32_t>(p);
+            ++count;
+        };
+        for (std::size_t first = 0; first < n; first += kBlock) {
+            std::size_t const m = std::min(kBlock, n - first);
+            if (every) {
+                for (std::size_t q = 0; q < m; ++q)
+                    take(first + q);
+            } else {
+                std::size_t nearCount = 0;
+                for (std::size_t q = 0; q < m; ++q) {
+                    near[nearCount] = static_cast<std::uint32_t>(first + q);
+                    nearCount += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
+                }
+                for (std::size_t h = 0; h < nearCount; ++h)
+                    take(near[h]);
+            }
+            if (count >= kBlock) {
+                f(a.data(), b.data(), at.data(), kBlock);
+                count -= kBlock;
+                std::copy_n(a.data() + kBlock, count, a.data());
+                std::copy_n(b.data() + kBlock, count, b.data());
+                std::copy_n(at.data() + kBlock, count, at.data());
+            }
+        }
+        if (count != 0)
+            f(a.data(), b.data(), at.data(), count);
+    }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
+    /// Every pair's mode, hint and kept spring (empty while none is kept), by position: for
+    /// a loop whose stores the compiler cannot tell apart from the list's own.
+    [[nodiscard]] std::span<PairMode const> modes() const { return m_mode; }
+    [[nodiscard]] std::span<std::uint8_t> hints() { return m_hint; }
+    [[nodiscard]] std::span<KeptSpring> springs() { return m_springs; }
     /// Pair p's history slot hint (ContactHistory::touch).
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
-    /// Starts loading spring(p) (if p is a pair) into the cache, for writing.
-    void prefetchSpring(std::size_t p) const {
-        if (p < m_springs.size())
-            __builtin_prefetch(&m_springs[p], 1);
-    }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned, Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }
     /// Pairs classified PairMode::Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numKept() const { return m_kept; }
+    /// Pairs classified PairMode::KeptPressed since the last restart.
+    [[nodiscard]] std::size_t numPressed() const { return m_pressed; }
     /// Heap bytes held.
     [[nodiscard]] std::size_t bytes() const;
 
@@ -300,6 +352,7 @@ private:
     std::size_t m_built = 0;
     std::size_t m_owned = 0;
     std::size_t m_kept = 0;
+    std::size_t m_pressed = 0;
     std::vector<std::array<Id, 2>> m_pairs;
     std::vector<std::array<Id, 2>> m_parked;      ///< pairs dropped from the loop (classifyFrom)
     std::vector<std::array<Id, 2>> m_parkedAgain; ///< resettle's, swapped with m_parked
@@ -310,7 +363,7 @@ private:
     std::size_t m_apart = 0;
     static constexpr float kApart = 0.25F;
     static constexpr std::size_t kFewApart = 4;
-    static constexpr std::size_t kNearBlock = 64;
+    static constexpr std::size_t kNearBlock = kBlock;
     /// forEachNearPair's bound on the gap a pair may have closed, rounded up.
     [[nodiscard]] float nearReach() const;
     std::vector<PairMode> m_mode;           ///< per pair
@@ -340,6 +393,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
     auto const count = [&](PairMode m) {
         m_owned += m != PairMode::Check ? 1 : 0;
         m_kept += keepsSpring(m) ? 1 : 0;
+        m_pressed += isPressed(m) ? 1 : 0;
     };
     std::size_t const listed = m_pairs.size();
     for (std::size_t p = 0; p < listed; ++p) {

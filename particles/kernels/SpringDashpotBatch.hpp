@@ -200,14 +200,6 @@ public:
         m_batch.addKept(p.i, p.j, p.shiftJ, kept, m_stamp);
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
-    /// The same for a listed pair the neighbour list knows to overlap (PairMode::KeptPressed),
-    /// by its storage indices (two masters: one image, no shift).
-    [[gnu::always_inline]] void kept(std::size_t i, std::size_t j, KeptSpring& spring) {
-        if (m_batch.full())
-            finish();
-        m_batch.addKept(i, j, core::Vec3::Zero(), spring, m_stamp);
-    }
-
     /// The pass (ContactHistory stamp) this evaluates.
     [[nodiscard]] std::uint32_t pass() const { return m_stamp; }
 

@@ -1,7 +1,7 @@
 // OverlapScreen (the fused contact loop's block-wise overlap test) against the scalar test of
 // PairRule.hpp: the same pairs, in the same order, with the same shift bits, whether the
-// screen tests in lanes or (while whole blocks overlap) pair by pair; a pair offered as ruled
-// only where the full contact-point rule emits it.
+// screen tests in lanes or (while whole blocks overlap) pair by pair. (Ruling on the pairs
+// near a face is the loop's: VerletListTest, SameContactsAsCellsScreenedBlockWise.)
 #include "particles/detection/OverlapScreen.hpp"
 
 #include "particles/detection/PairRule.hpp"
@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -23,7 +24,7 @@ namespace {
 struct Handed {
     std::size_t i = 0, j = 0;
     core::Vec3 shift = core::Vec3::Zero();
-    std::uint8_t* hint = nullptr;
+    std::size_t at = 0; ///< the pair's place in the sequence tested
 };
 
 bool sameBits(core::Vec3 const& a, core::Vec3 const& b) {
@@ -77,7 +78,7 @@ std::vector<std::pair<std::size_t, std::size_t>> pairsOf(ParticleStorage& ps,
             imageOffset(detection_detail::imageDifference(ps.image(j), ps.image(i)), period);
         ps.position(j) = core::Vec3(ps.position(i) + d * dir - shift);
         pairs.emplace_back(i, j);
-        // Deep runs offer their pair twice, so that whole blocks overlap (the direct mode).
+        // Deep runs offer their pair twice, so that whole blocks overlap.
         pairs.emplace_back(i, deep ? j : static_cast<std::size_t>(u(rng) * (ps.size() - 1)));
     }
     return pairs;
@@ -87,29 +88,35 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
     core::Vec3 const period(10.0, 10.0, 10.0);
     ParticleStorage ps = copies(4000, 9);
     auto const pairs = pairsOf(ps, period);
-    std::vector<std::uint8_t> hints(pairs.size(), 0);
 
     std::vector<Handed> expected;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         auto const [i, j] = pairs[p];
         auto const s = detection_detail::separation(ps, i, j, period);
         if (detection_detail::overlapping(s))
-            expected.push_back({i, j, s.shiftJ, &hints[p]});
+            expected.push_back({i, j, s.shiftJ, p});
     }
 
+    // Blocks as the list hands them over: mostly full, now and then a short one.
     std::vector<Handed> got;
-    auto onPair = [&](PairOverlap const& o, std::uint8_t& hint) {
-        got.push_back({o.i, o.j, o.shiftJ, &hint});
-    };
     OverlapScreen screen;
     std::size_t counted = 0;
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-        counted +=
-            screen.offer(ps, period, pairs[p].first, pairs[p].second, hints[p], nullptr, onPair);
-        if (p % 1000 == 999) // a pair that bypasses the screen flushes it first
-            counted += screen.flush(ps, period, onPair);
+    std::vector<std::uint32_t> is, js;
+    for (std::size_t first = 0; first < pairs.size();) {
+        std::size_t const n = std::min<std::size_t>(first % 7 == 3 ? 17 : OverlapScreen::kCapacity,
+                                                    pairs.size() - first);
+        is.clear();
+        js.clear();
+        for (std::size_t k = 0; k < n; ++k) {
+            is.push_back(static_cast<std::uint32_t>(pairs[first + k].first));
+            js.push_back(static_cast<std::uint32_t>(pairs[first + k].second));
+        }
+        counted += screen.test(ps, period, is.data(), js.data(), n,
+                               [&](std::size_t k, PairOverlap const& o) {
+                                   got.push_back({o.i, o.j, o.shiftJ, first + k});
+                               });
+        first += n;
     }
-    counted += screen.flush(ps, period, onPair);
 
     ASSERT_EQ(got.size(), expected.size());
     EXPECT_EQ(counted, expected.size());
@@ -117,7 +124,7 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
     for (std::size_t k = 0; k < got.size(); ++k) {
         EXPECT_EQ(got[k].i, expected[k].i) << k;
         EXPECT_EQ(got[k].j, expected[k].j) << k;
-        EXPECT_EQ(got[k].hint, expected[k].hint) << k;
+        EXPECT_EQ(got[k].at, expected[k].at) << k;
         EXPECT_TRUE(sameBits(got[k].shift, expected[k].shift)) << k;
         borderline += got[k].j == got[k].i + 1 ? 1 : 0;
     }
@@ -125,72 +132,6 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
     EXPECT_GT(borderline, 500U);
     EXPECT_LT(expected.size(), pairs.size() * 3 / 4);
     EXPECT_GT(expected.size(), pairs.size() / 3);
-}
-
-TEST(OverlapScreen, HandsOnARuledPairOnlyWhereTheContactPointRuleEmitsIt) {
-    // Every third pair in canonical order is ruled (as PairMode::Check pairs are): the block
-    // is half of the periodic box, and half of the copies are Fixed, so that the rule drops
-    // many overlapping pairs, for either reason.
-    core::Vec3 const period(10.0, 10.0, 10.0);
-    ParticleStorage ps = copies(4000, 11);
-    for (std::size_t k = 0; k < ps.size(); k += 3) // image zero: the block holds their points
-        ps.setImage(k, kNoImage);                  // where they lie in its half of the domain
-    auto const pairs = pairsOf(ps, period);
-    for (std::size_t k = 0; k < ps.size(); k += 4) { // pairs (k, k + 1) both Fixed
-        ps.setFlags(k, Flag::Fixed);
-        ps.setFlags(k + 1, Flag::Fixed);
-    }
-    PeriodicFrame const frame(core::AABB{core::Vec3::Zero(), period}, {true, true, true});
-    core::AABB const block{core::Vec3::Zero(), core::Vec3(5.0, 10.0, 10.0)};
-    DetectorStats stats;
-    detection_detail::PairRule const rule(ps, block, frame, stats);
-    std::vector<std::uint8_t> hints(pairs.size(), 0);
-    auto const ruled = [&](std::size_t p) {
-        return p % 3 == 0 && ps.uid(pairs[p].first) < ps.uid(pairs[p].second);
-    };
-
-    std::vector<Handed> expected;
-    std::size_t overlapping = 0, dropped = 0, droppedFixed = 0, emittedRuled = 0;
-    for (std::size_t p = 0; p < pairs.size(); ++p) {
-        auto const [i, j] = pairs[p];
-        auto const s = detection_detail::separation(ps, i, j, period);
-        if (!detection_detail::overlapping(s))
-            continue;
-        ++overlapping;
-        Contact c;
-        if (ruled(p) && !rule(i, j, c)) {
-            ++dropped;
-            droppedFixed += ps.flags(i).isFixed() && ps.flags(j).isFixed() ? 1 : 0;
-            continue;
-        }
-        emittedRuled += ruled(p) ? 1 : 0;
-        expected.push_back({i, j, s.shiftJ, &hints[p]});
-    }
-
-    std::vector<Handed> got;
-    auto onPair = [&](PairOverlap const& o, std::uint8_t& hint) {
-        got.push_back({o.i, o.j, o.shiftJ, &hint});
-    };
-    OverlapScreen screen(&rule);
-    std::size_t counted = 0;
-    for (std::size_t p = 0; p < pairs.size(); ++p)
-        counted += screen.offer(ps, period, pairs[p].first, pairs[p].second, hints[p], nullptr,
-                                onPair, ruled(p));
-    counted += screen.flush(ps, period, onPair);
-
-    ASSERT_EQ(got.size(), expected.size());
-    EXPECT_EQ(counted, overlapping); // a ruled pair that overlaps counts, emitted or not
-    for (std::size_t k = 0; k < got.size(); ++k) {
-        EXPECT_EQ(got[k].i, expected[k].i) << k;
-        EXPECT_EQ(got[k].j, expected[k].j) << k;
-        EXPECT_EQ(got[k].hint, expected[k].hint) << k;
-        EXPECT_TRUE(sameBits(got[k].shift, expected[k].shift)) << k;
-    }
-    // The rule dropped ruled pairs for both reasons (two Fixed grains; the ownership point in
-    // another block or image instance) and emitted others.
-    EXPECT_GT(droppedFixed, 10U);
-    EXPECT_GT(dropped - droppedFixed, 100U);
-    EXPECT_GT(emittedRuled, 50U);
 }
 
 } // namespace

@@ -5,6 +5,7 @@
 #include "particles/detection/VerletList.hpp"
 
 #include "particles/detection/ContactDetector.hpp"
+#include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
 
@@ -43,6 +44,7 @@ struct Scene {
     AABB region{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)};
     std::mt19937_64 rng{7};
     Uid next = 0;
+    double fixedShare = 0.0; ///< of the copies made Fixed
 
     double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); }
     ParticleInit randomCopy() {
@@ -54,6 +56,8 @@ struct Scene {
             p.image = CopyImage{static_cast<std::int8_t>(uniform(0.0, 1.0) < 0.5 ? -1 : 1), 0, 0};
         if (uniform(0.0, 1.0) < 0.1)
             p.flags.set(Flag::Shadow, true);
+        if (fixedShare > 0.0 && uniform(0.0, 1.0) < fixedShare)
+            p.flags.set(Flag::Fixed, true);
         return p;
     }
 };
@@ -67,10 +71,15 @@ DetectorConfig absoluteSkin() {
 
 /// The scene of SameContactsAsCells... with evaluation region `region` (settled pairs are
 /// decided against it) and the list configured by `withSkin`: returns the settled pairs seen,
-/// over all calls.
-std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = absoluteSkin()) {
+/// over all calls. With `overlapsOnly` the fused loop hands over PairOverlaps and keeps no
+/// contacts (the block-wise overlap screen, as DemStep runs it); the contacts compared are
+/// the geometry of the pairs handed over. `fixedShare` of the copies are Fixed (a pair of two
+/// is never a contact).
+std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = absoluteSkin(),
+                                bool overlapsOnly = false, double fixedShare = 0.0) {
     Scene s;
     s.region = region;
+    s.fixedShare = fixedShare;
     ParticleStorage ps;
     for (int k = 0; k < 400; ++k)
         ps.add(s.randomCopy());
@@ -97,14 +106,29 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
             ps.setImage(k, im);
         }
         ContactList a, b;
-        // The fused loop hands over exactly the contacts it lists, in order.
-        std::vector<Contact> handed;
-        listed.detect(ps, {}, s.region, s.frame, a,
-                      [&](Contact const& c, std::uint8_t&) { handed.push_back(c); });
-        EXPECT_EQ(handed.size(), a.pairs.size());
-        for (std::size_t k = 0; k < std::min(handed.size(), a.pairs.size()); ++k)
-            EXPECT_EQ(std::bit_cast<std::uint64_t>(handed[k].penetration),
-                      std::bit_cast<std::uint64_t>(a.pairs[k].penetration));
+        if (overlapsOnly) {
+            ContactList none;
+            listed.detect(
+                ps, {}, s.region, s.frame, none,
+                [&](PairOverlap const& o, std::uint8_t&) {
+                    Contact c;
+                    EXPECT_TRUE(
+                        detection_detail::overlapGeometry(ps, o.i, o.j, s.frame.period(), c));
+                    EXPECT_EQ(c.shiftJ, o.shiftJ);
+                    a.pairs.push_back(c);
+                },
+                false);
+            EXPECT_TRUE(none.pairs.empty());
+        } else {
+            // The fused loop hands over exactly the contacts it lists, in order.
+            std::vector<Contact> handed;
+            listed.detect(ps, {}, s.region, s.frame, a,
+                          [&](Contact const& c, std::uint8_t&) { handed.push_back(c); });
+            EXPECT_EQ(handed.size(), a.pairs.size());
+            for (std::size_t k = 0; k < std::min(handed.size(), a.pairs.size()); ++k)
+                EXPECT_EQ(std::bit_cast<std::uint64_t>(handed[k].penetration),
+                          std::bit_cast<std::uint64_t>(a.pairs[k].penetration));
+        }
         settled += listed.stats().settledPairs;
         rebuilds += listed.stats().rebuilt ? 1 : 0;
         arrivals += listed.stats().arrivals;
@@ -131,6 +155,17 @@ TEST(VerletList, SameContactsAsCellsInOneBlockOfSeveral) {
     // A block of a 2 x 2 x 1 forest: pairs are settled against its faces (evaluated here
     // always, never) and those near a face keep the contact-point rule.
     EXPECT_GT(sameContactsAsCells(AABB{Vec3(3.0, 0.0, 0.0), Vec3(6.0, 3.0, 6.0)}), 0U);
+}
+
+TEST(VerletList, SameContactsAsCellsScreenedBlockWise) {
+    // The pairs DemStep's loop is handed (PairOverlap, no contacts kept), in a block of a
+    // 2 x 2 x 1 forest and in the whole domain: the pairs near a face ruled where they
+    // overlap, and a third of the copies Fixed (the rule drops a pair of two).
+    AABB const block{Vec3(3.0, 0.0, 0.0), Vec3(6.0, 3.0, 6.0)};
+    AABB const domain{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)};
+    EXPECT_GT(sameContactsAsCells(block, absoluteSkin(), true), 0U);
+    EXPECT_GT(sameContactsAsCells(domain, absoluteSkin(), true), 0U);
+    EXPECT_GT(sameContactsAsCells(block, absoluteSkin(), true, 0.33), 0U);
 }
 
 TEST(VerletList, SameContactsAsCellsWithTheSkinChosenForTheScene) {
