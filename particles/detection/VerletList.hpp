@@ -255,27 +255,11 @@ public:
     /// ages); a list with few pairs far apart (a packing's first shell) offers every pair.
     template <class F>
     void forEachNearPair(F&& f) const {
-        if (m_apart * kFewApart < m_pairs.size()) {
-            forEachPair(f);
-            return;
-        }
-        float const reach = nearReach();
-        std::size_t const n = m_pairs.size();
-        std::array<std::uint32_t, kNearBlock> near;
-        for (std::size_t first = 0; first < n; first += kNearBlock) {
-            std::size_t const m = std::min(kNearBlock, n - first);
-            std::size_t count = 0;
-            for (std::size_t q = 0; q < m; ++q) {
-                near[count] = static_cast<std::uint32_t>(first + q);
-                count += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
-            }
-            for (std::size_t h = 0; h < count; ++h) {
-                std::size_t const p = near[h];
-                std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
-                if (a != kDead && b != kDead)
-                    f(std::size_t{a}, std::size_t{b}, p);
-            }
-        }
+        forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b, std::uint32_t const* p,
+                             std::size_t n) {
+            for (std::size_t k = 0; k < n; ++k)
+                f(std::size_t{a[k]}, std::size_t{b[k]}, std::size_t{p[k]});
+        });
     }
     /// forEachNearPair's pairs a block at a time: calls f(a, b, p, n) with the storage indices
     /// a[k], b[k] and list positions p[k], k < n <= kBlock, of the next n live near pairs, in
@@ -363,7 +347,6 @@ private:
     std::size_t m_apart = 0;
     static constexpr float kApart = 0.25F;
     static constexpr std::size_t kFewApart = 4;
-    static constexpr std::size_t kNearBlock = kBlock;
     /// forEachNearPair's bound on the gap a pair may have closed, rounded up.
     [[nodiscard]] float nearReach() const;
     std::vector<PairMode> m_mode;           ///< per pair
