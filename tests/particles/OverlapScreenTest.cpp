@@ -1,7 +1,7 @@
 // OverlapScreen (the fused contact loop's block-wise overlap test) against the scalar test of
-// PairRule.hpp: the same pairs, in the same order, with the same shift bits, whether the
-// screen tests in lanes or (while whole blocks overlap) pair by pair. (Ruling on the pairs
-// near a face is the loop's: VerletListTest, SameContactsAsCellsScreenedBlockWise.)
+// PairRule.hpp: the same pairs, in the same order, with the same shift bits, in full blocks
+// and short ones, near-contact pairs decided by ulps and blocks that overlap whole. (Ruling on
+// the pairs near a face is the loop's: VerletListTest, SameContactsAsCellsScreenedBlockWise.)
 #include "particles/detection/OverlapScreen.hpp"
 
 #include "particles/detection/PairRule.hpp"
