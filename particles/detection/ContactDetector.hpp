@@ -97,7 +97,8 @@ core::AABB everywhere();
 /// reference midpoint): pairs some other block or image instance evaluates are dropped, pairs
 /// this block evaluates whenever they overlap are stored in canonical order (PairMode::Owned),
 /// and only pairs near a block or domain face keep the rule (PairMode::Check). Per step a
-/// listed pair then costs the canonical distance test (PairRule.hpp's overlapGeometry, the
+/// listed pair then costs the canonical distance test (PairRule.hpp's overlapGeometry, or
+/// for a callback that takes PairOverlaps OverlapScreen's lanes over a block of pairs: the
 /// same bits as the rule's) and, with the callback overload of detect, its evaluation right
 /// away, with the history slot hint kept beside the pair (LAMMPS's half list with shear
 /// history beside each pair does the same in one loop). The contacts are the same set as the

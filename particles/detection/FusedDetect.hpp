@@ -72,7 +72,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             bool const springsLive = m_springsLive;
             // Pairs known to overlap while the list holds (KeptPressed: two masters, one
             // image) are handed on untested, in their places among the tested ones.
-            bool const pressedListed = springsLive && m_list.numPressed() != 0;
+            bool const pressedListed =
+                TakesKeptSprings<OnPair> && springsLive && m_list.numPressed() != 0;
             PairMode const* const modes = m_list.modes().data();
             std::uint8_t* const hints = m_list.hints().data();
             KeptSpring* const springs = m_list.springs().data();

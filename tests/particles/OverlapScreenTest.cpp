@@ -78,7 +78,7 @@ std::vector<std::pair<std::size_t, std::size_t>> pairsOf(ParticleStorage& ps,
             imageOffset(detection_detail::imageDifference(ps.image(j), ps.image(i)), period);
         ps.position(j) = core::Vec3(ps.position(i) + d * dir - shift);
         pairs.emplace_back(i, j);
-        // Deep runs offer their pair twice, so that whole blocks overlap.
+        // Deep runs list their pair twice, so that whole blocks overlap.
         pairs.emplace_back(i, deep ? j : static_cast<std::size_t>(u(rng) * (ps.size() - 1)));
     }
     return pairs;

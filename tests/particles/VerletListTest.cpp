@@ -85,7 +85,7 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
         ps.add(s.randomCopy());
     ContactDetector listed(withSkin);
     ContactDetector cells;
-    std::size_t rebuilds = 0, arrivals = 0, contacts = 0, settled = 0;
+    std::size_t rebuilds = 0, arrivals = 0, contacts = 0, settled = 0, listedMost = 0;
     for (int step = 0; step < 300; ++step) {
         // Moves of up to skin/8 per call, and now and then one far jump.
         for (std::size_t k = 0; k < ps.size(); ++k)
@@ -106,6 +106,7 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
             ps.setImage(k, im);
         }
         ContactList a, b;
+        DetectorStats stats; // of the detection compared
         if (overlapsOnly) {
             ContactList none;
             listed.detect(
@@ -119,6 +120,20 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
                 },
                 false);
             EXPECT_TRUE(none.pairs.empty());
+            stats = listed.stats();
+            // In list order: as the pass that keeps its contacts hands them (nothing moved
+            // since: the list is neither rebuilt nor shifted).
+            ContactList inOrder;
+            listed.noteMotion(0.0);
+            listed.detect(ps, {}, s.region, s.frame, inOrder);
+            EXPECT_FALSE(listed.stats().rebuilt);
+            EXPECT_EQ(listed.stats().shifts, 0U);
+            EXPECT_EQ(inOrder.pairs.size(), a.pairs.size());
+            for (std::size_t k = 0; k < std::min(inOrder.pairs.size(), a.pairs.size()); ++k) {
+                EXPECT_EQ(inOrder.pairs[k].i, a.pairs[k].i) << k;
+                EXPECT_EQ(inOrder.pairs[k].j, a.pairs[k].j) << k;
+            }
+            listedMost = std::max(listedMost, listed.stats().listedPairs);
         } else {
             // The fused loop hands over exactly the contacts it lists, in order.
             std::vector<Contact> handed;
@@ -128,10 +143,11 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
             for (std::size_t k = 0; k < std::min(handed.size(), a.pairs.size()); ++k)
                 EXPECT_EQ(std::bit_cast<std::uint64_t>(handed[k].penetration),
                           std::bit_cast<std::uint64_t>(a.pairs[k].penetration));
+            stats = listed.stats();
         }
-        settled += listed.stats().settledPairs;
-        rebuilds += listed.stats().rebuilt ? 1 : 0;
-        arrivals += listed.stats().arrivals;
+        settled += stats.settledPairs;
+        rebuilds += stats.rebuilt ? 1 : 0;
+        arrivals += stats.arrivals;
         cells.detect(std::as_const(ps), {}, s.region, s.frame, b);
         auto const fromList = byKey(ps, a);
         EXPECT_EQ(fromList, byKey(ps, b)) << "step " << step;
@@ -143,6 +159,8 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
     EXPECT_GT(arrivals, 100U);  // copies arrived between rebuilds and were followed
     EXPECT_LT(rebuilds, 150U);  // and the list was reused
     EXPECT_GT(rebuilds, 5U);    // but rebuilt when grains moved skin/2
+    if (overlapsOnly)           // blocks carried over from one stretch of the list to the next
+        EXPECT_GT(listedMost, 2 * VerletList::kBlock);
     return settled;
 }
 
