@@ -159,8 +159,9 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
     EXPECT_GT(arrivals, 100U);  // copies arrived between rebuilds and were followed
     EXPECT_LT(rebuilds, 150U);  // and the list was reused
     EXPECT_GT(rebuilds, 5U);    // but rebuilt when grains moved skin/2
-    if (overlapsOnly)           // blocks carried over from one stretch of the list to the next
+    if (overlapsOnly) {         // blocks carried over from one stretch of the list to the next
         EXPECT_GT(listedMost, 2 * VerletList::kBlock);
+    }
     return settled;
 }
 
