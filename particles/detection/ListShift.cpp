@@ -12,6 +12,63 @@
 
 namespace regolith::particles {
 
+// VerletList::resettle, a template whose one user is shiftList below.
+template <class S, class D>
+void VerletList::resettle(S&& unchanged, D&& decide) {
+    // In place: the pairs keep their places (a parked one leaves a hole that forEachPair
+    // skips, as a dead one), the revived ones are appended.
+    m_parkedAgain.clear();
+    auto const count = [&](PairMode m) {
+        m_owned += m != PairMode::Check ? 1 : 0;
+        m_kept += keepsSpring(m) ? 1 : 0;
+        m_pressed += isPressed(m) ? 1 : 0;
+    };
+    std::size_t const listed = m_pairs.size();
+    for (std::size_t p = 0; p < listed; ++p) {
+        auto& pair = m_pairs[p];
+        if (unchanged(p) || m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
+            continue; // (in that order: most pairs are unchanged, and their ids are not read)
+        KeptSpring spare{};
+        KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
+        int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);
+        if (mode == kDrop) {
+            m_parkedAgain.push_back(pair);
+            pair[0] = m_hole;
+            continue;
+        }
+        auto const m = static_cast<PairMode>(mode);
+        if (m != m_mode[p])
+            count(m);
+        m_mode[p] = m;
+        if (keepsSpring(m) && p >= m_springs.size()) {
+            m_springs.resize(m_pairs.size()); // parallel to the pairs from the first kept one
+            m_springs[p] = spare;
+        }
+    }
+    for (auto pair : m_parked) {
+        if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
+            continue;
+        KeptSpring spring{};
+        std::uint8_t hint = 0;
+        int const mode = decide(pair[0], pair[1], false, PairMode::Check, spring, hint);
+        if (mode == kDrop) {
+            m_parkedAgain.push_back(pair);
+            continue;
+        }
+        auto const m = static_cast<PairMode>(mode);
+        count(m);
+        m_pairs.push_back(pair);
+        m_gap.push_back(kNoGap);
+        m_mode.push_back(m);
+        m_hint.push_back(hint);
+        if (!m_springs.empty() || keepsSpring(m)) {
+            m_springs.resize(m_pairs.size() - 1);
+            m_springs.push_back(spring);
+        }
+    }
+    m_parked.swap(m_parkedAgain);
+}
+
 void ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
     if (!listed() || m_config.sortByUid || !m_list.mayMoveTooFar(movedAtMost))
         return;

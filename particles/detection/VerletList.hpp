@@ -140,7 +140,8 @@ public:
     /// mode, `spring` and `hint` theirs, in place), then the parked ones (listed = false,
     /// PairMode::Check, an empty spring, hint 0), and lists each with the mode returned and
     /// `spring` and `hint` as `decide` left them (a listed pair in its place, a parked one
-    /// appended), or parks it (kDrop; a listed pair leaves a hole).
+    /// appended), or parks it (kDrop; a listed pair leaves a hole). Defined beside its one
+    /// user, ContactDetector's shiftList (ListShift.cpp).
     template <class S, class D>
     void resettle(S&& unchanged, D&& decide);
 
@@ -367,61 +368,5 @@ private:
     double m_referenceSlack = 0.0;
     std::vector<Id> m_arrivals;
 };
-
-template <class S, class D>
-void VerletList::resettle(S&& unchanged, D&& decide) {
-    // In place: the pairs keep their places (a parked one leaves a hole that forEachPair
-    // skips, as a dead one), the revived ones are appended.
-    m_parkedAgain.clear();
-    auto const count = [&](PairMode m) {
-        m_owned += m != PairMode::Check ? 1 : 0;
-        m_kept += keepsSpring(m) ? 1 : 0;
-        m_pressed += isPressed(m) ? 1 : 0;
-    };
-    std::size_t const listed = m_pairs.size();
-    for (std::size_t p = 0; p < listed; ++p) {
-        auto& pair = m_pairs[p];
-        if (unchanged(p) || m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
-            continue; // (in that order: most pairs are unchanged, and their ids are not read)
-        KeptSpring spare{};
-        KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
-        int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);
-        if (mode == kDrop) {
-            m_parkedAgain.push_back(pair);
-            pair[0] = m_hole;
-            continue;
-        }
-        auto const m = static_cast<PairMode>(mode);
-        if (m != m_mode[p])
-            count(m);
-        m_mode[p] = m;
-        if (keepsSpring(m) && p >= m_springs.size()) {
-            m_springs.resize(m_pairs.size()); // parallel to the pairs from the first kept one
-            m_springs[p] = spare;
-        }
-    }
-    for (auto pair : m_parked) {
-        if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
-            continue;
-        KeptSpring spring{};
-        std::uint8_t hint = 0;
-        int const mode = decide(pair[0], pair[1], false, PairMode::Check, spring, hint);
-        if (mode == kDrop) {
-            m_parkedAgain.push_back(pair);
-            continue;
-        }
-        auto const m = static_cast<PairMode>(mode);
-        count(m);
-        m_pairs.push_back(pair);
-        m_gap.push_back(kNoGap);
-        m_mode.push_back(m);
-        m_hint.push_back(hint);
-        if (!m_springs.empty() || keepsSpring(m)) {
-            m_springs.resize(m_pairs.size() - 1);
-            m_springs.push_back(spring);
-        }
-    }
-    m_parked.swap(m_parkedAgain);
-}
 
 } // namespace regolith::particles
