@@ -39,22 +39,16 @@ namespace {
 using Vector4 = double __attribute__((vector_size(32)));
 using Vector8 = double __attribute__((vector_size(64)));
 
-/// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes: eight loads and
-/// eleven shuffles, where a gather per component cost ~2.5x more.
+/// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes, without reading past
+/// z_k (the last copy's Vec3 ends its array) and without a store a later load must merge
+/// (partial stores stall the lane loop's loads on store forwarding).
 [[gnu::always_inline]] inline void loadTransposed(double const* base, std::uint32_t const* idx,
                                                   double* x, double* y, double* z) {
-    Vector4 r[8]; // r[k] = (x_k y_k z_k 0), without reading past z_k (the last copy's Vec3
-                  // ends its array); no function returns a vector (an ABI without AVX)
-    for (int k = 0; k < 8; ++k) {
-        double const* p = base + 3 * std::size_t{idx[k]};
 #if defined(__AVX512VL__)
-        r[k] = std::bit_cast<Vector4>(_mm256_maskz_loadu_pd(0x7, p));
-#elif defined(__AVX__)
-        r[k] = std::bit_cast<Vector4>(_mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0)));
-#else
-        r[k] = Vector4{p[0], p[1], p[2], 0.0};
-#endif
-    }
+    // Eight loads and eleven shuffles over 512 bits, where a gather per component cost ~2.5x more.
+    Vector4 r[8]; // r[k] = (x_k y_k z_k 0); no function returns a vector (an ABI without AVX)
+    for (int k = 0; k < 8; ++k)
+        r[k] = std::bit_cast<Vector4>(_mm256_maskz_loadu_pd(0x7, base + 3 * std::size_t{idx[k]}));
     Vector8 a[4]; // a[k] = (x_k y_k z_k 0 x_k+4 y_k+4 z_k+4 0)
     for (int k = 0; k < 4; ++k)
         a[k] = __builtin_shufflevector(r[k], r[k + 4], 0, 1, 2, 3, 4, 5, 6, 7);
@@ -68,6 +62,30 @@ using Vector8 = double __attribute__((vector_size(64)));
     std::memcpy(x, &vx, sizeof vx);
     std::memcpy(y, &vy, sizeof vy);
     std::memcpy(z, &vz, sizeof vz);
+#elif defined(__AVX__)
+    // Two 4 x 4 transposes in 256-bit registers (the 512-bit shuffles above, split by GCC
+    // into element moves through the stack, made the kernel ~4x slower without AVX-512).
+    __m256i const xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+    for (int h = 0; h < 8; h += 4) {
+        __m256d r[4]; // (x_k y_k z_k 0)
+        for (int k = 0; k < 4; ++k)
+            r[k] = _mm256_maskload_pd(base + 3 * std::size_t{idx[h + k]}, xyz);
+        __m256d const xz01 = _mm256_unpacklo_pd(r[0], r[1]); // x0 x1 z0 z1
+        __m256d const y01 = _mm256_unpackhi_pd(r[0], r[1]);  // y0 y1 0 0
+        __m256d const xz23 = _mm256_unpacklo_pd(r[2], r[3]); // x2 x3 z2 z3
+        __m256d const y23 = _mm256_unpackhi_pd(r[2], r[3]);  // y2 y3 0 0
+        _mm256_storeu_pd(x + h, _mm256_permute2f128_pd(xz01, xz23, 0x20));
+        _mm256_storeu_pd(y + h, _mm256_permute2f128_pd(y01, y23, 0x20));
+        _mm256_storeu_pd(z + h, _mm256_permute2f128_pd(xz01, xz23, 0x31));
+    }
+#else
+    for (int k = 0; k < 8; ++k) {
+        double const* p = base + 3 * std::size_t{idx[k]};
+        x[k] = p[0];
+        y[k] = p[1];
+        z[k] = p[2];
+    }
+#endif
 }
 
 /// a x b, component `c`, in Eigen's order of operations.
