@@ -1,24 +1,35 @@
 #include "particles/detection/OverlapScreen.hpp"
 
+#include "particles/storage/TransposedLoads.hpp"
+
 #include <cmath>
 
 namespace regolith::particles {
 
 std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& period,
                                  std::uint32_t const* is, std::uint32_t const* js, std::size_t n) {
-    // Gather: centres, images (as PairRule's imageDifference: the int8 difference), reach.
-    for (std::size_t k = 0; k < n; ++k) {
-        std::size_t const i = is[k], j = js[k];
-        core::Vec3 const& xi = ps.position(i);
-        core::Vec3 const& xj = ps.position(j);
-        CopyImage const& ki = ps.image(i);
-        CopyImage const& kj = ps.image(j);
+    // Gather: centres four pairs at a time (transposed in registers), then the images (as
+    // PairRule's imageDifference: the int8 difference) and the reach pair by pair.
+    double const* const x = ps.positions().data()->data();
+    std::size_t const n4 = n - n % 4;
+    for (std::size_t k = 0; k < n4; k += 4) {
+        lane_loads::transposed4(x, is + k, &m_xi[k], &m_yi[k], &m_zi[k]);
+        lane_loads::transposed4(x, js + k, &m_xj[k], &m_yj[k], &m_zj[k]);
+    }
+    for (std::size_t k = n4; k < n; ++k) {
+        core::Vec3 const& xi = ps.position(is[k]);
+        core::Vec3 const& xj = ps.position(js[k]);
         m_xi[k] = xi.x();
         m_yi[k] = xi.y();
         m_zi[k] = xi.z();
         m_xj[k] = xj.x();
         m_yj[k] = xj.y();
         m_zj[k] = xj.z();
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        std::size_t const i = is[k], j = js[k];
+        CopyImage const& ki = ps.image(i);
+        CopyImage const& kj = ps.image(j);
         // imageOffset of the difference: an exact small integer times the period.
         m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
         m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();

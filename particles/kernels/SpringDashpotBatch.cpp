@@ -1,6 +1,7 @@
 #include "particles/kernels/SpringDashpotBatch.hpp"
 
 #include "core/Error.hpp"
+#include "particles/storage/TransposedLoads.hpp"
 
 #include <bit>
 #include <cmath>
@@ -62,29 +63,11 @@ using Vector8 = double __attribute__((vector_size(64)));
     std::memcpy(x, &vx, sizeof vx);
     std::memcpy(y, &vy, sizeof vy);
     std::memcpy(z, &vz, sizeof vz);
-#elif defined(__AVX__)
-    // Two 4 x 4 transposes in 256-bit registers (the 512-bit shuffles above, split by GCC
-    // into element moves through the stack, made the kernel ~4x slower without AVX-512).
-    __m256i const xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
-    for (int h = 0; h < 8; h += 4) {
-        __m256d r[4]; // (x_k y_k z_k 0)
-        for (int k = 0; k < 4; ++k)
-            r[k] = _mm256_maskload_pd(base + 3 * std::size_t{idx[h + k]}, xyz);
-        __m256d const xz01 = _mm256_unpacklo_pd(r[0], r[1]); // x0 x1 z0 z1
-        __m256d const y01 = _mm256_unpackhi_pd(r[0], r[1]);  // y0 y1 0 0
-        __m256d const xz23 = _mm256_unpacklo_pd(r[2], r[3]); // x2 x3 z2 z3
-        __m256d const y23 = _mm256_unpackhi_pd(r[2], r[3]);  // y2 y3 0 0
-        _mm256_storeu_pd(x + h, _mm256_permute2f128_pd(xz01, xz23, 0x20));
-        _mm256_storeu_pd(y + h, _mm256_permute2f128_pd(y01, y23, 0x20));
-        _mm256_storeu_pd(z + h, _mm256_permute2f128_pd(xz01, xz23, 0x31));
-    }
 #else
-    for (int k = 0; k < 8; ++k) {
-        double const* p = base + 3 * std::size_t{idx[k]};
-        x[k] = p[0];
-        y[k] = p[1];
-        z[k] = p[2];
-    }
+    // Two 4 x 4 transposes (the 512-bit shuffles above, split by GCC into element moves
+    // through the stack, made the kernel ~2.7x slower without AVX-512).
+    lane_loads::transposed4(base, idx, x, y, z);
+    lane_loads::transposed4(base, idx + 4, x + 4, y + 4, z + 4);
 #endif
 }
 
