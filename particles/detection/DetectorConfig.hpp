@@ -69,6 +69,8 @@ struct DetectorStats {
     /// Of those, the pairs whose tangential spring is kept beside the list
     /// (DetectorConfig::keepSprings).
     std::size_t keptPairs = 0;
+    /// Of those, the pairs handed on untested while the list holds (PairMode::KeptPressed).
+    std::size_t pressedPairs = 0;
     std::size_t arrivals = 0;
 };
 

@@ -72,6 +72,7 @@ void ContactDetector::updateList(ParticleStorage& ps, core::AABB const& region,
     m_stats.listedPairs = m_list.numPairs();
     m_stats.settledPairs = m_list.numOwned();
     m_stats.keptPairs = m_list.numKept();
+    m_stats.pressedPairs = m_list.numPressed();
 }
 
 } // namespace regolith::particles

@@ -74,7 +74,8 @@ DetectorConfig absoluteSkin() {
 /// over all calls. With `overlapsOnly` the fused loop hands over PairOverlaps and keeps no
 /// contacts (the block-wise overlap screen, as DemStep runs it); the contacts compared are
 /// the geometry of the pairs handed over. `fixedShare` of the copies are Fixed (a pair of two
-/// is never a contact).
+/// is never a contact). With withSkin.keepSprings the callback takes kept springs, so that
+/// the pairs known to overlap (PairMode::KeptPressed) are handed on untested among the others.
 std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = absoluteSkin(),
                                 bool overlapsOnly = false, double fixedShare = 0.0) {
     Scene s;
@@ -86,7 +87,9 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
     ContactDetector listed(withSkin);
     ContactDetector cells;
     std::size_t rebuilds = 0, arrivals = 0, contacts = 0, settled = 0, listedMost = 0;
+    std::size_t keptHanded = 0, pressedMost = 0;
     for (int step = 0; step < 300; ++step) {
+        listed.writeBackSprings(ps); // before the storage changes (ContactDetector's contract)
         // Moves of up to skin/8 per call, and now and then one far jump.
         for (std::size_t k = 0; k < ps.size(); ++k)
             ps.position(k) +=
@@ -109,18 +112,34 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
         DetectorStats stats; // of the detection compared
         if (overlapsOnly) {
             ContactList none;
-            listed.detect(
-                ps, {}, s.region, s.frame, none,
-                [&](PairOverlap const& o, std::uint8_t&) {
-                    Contact c;
-                    EXPECT_TRUE(
-                        detection_detail::overlapGeometry(ps, o.i, o.j, s.frame.period(), c));
-                    EXPECT_EQ(c.shiftJ, o.shiftJ);
-                    a.pairs.push_back(c);
-                },
-                false);
+            auto const take = [&](PairOverlap const& o) {
+                Contact c;
+                EXPECT_TRUE(detection_detail::overlapGeometry(ps, o.i, o.j, s.frame.period(), c));
+                EXPECT_EQ(c.shiftJ, o.shiftJ);
+                a.pairs.push_back(c);
+            };
+            if (withSkin.keepSprings) {
+                struct KeepsSprings {
+                    decltype(take) const& onPair;
+                    std::size_t& kept;
+                    std::uint32_t stamp;
+                    void operator()(PairOverlap const& o, std::uint8_t&) { onPair(o); }
+                    void operator()(PairOverlap const& o, KeptSpring& spring) {
+                        spring.stamp = stamp;
+                        ++kept;
+                        onPair(o);
+                    }
+                    [[nodiscard]] std::uint32_t pass() const { return stamp; }
+                } keeps{take, keptHanded, static_cast<std::uint32_t>(step + 1)};
+                listed.detect(ps, {}, s.region, s.frame, none, keeps, false);
+            } else {
+                listed.detect(
+                    ps, {}, s.region, s.frame, none,
+                    [&](PairOverlap const& o, std::uint8_t&) { take(o); }, false);
+            }
             EXPECT_TRUE(none.pairs.empty());
             stats = listed.stats();
+            pressedMost = std::max(pressedMost, stats.pressedPairs);
             // In list order: as the pass that keeps its contacts hands them (nothing moved
             // since: the list is neither rebuilt nor shifted).
             ContactList inOrder;
@@ -162,6 +181,10 @@ std::size_t sameContactsAsCells(AABB const& region, DetectorConfig withSkin = ab
     if (overlapsOnly) {         // blocks carried over from one stretch of the list to the next
         EXPECT_GT(listedMost, 2 * VerletList::kBlock);
     }
+    if (withSkin.keepSprings) { // pairs handed on untested, in their places among the tested
+        EXPECT_GT(pressedMost, 20U);
+        EXPECT_GT(keptHanded, 1000U);
+    }
     return settled;
 }
 
@@ -185,6 +208,12 @@ TEST(VerletList, SameContactsAsCellsScreenedBlockWise) {
     EXPECT_GT(sameContactsAsCells(block, absoluteSkin(), true), 0U);
     EXPECT_GT(sameContactsAsCells(domain, absoluteSkin(), true), 0U);
     EXPECT_GT(sameContactsAsCells(block, absoluteSkin(), true, 0.33), 0U);
+}
+
+TEST(VerletList, SameContactsAsCellsScreenedBlockWiseWithKeptSprings) {
+    DetectorConfig config = absoluteSkin();
+    config.keepSprings = true;
+    sameContactsAsCells(AABB{Vec3(0.0, 0.0, 0.0), Vec3(6.0, 6.0, 6.0)}, config, true);
 }
 
 TEST(VerletList, SameContactsAsCellsWithTheSkinChosenForTheScene) {
