@@ -39,7 +39,9 @@ endif()
 # divisions is longer than the reorder window can hide, so eight lanes per instruction instead
 # of four cut the batch model's time by a third even on Zen 4, which splits a 512-bit operation
 # into two 256-bit halves (particles_bench springDashpotBatch/0: 11.8 -> 7.8 ns per contact;
-# 256-bit AVX-512 with its 32 registers: 11.4 ns). The same IEEE operations in every lane, no
+# 256-bit AVX-512 with its 32 registers: 11.4 ns; Zen 3 without AVX-512, AVX2: 17.5 ns). Without
+# it the lane files must not use 512-bit vector types: GCC splits their shuffles into element
+# moves through the stack (TransposedLoads.hpp). The same IEEE operations in every lane, no
 # contraction: the same bits. They include no Eigen code that GCC bug 105593 trips over.
 set(REGOLITH_LANE_CODEGEN "")
 if(REGOLITH_NATIVE)
