@@ -37,8 +37,12 @@ void SpringDashpotBatch::add(PairOverlap const& p, HistoryEntry& entry, std::uin
 
 namespace {
 
+#if defined(__AVX512VL__)
+// Vector types for the 512-bit shuffles; only where the build has AVX-512 (without it GCC
+// splits them into element moves through the stack).
 using Vector4 = double __attribute__((vector_size(32)));
 using Vector8 = double __attribute__((vector_size(64)));
+#endif
 
 /// The Vec3s at base + 3 idx[0..7] transposed into eight x, y and z lanes, without reading past
 /// z_k (the last copy's Vec3 ends its array) and without a store a later load must merge
