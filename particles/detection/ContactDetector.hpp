@@ -268,13 +268,21 @@ private:
     [[nodiscard]] double chooseRelativeSkin(ParticleStorage const& particles,
                                             LocalPositions const& positions,
                                             double rSmallMax) const;
-    /// The mode of a pair of copies ka, kb (canonical order, list ids a, b) this block
-    /// evaluates whenever they overlap: Owned, or Kept or KeptPressed if it keeps its spring
-    /// beside the list (see "Springs kept beside the list").
+    /// Whether the copies ka, kb (canonical order, list ids a, b) of a pair this block
+    /// evaluates whenever they overlap stay its only instance while the list holds: two
+    /// masters at image zero deeper than the list's motion inside `region`, meeting through
+    /// one image only. Those pairs keep their springs beside the list where the model allows
+    /// (see "Springs kept beside the list"), and lead the list (VerletList::classifyFrom)
+    /// whether it does or not, so that the order, and the bits, do not depend on it.
+    [[nodiscard]] bool staysInBlock(ParticleStorage const& particles, std::size_t ka,
+                                    std::size_t kb, VerletList::Id a, VerletList::Id b,
+                                    core::AABB const& region, PeriodicFrame const& frame,
+                                    double rounding) const;
+    /// The mode of that pair, `stays` staysInBlock's answer: Owned, or Kept or KeptPressed if
+    /// it keeps its spring beside the list.
     [[nodiscard]] PairMode settledMode(ParticleStorage const& particles, std::size_t ka,
                                        std::size_t kb, VerletList::Id a, VerletList::Id b,
-                                       core::AABB const& region, PeriodicFrame const& frame,
-                                       double rounding) const;
+                                       bool stays, double rounding) const;
     /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
     /// order, with their storage indices ka, kb) while the list holds: never emits it, must
     /// decide every step, or emits it whenever the two overlap.

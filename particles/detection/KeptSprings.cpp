@@ -8,16 +8,14 @@
 
 namespace regolith::particles {
 
-PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
-                                      VerletList::Id a, VerletList::Id b, core::AABB const& region,
-                                      PeriodicFrame const& frame, double rounding) const {
-    if (!m_config.keepSprings)
-        return PairMode::Owned;
+bool ContactDetector::staysInBlock(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                   VerletList::Id a, VerletList::Id b, core::AABB const& region,
+                                   PeriodicFrame const& frame, double rounding) const {
     // Two masters at image zero: the only copies of their grains that move them, and those
-    // whose histories the kept spring belongs to (the canonical i's).
+    // whose histories a kept spring belongs to (the canonical i's).
     if (!ps.flags(ka).isMaster() || !ps.flags(kb).isMaster() || !isZero(ps.image(ka)) ||
         !isZero(ps.image(kb)))
-        return PairMode::Owned;
+        return false;
     // Deeper than skin / 2 inside the block, both: while the list holds (no copy moves skin / 2
     // from its reference) neither leaves the block, so the synchronisation neither migrates
     // nor wraps them.
@@ -29,11 +27,17 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
             core::Vec3 const x = m_list.reference(id);
             for (int d = 0; d < 3; ++d)
                 if (!(x[d] - depth > region.min[d] && x[d] + depth < region.max[d]))
-                    return PairMode::Owned;
+                    return false;
         }
-    double const reach = ps.radius(ka) + ps.radius(kb);
-    if (!oneImageInstance(reach, frame, rounding))
+    return oneImageInstance(ps.radius(ka) + ps.radius(kb), frame, rounding);
+}
+
+PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
+                                      VerletList::Id a, VerletList::Id b, bool stays,
+                                      double rounding) const {
+    if (!m_config.keepSprings || !stays)
         return PairMode::Owned;
+    double const reach = ps.radius(ka) + ps.radius(kb);
     bool const pressed =
         pressedWhileListed((m_list.reference(b) - m_list.reference(a)).norm(), reach, rounding);
     return pressed ? PairMode::KeptPressed : PairMode::Kept;

@@ -156,7 +156,10 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
             break;
         case Listing::Always:
             mode = static_cast<int>(
-                settledMode(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding));
+                settledMode(ps, ka, kb, a, b,
+                            m_config.keepSprings &&
+                                staysInBlock(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding),
+                            rounding));
             break;
         case Listing::Check:
             break;

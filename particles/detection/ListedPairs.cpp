@@ -63,13 +63,16 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
         std::size_t ka = 0, kb = 0;
         switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
         case Listing::Drop:
-            return VerletList::kDrop;
-        case Listing::Always:
-            return static_cast<int>(settledMode(ps, ka, kb, a, b, region, frame, rounding));
+            return VerletList::Decision{VerletList::kDrop, false};
+        case Listing::Always: {
+            bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
+            return VerletList::Decision{
+                static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
+        }
         case Listing::Check:
             break;
         }
-        return static_cast<int>(PairMode::Check);
+        return VerletList::Decision{static_cast<int>(PairMode::Check), false};
     });
 }
 

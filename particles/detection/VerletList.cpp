@@ -221,7 +221,8 @@ std::size_t VerletList::bytes() const {
            m_mode.capacity() + m_hint.capacity() + m_springs.capacity() * sizeof(KeptSpring) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id) +
-           (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]);
+           (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]) +
+           m_trailing.capacity() * sizeof(TrailingPair);
 }
 
 } // namespace regolith::particles

@@ -104,29 +104,49 @@ public:
         m_gap.push_back(gap);
         m_apart += gap >= kApart * static_cast<float>(m_skin) ? 1 : 0;
     }
-    /// Calls `decide(a, b)` (ids by reference: it may swap them) for every pair from the
-    /// `first`-th on, keeps the pair with the mode returned (a PairMode as int) or parks it
-    /// (kDrop: out of the per-step loop, but decided again by resettle), preserving order. A
-    /// pair that keeps its spring (keepsSpring) gets a slot, spring(p), for the caller to fill.
+    /// A classifier's answer (classifyFrom): the pair's mode (a PairMode as int) or kDrop, and
+    /// whether the pair leads the list.
+    struct Decision {
+        int mode = kDrop;
+        bool leads = false;
+    };
+    /// Calls `decide(a, b)` (ids by reference: it may swap them; returns a Decision) for every
+    /// pair from the `first`-th on, keeps the pair with the mode decided or parks it (kDrop:
+    /// out of the per-step loop, but decided again by resettle). The pairs kept from the
+    /// `first`-th on are ordered: those that lead first, then the others, each in the order
+    /// added. (The caller lets the pairs that keep their springs lead, so that the per-step
+    /// loop meets runs of one kind: whether a pair keeps its spring is a branch per overlapping
+    /// pair there, mispredicted where kinds alternate, as near scene B's periodic faces.) A pair
+    /// that keeps its spring (keepsSpring) gets a slot, spring(p), for the caller to fill.
     template <class D>
     void classifyFrom(std::size_t first, D&& decide) {
         std::size_t out = first;
+        m_trailing.clear();
+        auto const put = [&](std::array<Id, 2> const& pair, float gap, PairMode mode) {
+            m_pairs[out] = pair;
+            m_gap[out] = gap;
+            m_mode[out] = mode;
+            m_hint[out] = 0;
+            ++out;
+        };
         for (std::size_t p = first; p < m_pairs.size(); ++p) {
             auto pair = m_pairs[p];
-            int const mode = decide(pair[0], pair[1]);
-            if (mode == kDrop) {
+            Decision const decided = decide(pair[0], pair[1]);
+            if (decided.mode == kDrop) {
                 m_parked.push_back(pair);
                 continue;
             }
-            m_pairs[out] = pair;
-            m_gap[out] = m_gap[p];
-            m_mode[out] = static_cast<PairMode>(mode);
-            m_owned += mode != static_cast<int>(PairMode::Check) ? 1 : 0;
-            m_kept += keepsSpring(static_cast<PairMode>(mode)) ? 1 : 0;
-            m_pressed += isPressed(static_cast<PairMode>(mode)) ? 1 : 0;
-            m_hint[out] = 0;
-            ++out;
+            auto const mode = static_cast<PairMode>(decided.mode);
+            m_owned += mode != PairMode::Check ? 1 : 0;
+            m_kept += keepsSpring(mode) ? 1 : 0;
+            m_pressed += isPressed(mode) ? 1 : 0;
+            if (decided.leads)
+                put(pair, m_gap[p], mode);
+            else
+                m_trailing.push_back({pair, m_gap[p], mode});
         }
+        for (TrailingPair const& t : m_trailing)
+            put(t.pair, t.gap, t.mode);
         m_pairs.resize(out);
         m_gap.resize(out);
         m_mode.resize(out);
@@ -350,6 +370,12 @@ private:
     static constexpr std::size_t kFewApart = 4;
     /// forEachNearPair's bound on the gap a pair may have closed, rounded up.
     [[nodiscard]] float nearReach() const;
+    struct TrailingPair {
+        std::array<Id, 2> pair;
+        float gap;
+        PairMode mode;
+    };
+    std::vector<TrailingPair> m_trailing;   ///< classifyFrom's: the pairs that do not lead
     std::vector<PairMode> m_mode;           ///< per pair
     std::vector<std::uint8_t> m_hint;       ///< per pair: history slot of its spring, last time
     std::vector<KeptSpring> m_springs;      ///< per pair once one is kept: the kept springs

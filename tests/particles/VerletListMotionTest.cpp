@@ -1,6 +1,6 @@
 // A Verlet list's motion bounds: when it compares the positions with its references, that its
 // float references never hide a move of half the skin, which pairs it offers as the copies
-// move, and the motion within which no list comes due.
+// move, and the motion within which no list comes due; and the order its classified pairs take.
 #include "particles/detection/VerletList.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
 
@@ -113,6 +113,43 @@ TEST(VerletList, OffersThePairsTheMotionMayHaveClosedAndNoOther) {
     for (VerletList::Id k = 0; k + 1 < 8; ++k)
         list.addPair(k, k + 1, VerletList::gapBelow(k == 0 ? 0.2 : 0.01));
     EXPECT_EQ(offered().size(), 7U);
+}
+
+TEST(VerletList, ClassifyingPutsTheLeadingPairsFirstEachInTheOrderAdded) {
+    // The row's pairs (k, k + 1); the odd ones lead, 4 is parked, 5 keeps its spring. The odd
+    // ones listed 0.01 apart, the even ones 0.3 (a quarter skin or more: skipped while the
+    // copies move little).
+    ParticleStorage ps = rowOfEight();
+    VerletList list;
+    list.restart(ps, 0.5);
+    for (VerletList::Id k = 0; k + 1 < 8; ++k)
+        list.addPair(k, k + 1, VerletList::gapBelow(k % 2 == 1 ? 0.01 : 0.3));
+    list.classifyFrom(0, [](VerletList::Id& a, VerletList::Id&) {
+        if (a == 4)
+            return VerletList::Decision{VerletList::kDrop, false};
+        PairMode const mode = a == 5       ? PairMode::Kept
+                              : a % 2 == 1 ? PairMode::Owned
+                                           : PairMode::Check;
+        return VerletList::Decision{static_cast<int>(mode), a % 2 == 1};
+    });
+    std::vector<std::size_t> firsts;
+    std::vector<PairMode> modes;
+    list.forEachPair([&](std::size_t a, std::size_t, std::size_t p) {
+        firsts.push_back(a);
+        modes.push_back(list.mode(p));
+    });
+    EXPECT_EQ(firsts, (std::vector<std::size_t>{1, 3, 5, 0, 2, 6}));
+    EXPECT_EQ(modes, (std::vector<PairMode>{PairMode::Owned, PairMode::Owned, PairMode::Kept,
+                                            PairMode::Check, PairMode::Check, PairMode::Check}));
+    EXPECT_EQ(list.numOwned(), 3U);
+    EXPECT_EQ(list.numKept(), 1U);
+    EXPECT_EQ(list.springs().size(), 6U);
+    // The gaps went with their pairs: moved 0.02, the pairs 0.01 apart are offered, not the
+    // others.
+    EXPECT_FALSE(list.movedTooFar(ps, 0.02));
+    std::vector<std::size_t> offered;
+    list.forEachNearPair([&](std::size_t a, std::size_t, std::size_t) { offered.push_back(a); });
+    EXPECT_EQ(offered, (std::vector<std::size_t>{1, 3, 5}));
 }
 
 TEST(VerletList, WithinTheQuietMotionNoListComesDue) {
