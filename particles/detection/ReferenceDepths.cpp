@@ -20,13 +20,11 @@ void ReferenceDepths::clear() {
     m_depth.clear();
 }
 
-double ReferenceDepths::of(VerletList const& list, ParticleStorage const& ps,
-                           VerletList::Id id) const {
+double ReferenceDepths::measure(VerletList const& list, ParticleStorage const& ps,
+                                VerletList::Id id) const {
     if (id >= m_depth.size())
         return 0.0; // an arrival
     double& depth = m_depth[id];
-    if (depth != kUnmeasured)
-        return depth;
     std::uint32_t const k = list.indexOf(id);
     if (k == VerletList::kDead)
         return depth = 0.0;

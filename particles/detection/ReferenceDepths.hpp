@@ -30,7 +30,11 @@ public:
     /// measured the first time it is asked: 0 outside it, if not finite, for a dead id or an
     /// arrival (the full rule decides those).
     [[nodiscard]] double of(VerletList const& list, ParticleStorage const& ps,
-                            VerletList::Id id) const;
+                            VerletList::Id id) const {
+        if (id < m_depth.size() && m_depth[id] != kUnmeasured)
+            return m_depth[id]; // (each id is asked for by every pair it is in)
+        return measure(list, ps, id);
+    }
     /// Whether ids a and b both lie deeper than `depth`, the shifts since the rebuild counted.
     [[nodiscard]] bool deeperThan(VerletList const& list, ParticleStorage const& ps,
                                   VerletList::Id a, VerletList::Id b, double depth) const {
@@ -41,6 +45,9 @@ public:
 
 private:
     static constexpr double kUnmeasured = -1.0;
+    /// of() the first time `id` is asked for.
+    [[nodiscard]] double measure(VerletList const& list, ParticleStorage const& ps,
+                                 VerletList::Id id) const;
     core::AABB m_emits;
     core::Vec3 m_period = core::Vec3::Zero();
     double m_shifted = 0.0;
