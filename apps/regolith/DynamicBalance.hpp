@@ -48,8 +48,12 @@ public:
                    coupling::Placement& placement, std::int64_t stepsDone, Relocate relocate);
 
     /// Whether the loads are measured after the step that leaves `stepsDone` steps done: that
-    /// step must end Complete (the grains may move to other ranks after it).
+    /// step must end Complete where readsGrains() (the grains may move to other ranks after
+    /// it, and the contacts are counted from their histories).
     [[nodiscard]] bool due(std::int64_t stepsDone) const;
+    /// Whether a measurement reads the grains: on more than one rank (on one, the spread is 1
+    /// without counting, and nothing moves).
+    [[nodiscard]] bool readsGrains() const { return m_comm->size() > 1; }
     /// Measures the imbalance, and rebalances if the scene asks and the imbalance is over the
     /// threshold (see the file comment). Returns whether the blocks moved. COLLECTIVE.
     bool afterStep(std::int64_t stepsDone);

@@ -110,7 +110,7 @@ void RunOutputs::observe(coupling::Simulation& sim) {
                     [this](coupling::Simulation& run) { m_snapshots.write(run.stepsDone()); }, {});
     sim.addObserver([this](std::int64_t s) { return m_balance.due(s); },
                     [this](coupling::Simulation& run) { m_balance.afterStep(run.stepsDone()); },
-                    {});
+                    Needs{.completeGrains = m_balance.readsGrains(), .contacts = false});
     // Every step, the grains as they are: the line reads only the step count and the
     // measurements above.
     sim.addObserver([](std::int64_t) { return true; },

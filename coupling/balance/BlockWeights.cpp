@@ -39,6 +39,8 @@ double loadImbalance(core::Comm const& comm, double load) {
 
 LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
                       BlockLoadModel const& model) {
+    if (comm.size() == 1)
+        return {}; // one rank carries the mean load, and no block of it more: 1 and 1, uncounted
     std::array<double, 2> most{0.0, 0.0}; // this rank's load, its heaviest block
     for (std::size_t b = 0; b < local.blocks().size(); ++b)
         for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b)) {

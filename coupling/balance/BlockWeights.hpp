@@ -59,7 +59,8 @@ struct LoadSpread {
     double blockFloor = 1.0;
 };
 
-/// The spread of the loads of the blocks `local` holds. COLLECTIVE (two all-reductions).
+/// The spread of the loads of the blocks `local` holds (on one rank {1, 1}, without counting).
+/// COLLECTIVE (two all-reductions).
 [[nodiscard]] LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
                                     BlockLoadModel const& model);
 

@@ -2,9 +2,9 @@
 
 usage: check_summary.py summary.json [key=value | key>number | key<number ...]
 Every contract key must be present with the right type; each key=value compares a value, the
-key a top-level one or a dotted path into the objects (neighbour_list.skin), numbers compared
-as numbers, the rest as strings; key>number requires a number above it, key<number one
-below it. Exit code 1 with a
+key a top-level one or a dotted path into the objects (neighbour_list.skin) and lists
+(balance.history.step.0), numbers compared as numbers, the rest as strings; key>number
+requires a number above it, key<number one below it. Exit code 1 with a
 reason if not.
 """
 import json
@@ -53,6 +53,9 @@ def main():
         key, op, expected = re.fullmatch(r"([\w.]+)([=<>])(.*)", expectation).groups()
         actual = summary
         for part in key.split("."):
+            if isinstance(actual, list) and part.isdigit() and int(part) < len(actual):
+                actual = actual[int(part)]  # an entry of a list (balance.history.step.0)
+                continue
             if not isinstance(actual, dict) or part not in actual:
                 sys.exit(f"{key}: not in the summary")
             actual = actual[part]
