@@ -4,8 +4,7 @@ usage: check_summary.py summary.json [key=value | key>number | key<number ...]
 Every contract key must be present with the right type; each key=value compares a value, the
 key a top-level one or a dotted path into the objects (neighbour_list.skin) and lists
 (balance.history.step.0), numbers compared as numbers, the rest as strings; key>number
-requires a number above it, key<number one below it. Exit code 1 with a
-reason if not.
+requires a number above it, key<number one below it. Exit code 1 with a reason if not.
 """
 import json
 import re
