@@ -69,17 +69,18 @@ coupling::SplitLimits splitLimits(SceneDescription const& scene) {
 } // namespace
 
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
-                   coupling::Placement& placement, WorthMoving const& worthMoving) {
+                   coupling::Placement& placement, particles::ContactCounts const& contacts,
+                   WorthMoving const& worthMoving) {
     if (scene.forest.balance == domain::ForestSpec::Balance::Blocks)
         return false;
     coupling::BlockLoadModel const model = loadModel(comm, scene, *placement.local);
     domain::ForestSpec spec = placement.spec;
     if (scene.balance.splitLevels > 0)
-        spec = coupling::splitHeavyBlocks(comm, *placement.local, model, std::move(spec),
+        spec = coupling::splitHeavyBlocks(comm, *placement.local, contacts, model, std::move(spec),
                                           splitLimits(scene))
                    .spec;
     domain::BlockWeight const weight =
-        coupling::grainAndCellWeights(comm, *placement.local, model, spec);
+        coupling::grainAndCellWeights(comm, *placement.local, contacts, model, spec);
     coupling::Placement balanced = coupling::placeBlocks(comm, spec, weight, scene.sync.subdomains);
     if (comm.allTrue(sameBlocks(*balanced.forest, *placement.forest)))
         return false;

@@ -45,8 +45,11 @@ using WorthMoving = std::function<bool(double after)>;
 /// in place (references to them stay valid and see the new assignment; what was built on the old
 /// one, the synchronisation, DemStep's lists, a grid, must be relocated). Keeps `placement` when
 /// the assignment does not change (equal loads, or domain.balance = "blocks") or
-/// `worthMoving` (if given) says no. Returns whether the blocks moved. COLLECTIVE.
+/// `worthMoving` (if given) says no. `contacts`: each copy's contacts (BlockWeights.hpp); the
+/// grains' state must be complete (DemStep::completeStep). Returns whether the blocks moved.
+/// COLLECTIVE.
 bool balanceByLoad(core::Comm const& comm, SceneDescription const& scene,
-                   coupling::Placement& placement, WorthMoving const& worthMoving = {});
+                   coupling::Placement& placement, particles::ContactCounts const& contacts,
+                   WorthMoving const& worthMoving = {});
 
 } // namespace regolith::apps

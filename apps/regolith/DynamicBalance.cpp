@@ -12,11 +12,11 @@ namespace regolith::apps {
 
 DynamicBalance::DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
                                coupling::Placement& placement, std::int64_t stepsDone,
-                               Relocate relocate)
+                               RunHooks hooks)
     : m_comm(&comm)
     , m_scene(&scene)
     , m_placement(&placement)
-    , m_relocate(std::move(relocate))
+    , m_hooks(std::move(hooks))
     , m_longest(scene.balance.every > 0 ? scene.balance.every : autoBalanceEvery(scene.time.steps))
     , m_interval(m_longest)
     , m_next((stepsDone / m_longest + 1) * m_longest)
@@ -38,8 +38,11 @@ bool DynamicBalance::afterStep(std::int64_t stepsDone) {
 }
 
 coupling::LoadSpread DynamicBalance::measure() const {
+    if (m_comm->size() == 1)
+        return {}; // one rank carries the mean load, and no block of it more: 1 and 1, uncounted
     particles::LocalParticles const& local = *m_placement->local;
-    return coupling::loadSpread(*m_comm, local, loadModel(*m_comm, *m_scene, local));
+    return coupling::loadSpread(*m_comm, local, m_hooks.contacts(),
+                                loadModel(*m_comm, *m_scene, local));
 }
 
 bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
@@ -53,17 +56,18 @@ bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
         return false;
     }
     double const started = MPI_Wtime();
+    m_hooks.completeStep(); // the grains may move: with their state whole
     double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
     std::size_t const blocks = m_placement->forest->globalBlockCount();
     double best = m_last; // the best cut's imbalance (this one's, if no other cut is found)
-    bool const moved =
-        balanceByLoad(*m_comm, *m_scene, *m_placement, [enough, &best](double after) {
-            best = after;
-            return after <= enough;
-        });
+    bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement, m_hooks.contacts(),
+                                     [enough, &best](double after) {
+                                         best = after;
+                                         return after <= enough;
+                                     });
     double floor = spread.blockFloor;
     if (moved) {
-        m_relocate();
+        m_hooks.relocate();
         ++m_rebalances;
         if (m_placement->forest->globalBlockCount() != blocks) // split: the new blocks' floor
             floor = measure().blockFloor;

@@ -39,21 +39,25 @@ inline constexpr std::int64_t kShortestAutoInterval = 10;
 
 class DynamicBalance {
 public:
-    /// Rebuilds what stands on the blocks' assignment after the grains moved. COLLECTIVE.
-    using Relocate = std::function<void()>;
+    /// What the balance asks of the run it balances.
+    struct RunHooks {
+        /// Each copy's contacts of the last step (DemStep::contactsOfLastPass). Local.
+        std::function<particles::ContactCounts()> contacts;
+        /// Completes a step that ended Open (DemStep::completeStep), before the grains move.
+        std::function<void()> completeStep;
+        /// Rebuilds what stands on the blocks' assignment after the grains moved. COLLECTIVE.
+        std::function<void()> relocate;
+    };
 
     /// `placement` is the run's (its objects are replaced in place when the blocks move);
     /// the run starts after `stepsDone` steps.
     DynamicBalance(core::Comm const& comm, SceneDescription const& scene,
-                   coupling::Placement& placement, std::int64_t stepsDone, Relocate relocate);
+                   coupling::Placement& placement, std::int64_t stepsDone, RunHooks hooks);
 
-    /// Whether the loads are measured after the step that leaves `stepsDone` steps done: that
-    /// step must end Complete where readsGrains() (the grains may move to other ranks after
-    /// it, and the contacts are counted from their histories).
+    /// Whether the loads are measured after the step that leaves `stepsDone` steps done. The
+    /// step may end Open: a measurement reads the grains' positions and the contacts of the
+    /// last step (RunHooks::contacts), and completes the step before it moves grains.
     [[nodiscard]] bool due(std::int64_t stepsDone) const;
-    /// Whether a measurement reads the grains: on more than one rank (on one, the spread is 1
-    /// without counting, and nothing moves).
-    [[nodiscard]] bool readsGrains() const { return m_comm->size() > 1; }
     /// Measures the imbalance, and rebalances if the scene asks and the imbalance is over the
     /// threshold (see the file comment). Returns whether the blocks moved. COLLECTIVE.
     bool afterStep(std::int64_t stepsDone);
@@ -70,7 +74,7 @@ private:
     core::Comm const* m_comm;
     SceneDescription const* m_scene;
     coupling::Placement* m_placement;
-    Relocate m_relocate;
+    RunHooks m_hooks;
     std::int64_t m_longest;  ///< balance.every, or the interval of the measurements
     std::int64_t m_interval; ///< the current one (below m_longest with "auto" after a move)
     std::int64_t m_next;     ///< the step after which the next measurement comes

@@ -30,7 +30,9 @@ RunOutputs::RunOutputs(core::AppContext const& ctx, SceneDescription const& scen
                                   origin.grains, std::string(toString(scene.sync.method)),
                                   scene.gravity.self, ctx.world.size(),
                                   scene.output.progressSeconds, ctx.isRoot() && !ctx.options.quiet})
-    , m_balance(ctx.world, scene, sim.placement(), origin.step, [this] { relocate(); })
+    , m_balance(ctx.world, scene, sim.placement(), origin.step,
+                {[this] { return m_sim->dem().contactsOfLastPass(); },
+                 [this] { m_sim->dem().completeStep(); }, [this] { relocate(); }})
     , m_pouring(ctx.world, scene, sim.grains())
     , m_thermo(ctx.world, {thermoPath(scene), scene.output.thermoEvery, origin.step, origin.restart,
                            ctx.isRoot() && !ctx.options.quiet, sim.dem().walls().size()}) {
@@ -110,7 +112,7 @@ void RunOutputs::observe(coupling::Simulation& sim) {
                     [this](coupling::Simulation& run) { m_snapshots.write(run.stepsDone()); }, {});
     sim.addObserver([this](std::int64_t s) { return m_balance.due(s); },
                     [this](coupling::Simulation& run) { m_balance.afterStep(run.stepsDone()); },
-                    Needs{.completeGrains = m_balance.readsGrains(), .contacts = false});
+                    Needs{.completeGrains = false, .contacts = false});
     // Every step, the grains as they are: the line reads only the step count and the
     // measurements above.
     sim.addObserver([](std::int64_t) { return true; },

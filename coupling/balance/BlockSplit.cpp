@@ -32,17 +32,18 @@ std::vector<double> rankLoads(std::span<double const> load, std::span<int const>
 /// The largest cost (CutSurface.hpp) of the least-largest-load cut of the forest `spec`,
 /// whose leaves weigh `load`. COLLECTIVE.
 double largestCost(core::Comm const& comm, particles::LocalParticles const& local,
-                   BlockLoadModel const& model, domain::ForestSpec const& spec,
-                   std::span<double const> load) {
+                   particles::ContactCounts const& contacts, BlockLoadModel const& model,
+                   domain::ForestSpec const& spec, std::span<double const> load) {
     std::vector<int> const owner = domain::partitionCurve(load, comm.size());
-    return largest(rankCosts(comm, local, model, domain::ForestBuilder(spec), load, owner));
+    return largest(
+        rankCosts(comm, local, contacts, model, domain::ForestBuilder(spec), load, owner));
 }
 
 } // namespace
 
 SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles const& local,
-                             BlockLoadModel const& model, domain::ForestSpec spec,
-                             SplitLimits const& limits) {
+                             particles::ContactCounts const& contacts, BlockLoadModel const& model,
+                             domain::ForestSpec spec, SplitLimits const& limits) {
     domain::ForestSpec const whole = spec;
     std::size_t firstBlocks = 0;
     std::size_t blocks = 0;
@@ -54,16 +55,15 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
         if (first)
             firstBlocks = blocks;
         std::vector<particles::LocalParticles::LeafLoad> const counts =
-            leafCounts(comm, local, builder);
+            leafCounts(comm, local, contacts, builder);
         load.clear();
         for (particles::LocalParticles::LeafLoad const& leaf : counts)
             load.push_back(model.weight(leaf));
         std::vector<double> widest(load.size(), 0.0); // the widest grain centred in each leaf
         forEachMasterInLeaf(
-            local, builder,
-            [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
-                widest[leaf] = std::max(widest[leaf], 2.0 * ps.radius(i));
-            });
+            local, contacts, builder,
+            [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i,
+                std::uint32_t) { widest[leaf] = std::max(widest[leaf], 2.0 * ps.radius(i)); });
         comm.allReduceInPlace(std::span<double>(widest), core::ReduceOp::Max);
         double const mean = std::accumulate(load.begin(), load.end(), 0.0) / comm.size();
         std::vector<domain::RefineRegion> split;
@@ -91,8 +91,8 @@ SplitForest splitHeavyBlocks(core::Comm const& comm, particles::LocalParticles c
         spec.refine.insert(spec.refine.end(), split.begin(), split.end());
     }
     if (weighSurface && blocks > firstBlocks &&
-        !(largestCost(comm, local, model, spec, load) <
-          largestCost(comm, local, model, whole, wholeLoad)))
+        !(largestCost(comm, local, contacts, model, spec, load) <
+          largestCost(comm, local, contacts, model, whole, wholeLoad)))
         return {whole, 0};
     return {std::move(spec), (blocks - firstBlocks) / 7}; // each split adds seven leaves
 }

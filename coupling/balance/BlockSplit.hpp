@@ -45,6 +45,7 @@ struct SplitForest {
 /// each cut whose cost is weighed).
 [[nodiscard]] SplitForest splitHeavyBlocks(core::Comm const& comm,
                                            particles::LocalParticles const& local,
+                                           particles::ContactCounts const& contacts,
                                            BlockLoadModel const& model, domain::ForestSpec spec,
                                            SplitLimits const& limits);
 

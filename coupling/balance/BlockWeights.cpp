@@ -38,12 +38,10 @@ double loadImbalance(core::Comm const& comm, double load) {
 }
 
 LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
-                      BlockLoadModel const& model) {
-    if (comm.size() == 1)
-        return {}; // one rank carries the mean load, and no block of it more: 1 and 1, uncounted
+                      particles::ContactCounts const& contacts, BlockLoadModel const& model) {
     std::array<double, 2> most{0.0, 0.0}; // this rank's load, its heaviest block
     for (std::size_t b = 0; b < local.blocks().size(); ++b)
-        for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b)) {
+        for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b, contacts[b])) {
             double const w = model.weight(leaf);
             most[0] += w;
             most[1] = std::max(most[1], w);
@@ -56,15 +54,16 @@ LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& l
     return {most[0] / mean, std::max(1.0, most[1] / mean)};
 }
 
-std::vector<particles::LocalParticles::LeafLoad> leafCounts(core::Comm const& comm,
-                                                            particles::LocalParticles const& local,
-                                                            domain::ForestBuilder const& builder) {
+std::vector<particles::LocalParticles::LeafLoad>
+leafCounts(core::Comm const& comm, particles::LocalParticles const& local,
+           particles::ContactCounts const& contacts, domain::ForestBuilder const& builder) {
     std::size_t const leaves = builder.leaves().size();
     std::vector<double> counts(2 * leaves, 0.0); // grains, contacts per leaf: exact sums
-    forEachMasterInLeaf(local, builder,
-                        [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
+    forEachMasterInLeaf(local, contacts, builder,
+                        [&](std::size_t leaf, particles::ParticleStorage const&, std::size_t,
+                            std::uint32_t contactsOfGrain) {
                             counts[2 * leaf] += 1.0;
-                            counts[2 * leaf + 1] += static_cast<double>(ps.history(i).size());
+                            counts[2 * leaf + 1] += static_cast<double>(contactsOfGrain);
                         });
     comm.allReduceInPlace(std::span<double>(counts), core::ReduceOp::Sum);
     std::vector<particles::LocalParticles::LeafLoad> out(leaves);
@@ -75,19 +74,22 @@ std::vector<particles::LocalParticles::LeafLoad> leafCounts(core::Comm const& co
 }
 
 std::vector<double> leafLoads(core::Comm const& comm, particles::LocalParticles const& local,
-                              BlockLoadModel const& model, domain::ForestBuilder const& builder) {
+                              particles::ContactCounts const& contacts, BlockLoadModel const& model,
+                              domain::ForestBuilder const& builder) {
     std::vector<double> load;
-    for (particles::LocalParticles::LeafLoad const& leaf : leafCounts(comm, local, builder))
+    for (particles::LocalParticles::LeafLoad const& leaf :
+         leafCounts(comm, local, contacts, builder))
         load.push_back(model.weight(leaf));
     return load;
 }
 
 domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                         particles::LocalParticles const& local,
+                                        particles::ContactCounts const& contacts,
                                         BlockLoadModel const& model,
                                         domain::ForestSpec const& spec) {
     domain::ForestBuilder const builder(spec);
-    std::vector<double> const load = leafLoads(comm, local, model, builder);
+    std::vector<double> const load = leafLoads(comm, local, contacts, model, builder);
     auto table = std::make_shared<std::map<BlockKey, double>>();
     for (std::size_t l = 0; l < load.size(); ++l) {
         domain::ForestLeaf const& leaf = builder.leaves()[l];

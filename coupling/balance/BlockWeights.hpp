@@ -10,8 +10,9 @@
 /// (measured: docs/balance.md), cellWeight that of one cell (docs/results.md, "Coupled runs"),
 /// grainWeight 1 plus the self-gravity work a grain's rank does for it when that is known
 /// (directGravityWeight), and the 1 spreads empty blocks evenly over the ranks. The contacts are
-/// those of the grains' histories (none before the first step). With equal counts in every block
-/// the weights are equal and the assignment is the uniform one.
+/// given per copy (particles::ContactCounts: during a run those of the last force computation,
+/// DemStep::contactsOfLastPass; at a start those of the grains' histories). With equal counts in
+/// every block the weights are equal and the assignment is the uniform one.
 #include "core/mpi/Comm.hpp"
 #include "domain/Block.hpp"
 #include "domain/ForestBuilder.hpp"
@@ -59,31 +60,36 @@ struct LoadSpread {
     double blockFloor = 1.0;
 };
 
-/// The spread of the loads of the blocks `local` holds (on one rank {1, 1}, without counting).
-/// COLLECTIVE (two all-reductions).
+/// The spread of the loads of the blocks `local` holds, its copies' contacts `contacts` ({1, 1}
+/// on one rank). COLLECTIVE (two all-reductions).
 [[nodiscard]] LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
+                                    particles::ContactCounts const& contacts,
                                     BlockLoadModel const& model);
 
-/// Calls `f(leaf, storage, i)` for every master `i` of `local` (in `storage`) with the index
-/// of the leaf of `builder`'s forest holding its centre; the forest need not be the one the
-/// grains live on. Not collective.
+/// Calls `f(leaf, storage, i, contacts)` for every master `i` of `local` (in `storage`) with
+/// the index of the leaf of `builder`'s forest holding its centre and its entry of `contacts`;
+/// the forest need not be the one the grains live on. Not collective.
 template <class F>
 void forEachMasterInLeaf(particles::LocalParticles const& local,
+                         particles::ContactCounts const& contacts,
                          domain::ForestBuilder const& builder, F&& f) {
-    for (particles::BlockParticles const& bp : local.blocks())
-        bp.particles.forEachMaster([&](std::size_t i) {
-            auto const at = builder.geometry().locate(bp.particles.position(i));
+    auto const blocks = local.blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        particles::ParticleStorage const& ps = blocks[b].particles;
+        ps.forEachMaster([&](std::size_t i) {
+            auto const at = builder.geometry().locate(ps.position(i));
             if (at) // a master lies in the domain
-                f(builder.leafAt(at->cell), bp.particles, i);
+                f(builder.leafAt(at->cell), ps, i, contacts[b][i]);
         });
+    }
 }
 
-/// The grains and contact-history entries of every leaf of `builder`'s forest, in its curve
-/// order, from the masters of `local` binned by their positions: the same on every rank.
+/// The grains and contacts of every leaf of `builder`'s forest, in its curve order, from the
+/// masters of `local` (and `contacts`) binned by their positions: the same on every rank.
 /// COLLECTIVE (one all-reduction of two numbers per leaf).
 [[nodiscard]] std::vector<particles::LocalParticles::LeafLoad>
 leafCounts(core::Comm const& comm, particles::LocalParticles const& local,
-           domain::ForestBuilder const& builder);
+           particles::ContactCounts const& contacts, domain::ForestBuilder const& builder);
 
 /// The load of every leaf of `builder`'s forest, in its curve order, from the masters of
 /// `local` (and their contacts) binned by their positions: the same on every rank. The forest
@@ -91,6 +97,7 @@ leafCounts(core::Comm const& comm, particles::LocalParticles const& local,
 /// all-reduction of two numbers per leaf).
 [[nodiscard]] std::vector<double> leafLoads(core::Comm const& comm,
                                             particles::LocalParticles const& local,
+                                            particles::ContactCounts const& contacts,
                                             BlockLoadModel const& model,
                                             domain::ForestBuilder const& builder);
 
@@ -99,6 +106,7 @@ leafCounts(core::Comm const& comm, particles::LocalParticles const& local,
 /// the same specification reproduces exactly. COLLECTIVE; the result is local.
 [[nodiscard]] domain::BlockWeight grainAndCellWeights(core::Comm const& comm,
                                                       particles::LocalParticles const& local,
+                                                      particles::ContactCounts const& contacts,
                                                       BlockLoadModel const& model,
                                                       domain::ForestSpec const& spec);
 

@@ -25,8 +25,9 @@ std::array<core::Vec3, 26> surfaceDirections() {
 } // namespace
 
 std::vector<double> rankCosts(core::Comm const& comm, particles::LocalParticles const& local,
-                              BlockLoadModel const& model, domain::ForestBuilder const& builder,
-                              std::span<double const> load, std::span<int const> owner) {
+                              particles::ContactCounts const& contacts, BlockLoadModel const& model,
+                              domain::ForestBuilder const& builder, std::span<double const> load,
+                              std::span<int const> owner) {
     // The cuboids the synchronisation would cross: each rank's leaves merged.
     std::vector<domain::ForestLeaf> leaves = builder.leaves();
     for (std::size_t l = 0; l < leaves.size(); ++l)
@@ -40,23 +41,25 @@ std::vector<double> rankCosts(core::Comm const& comm, particles::LocalParticles 
     static std::array<core::Vec3, 26> const directions = surfaceDirections();
     std::vector<double> cost(static_cast<std::size_t>(comm.size()), 0.0);
     std::vector<std::uint32_t> reached; // the other cuboids one grain reaches
-    forEachMasterInLeaf(
-        local, builder, [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i) {
-            reached.clear();
-            for (core::Vec3 const& u : directions) {
-                auto const at = builder.geometry().locate(ps.position(i) + ps.radius(i) * u);
-                if (!at)
-                    continue;
-                std::uint32_t const b = boxOf[builder.leafAt(at->cell)];
-                if (b != boxOf[leaf] &&
-                    std::find(reached.begin(), reached.end(), b) == reached.end())
-                    reached.push_back(b);
-            }
-            double const shadow =
-                1.0 + model.contactWeight * static_cast<double>(ps.history(i).size());
-            for (std::uint32_t const b : reached)
-                cost[static_cast<std::size_t>(cut.boxes[b].owner)] += shadow;
-        });
+    forEachMasterInLeaf(local, contacts, builder,
+                        [&](std::size_t leaf, particles::ParticleStorage const& ps, std::size_t i,
+                            std::uint32_t contactsOfGrain) {
+                            reached.clear();
+                            for (core::Vec3 const& u : directions) {
+                                auto const at =
+                                    builder.geometry().locate(ps.position(i) + ps.radius(i) * u);
+                                if (!at)
+                                    continue;
+                                std::uint32_t const b = boxOf[builder.leafAt(at->cell)];
+                                if (b != boxOf[leaf] &&
+                                    std::find(reached.begin(), reached.end(), b) == reached.end())
+                                    reached.push_back(b);
+                            }
+                            double const shadow =
+                                1.0 + model.contactWeight * static_cast<double>(contactsOfGrain);
+                            for (std::uint32_t const b : reached)
+                                cost[static_cast<std::size_t>(cut.boxes[b].owner)] += shadow;
+                        });
     comm.allReduceInPlace(std::span<double>(cost), core::ReduceOp::Sum);
     for (std::size_t l = 0; l < load.size(); ++l)
         cost[static_cast<std::size_t>(owner[l])] += load[l];

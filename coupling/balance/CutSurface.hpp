@@ -8,9 +8,9 @@
 ///
 ///     cost_r = load_r + sum over the shadows s on r of (1 + contactWeight * contacts_s)
 ///
-/// (load_r in the units of BlockLoadModel; contacts_s the entries of the grain's contact
-/// history). A grain is taken to reach the cuboids holding one of 26 points of its surface
-/// (along the axes, the face and the space diagonals).
+/// (load_r in the units of BlockLoadModel; contacts_s the grain's contacts, BlockWeights.hpp). A
+/// grain is taken to reach the cuboids holding one of 26 points of its surface (along the axes, the
+/// face and the space diagonals).
 #include "coupling/balance/BlockWeights.hpp"
 
 #include <span>
@@ -24,7 +24,8 @@ namespace regolith::coupling {
 /// COLLECTIVE (one all-reduction of a number per rank).
 [[nodiscard]] std::vector<double>
 rankCosts(core::Comm const& comm, particles::LocalParticles const& local,
-          BlockLoadModel const& model, domain::ForestBuilder const& builder,
-          std::span<double const> load, std::span<int const> owner);
+          particles::ContactCounts const& contacts, BlockLoadModel const& model,
+          domain::ForestBuilder const& builder, std::span<double const> load,
+          std::span<int const> owner);
 
 } // namespace regolith::coupling

@@ -208,6 +208,10 @@ public:
     /// broken contact, which ContactHistory::touch would restart, and which the history may
     /// have pruned since). The next detect fills them again. Not collective.
     void writeBackSprings(ParticleStorage& particles);
+    /// Adds one to `perCopy[i]` for each kept spring of copy i (the pair's grain that holds its
+    /// history) that the last pass touched, while the springs are kept beside the list: the
+    /// contacts those grains' histories lack until writeBackSprings. Not collective.
+    void countKeptContacts(std::span<std::uint32_t> perCopy) const;
 
     /// The storage indices of the last `detect` in linked-cell order, small spheres first,
     /// then the large ones: a permutation for ParticleStorage::permute that puts neighbours

@@ -119,4 +119,13 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
     });
 }
 
+void ContactDetector::countKeptContacts(std::span<std::uint32_t> perCopy) const {
+    if (!m_springsLive)
+        return;
+    m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
+        if (keepsSpring(m_list.mode(p)) && m_list.spring(p).stamp == m_pass)
+            ++perCopy[i];
+    });
+}
+
 } // namespace regolith::particles

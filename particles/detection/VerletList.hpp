@@ -339,6 +339,7 @@ public:
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
+    [[nodiscard]] KeptSpring const& spring(std::size_t p) const { return m_springs[p]; }
     [[nodiscard]] std::size_t numPairs() const { return m_pairs.size(); }
     /// Pairs classified PairMode::Owned, Kept or KeptPressed since the last restart.
     [[nodiscard]] std::size_t numOwned() const { return m_owned; }

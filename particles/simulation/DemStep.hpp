@@ -231,6 +231,11 @@ public:
     /// Pairs whose springs the local blocks' Verlet lists keep (DemStepConfig::keepSprings),
     /// as of the last force computation. Local.
     [[nodiscard]] std::size_t keptPairs() const { return detectorSum(&DetectorStats::keptPairs); }
+    /// Each master's contacts of the last force computation, block by block: its history
+    /// entries that computation stamped and the kept springs it touched that live beside a
+    /// Verlet list (ContactDetector::countKeptContacts), so that an Open step need not write
+    /// them back to be counted. Shadows count 0. Local.
+    [[nodiscard]] ContactCounts contactsOfLastPass() const;
     /// The skin of the local blocks' last list rebuild (the largest, if several rebuilt in that
     /// step) [length], kept across a relocation that renews the lists; 0 without a list
     /// (DemStepConfig::detector without a skin) or before the first rebuild. Local.

@@ -83,16 +83,30 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
     masters.clear();
 }
 
-std::vector<LocalParticles::LeafLoad> LocalParticles::loadPerLeaf(std::size_t b) const {
+std::vector<LocalParticles::LeafLoad>
+LocalParticles::loadPerLeaf(std::size_t b, std::span<std::uint32_t const> contacts) const {
     BlockParticles const& bp = m_blocks[b];
     std::vector<LeafLoad> load(bp.block->leaves.size());
     bool const one = load.size() == 1;
     bp.particles.forEachMaster([&](std::size_t i) {
         LeafLoad& l = load[one ? 0 : m_forest->leafContaining(*bp.block, bp.particles.position(i))];
         ++l.grains;
-        l.contacts += bp.particles.history(i).size();
+        if (!contacts.empty())
+            l.contacts += contacts[i];
     });
     return load;
+}
+
+ContactCounts LocalParticles::historyEntries() const {
+    ContactCounts counts(m_blocks.size());
+    for (std::size_t b = 0; b < m_blocks.size(); ++b) {
+        ParticleStorage const& ps = m_blocks[b].particles;
+        counts[b].assign(ps.size(), 0);
+        ps.forEachMaster([&](std::size_t i) {
+            counts[b][i] = static_cast<std::uint32_t>(ps.history(i).size());
+        });
+    }
+    return counts;
 }
 
 std::size_t LocalParticles::countMasters() const {

@@ -29,6 +29,10 @@ struct BlockParticles {
     std::vector<MasterHint> spreadingMasters;
 };
 
+/// A number per copy of each local block (blocks() order, then storage order): the contacts of
+/// a copy, for the load balance's model (coupling/balance/BlockWeights.hpp).
+using ContactCounts = std::vector<std::vector<std::uint32_t>>;
+
 /// All local blocks' particles, in the order of forest.blocks().
 class LocalParticles {
 public:
@@ -54,16 +58,20 @@ public:
     /// whole instead of copied: the set-up then holds the grains once, not twice.
     void adoptMasters(ParticleStorage&& masters);
 
-    /// What a leaf (forest block) holds: its masters, and their contact-history entries (the
-    /// contacts they take part in, each counted once: a pair's entry lives on one of its
-    /// grains, a wall's on the grain; entries of contacts broken since the last prune too).
+    /// What a leaf (forest block) holds: its masters, and their contacts (each counted once:
+    /// a pair's lives on one of its grains, a wall's on the grain).
     struct LeafLoad {
         std::size_t grains = 0;
         std::size_t contacts = 0;
     };
     /// Per leaf local block b covers (domain::Block::leaves, in that order): the load of each
-    /// forest block, where the particles' blocks merge several.
-    [[nodiscard]] std::vector<LeafLoad> loadPerLeaf(std::size_t b) const;
+    /// forest block, where the particles' blocks merge several, with `contacts[i]` the
+    /// contacts of copy i of block b (none given: the grains only).
+    [[nodiscard]] std::vector<LeafLoad>
+    loadPerLeaf(std::size_t b, std::span<std::uint32_t const> contacts = {}) const;
+    /// Each master's contact-history entries, block by block (ContactCounts): the contacts of
+    /// grains that have not stepped since they were given (a start, a restart's file).
+    [[nodiscard]] ContactCounts historyEntries() const;
 
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;

@@ -51,9 +51,10 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
                 for (particles::Uid partner : {1000, 1001})
                     bp.particles.history(i).touch(partner, 1);
         });
-    domain::BlockWeight const grainsOnly = coupling::grainAndCellWeights(world, local, {}, spec);
-    domain::BlockWeight const withCells =
-        coupling::grainAndCellWeights(world, local, {{4, 2, 2}, 0.25}, spec);
+    domain::BlockWeight const grainsOnly =
+        coupling::grainAndCellWeights(world, local, local.historyEntries(), {}, spec);
+    domain::BlockWeight const withCells = coupling::grainAndCellWeights(
+        world, local, local.historyEntries(), {{4, 2, 2}, 0.25}, spec);
     double const perContact = coupling::BlockLoadModel::kContactWeight;
     // Every rank answers for every block, not only its own.
     for (int b = 0; b < 8; ++b) {
@@ -70,10 +71,11 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     direct.grainWeight = coupling::directGravityWeight(140.0, 1.0);
     EXPECT_DOUBLE_EQ(direct.grainWeight, 1.0 + 0.04 * 140.0);
     domain::BlockWeight const withGravity =
-        coupling::grainAndCellWeights(world, local, direct, spec);
+        coupling::grainAndCellWeights(world, local, local.historyEntries(), direct, spec);
     EXPECT_DOUBLE_EQ(withGravity({Vec3(1, 0, 0), Vec3(2, 1, 1)}, 0),
                      1.0 + 10.0 * direct.grainWeight);
-    coupling::LoadSpread const spread = coupling::loadSpread(world, local, {});
+    coupling::LoadSpread const spread =
+        coupling::loadSpread(world, local, local.historyEntries(), {});
     double const total = 71.0 + 6 * 11.0 + 11.0 + perContact * 20.0;
     EXPECT_DOUBLE_EQ(spread.blockFloor, std::max(1.0, 71.0 / (total / world.size())));
     EXPECT_GE(spread.imbalance, spread.blockFloor);
@@ -92,8 +94,8 @@ TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
     domain::BlockForest const uniform(world, spec);
     particles::LocalParticles local(uniform);
     addAll(local, world, crowdedRow(200));
-    domain::BlockForest const balanced(world, spec,
-                                       coupling::grainAndCellWeights(world, local, {}, spec));
+    domain::BlockForest const balanced(
+        world, spec, coupling::grainAndCellWeights(world, local, local.historyEntries(), {}, spec));
     // The load of a rank differs from the mean by less than the heaviest block (the curve
     // cut, domain/SfcPartition.hpp); the crowded block (201 of 278) is alone when P > 1.
     double const total = 201.0 + 7 * 11.0;

@@ -20,6 +20,18 @@
 
 namespace regolith::particles::kept_springs {
 
+namespace {
+
+long long sumOverRanks(core::Comm const& comm, ContactCounts const& counts) {
+    long long sum = 0;
+    for (std::vector<std::uint32_t> const& block : counts)
+        for (std::uint32_t const n : block)
+            sum += n;
+    return comm.allReduce(sum, core::ReduceOp::Sum);
+}
+
+} // namespace
+
 Scene packing(std::array<int, 3> blocks, double speed, double r) {
     Scene s;
     s.spec.domain = core::AABB{Vec3::Zero(), Vec3(6.0, 6.0, 8.0)};
@@ -80,7 +92,9 @@ Outcome run(core::Comm const& comm, Scene const& scene, SyncConfig config, bool 
                                                       core::ReduceOp::Sum));
         }
         dem.step(DemStep::StepEnd::Open);
+        out.contactsOpen = sumOverRanks(comm, dem.contactsOfLastPass());
         dem.completeStep(); // writes the springs back after an Open step
+        out.contactsComplete = sumOverRanks(comm, dem.contactsOfLastPass());
     } catch (core::Error const& e) {
         out.error = e.what();
     }
@@ -151,7 +165,11 @@ void expectSameState(Outcome const& x, Outcome const& y, std::size_t grains) {
     EXPECT_EQ(x.bits.size(), grains * 9u);
     EXPECT_TRUE(x.bits == y.bits) << "positions, velocities or spins differ";
     ASSERT_EQ(x.live.size(), y.live.size());
-    EXPECT_GT(x.live.size(), 0u); // contacts at the end, with springs to compare
+    EXPECT_GT(x.live.size(), 0u);       // contacts at the end, with springs to compare
+    for (Outcome const* o : {&x, &y}) { // the contacts counted alike before the write-back
+        EXPECT_EQ(o->contactsOpen, static_cast<long long>(o->live.size()));
+        EXPECT_EQ(o->contactsComplete, static_cast<long long>(o->live.size()));
+    }
     for (std::size_t k = 0; k < x.live.size(); ++k) {
         LiveEntry const& a = x.live[k];
         LiveEntry const& b = y.live[k];

@@ -31,6 +31,9 @@ struct Outcome {
     long long keptMost = 0;          ///< most pairs kept in one step, over all ranks
     long long rebuilds = 0;
     long long shifts = 0; ///< lists shifted with the grains' drift instead of rebuilt
+    /// DemStep::contactsOfLastPass summed over the masters after the last step, which ended
+    /// Open (the springs kept), and after completeStep (written back), over all ranks.
+    long long contactsOpen = 0, contactsComplete = 0;
     std::string error;
 };
 
