@@ -2,7 +2,7 @@
 /// What a `regolith` run does between its steps, as observers of the coupled run (in this
 /// order after a step): a thermo row, grains poured in, a checkpoint, VTK files, a particle
 /// snapshot, the load balance, the progress line. Each is due on its own schedule; a step
-/// none of them looks at ends open (coupling::Simulation).
+/// none of the first five looks at ends open (coupling::Simulation).
 #include "apps/common/RunSummary.hpp"
 #include "apps/regolith/Checkpointing.hpp"
 #include "apps/regolith/DynamicBalance.hpp"

@@ -134,7 +134,8 @@ PreparedRun prepareRun(core::AppContext& ctx) {
         run.choices.push_back(std::move(rootBlocks));
     for (AutoChoice& c : resolveBalanceChoices(world, scene))
         run.choices.push_back(std::move(c));
-    balanceByLoad(world, scene, run.placement, run.placement.local->historyEntries());
+    balanceByLoad(world, scene, run.placement,
+                  run.placement.local->contactsStamped(static_cast<std::uint32_t>(run.start.step)));
     for (AutoChoice& c : resolveSpeedChoices(world, *run.placement.local, scene))
         run.choices.push_back(std::move(c));
     if (ctx.isRoot() && !ctx.options.quiet)

@@ -99,7 +99,8 @@ void Simulation::start() {
         BlockLoadModel load;
         if (usesGrid(m_setup.selfGravity))
             load = {m_setup.domain.cellsPerBlock, m_setup.domain.cellWeight};
-        place(grainAndCellWeights(*m_comm, *m_placed.local, m_placed.local->historyEntries(), load,
+        place(grainAndCellWeights(*m_comm, *m_placed.local, m_placed.local->contactsStamped(0),
+                                  load,
                                   m_setup.domain)); // the grains' load
         m_pending.clear();
         m_pending.shrink_to_fit();

@@ -76,7 +76,9 @@ public:
     /// What an observer needs when it is due.
     struct ObserverNeeds {
         /// The grains complete (positions and velocities of the same time). false: they may
-        /// be half a kick behind (a progress line, counters), and the step stays open.
+        /// be half a kick behind (a progress line, counters, the positions and
+        /// dem().contactsOfLastPass() a load measurement reads), and the step stays open; such
+        /// an observer calls dem().completeStep() before it reads or changes more.
         bool completeGrains = true;
         /// The step's pair contacts in dem().contacts() (they are kept only where asked).
         bool contacts = false;

@@ -112,7 +112,8 @@ core::AABB everywhere();
 /// neigh/history keeps its shear history. The grains' histories are stale for those pairs until
 /// writeBackSprings(), which the caller must call before anything reads or changes them or moves
 /// a copy out of the block: before a synchronisation whose motion could reach skin / 2
-/// (beforeSync), a checkpoint, release(). Every step computes the same bits as with the
+/// (beforeSync), a checkpoint, release(); a count of the contacts adds the kept ones
+/// (countKeptContacts). Every step computes the same bits as with the
 /// histories.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the

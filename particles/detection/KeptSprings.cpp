@@ -1,10 +1,12 @@
 /// The tangential springs the Verlet list keeps beside its settled pairs deep inside the block
 /// (ContactDetector's class comment, "Springs kept beside the list"): which pairs keep one,
-/// how they are filled from the grains' histories and written back.
+/// how they are filled from the grains' histories, written back, and counted where they live.
+#include "core/Error.hpp"
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
 #include <cstddef>
+#include <string>
 
 namespace regolith::particles {
 
@@ -120,11 +122,15 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
 }
 
 void ContactDetector::countKeptContacts(std::span<std::uint32_t> perCopy) const {
-    if (!m_springsLive)
+    if (!m_springsLive || m_list.numKept() == 0)
         return;
     m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
-        if (keepsSpring(m_list.mode(p)) && m_list.spring(p).stamp == m_pass)
-            ++perCopy[i];
+        if (!keepsSpring(m_list.mode(p)) || m_list.spring(p).stamp != m_pass)
+            return;
+        if (i >= perCopy.size()) // the storage changed since the pass, which it may not
+            throw core::Error("contact detection: a kept spring of copy " + std::to_string(i) +
+                              " counted for a storage of " + std::to_string(perCopy.size()));
+        ++perCopy[i];
     });
 }
 

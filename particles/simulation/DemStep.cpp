@@ -198,20 +198,10 @@ std::size_t DemStep::detectorSum(std::size_t DetectorStats::*count) const {
 }
 
 ContactCounts DemStep::contactsOfLastPass() const {
-    auto const stamp = static_cast<std::uint32_t>(m_steps); // computeForces' of the last step
-    auto const blocks = m_local->blocks();
-    ContactCounts counts(blocks.size());
-    for (std::size_t b = 0; b < blocks.size(); ++b) {
-        ParticleStorage const& ps = blocks[b].particles;
-        counts[b].assign(ps.size(), 0);
-        ps.forEachMaster([&](std::size_t i) {
-            ContactHistory const& h = ps.history(i);
-            counts[b][i] = static_cast<std::uint32_t>(std::count_if(
-                h.begin(), h.end(), [stamp](HistoryEntry const& e) { return e.stamp == stamp; }));
-        });
-        if (b < m_detectors.size())
-            m_detectors[b].countKeptContacts(counts[b]);
-    }
+    // computeForces' stamp of the last step; one detector per local block (placeOnBlocks).
+    ContactCounts counts = m_local->contactsStamped(static_cast<std::uint32_t>(m_steps));
+    for (std::size_t b = 0; b < counts.size(); ++b)
+        m_detectors[b].countKeptContacts(counts[b]);
     return counts;
 }
 

@@ -169,9 +169,10 @@ public:
     /// trajectory the same bit for bit). After an Open step the velocities and angular
     /// velocities lag half a kick, and the tangential springs of the pairs deep inside a block
     /// may still be kept beside its Verlet list (ContactDetector, "Springs kept beside the
-    /// list"; a Complete step writes them back), so nothing may read the grains' state or change it
-    /// before the next step() or completeStep(): a time loop ends a step Open only when no output,
-    /// checkpoint or other observer follows it (coupling/simulation/Simulation.hpp).
+    /// list"; a Complete step writes them back), so nothing may read the grains' state beyond
+    /// their positions and contactsOfLastPass(), or change it, before the next step() or
+    /// completeStep(): a time loop ends a step Open only when no output, checkpoint or other
+    /// observer that reads more follows it (coupling/simulation/Simulation.hpp).
     enum class StepEnd { Complete, Open };
 
     /// One time step (see the class comment); the step number (stamp) is stepsDone() + 1.

@@ -97,13 +97,15 @@ LocalParticles::loadPerLeaf(std::size_t b, std::span<std::uint32_t const> contac
     return load;
 }
 
-ContactCounts LocalParticles::historyEntries() const {
+ContactCounts LocalParticles::contactsStamped(std::uint32_t stamp) const {
     ContactCounts counts(m_blocks.size());
     for (std::size_t b = 0; b < m_blocks.size(); ++b) {
         ParticleStorage const& ps = m_blocks[b].particles;
         counts[b].assign(ps.size(), 0);
         ps.forEachMaster([&](std::size_t i) {
-            counts[b][i] = static_cast<std::uint32_t>(ps.history(i).size());
+            ContactHistory const& h = ps.history(i);
+            counts[b][i] = static_cast<std::uint32_t>(std::count_if(
+                h.begin(), h.end(), [stamp](HistoryEntry const& e) { return e.stamp == stamp; }));
         });
     }
     return counts;

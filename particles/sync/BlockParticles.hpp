@@ -69,9 +69,10 @@ public:
     /// contacts of copy i of block b (none given: the grains only).
     [[nodiscard]] std::vector<LeafLoad>
     loadPerLeaf(std::size_t b, std::span<std::uint32_t const> contacts = {}) const;
-    /// Each master's contact-history entries, block by block (ContactCounts): the contacts of
-    /// grains that have not stepped since they were given (a start, a restart's file).
-    [[nodiscard]] ContactCounts historyEntries() const;
+    /// Each master's contact-history entries stamped `stamp` (ContactCounts): its contacts of
+    /// the force computation of that number (a step's; a checkpoint's grains carry those of
+    /// its last step). Entries of contacts broken since are not counted.
+    [[nodiscard]] ContactCounts contactsStamped(std::uint32_t stamp) const;
 
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;

@@ -74,12 +74,12 @@ TEST(BlockSplit, HeavyBlocksSplitUntilNoneExceedsTheShare) {
     CrowdedRow run;
     coupling::SplitLimits limits{0.5, 0.1, 6};
     coupling::SplitForest const split = coupling::splitHeavyBlocks(
-        run.world, run.local, run.local.historyEntries(), {}, run.spec, limits);
+        run.world, run.local, run.local.contactsStamped(0), {}, run.spec, limits);
     domain::ForestBuilder const builder(split.spec);
     EXPECT_GT(split.splits, 0u);
     EXPECT_EQ(builder.leaves().size(), 4 + 7 * split.splits);
     std::vector<double> const load =
-        coupling::leafLoads(run.world, run.local, run.local.historyEntries(), {}, builder);
+        coupling::leafLoads(run.world, run.local, run.local.contactsStamped(0), {}, builder);
     double const mean = total(load) / run.world.size();
     // Every leaf weighs 1 + its grains: the grains are all counted, each once.
     EXPECT_DOUBLE_EQ(total(load), static_cast<double>(load.size()) + 309.0);
@@ -101,7 +101,7 @@ TEST(BlockSplit, HeavyBlocksSplitUntilNoneExceedsTheShare) {
 TEST(BlockSplit, LimitsStopTheSplits) {
     CrowdedRow run;
     auto const splitsWith = [&](coupling::SplitLimits const& limits) {
-        return coupling::splitHeavyBlocks(run.world, run.local, run.local.historyEntries(), {},
+        return coupling::splitHeavyBlocks(run.world, run.local, run.local.contactsStamped(0), {},
                                           run.spec, limits)
             .splits;
     };
@@ -110,7 +110,7 @@ TEST(BlockSplit, LimitsStopTheSplits) {
     EXPECT_EQ(splitsWith({4.0, 0.1, 6}), 0u); // no block above four shares: whole blocks do
     // Grains of diameter 0.6: children of edge 0.5 would be narrower.
     CrowdedRow wide(0.3);
-    EXPECT_EQ(coupling::splitHeavyBlocks(wide.world, wide.local, wide.local.historyEntries(), {},
+    EXPECT_EQ(coupling::splitHeavyBlocks(wide.world, wide.local, wide.local.contactsStamped(0), {},
                                          wide.spec, {0.5, 0.1, 6})
                   .splits,
               0u);
@@ -119,9 +119,9 @@ TEST(BlockSplit, LimitsStopTheSplits) {
 TEST(BlockSplit, WeightsOfTheSplitForestCountItsBlocksGrains) {
     CrowdedRow run;
     coupling::SplitForest const split = coupling::splitHeavyBlocks(
-        run.world, run.local, run.local.historyEntries(), {}, run.spec, {0.5, 0.1, 1});
+        run.world, run.local, run.local.contactsStamped(0), {}, run.spec, {0.5, 0.1, 1});
     domain::BlockWeight const weight = coupling::grainAndCellWeights(
-        run.world, run.local, run.local.historyEntries(), {}, split.spec);
+        run.world, run.local, run.local.contactsStamped(0), {}, split.spec);
     domain::ForestBuilder const builder(split.spec);
     double sum = 0.0;
     for (domain::ForestLeaf const& leaf : builder.leaves()) {
@@ -144,7 +144,7 @@ TEST(BlockSplit, LighterBlocksSplitWhereTheSplitCutCostsLess) {
     };
     RowOfEqualBlocks run(60, spread);
     std::size_t const splits =
-        coupling::splitHeavyBlocks(run.world, run.local, run.local.historyEntries(), {}, run.spec,
+        coupling::splitHeavyBlocks(run.world, run.local, run.local.contactsStamped(0), {}, run.spec,
                                    {1.05, 0.1, 3})
             .splits;
     if (run.world.size() == 1)
@@ -157,11 +157,11 @@ TEST(BlockSplit, LighterBlocksStayWholeWhereTheSplitCutCostsMore) {
     // Each block's grains in one point: a split cannot part them, its cut is no better and has
     // more blocks, so the whole blocks are kept (a heavier block than the floor would split).
     RowOfEqualBlocks run(60, [](int b, int) { return Vec3(b + 0.3, 0.3, 0.3); });
-    EXPECT_EQ(coupling::splitHeavyBlocks(run.world, run.local, run.local.historyEntries(), {},
+    EXPECT_EQ(coupling::splitHeavyBlocks(run.world, run.local, run.local.contactsStamped(0), {},
                                          run.spec, {1.05, 0.1, 3})
                   .splits,
               0u);
-    EXPECT_GT(coupling::splitHeavyBlocks(run.world, run.local, run.local.historyEntries(), {},
+    EXPECT_GT(coupling::splitHeavyBlocks(run.world, run.local, run.local.contactsStamped(0), {},
                                          run.spec, {0.4, 0.1, 3})
                   .splits,
               0u);
@@ -180,7 +180,7 @@ TEST(CutSurface, ARankPaysForTheShadowsOfGrainsReachingItsBlocks) {
     int const second = std::min(1, world.size() - 1);
     std::vector<int> const owner{0, second};
     std::vector<double> const cost =
-        coupling::rankCosts(world, local, local.historyEntries(), {}, builder, load, owner);
+        coupling::rankCosts(world, local, local.contactsStamped(0), {}, builder, load, owner);
     ASSERT_EQ(cost.size(), static_cast<std::size_t>(world.size()));
     if (second == 0) {
         EXPECT_DOUBLE_EQ(cost[0], 8.0); // one rank, one cuboid: no shadow

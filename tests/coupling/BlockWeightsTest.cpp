@@ -44,17 +44,20 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     domain::BlockForest const forest(world, spec, {}, GetParam());
     particles::LocalParticles local(forest);
     addAll(local, world, crowdedRow(70));
-    // The grains of block 3 touch two partners each (entries in their contact histories).
+    // The grains of block 3 touch two partners each in the pass counted (entries in their
+    // contact histories); every grain keeps an entry of a contact broken before it.
+    constexpr std::uint32_t kPass = 2;
     for (particles::BlockParticles& bp : local.blocks())
         bp.particles.forEachMaster([&](std::size_t i) {
+            bp.particles.history(i).touch(999, kPass - 1);
             if (bp.particles.position(i).x() >= 3.0 && bp.particles.position(i).x() < 4.0)
                 for (particles::Uid partner : {1000, 1001})
-                    bp.particles.history(i).touch(partner, 1);
+                    bp.particles.history(i).touch(partner, kPass);
         });
     domain::BlockWeight const grainsOnly =
-        coupling::grainAndCellWeights(world, local, local.historyEntries(), {}, spec);
+        coupling::grainAndCellWeights(world, local, local.contactsStamped(kPass), {}, spec);
     domain::BlockWeight const withCells = coupling::grainAndCellWeights(
-        world, local, local.historyEntries(), {{4, 2, 2}, 0.25}, spec);
+        world, local, local.contactsStamped(kPass), {{4, 2, 2}, 0.25}, spec);
     double const perContact = coupling::BlockLoadModel::kContactWeight;
     // Every rank answers for every block, not only its own.
     for (int b = 0; b < 8; ++b) {
@@ -71,11 +74,11 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     direct.grainWeight = coupling::directGravityWeight(140.0, 1.0);
     EXPECT_DOUBLE_EQ(direct.grainWeight, 1.0 + 0.04 * 140.0);
     domain::BlockWeight const withGravity =
-        coupling::grainAndCellWeights(world, local, local.historyEntries(), direct, spec);
+        coupling::grainAndCellWeights(world, local, local.contactsStamped(kPass), direct, spec);
     EXPECT_DOUBLE_EQ(withGravity({Vec3(1, 0, 0), Vec3(2, 1, 1)}, 0),
                      1.0 + 10.0 * direct.grainWeight);
     coupling::LoadSpread const spread =
-        coupling::loadSpread(world, local, local.historyEntries(), {});
+        coupling::loadSpread(world, local, local.contactsStamped(kPass), {});
     double const total = 71.0 + 6 * 11.0 + 11.0 + perContact * 20.0;
     EXPECT_DOUBLE_EQ(spread.blockFloor, std::max(1.0, 71.0 / (total / world.size())));
     EXPECT_GE(spread.imbalance, spread.blockFloor);
@@ -95,7 +98,8 @@ TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
     particles::LocalParticles local(uniform);
     addAll(local, world, crowdedRow(200));
     domain::BlockForest const balanced(
-        world, spec, coupling::grainAndCellWeights(world, local, local.historyEntries(), {}, spec));
+        world, spec,
+        coupling::grainAndCellWeights(world, local, local.contactsStamped(kPass), {}, spec));
     // The load of a rank differs from the mean by less than the heaviest block (the curve
     // cut, domain/SfcPartition.hpp); the crowded block (201 of 278) is alone when P > 1.
     double const total = 201.0 + 7 * 11.0;

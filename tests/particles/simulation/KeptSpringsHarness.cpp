@@ -92,9 +92,16 @@ Outcome run(core::Comm const& comm, Scene const& scene, SyncConfig config, bool 
                                                       core::ReduceOp::Sum));
         }
         dem.step(DemStep::StepEnd::Open);
-        out.contactsOpen = sumOverRanks(comm, dem.contactsOfLastPass());
+        ContactCounts const open = dem.contactsOfLastPass();
         dem.completeStep(); // writes the springs back after an Open step
-        out.contactsComplete = sumOverRanks(comm, dem.contactsOfLastPass());
+        ContactCounts const complete = dem.contactsOfLastPass();
+        out.contactsOpen = sumOverRanks(comm, open);
+        out.contactsComplete = sumOverRanks(comm, complete);
+        long long differ = 0;
+        for (std::size_t b = 0; b < open.size(); ++b)
+            for (std::size_t i = 0; i < open[b].size(); ++i)
+                differ += open[b][i] != complete[b][i] ? 1 : 0;
+        out.countsDiffer = comm.allReduce(differ, core::ReduceOp::Sum);
     } catch (core::Error const& e) {
         out.error = e.what();
     }
@@ -169,6 +176,7 @@ void expectSameState(Outcome const& x, Outcome const& y, std::size_t grains) {
     for (Outcome const* o : {&x, &y}) { // the contacts counted alike before the write-back
         EXPECT_EQ(o->contactsOpen, static_cast<long long>(o->live.size()));
         EXPECT_EQ(o->contactsComplete, static_cast<long long>(o->live.size()));
+        EXPECT_EQ(o->countsDiffer, 0);
     }
     for (std::size_t k = 0; k < x.live.size(); ++k) {
         LiveEntry const& a = x.live[k];

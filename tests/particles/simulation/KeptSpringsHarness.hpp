@@ -32,8 +32,9 @@ struct Outcome {
     long long rebuilds = 0;
     long long shifts = 0; ///< lists shifted with the grains' drift instead of rebuilt
     /// DemStep::contactsOfLastPass summed over the masters after the last step, which ended
-    /// Open (the springs kept), and after completeStep (written back), over all ranks.
-    long long contactsOpen = 0, contactsComplete = 0;
+    /// Open (the springs kept), and after completeStep (written back), over all ranks; and the
+    /// masters whose two counts differ.
+    long long contactsOpen = 0, contactsComplete = 0, countsDiffer = 0;
     std::string error;
 };
 
