@@ -11,8 +11,9 @@
 /// grainWeight 1 plus the self-gravity work a grain's rank does for it when that is known
 /// (directGravityWeight), and the 1 spreads empty blocks evenly over the ranks. The contacts are
 /// given per copy (particles::ContactCounts: during a run those of the last force computation,
-/// DemStep::contactsOfLastPass; at a start those of the grains' histories). With equal counts in
-/// every block the weights are equal and the assignment is the uniform one.
+/// DemStep::contactsOfLastPass; at a start the history entries stamped at its step,
+/// LocalParticles::contactsStamped). With equal counts in every block the weights are equal and
+/// the assignment is the uniform one.
 #include "core/mpi/Comm.hpp"
 #include "domain/Block.hpp"
 #include "domain/ForestBuilder.hpp"

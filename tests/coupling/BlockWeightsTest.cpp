@@ -99,7 +99,7 @@ TEST(BlockWeights, CrowdedBlockGetsARankOfItsOwn) {
     addAll(local, world, crowdedRow(200));
     domain::BlockForest const balanced(
         world, spec,
-        coupling::grainAndCellWeights(world, local, local.contactsStamped(kPass), {}, spec));
+        coupling::grainAndCellWeights(world, local, local.contactsStamped(0), {}, spec));
     // The load of a rank differs from the mean by less than the heaviest block (the curve
     // cut, domain/SfcPartition.hpp); the crowded block (201 of 278) is alone when P > 1.
     double const total = 201.0 + 7 * 11.0;
