@@ -37,16 +37,21 @@ bool DynamicBalance::afterStep(std::int64_t stepsDone) {
     return moved;
 }
 
-coupling::LoadSpread DynamicBalance::measure() const {
+particles::ContactCounts DynamicBalance::lastContacts() const {
+    // One rank carries the mean load, and no block of it more: its spread is 1 and 1, uncounted.
+    return m_comm->size() == 1 ? particles::ContactCounts{} : m_hooks.contacts();
+}
+
+coupling::LoadSpread DynamicBalance::measure(particles::ContactCounts const& contacts) const {
     if (m_comm->size() == 1)
-        return {}; // one rank carries the mean load, and no block of it more: 1 and 1, uncounted
+        return {};
     particles::LocalParticles const& local = *m_placement->local;
-    return coupling::loadSpread(*m_comm, local, m_hooks.contacts(),
-                                loadModel(*m_comm, *m_scene, local));
+    return coupling::loadSpread(*m_comm, local, contacts, loadModel(*m_comm, *m_scene, local));
 }
 
 bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
-    coupling::LoadSpread const spread = measure();
+    particles::ContactCounts const contacts = lastContacts();
+    coupling::LoadSpread const spread = measure(contacts);
     m_last = spread.imbalance;
     m_steps.push_back(static_cast<double>(stepsDone));
     m_imbalances.push_back(m_last);
@@ -56,21 +61,23 @@ bool DynamicBalance::measureAndMove(std::int64_t stepsDone) {
         return false;
     }
     double const started = MPI_Wtime();
-    m_hooks.completeStep(); // the grains may move: with their state whole
+    // The grains may move: with their state whole. Completing the step moves no copy and
+    // leaves each master's contacts as counted (DemStep::contactsOfLastPass), so the counts stay.
+    m_hooks.completeStep();
     double const enough = m_last - 0.5 * (balance.threshold - 1.0); // the hysteresis
     std::size_t const blocks = m_placement->forest->globalBlockCount();
     double best = m_last; // the best cut's imbalance (this one's, if no other cut is found)
-    bool const moved = balanceByLoad(*m_comm, *m_scene, *m_placement, m_hooks.contacts(),
-                                     [enough, &best](double after) {
-                                         best = after;
-                                         return after <= enough;
-                                     });
+    bool const moved =
+        balanceByLoad(*m_comm, *m_scene, *m_placement, contacts, [enough, &best](double after) {
+            best = after;
+            return after <= enough;
+        });
     double floor = spread.blockFloor;
     if (moved) {
         m_hooks.relocate();
         ++m_rebalances;
         if (m_placement->forest->globalBlockCount() != blocks) // split: the new blocks' floor
-            floor = measure().blockFloor;
+            floor = measure(lastContacts()).blockFloor;
     }
     m_seconds += MPI_Wtime() - started; // a cut not worth moving to costs its search
     m_floor = std::max(m_floor, floor);
@@ -99,7 +106,7 @@ RunSummary::Balance DynamicBalance::finish() {
     out.splits =
         static_cast<long long>((m_placement->forest->globalBlockCount() - sceneBlocks) / 7);
     out.seconds = m_comm->allReduce(m_seconds, core::ReduceOp::Max);
-    coupling::LoadSpread const last = measure();
+    coupling::LoadSpread const last = measure(lastContacts());
     out.finalImbalance = last.imbalance;
     out.blockFloor = std::max(m_floor, last.blockFloor);
     // The time average: each measurement stands for the steps since the one before it (with

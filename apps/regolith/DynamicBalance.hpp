@@ -67,8 +67,10 @@ public:
     [[nodiscard]] RunSummary::Balance finish();
 
 private:
-    /// The spread of the ranks' loads now. COLLECTIVE.
-    [[nodiscard]] coupling::LoadSpread measure() const;
+    /// Each copy's contacts of the last step (RunHooks::contacts); none on one rank. Local.
+    [[nodiscard]] particles::ContactCounts lastContacts() const;
+    /// The spread of the ranks' loads now, with `contacts` (lastContacts). COLLECTIVE.
+    [[nodiscard]] coupling::LoadSpread measure(particles::ContactCounts const& contacts) const;
     bool measureAndMove(std::int64_t stepsDone);
 
     core::Comm const* m_comm;

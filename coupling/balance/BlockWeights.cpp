@@ -39,6 +39,7 @@ double loadImbalance(core::Comm const& comm, double load) {
 
 LoadSpread loadSpread(core::Comm const& comm, particles::LocalParticles const& local,
                       particles::ContactCounts const& contacts, BlockLoadModel const& model) {
+    local.requireCountsCover(contacts);
     std::array<double, 2> most{0.0, 0.0}; // this rank's load, its heaviest block
     for (std::size_t b = 0; b < local.blocks().size(); ++b)
         for (particles::LocalParticles::LeafLoad const& leaf : local.loadPerLeaf(b, contacts[b])) {

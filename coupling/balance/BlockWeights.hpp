@@ -74,6 +74,7 @@ template <class F>
 void forEachMasterInLeaf(particles::LocalParticles const& local,
                          particles::ContactCounts const& contacts,
                          domain::ForestBuilder const& builder, F&& f) {
+    local.requireCountsCover(contacts);
     auto const blocks = local.blocks();
     for (std::size_t b = 0; b < blocks.size(); ++b) {
         particles::ParticleStorage const& ps = blocks[b].particles;

@@ -97,6 +97,17 @@ LocalParticles::loadPerLeaf(std::size_t b, std::span<std::uint32_t const> contac
     return load;
 }
 
+void LocalParticles::requireCountsCover(ContactCounts const& counts) const {
+    bool covers = counts.size() == m_blocks.size();
+    for (std::size_t b = 0; covers && b < m_blocks.size(); ++b)
+        covers = counts[b].size() == m_blocks[b].particles.size();
+    if (!covers)
+        throw core::Error("contact counts: " + std::to_string(counts.size()) +
+                          " blocks' counts for " + std::to_string(m_blocks.size()) +
+                          " local blocks, or a block's count of copies differs: the counts were "
+                          "taken before the storages changed");
+}
+
 ContactCounts LocalParticles::contactsStamped(std::uint32_t stamp) const {
     ContactCounts counts(m_blocks.size());
     for (std::size_t b = 0; b < m_blocks.size(); ++b) {

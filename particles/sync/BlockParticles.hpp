@@ -73,6 +73,10 @@ public:
     /// the force computation of that number (a step's; a checkpoint's grains carry those of
     /// its last step). Entries of contacts broken since are not counted.
     [[nodiscard]] ContactCounts contactsStamped(std::uint32_t stamp) const;
+    /// Throws core::Error unless `counts` holds a number for every copy of every local block,
+    /// as the storages are now: counts taken before a synchronisation or a move changed them
+    /// would be read for other grains, or past their end.
+    void requireCountsCover(ContactCounts const& counts) const;
 
     /// Masters / all copies on this rank.
     [[nodiscard]] std::size_t countMasters() const;

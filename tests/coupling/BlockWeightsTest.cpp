@@ -82,6 +82,17 @@ TEST_P(BlockWeightsOn, GrainsContactsAndCellsPerBlockOnEveryRank) {
     double const total = 71.0 + 6 * 11.0 + 11.0 + perContact * 20.0;
     EXPECT_DOUBLE_EQ(spread.blockFloor, std::max(1.0, 71.0 / (total / world.size())));
     EXPECT_GE(spread.imbalance, spread.blockFloor);
+    // Counts that miss a copy, or name one more than a block holds, are refused, not read.
+    if (!local.blocks().empty()) {
+        particles::ContactCounts longer = local.contactsStamped(kPass);
+        longer.back().push_back(0);
+        EXPECT_THROW(local.requireCountsCover(longer), core::Error);
+        EXPECT_THROW(coupling::forEachMasterInLeaf(local, longer, domain::ForestBuilder(spec),
+                                                   [](auto&&...) {}),
+                     core::Error);
+        EXPECT_THROW(local.requireCountsCover({}), core::Error);
+    }
+    EXPECT_NO_THROW(local.requireCountsCover(local.contactsStamped(kPass)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Subdomains, BlockWeightsOn,
