@@ -303,6 +303,14 @@ private:
     Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                          std::size_t& ka, std::size_t& kb, core::AABB const& region,
                          PeriodicFrame const& frame, double rounding) const;
+    /// settleListed, and for a pair it answers Always for, staysInBlock and settledMode: the
+    /// pair's mode (a PairMode as int, or VerletList::kDrop), and whether it stays in the
+    /// block (it leads the list): the one rule by which the listing (classifyListed) and a
+    /// shift (shiftList) settle a pair.
+    [[nodiscard]] VerletList::Decision
+    settlePair(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
+               std::size_t& ka, std::size_t& kb, core::AABB const& region,
+               PeriodicFrame const& frame, double rounding) const;
     /// Writes a kept spring back to the history of copy i, for partner `partner` (whose entry
     /// fillKeptSprings found in slot `hint`).
     void writeBackSpring(ParticleStorage& particles, std::size_t i, Uid partner,

@@ -149,21 +149,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
         if (listed && was == PairMode::Check)
             return static_cast<int>(PairMode::Check); // the rule per step holds in any frame
         std::size_t ka = 0, kb = 0;
-        int mode = static_cast<int>(PairMode::Check);
-        switch (settleListed(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding)) {
-        case Listing::Drop:
-            mode = VerletList::kDrop;
-            break;
-        case Listing::Always:
-            mode = static_cast<int>(
-                settledMode(ps, ka, kb, a, b,
-                            m_config.keepSprings &&
-                                staysInBlock(ps, ka, kb, a, b, m_listRegion, m_listFrame, rounding),
-                            rounding));
-            break;
-        case Listing::Check:
-            break;
-        }
+        int const mode = settlePair(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding).mode;
         // A spring beside the list goes back to the history, or comes from it, where the
         // pair's mode changes (the canonical i's history: settleListed ordered ka, kb).
         bool const had = listed && keepsSpring(was);

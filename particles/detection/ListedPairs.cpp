@@ -53,6 +53,23 @@ double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, s
     return ownershipReach(ri, rj, m_listSkin, rounding + 1e-12 * (ri + rj + m_listSkin));
 }
 
+VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, VerletList::Id& a,
+                                                 VerletList::Id& b, std::size_t& ka,
+                                                 std::size_t& kb, core::AABB const& region,
+                                                 PeriodicFrame const& frame,
+                                                 double rounding) const {
+    switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
+    case Listing::Drop:
+        return {VerletList::kDrop, false};
+    case Listing::Check:
+        return {static_cast<int>(PairMode::Check), false};
+    case Listing::Always:
+        break;
+    }
+    bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
+    return {static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
+}
+
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
                                      PeriodicFrame const& frame, std::size_t first) {
     // 4 x the candidate slack (64 ulps of the coordinate scale) covers the rounding of the
@@ -61,18 +78,7 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = 0, kb = 0;
-        switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
-        case Listing::Drop:
-            return VerletList::Decision{VerletList::kDrop, false};
-        case Listing::Always: {
-            bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
-            return VerletList::Decision{
-                static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
-        }
-        case Listing::Check:
-            break;
-        }
-        return VerletList::Decision{static_cast<int>(PairMode::Check), false};
+        return settlePair(ps, a, b, ka, kb, region, frame, rounding);
     });
 }
 
