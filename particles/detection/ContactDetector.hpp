@@ -288,10 +288,6 @@ private:
     [[nodiscard]] PairMode settledMode(ParticleStorage const& particles, std::size_t ka,
                                        std::size_t kb, VerletList::Id a, VerletList::Id b,
                                        bool stays, double rounding) const;
-    /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
-    /// order, with their storage indices ka, kb) while the list holds: never emits it, must
-    /// decide every step, or emits it whenever the two overlap.
-    enum class Listing : std::uint8_t { Drop, Check, Always };
     /// Looks up the storage indices ka, kb of the listed ids a, b and puts both in canonical
     /// order (uid(ka) <= uid(kb)).
     void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
@@ -300,13 +296,12 @@ private:
     /// rounding widened by the pair's scale).
     [[nodiscard]] double listedReach(ParticleStorage const& particles, std::size_t ka,
                                      std::size_t kb, double rounding) const;
-    Listing settleListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
-                         std::size_t& ka, std::size_t& kb, core::AABB const& region,
-                         PeriodicFrame const& frame, double rounding) const;
-    /// settleListed, and for a pair it answers Always for, staysInBlock and settledMode: the
-    /// pair's mode (a PairMode as int, or VerletList::kDrop), and whether it stays in the
-    /// block (it leads the list): the one rule by which the listing (classifyListed) and a
-    /// shift (shiftList) settle a pair.
+    /// How the contact-point rule stands for the listed pair of ids a, b (put in canonical
+    /// order, with their storage indices ka, kb) while the list holds: never emits it
+    /// (VerletList::kDrop), must decide every step (PairMode::Check), or emits it whenever the
+    /// two overlap (staysInBlock and settledMode: the mode, and whether it stays in the block,
+    /// which leads the list). The one rule by which the listing (classifyListed) and a shift
+    /// (shiftList) settle a pair.
     [[nodiscard]] VerletList::Decision
     settlePair(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
                std::size_t& ka, std::size_t& kb, core::AABB const& region,

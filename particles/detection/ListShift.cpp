@@ -121,7 +121,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     ++m_shifts;
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack(); // classifyListed's
     // Both copies of a settled pair deeper inside the block than its ownership reach and the
-    // list's motion (with the rounding): settleListed answers Always for it, and settledMode
+    // list's motion (with the rounding): settlePair emits it whenever it overlaps, and settledMode
     // as before, whose other conditions do not depend on where the pair lies. Measured once
     // per rebuild, at the first shift, as a margin against the drift.
     if (m_margin.empty()) {
@@ -151,7 +151,7 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
         std::size_t ka = 0, kb = 0;
         int const mode = settlePair(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding).mode;
         // A spring beside the list goes back to the history, or comes from it, where the
-        // pair's mode changes (the canonical i's history: settleListed ordered ka, kb).
+        // pair's mode changes (the canonical i's history: settlePair ordered ka, kb).
         bool const had = listed && keepsSpring(was);
         bool const has = mode != VerletList::kDrop && keepsSpring(static_cast<PairMode>(mode));
         if (m_springsLive && had && !has)

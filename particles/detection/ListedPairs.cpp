@@ -18,35 +18,6 @@ void ContactDetector::orderListed(ParticleStorage const& ps, VerletList::Id& a, 
     }
 }
 
-ContactDetector::Listing ContactDetector::settleListed(ParticleStorage const& ps, VerletList::Id& a,
-                                                       VerletList::Id& b, std::size_t& ka,
-                                                       std::size_t& kb, core::AABB const& region,
-                                                       PeriodicFrame const& frame,
-                                                       double rounding) const {
-    orderListed(ps, a, b, ka, kb);
-    if (ps.uid(ka) == ps.uid(kb))
-        return Listing::Drop; // a grain and its own periodic image: never a contact
-    if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
-        return Listing::Check; // rare: the rule skips them
-    double const reach = listedReach(ps, ka, kb, rounding);
-    // Both reference centres deeper than the reach (with the rounding once more): so is their
-    // midpoint, and settleOwnership answers Always.
-    if (m_depths.deeperThan(m_list, ps, a, b, reach + rounding))
-        return Listing::Always;
-    core::Vec3 const period = frame.period();
-    core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
-                                  localPosition(m_list.reference(b), ps.image(kb), period));
-    switch (settleOwnership(mid, reach, region, frame)) {
-    case Settled::Never:
-        return Listing::Drop;
-    case Settled::Always:
-        return Listing::Always;
-    case Settled::Open:
-        break;
-    }
-    return Listing::Check;
-}
-
 double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, std::size_t kb,
                                     double rounding) const {
     double const ri = ps.radius(ka), rj = ps.radius(kb);
@@ -58,16 +29,35 @@ VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, Verl
                                                  std::size_t& kb, core::AABB const& region,
                                                  PeriodicFrame const& frame,
                                                  double rounding) const {
-    switch (settleListed(ps, a, b, ka, kb, region, frame, rounding)) {
-    case Listing::Drop:
-        return {VerletList::kDrop, false};
-    case Listing::Check:
-        return {static_cast<int>(PairMode::Check), false};
-    case Listing::Always:
+    constexpr VerletList::Decision drop{VerletList::kDrop, false};
+    constexpr VerletList::Decision check{static_cast<int>(PairMode::Check), false};
+    // Emitted whenever the two overlap: whether it stays in the block, and its mode.
+    auto const always = [&]() -> VerletList::Decision {
+        bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
+        return {static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
+    };
+    orderListed(ps, a, b, ka, kb);
+    if (ps.uid(ka) == ps.uid(kb))
+        return drop; // a grain and its own periodic image: never a contact
+    if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
+        return check; // rare: the rule skips them
+    double const reach = listedReach(ps, ka, kb, rounding);
+    // Both reference centres deeper than the reach (with the rounding once more): so is their
+    // midpoint, and settleOwnership answers Always.
+    if (m_depths.deeperThan(m_list, ps, a, b, reach + rounding))
+        return always();
+    core::Vec3 const period = frame.period();
+    core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
+                                  localPosition(m_list.reference(b), ps.image(kb), period));
+    switch (settleOwnership(mid, reach, region, frame)) {
+    case Settled::Never:
+        return drop;
+    case Settled::Always:
+        return always();
+    case Settled::Open:
         break;
     }
-    bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
-    return {static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
+    return check;
 }
 
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,

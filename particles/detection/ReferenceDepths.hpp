@@ -1,7 +1,7 @@
 #pragma once
 /// How deep each copy of a Verlet list stood inside the box where the contact-point rule emits
 /// (emittingBox), measured once per rebuild and id: a pair of two copies deeper than its
-/// ownership reach is settled without its midpoint (ContactDetector's settleListed), and one
+/// ownership reach is settled without its midpoint (ContactDetector's settlePair), and one
 /// deeper than the list's motion keeps its spring (settledMode). The list's shifts since the
 /// rebuild count against every depth (docs/sync.md, "A list follows a drift").
 #include "core/math/AABB.hpp"
