@@ -93,6 +93,21 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                     }
                     onPair(o, hints[p]);
                 };
+                // A block of Kept pairs only (most blocks of a packing's list, whose kept
+                // pairs lead it) is handed on without a mode test per overlapping pair: that
+                // test's dependent loads sat on the hand-over's path.
+                if constexpr (TakesKeptSprings<OnPair>) {
+                    bool kept = springsLive;
+                    for (std::size_t k = 0; k < n; ++k)
+                        kept &= modes[at[k]] == PairMode::Kept;
+                    if (kept) {
+                        overlaps += screen.test(
+                            ps, period, a, b, n,
+                            [&](std::size_t k, PairOverlap const& o)
+                                __attribute__((always_inline)) { onPair(o, springs[at[k]]); });
+                        return;
+                    }
+                }
                 if (!pressedListed) {
                     overlaps += screen.test(ps, period, a, b, n, handOn);
                     return;
