@@ -96,9 +96,7 @@ core::Vec3 ForestGeometry::shift(PeriodicImage const& image) const {
     return s;
 }
 
-std::pair<int, double> ForestGeometry::wrapAxis(int axis, double x) const {
-    double const lo = m_domain.min[axis];
-    double const hi = m_domain.max[axis];
+std::pair<int, double> wrapOnAxis(double lo, double hi, double x) {
     if (x >= lo && x < hi)
         return {0, x};
     double const extent = hi - lo;

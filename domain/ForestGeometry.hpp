@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <utility>
 
 namespace regolith::domain {
 
@@ -46,6 +47,13 @@ struct LatticeBox {
     }
     friend bool operator==(LatticeBox const&, LatticeBox const&) = default;
 };
+
+/// The image o and the wrapped value w of coordinate x on a periodic axis spanning [lo, hi):
+/// o decided against the boundaries lo + o (hi - lo) that shifted boxes use, w = x - o (hi -
+/// lo) clamped into [lo, hi). Image 0 and x itself where lo <= x < hi. Pre: x finite. The one
+/// rule for the periodic image of a point (ForestGeometry::locate and wrap, and contact
+/// detection's PeriodicFrame).
+[[nodiscard]] std::pair<int, double> wrapOnAxis(double lo, double hi, double x);
 
 /// Lattice and coordinate maps of one forest. The lattice has rootBlocks[a] * 2^maxLevel cells
 /// on axis a; root block (i, j, k) covers cells [i, i+1) * 2^maxLevel etc.; the root index is
@@ -100,8 +108,10 @@ public:
     [[nodiscard]] std::optional<Location> locate(core::Vec3 const& p) const;
 
 private:
-    /// Image index and wrapped value of x on a periodic axis. Pre: x finite.
-    [[nodiscard]] std::pair<int, double> wrapAxis(int axis, double x) const;
+    /// wrapOnAxis on axis `axis` of the domain. Pre: x finite.
+    [[nodiscard]] std::pair<int, double> wrapAxis(int axis, double x) const {
+        return wrapOnAxis(m_domain.min[axis], m_domain.max[axis], x);
+    }
     /// The cell i with coordinate(i) <= x < coordinate(i + 1). Pre: min <= x < max.
     [[nodiscard]] LatticeIndex cellOnAxis(int axis, double x) const;
 

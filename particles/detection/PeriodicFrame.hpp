@@ -40,9 +40,9 @@ struct PeriodicFrame {
 
     /// (w, o) with w in [min, max) on every periodic axis (p unchanged on the others) and
     /// p ~ w + o * extent, o = 0 on non-periodic axes. The image is decided against the
-    /// boundaries min + o * extent and w is clamped so it never equals max: exactly
-    /// domain::ForestGeometry::locate / wrap, which this calls (one implementation). Points
-    /// already inside the domain on every periodic axis are returned as they are, image 0
+    /// boundaries min + o * extent and w is clamped so it never equals max: domain::wrapOnAxis
+    /// on each periodic axis, the rule of ForestGeometry::locate / wrap (one implementation).
+    /// Points already inside the domain on every periodic axis are returned as they are, image 0
     /// (as ForestGeometry does). Throws core::Error if p is not finite on a periodic axis or
     /// the image lies beyond +-kMaxImage periods.
     [[nodiscard]] std::pair<core::Vec3, CopyImage> wrap(core::Vec3 const& p) const {
