@@ -95,7 +95,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                 };
                 // A block of Kept pairs only (most blocks of a packing's list, whose kept
                 // pairs lead it) is handed on without a mode test per overlapping pair: that
-                // test's dependent loads sat on the hand-over's path.
+                // test's dependent loads sat on the hand-over's path. Its pairs join two
+                // masters at image zero (staysInBlock), so the screen skips their images.
                 if constexpr (TakesKeptSprings<OnPair>) {
                     bool kept = springsLive;
                     for (std::size_t k = 0; k < n; ++k)
@@ -104,7 +105,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                         overlaps += screen.test(
                             ps, period, a, b, n,
                             [&](std::size_t k, PairOverlap const& o)
-                                __attribute__((always_inline)) { onPair(o, springs[at[k]]); });
+                                __attribute__((always_inline)) { onPair(o, springs[at[k]]); },
+                            true);
                         return;
                     }
                 }

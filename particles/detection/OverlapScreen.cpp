@@ -7,7 +7,8 @@
 namespace regolith::particles {
 
 std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& period,
-                                 std::uint32_t const* is, std::uint32_t const* js, std::size_t n) {
+                                 std::uint32_t const* is, std::uint32_t const* js, std::size_t n,
+                                 bool oneImage) {
     // Gather: centres four pairs at a time (transposed in registers), then the images (as
     // PairRule's imageDifference: the int8 difference) and the reach pair by pair.
     double const* const x = ps.positions().data()->data();
@@ -26,7 +27,15 @@ std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& pe
         m_yj[k] = xj.y();
         m_zj[k] = xj.z();
     }
-    for (std::size_t k = 0; k < n; ++k) {
+    double const* const radius = ps.radii().data();
+    // One image: the +0.0 that the image difference 0 times the period gives.
+    for (std::size_t k = 0; oneImage && k < n; ++k) {
+        m_sx[k] = 0.0;
+        m_sy[k] = 0.0;
+        m_sz[k] = 0.0;
+        m_reach[k] = radius[is[k]] + radius[js[k]];
+    }
+    for (std::size_t k = 0; !oneImage && k < n; ++k) {
         std::size_t const i = is[k], j = js[k];
         CopyImage const& ki = ps.image(i);
         CopyImage const& kj = ps.image(j);
@@ -34,7 +43,7 @@ std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& pe
         m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
         m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();
         m_sz[k] = static_cast<std::int8_t>(kj[2] - ki[2]) * period.z();
-        m_reach[k] = ps.radius(i) + ps.radius(j);
+        m_reach[k] = radius[i] + radius[j];
     }
     // separation (d = (x_j + shiftJ) - x_i, |d|^2 summed as Eigen's squaredNorm) and the
     // overlap decision with the correctly rounded root, branch-free: the loop vectorises.

@@ -31,12 +31,13 @@ public:
 
     /// Tests the pairs (i[k], j[k]), k < n <= kCapacity (storage indices, canonical order),
     /// and calls onHit(k, PairOverlap) for each overlapping one, in order. Returns how many
-    /// overlapped.
+    /// overlapped. `oneImage`: the caller knows that the two copies of every pair are in the
+    /// same periodic image (their shiftJ is zero; the images are not read).
     template <class OnHit>
     std::size_t test(ParticleStorage const& ps, core::Vec3 const& period, std::uint32_t const* i,
-                     std::uint32_t const* j, std::size_t n, OnHit&& onHit) {
+                     std::uint32_t const* j, std::size_t n, OnHit&& onHit, bool oneImage = false) {
         assert(n <= kCapacity);
-        std::size_t const hits = lanes(ps, period, i, j, n);
+        std::size_t const hits = lanes(ps, period, i, j, n, oneImage);
         for (std::size_t h = 0; h < hits; ++h) {
             std::size_t const k = m_hit[h];
             onHit(k, PairOverlap{i[k], j[k], core::Vec3(m_sx[k], m_sy[k], m_sz[k])});
@@ -48,7 +49,7 @@ private:
     /// Fills the shifts of the pairs and lists the overlapping ones in m_hit, ascending;
     /// returns how many there are.
     std::size_t lanes(ParticleStorage const& ps, core::Vec3 const& period, std::uint32_t const* i,
-                      std::uint32_t const* j, std::size_t n);
+                      std::uint32_t const* j, std::size_t n, bool oneImage);
 
     using Lane = std::array<double, kCapacity>;
     alignas(64) Lane m_xi, m_yi, m_zi, m_xj, m_yj, m_zj, m_reach;

@@ -32,11 +32,11 @@ bool sameBits(core::Vec3 const& a, core::Vec3 const& b) {
 }
 
 /// Copies in a periodic box of period 10: pairs at random distances, many a few ulps from
-/// touching, with images -1..1 on each axis.
-ParticleStorage copies(std::size_t n, std::uint32_t seed) {
+/// touching, with images -maxImage..maxImage on each axis.
+ParticleStorage copies(std::size_t n, std::uint32_t seed, int maxImage = 1) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::uniform_int_distribution<int> image(-1, 1);
+    std::uniform_int_distribution<int> image(-maxImage, maxImage);
     ParticleStorage ps;
     for (std::size_t k = 0; k < n; ++k) {
         ParticleInit p;
@@ -84,23 +84,27 @@ std::vector<std::pair<std::size_t, std::size_t>> pairsOf(ParticleStorage& ps,
     return pairs;
 }
 
-TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
-    core::Vec3 const period(10.0, 10.0, 10.0);
-    ParticleStorage ps = copies(4000, 9);
-    auto const pairs = pairsOf(ps, period);
-
-    std::vector<Handed> expected;
+/// What the scalar test of PairRule.hpp finds among `pairs`, in order.
+std::vector<Handed> scalarOverlaps(ParticleStorage const& ps, core::Vec3 const& period,
+                                   std::vector<std::pair<std::size_t, std::size_t>> const& pairs) {
+    std::vector<Handed> out;
     for (std::size_t p = 0; p < pairs.size(); ++p) {
         auto const [i, j] = pairs[p];
         auto const s = detection_detail::separation(ps, i, j, period);
         if (detection_detail::overlapping(s))
-            expected.push_back({i, j, s.shiftJ, p});
+            out.push_back({i, j, s.shiftJ, p});
     }
+    return out;
+}
 
-    // Blocks as the list hands them over: mostly full, now and then a short one.
+/// What the screen hands on, in blocks as the list hands them over: mostly full, now and then
+/// a short one. `counted`: the sum of the blocks' counts.
+std::vector<Handed> screened(ParticleStorage const& ps, core::Vec3 const& period,
+                             std::vector<std::pair<std::size_t, std::size_t>> const& pairs,
+                             bool oneImage, std::size_t& counted) {
     std::vector<Handed> got;
     OverlapScreen screen;
-    std::size_t counted = 0;
+    counted = 0;
     std::vector<std::uint32_t> is, js;
     for (std::size_t first = 0; first < pairs.size();) {
         std::size_t const n = std::min<std::size_t>(first % 7 == 3 ? 17 : OverlapScreen::kCapacity,
@@ -111,26 +115,59 @@ TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
             is.push_back(static_cast<std::uint32_t>(pairs[first + k].first));
             js.push_back(static_cast<std::uint32_t>(pairs[first + k].second));
         }
-        counted += screen.test(ps, period, is.data(), js.data(), n,
-                               [&](std::size_t k, PairOverlap const& o) {
-                                   got.push_back({o.i, o.j, o.shiftJ, first + k});
-                               });
+        counted += screen.test(
+            ps, period, is.data(), js.data(), n,
+            [&](std::size_t k, PairOverlap const& o) {
+                got.push_back({o.i, o.j, o.shiftJ, first + k});
+            },
+            oneImage);
         first += n;
     }
+    return got;
+}
 
-    ASSERT_EQ(got.size(), expected.size());
-    EXPECT_EQ(counted, expected.size());
+/// Whether `got` and `expected` hold the same pairs, places and shift bits; returns how many
+/// of them are the near-contact pairs (i, i + 1).
+std::size_t expectSame(std::vector<Handed> const& got, std::vector<Handed> const& expected) {
+    EXPECT_EQ(got.size(), expected.size());
     std::size_t borderline = 0;
-    for (std::size_t k = 0; k < got.size(); ++k) {
+    for (std::size_t k = 0; k < std::min(got.size(), expected.size()); ++k) {
         EXPECT_EQ(got[k].i, expected[k].i) << k;
         EXPECT_EQ(got[k].j, expected[k].j) << k;
         EXPECT_EQ(got[k].at, expected[k].at) << k;
         EXPECT_TRUE(sameBits(got[k].shift, expected[k].shift)) << k;
         borderline += got[k].j == got[k].i + 1 ? 1 : 0;
     }
+    return borderline;
+}
+
+TEST(OverlapScreen, HandsOnWhatTheScalarTestFindsInOrderWithTheSameShifts) {
+    core::Vec3 const period(10.0, 10.0, 10.0);
+    ParticleStorage ps = copies(4000, 9);
+    auto const pairs = pairsOf(ps, period);
+    std::vector<Handed> const expected = scalarOverlaps(ps, period, pairs);
+    std::size_t counted = 0;
+    std::vector<Handed> const got = screened(ps, period, pairs, false, counted);
+    EXPECT_EQ(counted, expected.size());
     // Both regimes were exercised: near-contact pairs decided by ulps, and deep runs.
-    EXPECT_GT(borderline, 500U);
+    EXPECT_GT(expectSame(got, expected), 500U);
     EXPECT_LT(expected.size(), pairs.size() * 3 / 4);
+    EXPECT_GT(expected.size(), pairs.size() / 3);
+}
+
+TEST(OverlapScreen, PairsInOneImageScreenedWithoutTheirImagesAsWithThem) {
+    // Every copy in image zero (the Kept pairs' case): told so, the screen skips the images and
+    // hands on the same pairs with the same zero shifts, +0.0 on every axis.
+    core::Vec3 const period(10.0, 10.0, 10.0);
+    ParticleStorage ps = copies(4000, 5, 0);
+    auto const pairs = pairsOf(ps, period);
+    std::vector<Handed> const expected = scalarOverlaps(ps, period, pairs);
+    std::size_t counted = 0;
+    std::vector<Handed> const got = screened(ps, period, pairs, true, counted);
+    EXPECT_EQ(counted, expected.size());
+    EXPECT_GT(expectSame(got, expected), 500U);
+    for (Handed const& h : got)
+        EXPECT_TRUE(sameBits(h.shift, core::Vec3::Zero()));
     EXPECT_GT(expected.size(), pairs.size() / 3);
 }
 
