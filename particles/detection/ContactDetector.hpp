@@ -283,6 +283,12 @@ private:
                                     std::size_t kb, VerletList::Id a, VerletList::Id b,
                                     core::AABB const& region, PeriodicFrame const& frame,
                                     double rounding) const;
+    /// Per id of a rebuild (its storage index): a master at image zero, not fixed, deeper inside
+    /// the block than any listed pair's ownership reach and the list's motion, so that every
+    /// pair of two such copies stays in the block (classifyListed's shortcut of settlePair).
+    [[nodiscard]] std::vector<std::uint8_t> deepMasters(ParticleStorage const& particles,
+                                                        PeriodicFrame const& frame,
+                                                        double rounding) const;
     /// The mode of that pair, `stays` staysInBlock's answer: Owned, or Kept or KeptPressed if
     /// it keeps its spring beside the list.
     [[nodiscard]] PairMode settledMode(ParticleStorage const& particles, std::size_t ka,

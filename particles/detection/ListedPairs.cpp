@@ -4,7 +4,11 @@
 /// KeptSprings.cpp).
 #include "particles/detection/ContactDetector.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
+#include <vector>
 
 namespace regolith::particles {
 
@@ -60,14 +64,55 @@ VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, Verl
     return check;
 }
 
+std::vector<std::uint8_t> ContactDetector::deepMasters(ParticleStorage const& ps,
+                                                       PeriodicFrame const& frame,
+                                                       double rounding) const {
+    // The rebuild's ids are its storage indices. The radii bound every listed pair's reach.
+    std::size_t const n = m_list.builtSize();
+    double rMin = std::numeric_limits<double>::infinity(), rMax = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        rMin = std::min(rMin, ps.radius(k));
+        rMax = std::max(rMax, ps.radius(k));
+    }
+    std::vector<std::uint8_t> deep(n, 0);
+    if (n == 0 || !std::isfinite(rMax) || !oneImageInstance(2.0 * rMax, frame, rounding))
+        return deep;
+    // listedReach's terms at their largest, then the depths settlePair and staysInBlock ask
+    // for; a relative 1e-9 more covers the sums' rounding (a pair near the bound goes the long
+    // way, with the same answer).
+    double const reach =
+        0.5 * m_listSkin + 0.5 * (rMax - rMin) + rounding + 1e-12 * (2.0 * rMax + m_listSkin);
+    double const depth = std::max(reach, listMotion(rounding)) + rounding;
+    double const bound = depth * (1.0 + 1e-9);
+    for (std::size_t k = 0; k < n; ++k) {
+        auto const id = static_cast<VerletList::Id>(k);
+        deep[k] = ps.flags(k).isMaster() && !ps.flags(k).isFixed() && isZero(ps.image(k)) &&
+                  m_depths.of(m_list, ps, id) > bound;
+    }
+    return deep;
+}
+
 void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const& region,
                                      PeriodicFrame const& frame, std::size_t first) {
     // 4 x the candidate slack (64 ulps of the coordinate scale) covers the rounding of the
     // midpoint, the ownership point and the wrap, which are a few ulps of the same numbers.
     // The list's reference positions are floats: the midpoint is off by at most their slack.
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack();
+    // At a rebuild most pairs join two masters at image zero deeper inside the block than
+    // any pair's ownership reach and the list's motion: settlePair would answer "stays, and
+    // keeps its spring" for them after reading both copies' flags, images and depths per
+    // pair. Those copies are found once; their pairs only need the canonical order and
+    // settledMode's pressed test.
+    std::vector<std::uint8_t> const deep = first == 0 && m_depths.shifted() == 0.0
+                                               ? deepMasters(ps, frame, rounding)
+                                               : std::vector<std::uint8_t>{};
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
         std::size_t ka = 0, kb = 0;
+        if (a < deep.size() && b < deep.size() && (deep[a] & deep[b]) != 0) {
+            orderListed(ps, a, b, ka, kb);
+            return VerletList::Decision{
+                static_cast<int>(settledMode(ps, ka, kb, a, b, true, rounding)), true};
+        }
         return settlePair(ps, a, b, ka, kb, region, frame, rounding);
     });
 }
