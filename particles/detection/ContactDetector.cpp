@@ -310,7 +310,14 @@ void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
         return;
     // A local view: its size is not reloaded after every push_back below.
     std::span<Wall const> const all(walls.begin(), walls.end());
-    for (Index k = 0, n = ps.size(); k < n; ++k) {
+    std::size_t const n = ps.size();
+    // The copies a plane might touch, screened without a branch per copy (most copies of a
+    // scene touch no wall); the exact test below decides, copy by copy in storage order.
+    m_nearWall.assign(n, 0);
+    screenPlaneWalls(ps, all, m_nearWall);
+    for (Index k = 0; k < n; ++k) {
+        if (m_nearWall[k] == 0)
+            continue;
         Flags const flags = ps.flags(k);
         if (flags.isFixed())
             continue; // a fixed grain takes no force, and a wall none either
@@ -327,6 +334,32 @@ void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
             ++m_stats.overlapsFound;
             core::Vec3 const p = x - (r - 0.5 * delta) * touch.normal;
             out.walls.push_back(WallContact{k, w, p, touch.normal, delta});
+        }
+    }
+}
+
+void ContactDetector::screenPlaneWalls(ParticleStorage const& ps, std::span<Wall const> walls,
+                                       std::vector<std::uint8_t>& near) {
+    std::size_t const n = ps.size();
+    double const* const x = ps.positions().data()->data();
+    double const* const radius = ps.radii().data();
+    std::uint8_t* const mark = near.data();
+    for (Wall const& w : walls) {
+        if (w.geometry.shape != WallShape::Plane) {
+            std::fill(near.begin(), near.end(), std::uint8_t{1}); // tested one by one
+            return;
+        }
+        // WallGeometry::distance's operations, widened by a relative 1e-9 of the coordinates
+        // (its rounding, contracted or not, lies far below it): never narrower than the test.
+        core::Vec3 const p = w.geometry.point, u = w.geometry.normal;
+        double const scale = 1e-9 * (1.0 + p.cwiseAbs().maxCoeff());
+        for (std::size_t k = 0; k < n; ++k) {
+            double const d = (x[3 * k] - p.x()) * u.x() + (x[3 * k + 1] - p.y()) * u.y() +
+                             (x[3 * k + 2] - p.z()) * u.z();
+            double const slack = scale + 1e-9 * (std::abs(x[3 * k]) + std::abs(x[3 * k + 1]) +
+                                                 std::abs(x[3 * k + 2]));
+            // Not finite: marked, and the exact test drops it as before.
+            mark[k] |= !(d >= radius[k] + slack) ? 1 : 0;
         }
     }
 }

@@ -363,12 +363,17 @@ private:
     bool addArrivals(ParticleStorage const& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
     void wallPass(ParticleStorage const& particles, WallList const& walls, ContactList& out);
+    /// Marks in `near` (one byte per copy, zeroed) every copy a plane of `walls` may touch
+    /// (any copy if a wall is not a plane): wallPass's screen.
+    static void screenPlaneWalls(ParticleStorage const& particles, std::span<Wall const> walls,
+                                 std::vector<std::uint8_t>& near);
     void sortByUid(ParticleStorage const& particles, ContactList& out) const;
 
     DetectorConfig m_config;
     DetectorStats m_stats;
     LinkedCells m_cells;
     std::vector<std::uint32_t> m_small; ///< while binning: 4 bytes per copy (nearly every one)
+    std::vector<std::uint8_t> m_nearWall; ///< wallPass: the copies a wall may touch
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
     VerletList m_list;

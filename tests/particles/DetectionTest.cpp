@@ -397,3 +397,51 @@ TEST(Detection, EachContactIsKeptByExactlyOneOfAdjacentBoxes) {
         swallowed += c.owner != c.contact.point ? 1 : 0;
     EXPECT_GT(swallowed, 0U) << "the set exercises the swallowed-centre rule";
 }
+
+TEST(Detection, WallContactsAtTouchingDistanceAreThoseOfTheExactTest) {
+    // Grains a few ulps either side of touching oblique planes far from the origin (where the
+    // distance's rounding is largest), and then with a cylinder among the walls: the
+    // detector's screen of the planes must keep every contact the exact test finds.
+    WallList planes;
+    planes.add(Vec3(1000.0, -2000.0, 3000.0), Vec3(1.0, 2.0, -3.0));
+    planes.add(Vec3(1100.5, -1999.5, 3000.25), Vec3(-0.3, 0.1, 0.7));
+    WallList withCylinder = planes;
+    Wall drum;
+    drum.geometry.shape = WallShape::Cylinder;
+    drum.geometry.point = Vec3(1000.0, -2000.0, 3000.0);
+    drum.geometry.normal = Vec3::UnitZ();
+    drum.geometry.radius = 3.0;
+    drum.motion.centre = drum.geometry.point;
+    withCylinder.add(drum);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    ParticleStorage ps;
+    Uid uid = 0;
+    for (std::size_t w = 0; w < planes.size(); ++w) {
+        WallGeometry const& g = planes[w].geometry;
+        for (int k = 0; k < 400; ++k) {
+            double const r = 0.1 + 0.05 * (u(rng) + 1.0);
+            // A point of the plane, then r along the normal, nudged by up to 8 ulps of r.
+            Vec3 foot = g.point + 2.0 * Vec3(u(rng), u(rng), u(rng));
+            foot -= (foot - g.point).dot(g.normal) * g.normal;
+            double along = r;
+            for (int s = static_cast<int>(8.0 * u(rng)); s != 0; s += s > 0 ? -1 : 1)
+                along = std::nextafter(along, s > 0 ? 2.0 * r : 0.0);
+            ps.add(sphere(uid++, foot + along * g.normal, r, 1.0));
+        }
+    }
+    for (WallList const* walls : {&planes, &withCylinder}) {
+        ContactDetector detector;
+        ContactList found;
+        detector.detect(ps, *walls, everywhere(), found);
+        std::map<std::pair<Uid, std::size_t>, int> exact, seen;
+        for (std::size_t k = 0; k < ps.size(); ++k)
+            for (std::size_t w = 0; w < walls->size(); ++w)
+                if (ps.radius(k) - (*walls)[w].distance(ps.position(k)) > 0.0)
+                    exact[{ps.uid(k), w}] = 1;
+        for (WallContact const& c : found.walls)
+            seen[{ps.uid(c.particle), c.wall}] += 1;
+        EXPECT_EQ(seen, exact);
+        EXPECT_GT(exact.size(), 200U); // about half the grains press on their plane
+    }
+}
