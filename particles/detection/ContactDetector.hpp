@@ -16,7 +16,6 @@
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -372,7 +371,7 @@ private:
     DetectorConfig m_config;
     DetectorStats m_stats;
     LinkedCells m_cells;
-    std::vector<std::uint32_t> m_small; ///< while binning: 4 bytes per copy (nearly every one)
+    std::vector<std::uint32_t> m_small;   ///< while binning: 4 bytes per copy (nearly every one)
     std::vector<std::uint8_t> m_nearWall; ///< wallPass: the copies a wall may touch
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
@@ -406,9 +405,7 @@ private:
     };
     std::vector<CarriedSpring> m_carried;      ///< by canonical i (carrySprings)
     std::vector<std::uint32_t> m_carriedStart; ///< per copy + 1: where its carried springs start
-    std::vector<std::uint32_t> m_keptStart;    ///< the same for the new list's kept pairs
-    std::vector<std::array<std::uint32_t, 2>> m_keptByI; ///< those pairs: partner, list position
-    std::vector<std::uint32_t> m_carryCursor;            ///< the counting sorts' cursors
+    std::vector<std::uint32_t> m_carryCursor;  ///< the counting sort's cursors
     std::size_t m_fillFrom = 0; ///< the first pair whose kept spring the next pass fills
     std::uint32_t m_pass = 0;   ///< the pass of the last detect that kept springs
 };

@@ -1,9 +1,9 @@
 /// The kept springs carried from one Verlet list to the next (ContactDetector's class comment,
 /// "Springs kept beside the list"): at a rebuild the live springs are set aside by the storage
-/// index of their pair's canonical i instead of going back to the grains' histories, and the
-/// new list's kept pairs, grouped the same way, take theirs from there, both walked in index
-/// order. The histories serve only the pairs the last list did not keep, and take back what
-/// the new one does not keep.
+/// index of their pair's canonical i (a counting sort) instead of going back to the grains'
+/// histories, and each kept pair of the new list takes its partner's from i's run. The
+/// histories serve only the pairs the last list did not keep, and take back what the new one
+/// does not keep; before a synchronisation, those of the pairs it takes a copy from.
 #include "particles/detection/ContactDetector.hpp"
 
 #include <cstddef>
@@ -86,9 +86,8 @@ void ContactDetector::writeBackLeaving(ParticleStorage& ps) {
     // ownership rule), the region the list was settled for: a pair with such a copy loses
     // it, and its spring lives on in the history (the copy's, if it is the canonical i).
     core::AABB const& box = m_listRegion;
-    m_list.forEachPair([&](std::size_t i, std::size_t j, std::size_t p) {
-        if (keepsSpring(m_list.mode(p)) &&
-            !(box.contains(ps.position(i)) && box.contains(ps.position(j))))
+    m_list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {
+        if (!(box.contains(ps.position(i)) && box.contains(ps.position(j))))
             writeBackSpring(ps, i, ps.uid(j), m_list.spring(p), m_list.hint(p));
     });
 }
