@@ -70,17 +70,8 @@ bool ContactDetector::pressedWhileListed(double apart, double reach, double roun
     return apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
 }
 
-void ContactDetector::fillKeptSprings(ParticleStorage& ps, std::size_t first) {
+void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {
     if (m_list.numKept() == 0) {
-        m_springsLive = true;
-        return;
-    }
-    if (!m_carried.empty()) {
-        if (first != 0)
-            throw core::Error("contact detection: springs carried over a rebuild, but the fill "
-                              "starts at pair " +
-                              std::to_string(first));
-        fillCarriedSprings(ps);
         m_springsLive = true;
         return;
     }
@@ -117,7 +108,6 @@ void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid pa
 }
 
 void ContactDetector::writeBackSprings(ParticleStorage& ps) {
-    writeBackCarried(ps);
     if (!m_springsLive)
         return;
     m_springsLive = false;
