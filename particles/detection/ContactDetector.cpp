@@ -151,6 +151,7 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
     }
     out.clear();
     updateList(ps, region, frame);
+    writeBackCarried(ps);
     listedPass(
         ps, region, frame, out, [](Contact const&, std::uint8_t&) {}, true);
     wallPass(ps, walls, out);

@@ -110,11 +110,12 @@ core::AABB everywhere();
 /// image instance) keeps its tangential spring beside the pair (PairMode::Kept,
 /// VerletList::spring), handed to the callback in place of the history hint, as LAMMPS's fix
 /// neigh/history keeps its shear history. The grains' histories are stale for those pairs until
-/// writeBackSprings(), which the caller must call before anything reads or changes them or moves
-/// a copy out of the block: before a synchronisation whose motion could reach skin / 2
-/// (beforeSync), a checkpoint, release(); a count of the contacts adds the kept ones
-/// (countKeptContacts). Every step computes the same bits as with the
-/// histories.
+/// writeBackSprings(), which the caller must call before anything reads or changes them: a
+/// checkpoint, release(); a count of the contacts adds the kept ones (countKeptContacts).
+/// Before a synchronisation whose motion could reach skin / 2 (beforeSync) the springs of the
+/// pairs with a copy outside the block, which that synchronisation moves, go back; a rebuild
+/// carries the others from the old list to the new one (SpringCarry.cpp). Every step computes
+/// the same bits as with the histories.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -199,9 +200,10 @@ public:
     /// Before a synchronisation after which noteMotion(movedAtMost) will be called (the
     /// masters moved, and do not move in it): where a copy may then have moved skin / 2 from
     /// its reference, compares the masters with their references, and if one moved skin / 2,
-    /// writes the kept springs back to the histories of `particles` (a grain may migrate or
-    /// wrap in that synchronisation). The next detect shifts the list or rebuilds it ("A list
-    /// that follows a drift"). Not collective.
+    /// writes back to the histories of `particles` the kept springs of the pairs with a copy
+    /// outside the region of the last detect, which must be the block's box: the
+    /// synchronisation migrates or wraps those masters. The next detect shifts the list or
+    /// rebuilds it ("A list that follows a drift"). Not collective.
     void beforeSync(ParticleStorage& particles, double movedAtMost);
     /// Writes the kept springs (see "Springs kept beside the list") to their grains' histories
     /// in `particles` (the storage of the last detect, unchanged since): an entry that exists is
@@ -325,8 +327,21 @@ private:
     /// Whether a listed pair whose reference centres are `apart` overlaps (reach r_a + r_b)
     /// while the list holds.
     [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;
-    /// Fills the kept springs of the pairs from the `first`-th on from the histories.
-    void fillKeptSprings(ParticleStorage const& particles, std::size_t first);
+    /// Fills the kept springs of the pairs from the `first`-th on: from the springs carried
+    /// over a rebuild (fillCarriedSprings; `first` 0), else from the histories.
+    void fillKeptSprings(ParticleStorage& particles, std::size_t first);
+    /// At a rebuild, before the restart: sets the live kept springs aside by the storage index
+    /// of their canonical i (SpringCarry.cpp) instead of writing them back.
+    void carrySprings(ParticleStorage const& particles);
+    /// After the rebuild: each kept pair of the new list takes its carried spring, or its
+    /// history's; the carried springs no pair took go back to the histories.
+    void fillCarriedSprings(ParticleStorage& particles);
+    /// Writes the carried springs no pair took back to the histories.
+    void writeBackCarried(ParticleStorage& particles);
+    /// Before a synchronisation that may move masters out of the block: writes back the kept
+    /// springs of the pairs with a copy outside the list's region (they stay live beside the
+    /// list too).
+    void writeBackLeaving(ParticleStorage& particles);
     /// The spring of copy i's history for partner j as a kept one, and its slot in `hint`.
     [[nodiscard]] static KeptSpring springFromHistory(ParticleStorage const& particles,
                                                       std::size_t i, std::size_t j,
@@ -382,8 +397,17 @@ private:
     core::AABB m_listRegion;        ///< the region the list's pairs were settled for
     PeriodicFrame m_listFrame;      ///< and the frame
     bool m_springsLive = false;     ///< the kept springs hold what the histories lack
-    std::size_t m_fillFrom = 0;     ///< the first pair whose kept spring the next pass fills
-    std::uint32_t m_pass = 0;       ///< the pass of the last detect that kept springs
+    /// A spring carried over a rebuild: its partner's storage index, history slot hint, value.
+    struct CarriedSpring {
+        std::uint32_t partner;
+        std::uint8_t hint;
+        KeptSpring spring;
+    };
+    std::vector<CarriedSpring> m_carried;      ///< by canonical i (carrySprings)
+    std::vector<std::uint32_t> m_carriedStart; ///< per copy + 1: where its carried springs start
+    std::vector<std::uint32_t> m_carryCursor;  ///< the counting sort's cursors
+    std::size_t m_fillFrom = 0; ///< the first pair whose kept spring the next pass fills
+    std::uint32_t m_pass = 0;   ///< the pass of the last detect that kept springs
 };
 
 } // namespace regolith::particles

@@ -43,6 +43,7 @@ void ContactDetector::detect(ParticleStorage& ps, WallList const& walls, core::A
             m_pass = onPair.pass();
         }
     }
+    writeBackCarried(ps); // a callback without kept springs reads the histories
     listedPass(ps, region, frame, out, onPair, keepPairs);
     wallPass(ps, walls, out);
 }

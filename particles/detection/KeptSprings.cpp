@@ -70,17 +70,23 @@ bool ContactDetector::pressedWhileListed(double apart, double reach, double roun
     return apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
 }
 
-void ContactDetector::fillKeptSprings(ParticleStorage const& ps, std::size_t first) {
-    if (m_list.numKept() == 0) {
-        m_springsLive = true;
-        return;
+void ContactDetector::fillKeptSprings(ParticleStorage& ps, std::size_t first) {
+    if (!m_carried.empty()) {
+        if (first != 0)
+            throw core::Error("contact detection: springs carried over a rebuild, but the fill "
+                              "starts at pair " +
+                              std::to_string(first));
+        // Also when the new list keeps no pair: the springs no pair takes go back while m_pass
+        // is still the pass that stamped them (a contact new since the fill has no entry).
+        fillCarriedSprings(ps);
+    } else if (m_list.numKept() != 0) {
+        m_list.forEachPair(
+            [&](std::size_t i, std::size_t j, std::size_t p) {
+                if (keepsSpring(m_list.mode(p)))
+                    m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
+            },
+            first);
     }
-    m_list.forEachPair(
-        [&](std::size_t i, std::size_t j, std::size_t p) {
-            if (keepsSpring(m_list.mode(p)))
-                m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
-        },
-        first);
     m_springsLive = true;
 }
 
@@ -108,6 +114,7 @@ void ContactDetector::writeBackSpring(ParticleStorage& ps, std::size_t i, Uid pa
 }
 
 void ContactDetector::writeBackSprings(ParticleStorage& ps) {
+    writeBackCarried(ps);
     if (!m_springsLive)
         return;
     m_springsLive = false;

@@ -82,7 +82,7 @@ void ContactDetector::beforeSync(ParticleStorage& ps, double movedAtMost) {
         if (d.finite && d.largestMaster * (1.0 + 1e-9) < m_list.budget())
             return;
     }
-    writeBackSprings(ps); // the next detect rebuilds or shifts
+    writeBackLeaving(ps); // the next detect rebuilds (carrying the springs) or shifts
 }
 
 void ContactDetector::shiftAhead(ParticleStorage& ps, double moved) {

@@ -270,6 +270,19 @@ public:
                 f(std::size_t{a}, std::size_t{b}, p);
         }
     }
+    /// forEachPair over the pairs that keep their springs (keepsSpring of their mode): the
+    /// mode is read first, the copies' indices only for those.
+    template <class F>
+    void forEachKeptPair(F&& f) const {
+        std::size_t const n = m_pairs.size();
+        for (std::size_t p = 0; p < n; ++p) {
+            if (!keepsSpring(m_mode[p]))
+                continue;
+            std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
+            if (a != kDead && b != kDead)
+                f(std::size_t{a}, std::size_t{b}, p);
+        }
+    }
     /// forEachPair over the pairs whose gap (addPair) is below twice moved() (+ the reference
     /// slack): the others cannot have closed it. Same pairs overlapping, same order. Blocks of
     /// pairs are selected without a branch per pair (near or not is a coin toss as the list

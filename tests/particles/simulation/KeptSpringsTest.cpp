@@ -108,4 +108,30 @@ TEST(KeptSprings, ChangeNoBitWhenAStepOutrunsTheSkin) {
     expectSameBits(world, fast, SyncConfig{SyncMethod::Hybrid, false});
 }
 
+TEST(KeptSprings, ChangeNoBitWhenARebuildKeepsNoPair) {
+    // A sticking pair drifting towards the face x = 2 of its block, and a lone grain whose
+    // motion rebuilds the block's list every few steps: the pair's contact starts after a
+    // rebuild that kept the pair (no history entry yet: the spring lives beside the list only),
+    // and a later rebuild during the contact finds it closer to the face than skin / 2, so the
+    // new list keeps no pair at all. The carried spring must still reach the history, as the
+    // last pass stamped it. Start positions swept so that the rebuilds fall at every phase.
+    core::Comm const world;
+    for (int k = 0; k < 12; ++k) {
+        double const x = 1.93 + 0.0025 * k;
+        SCOPED_TRACE(::testing::Message() << "x " << x);
+        Scene pair;
+        pair.spec.domain = core::AABB{Vec3::Zero(), Vec3(6.0, 6.0, 6.0)};
+        pair.spec.rootBlocks = {3, 1, 1};
+        pair.grains = {synctest::grain(1, Vec3(x, 3.0, 3.0), kRadius, Vec3(0.5, 0.0, 0.0)),
+                       synctest::grain(2, Vec3(x, 4.03, 3.0), kRadius, Vec3(0.6, -0.5, 0.0)),
+                       synctest::grain(3, Vec3(1.0, 1.0, 2.0), kRadius, Vec3(0.0, 0.0, 2.0))};
+        pair.walls = false;
+        pair.gravity = Vec3::Zero();
+        pair.dt = 0.005;
+        pair.skin = 0.04;
+        pair.steps = 16; // ends during the contact (from step ~8)
+        expectSameBits(world, pair, SyncConfig{SyncMethod::Hybrid, false});
+    }
+}
+
 } // namespace
