@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Blocks per rank, as a user runs them: the first paper's scenes A, B and C
 (bench/peers/scenes/scene-*.toml, written as a user writes them: contact parameters, grains,
-nothing else) with 1, 8, 64 and 512 blocks per rank and every other key at its default, next
+nothing else; `gas` is scene A on a 40^3 box, 64,000 grains) with 1, 8, 64 and 512 blocks per rank and every other key at its default, next
 to LAMMPS (7 Jan 2022 from Debian) on the same grains in the same invocation. Runs alternate
 (every block count, then LAMMPS, then again) so that a change of machine load hits all alike.
 
@@ -24,7 +24,7 @@ neigh_modify delay 0 every 1 check yes, newton on (with newton off LAMMPS comput
 across a periodic face twice: B runs ~1.2x longer), fix nve/sphere; decks granular.in, ramp.in,
 boulder.in.
 
-usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c]
+usage: blocks_per_rank.py [--build build/default] [--out bench/out] [--scenes a b c gas]
                           [--blocks 1 8 64 512] [--steps 1000] [--repeats 3] [--ranks 1]
                           [--subdomains merged [blocks]] [--small] [--against DIR]
                           [--chart PNG [--chart-from CSV...]]
@@ -59,6 +59,9 @@ SCENES = {
               stiffness=64.5964, restitution=0.9, friction=0.5),
     "c": dict(file="scene-c.toml", extent=(80.0, 80.0, 80.0), deck="boulder.in", vars={},
               stiffness=33.0734, restitution=0.9, friction=0.5),
+    # Scene A's gas on a 40^3 box: 64,000 grains, the issue's sparse gas for blocks per rank.
+    "gas": dict(file="scene-a.toml", extent=(40.0, 40.0, 40.0), deck="granular.in", vars={},
+                stiffness=33.0734, restitution=0.9, friction=0.5),
 }
 LAMMPS_SKIN = 0.1
 
@@ -66,6 +69,7 @@ LAMMPS_SKIN = 0.1
 # box of a few hundred grains, its lattice periods kept (scene C's sphere moved into it).
 SMALL = {
     "a": dict(extent=(6.0, 6.0, 6.0), sets=[]),
+    "gas": dict(extent=(8.0, 8.0, 8.0), sets=[]),
     "b": dict(extent=(6.0, 3.0 * math.sqrt(3.0), 8.0), sets=[]),
     "c": dict(extent=(20.0, 20.0, 20.0),
               sets=["particles[0].position=[[10.0,10.0,10.0]]", "particles[0].radius=4.0"]),
@@ -148,7 +152,7 @@ def chart(path, csv_paths):
             ours.setdefault(key, {}).setdefault(int(r["blocks_per_rank"]), []).append(
                 float(r["pupcs"]))
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    colours = {"a": "tab:blue", "b": "tab:orange", "c": "tab:green"}
+    colours = {"a": "tab:blue", "b": "tab:orange", "c": "tab:green", "gas": "tab:purple"}
     for (scene, subdomains), points in sorted(ours.items()):
         xs = sorted(points)
         ys = [statistics.median(points[x]) for x in xs]
@@ -176,7 +180,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--build", default=os.path.join(ROOT, "build", "default"))
     p.add_argument("--out", default=os.path.join(ROOT, "bench", "out"))
-    p.add_argument("--scenes", nargs="*", default=["a", "b", "c"])
+    p.add_argument("--scenes", nargs="*", default=["a", "b", "c"], choices=sorted(SCENES))
     p.add_argument("--blocks", nargs="*", type=int, default=[1, 8, 64, 512])
     p.add_argument("--steps", type=int, default=1000)
     p.add_argument("--repeats", type=int, default=3)
