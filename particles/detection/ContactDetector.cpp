@@ -393,7 +393,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
-           m_depths.bytes();
+           m_depths.bytes() + m_carried.bytes();
 }
 
 } // namespace regolith::particles

@@ -12,6 +12,7 @@
 #include "particles/detection/PairRule.hpp"
 #include "particles/detection/PeriodicFrame.hpp"
 #include "particles/detection/ReferenceDepths.hpp"
+#include "particles/detection/SpringCarry.hpp"
 #include "particles/detection/VerletList.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
@@ -330,17 +331,14 @@ private:
     /// Fills the kept springs of the pairs from the `first`-th on: from the springs carried
     /// over a rebuild (fillCarriedSprings; `first` 0), else from the histories.
     void fillKeptSprings(ParticleStorage& particles, std::size_t first);
-    /// At a rebuild, before the restart: sets the live kept springs aside by the storage index
-    /// of their canonical i (SpringCarry.cpp) instead of writing them back.
+    /// At a rebuild, before the restart: sets the live kept springs aside (SpringCarry.cpp).
     void carrySprings(ParticleStorage const& particles);
-    /// After the rebuild: each kept pair of the new list takes its carried spring, or its
-    /// history's; the carried springs no pair took go back to the histories.
+    /// After it: each kept pair of the new list takes its carried spring, or its history's.
     void fillCarriedSprings(ParticleStorage& particles);
     /// Writes the carried springs no pair took back to the histories.
     void writeBackCarried(ParticleStorage& particles);
-    /// Before a synchronisation that may move masters out of the block: writes back the kept
-    /// springs of the pairs with a copy outside the list's region (they stay live beside the
-    /// list too).
+    /// Writes back the kept springs of the pairs with a copy outside the list's region, which
+    /// a synchronisation may move (they stay live beside the list too).
     void writeBackLeaving(ParticleStorage& particles);
     /// The spring of copy i's history for partner j as a kept one, and its slot in `hint`.
     [[nodiscard]] static KeptSpring springFromHistory(ParticleStorage const& particles,
@@ -397,17 +395,9 @@ private:
     core::AABB m_listRegion;        ///< the region the list's pairs were settled for
     PeriodicFrame m_listFrame;      ///< and the frame
     bool m_springsLive = false;     ///< the kept springs hold what the histories lack
-    /// A spring carried over a rebuild: its partner's storage index, history slot hint, value.
-    struct CarriedSpring {
-        std::uint32_t partner;
-        std::uint8_t hint;
-        KeptSpring spring;
-    };
-    std::vector<CarriedSpring> m_carried;      ///< by canonical i (carrySprings)
-    std::vector<std::uint32_t> m_carriedStart; ///< per copy + 1: where its carried springs start
-    std::vector<std::uint32_t> m_carryCursor;  ///< the counting sort's cursors
-    std::size_t m_fillFrom = 0; ///< the first pair whose kept spring the next pass fills
-    std::uint32_t m_pass = 0;   ///< the pass of the last detect that kept springs
+    CarriedSprings m_carried;       ///< over the last rebuild, until the fill (carrySprings)
+    std::size_t m_fillFrom = 0;     ///< the first pair whose kept spring the next pass fills
+    std::uint32_t m_pass = 0;       ///< the pass of the last detect that kept springs
 };
 
 } // namespace regolith::particles

@@ -80,10 +80,9 @@ void ContactDetector::fillKeptSprings(ParticleStorage& ps, std::size_t first) {
         // is still the pass that stamped them (a contact new since the fill has no entry).
         fillCarriedSprings(ps);
     } else if (m_list.numKept() != 0) {
-        m_list.forEachPair(
+        m_list.forEachKeptPair(
             [&](std::size_t i, std::size_t j, std::size_t p) {
-                if (keepsSpring(m_list.mode(p)))
-                    m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
+                m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
             },
             first);
     }
@@ -122,17 +121,16 @@ void ContactDetector::writeBackSprings(ParticleStorage& ps) {
         return;
     // Kept pairs inside the block join two masters that cannot leave it while the springs are
     // live: both are alive.
-    m_list.forEachPair([&](std::size_t i, std::size_t j, std::size_t p) {
-        if (keepsSpring(m_list.mode(p)))
-            writeBackSpring(ps, i, ps.uid(j), m_list.spring(p), m_list.hint(p));
+    m_list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {
+        writeBackSpring(ps, i, ps.uid(j), m_list.spring(p), m_list.hint(p));
     });
 }
 
 void ContactDetector::countKeptContacts(std::span<std::uint32_t> perCopy) const {
     if (!m_springsLive || m_list.numKept() == 0)
         return;
-    m_list.forEachPair([&](std::size_t i, std::size_t, std::size_t p) {
-        if (!keepsSpring(m_list.mode(p)) || m_list.spring(p).stamp != m_pass)
+    m_list.forEachKeptPair([&](std::size_t i, std::size_t, std::size_t p) {
+        if (m_list.spring(p).stamp != m_pass)
             return;
         if (i >= perCopy.size()) // the storage changed since the pass, which it may not
             throw core::Error("contact detection: a kept spring of copy " + std::to_string(i) +

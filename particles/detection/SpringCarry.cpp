@@ -1,9 +1,8 @@
-/// The kept springs carried from one Verlet list to the next (ContactDetector's class comment,
-/// "Springs kept beside the list"): at a rebuild the live springs are set aside by the storage
-/// index of their pair's canonical i (a counting sort) instead of going back to the grains'
-/// histories, and each kept pair of the new list takes its partner's from i's run. The
-/// histories serve only the pairs the last list did not keep, and take back what the new one
+/// The kept springs carried over a rebuild (SpringCarry.hpp), and ContactDetector's use of them:
+/// the histories serve only the pairs the last list did not keep, and take back what the new one
 /// does not keep; before a synchronisation, those of the pairs it takes a copy from.
+#include "particles/detection/SpringCarry.hpp"
+
 #include "particles/detection/ContactDetector.hpp"
 
 #include <cstddef>
@@ -12,54 +11,56 @@
 
 namespace regolith::particles {
 
-namespace {
-
-/// A carried spring's partner once a new pair took it.
-constexpr std::uint32_t kTaken = 0xffffffffu;
-
-/// Turns counts shifted by one (count of k in start[k + 1]) into a counting sort's offsets.
-void prefixSums(std::vector<std::uint32_t>& start) {
-    for (std::size_t k = 1; k < start.size(); ++k)
-        start[k] += start[k - 1];
+void CarriedSprings::setAside(VerletList const& list, std::size_t copies) {
+    m_springs.clear();
+    if (list.numKept() == 0)
+        return;
+    auto const touched = [&](std::size_t p) {
+        return list.spring(p).stamp != KeptSpring::kUntouched;
+    };
+    // A counting sort by i: counts shifted by one, then their prefix sums.
+    m_start.assign(copies + 1, 0);
+    list.forEachKeptPair(
+        [&](std::size_t i, std::size_t, std::size_t p) { m_start[i + 1] += touched(p) ? 1 : 0; });
+    for (std::size_t k = 1; k < m_start.size(); ++k)
+        m_start[k] += m_start[k - 1];
+    m_springs.resize(m_start.back());
+    m_cursor.assign(m_start.begin(), m_start.end() - 1);
+    list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {
+        if (touched(p))
+            m_springs[m_cursor[i]++] =
+                Spring{static_cast<std::uint32_t>(j), list.hint(p), list.spring(p)};
+    });
 }
 
-} // namespace
+CarriedSprings::Spring const* CarriedSprings::take(std::size_t i, std::size_t j) {
+    Spring* c = m_springs.data() + m_start[i];
+    Spring* const last = m_springs.data() + m_start[i + 1];
+    while (c != last && c->partner != j)
+        ++c;
+    if (c == last)
+        return nullptr;
+    Spring const* const taken = c;
+    c->partner = kTaken; // its value stays for the caller
+    return taken;
+}
+
+std::size_t CarriedSprings::bytes() const {
+    return m_springs.capacity() * sizeof(Spring) +
+           (m_start.capacity() + m_cursor.capacity()) * sizeof(std::uint32_t);
+}
 
 void ContactDetector::carrySprings(ParticleStorage const& ps) {
     m_springsLive = false;
-    m_carried.clear();
-    if (m_list.numKept() == 0)
-        return;
-    // A spring filled from an absent entry and never touched since would not be written back
-    // (writeBackSpring): the fill finds the same absent entry.
-    auto const touched = [&](std::size_t p) {
-        return m_list.spring(p).stamp != KeptSpring::kUntouched;
-    };
-    m_carriedStart.assign(ps.size() + 1, 0);
-    m_list.forEachKeptPair([&](std::size_t i, std::size_t, std::size_t p) {
-        m_carriedStart[i + 1] += touched(p) ? 1 : 0;
-    });
-    prefixSums(m_carriedStart);
-    m_carried.resize(m_carriedStart.back());
-    m_carryCursor.assign(m_carriedStart.begin(), m_carriedStart.end() - 1);
-    m_list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {
-        if (touched(p))
-            m_carried[m_carryCursor[i]++] =
-                CarriedSpring{static_cast<std::uint32_t>(j), m_list.hint(p), m_list.spring(p)};
-    });
+    m_carried.setAside(m_list, ps.size());
 }
 
 void ContactDetector::fillCarriedSprings(ParticleStorage& ps) {
     // The list was rebuilt on the storage the springs were carried from: ids are indices.
     m_list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {
-        CarriedSpring* c = m_carried.data() + m_carriedStart[i];
-        CarriedSpring* const last = m_carried.data() + m_carriedStart[i + 1];
-        while (c != last && c->partner != j)
-            ++c;
-        if (c != last) {
+        if (CarriedSprings::Spring const* c = m_carried.take(i, j)) {
             m_list.spring(p) = c->spring;
             m_list.hint(p) = c->hint;
-            c->partner = kTaken;
         } else {
             m_list.spring(p) = springFromHistory(ps, i, j, m_list.hint(p));
         }
@@ -68,15 +69,9 @@ void ContactDetector::fillCarriedSprings(ParticleStorage& ps) {
 }
 
 void ContactDetector::writeBackCarried(ParticleStorage& ps) {
-    if (m_carried.empty())
-        return;
-    for (std::size_t i = 0; i + 1 < m_carriedStart.size(); ++i)
-        for (std::uint32_t k = m_carriedStart[i]; k < m_carriedStart[i + 1]; ++k) {
-            CarriedSpring const& c = m_carried[k];
-            if (c.partner != kTaken)
-                writeBackSpring(ps, i, ps.uid(c.partner), c.spring, c.hint);
-        }
-    m_carried.clear();
+    m_carried.drain([&](std::size_t i, CarriedSprings::Spring const& c) {
+        writeBackSpring(ps, i, ps.uid(c.partner), c.spring, c.hint);
+    });
 }
 
 void ContactDetector::writeBackLeaving(ParticleStorage& ps) {

@@ -263,25 +263,16 @@ public:
     /// in the order the pairs were added.
     template <class F>
     void forEachPair(F&& f, std::size_t first = 0) const {
-        std::size_t const n = m_pairs.size();
-        for (std::size_t p = first; p < n; ++p) {
-            std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
-            if (a != kDead && b != kDead)
-                f(std::size_t{a}, std::size_t{b}, p);
-        }
+        for (std::size_t p = first; p < m_pairs.size(); ++p)
+            visitLive(p, f);
     }
-    /// forEachPair over the pairs that keep their springs (keepsSpring of their mode): the
-    /// mode is read first, the copies' indices only for those.
+    /// forEachPair over the pairs whose mode keeps a spring: the mode is read first, the
+    /// copies' indices only for those.
     template <class F>
-    void forEachKeptPair(F&& f) const {
-        std::size_t const n = m_pairs.size();
-        for (std::size_t p = 0; p < n; ++p) {
-            if (!keepsSpring(m_mode[p]))
-                continue;
-            std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
-            if (a != kDead && b != kDead)
-                f(std::size_t{a}, std::size_t{b}, p);
-        }
+    void forEachKeptPair(F&& f, std::size_t first = 0) const {
+        for (std::size_t p = first; p < m_pairs.size(); ++p)
+            if (keepsSpring(m_mode[p]))
+                visitLive(p, f);
     }
     /// forEachPair over the pairs whose gap (addPair) is below twice moved() (+ the reference
     /// slack): the others cannot have closed it. Same pairs overlapping, same order. Blocks of
@@ -350,6 +341,7 @@ public:
     [[nodiscard]] std::span<KeptSpring> springs() { return m_springs; }
     /// Pair p's history slot hint (ContactHistory::touch).
     [[nodiscard]] std::uint8_t& hint(std::size_t p) { return m_hint[p]; }
+    [[nodiscard]] std::uint8_t hint(std::size_t p) const { return m_hint[p]; }
     /// A kept pair's tangential spring, with its stamp as ContactHistory's.
     [[nodiscard]] KeptSpring& spring(std::size_t p) { return m_springs[p]; }
     [[nodiscard]] KeptSpring const& spring(std::size_t p) const { return m_springs[p]; }
@@ -364,6 +356,13 @@ public:
     [[nodiscard]] std::size_t bytes() const;
 
 private:
+    /// f(a, b, p) with pair p's storage indices, if both copies are alive.
+    template <class F>
+    void visitLive(std::size_t p, F& f) const {
+        std::uint32_t const a = m_indexOf[m_pairs[p][0]], b = m_indexOf[m_pairs[p][1]];
+        if (a != kDead && b != kDead)
+            f(std::size_t{a}, std::size_t{b}, p);
+    }
     ParticleStorage const* m_storage = nullptr;
     std::uint64_t m_session = 0;
     double m_skin = 0.0;
