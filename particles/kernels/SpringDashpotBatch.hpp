@@ -157,7 +157,8 @@ private:
 /// evaluated when full, before a pair whose spring an earlier pair of this pass touched (a pair
 /// meeting through two periodic images must see the spring the first evaluation left), and at
 /// finish(). `sink` receives the shares in arrival order, j's first: the same calls with the
-/// same bits as evaluatePair on each contact in turn. Not collective.
+/// same bits as evaluatePair on each contact in turn; it is copied for each batch, so it
+/// refers to where the shares go rather than holding them. Not collective.
 template <ContactSink Sink>
 class BatchedSpringDashpot {
 public:
@@ -207,7 +208,12 @@ public:
     [[gnu::noinline]] void finish() {
         SpringDashpotBatch& batch = m_batch;
         batch.evaluate(m_ps, m_model, m_dt);
-        for (std::size_t k = 0; k < batch.size(); ++k) {
+        // The sink and the uids in locals: the shares' stores are Eigen packets, which may
+        // alias anything, so members read through `this` would be loaded again after each.
+        Sink sink = m_sink;
+        Uid const* const uid = m_ps.uids().data();
+        std::size_t const n = batch.size();
+        for (std::size_t k = 0; k < n; ++k) {
             std::size_t const i = batch.i(k), j = batch.j(k);
             if (KeptSpring* kept = batch.kept(k)) {
                 kept->spring = batch.spring(k);
@@ -225,8 +231,8 @@ public:
                     r->spring = batch.rollingSpring(k);
             }
             core::Vec3 const f = batch.force(k);
-            m_sink(j, m_ps.uid(i), f, batch.torqueJ(k));
-            m_sink(i, m_ps.uid(j), core::Vec3(-f), core::Vec3(-batch.torqueI(k)));
+            sink(j, uid[i], f, batch.torqueJ(k));
+            sink(i, uid[j], core::Vec3(-f), core::Vec3(-batch.torqueI(k)));
         }
         batch.clear();
         m_moved = false;
