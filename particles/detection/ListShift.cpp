@@ -103,7 +103,8 @@ void ContactDetector::followDrift(ParticleStorage& ps, double motion) {
         m_list.setMoved(d.largest); // the bound restarts from the comparison
         return;
     }
-    double const room = kShiftSpread * half - (d.spread + motion) * rounding;
+    double const spread = m_list.spread(ps, d.drift);
+    double const room = kShiftSpread * half - (spread + motion) * rounding;
     if (!(room > 0.0)) {
         m_spreadOut = true; // until the rebuild it soon needs: no more comparisons for a shift
         return;
@@ -114,7 +115,7 @@ void ContactDetector::followDrift(ParticleStorage& ps, double motion) {
     double const drifted = d.drift.norm();
     core::Vec3 const lead = drifted > 0.0 ? core::Vec3(std::min(room, drifted) / drifted * d.drift)
                                           : core::Vec3::Zero();
-    shiftList(ps, d.drift + lead, d.spread + lead.norm());
+    shiftList(ps, d.drift + lead, spread + lead.norm());
 }
 
 void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, double spread) {

@@ -102,18 +102,22 @@ VerletList::Displacements VerletList::displacements(ParticleStorage const& ps) c
         return out;
     out.largest = std::sqrt(largest);
     out.largestMaster = std::sqrt(largestMaster);
-    // The centre of the bounding box, and the farthest displacement from it (at most half
-    // the box's diagonal, often much less).
-    out.drift = 0.5 * (lo + hi);
-    core::Vec3 const centre = m_origin + out.drift;
-    double spread = 0.0;
+    out.drift = 0.5 * (lo + hi); // the centre of the bounding box
+    return out;
+}
+
+double VerletList::spread(ParticleStorage const& ps, core::Vec3 const& drift) const {
+    // The farthest displacement from the drift (at most half the bounding box's diagonal,
+    // often much less).
+    auto const& x = ps.positions();
+    core::Vec3 const centre = m_origin + drift;
+    double farthest = 0.0;
     for (std::size_t k = 0, n = ps.size(); k < n; ++k) {
         Reference const& r = m_reference[ps.traceTag(k)];
         core::Vec3 const d = (x[k] - centre) - core::Vec3(double{r[0]}, double{r[1]}, double{r[2]});
-        spread = std::max(spread, d.squaredNorm());
+        farthest = std::max(farthest, d.squaredNorm());
     }
-    out.spread = std::sqrt(spread) * (1.0 + 1e-12);
-    return out;
+    return std::sqrt(farthest) * (1.0 + 1e-12);
 }
 
 void VerletList::shift(core::Vec3 const& drift, double moved) {

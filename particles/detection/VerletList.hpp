@@ -190,23 +190,25 @@ public:
     /// Whether movedTooFar(ps, movedAtMost) would compare the positions: whether some copy
     /// may then be skin / 2 or more from its reference position.
     [[nodiscard]] bool mayMoveTooFar(double movedAtMost, double share = 1.0) const;
-    /// Where the copies stand against their references: the largest distance, and a ball that
-    /// holds every displacement (its centre, the drift, is the centre of their bounding box;
-    /// its radius, the spread, the largest distance from it), all within referenceSlack().
+    /// Where the copies stand against their references: the largest distance, and the centre
+    /// of the displacements' bounding box (the drift), all within referenceSlack().
     /// Pre: followsUnchanged(ps).
     struct Displacements {
         double largest = 0.0;
         double largestMaster = 0.0; ///< the largest distance of a master (Flags::isMaster)
         core::Vec3 drift = core::Vec3::Zero();
-        double spread = 0.0;
         bool finite = true;
     };
     [[nodiscard]] Displacements displacements(ParticleStorage const& ps) const;
+    /// The radius of the ball about `drift` (displacements().drift) that holds every
+    /// displacement: the spread, the largest distance from it. A second pass over the copies,
+    /// taken only where the largest distance alone does not decide. Pre: as displacements().
+    [[nodiscard]] double spread(ParticleStorage const& ps, core::Vec3 const& drift) const;
     /// Moves every reference by `drift` (the list's frame follows the copies' common motion):
     /// the pairs listed stay a superset of the overlapping ones as long as no copy moves the
     /// budget from its moved reference, because a pair's distance changes by at most the sum
     /// of the two displacements less any common drift. `moved` becomes the bound on every
-    /// copy's distance from its moved reference (Displacements::spread). The caller settles
+    /// copy's distance from its moved reference (spread()). The caller settles
     /// the pairs again (resettle): what was decided from the old references may not hold.
     void shift(core::Vec3 const& drift, double moved);
     /// The references' total shift since the last restart (the cells of that rebuild hold the
