@@ -2,7 +2,9 @@
 
 #include "particles/storage/TransposedLoads.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace regolith::particles {
 
@@ -54,13 +56,21 @@ std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& pe
         double const d2 = dx * dx + dy * dy + dz * dz;
         m_overlap[k] = std::sqrt(d2) < m_reach[k];
     }
-    // The overlapping slots, without a branch per pair (whether a pair of a packing touches
-    // is a coin toss for the branch predictor).
-    std::size_t hits = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-        m_hit[hits] = static_cast<std::uint8_t>(k);
-        hits += m_overlap[k] ? 1 : 0;
+    // The overlapping slots, from a bit per pair: eight flags at a time into eight bits (each
+    // flag byte is 0 or 1, and the product puts byte b's bit at bit 56 + b without carries),
+    // then one step per hit. A loop over the flags, with a branch-free append per pair, waited
+    // on each flag's load behind the vector stores that wrote them.
+    std::uint64_t overlapping = 0;
+    for (std::size_t k = 0; k < n; k += 8) {
+        std::uint64_t flags = 0;
+        std::memcpy(&flags, &m_overlap[k], sizeof flags);
+        overlapping |= ((flags * 0x0102040810204080ULL) >> 56) << k;
     }
+    if (n < kCapacity)
+        overlapping &= (std::uint64_t{1} << n) - 1; // (the flags past n are stale)
+    std::size_t hits = 0;
+    for (; overlapping != 0; overlapping &= overlapping - 1)
+        m_hit[hits++] = static_cast<std::uint8_t>(std::countr_zero(overlapping));
     return hits;
 }
 

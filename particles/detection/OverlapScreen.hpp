@@ -28,6 +28,7 @@ namespace regolith::particles {
 class OverlapScreen {
 public:
     static constexpr std::size_t kCapacity = 64;
+    static_assert(kCapacity == 64, "lanes collects the overlapping slots in one 64-bit mask");
 
     /// Tests the pairs (i[k], j[k]), k < n <= kCapacity (storage indices, canonical order),
     /// and calls onHit(k, PairOverlap) for each overlapping one, in order. Returns how many
@@ -53,9 +54,9 @@ private:
 
     using Lane = std::array<double, kCapacity>;
     alignas(64) Lane m_xi, m_yi, m_zi, m_xj, m_yj, m_zj, m_reach;
-    alignas(64) Lane m_sx, m_sy, m_sz; ///< shiftJ
-    alignas(64) std::array<bool, kCapacity> m_overlap{};
-    std::array<std::uint8_t, kCapacity> m_hit{}; ///< slots of the overlapping pairs
+    alignas(64) Lane m_sx, m_sy, m_sz;                   ///< shiftJ
+    alignas(64) std::array<bool, kCapacity> m_overlap{}; ///< read eight at a time
+    std::array<std::uint8_t, kCapacity> m_hit{};         ///< slots of the overlapping pairs
 };
 
 } // namespace regolith::particles
