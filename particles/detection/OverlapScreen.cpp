@@ -30,31 +30,35 @@ std::size_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& pe
         m_zj[k] = xj.z();
     }
     double const* const radius = ps.radii().data();
-    // One image: the +0.0 that the image difference 0 times the period gives.
-    for (std::size_t k = 0; oneImage && k < n; ++k) {
-        m_sx[k] = 0.0;
-        m_sy[k] = 0.0;
-        m_sz[k] = 0.0;
+    for (std::size_t k = 0; k < n; ++k)
         m_reach[k] = radius[is[k]] + radius[js[k]];
-    }
-    for (std::size_t k = 0; !oneImage && k < n; ++k) {
-        std::size_t const i = is[k], j = js[k];
-        CopyImage const& ki = ps.image(i);
-        CopyImage const& kj = ps.image(j);
-        // imageOffset of the difference: an exact small integer times the period.
-        m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
-        m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();
-        m_sz[k] = static_cast<std::int8_t>(kj[2] - ki[2]) * period.z();
-        m_reach[k] = radius[i] + radius[j];
-    }
     // separation (d = (x_j + shiftJ) - x_i, |d|^2 summed as Eigen's squaredNorm) and the
-    // overlap decision with the correctly rounded root, branch-free: the loop vectorises.
-    for (std::size_t k = 0; k < n; ++k) {
-        double const dx = (m_xj[k] + m_sx[k]) - m_xi[k];
-        double const dy = (m_yj[k] + m_sy[k]) - m_yi[k];
-        double const dz = (m_zj[k] + m_sz[k]) - m_zi[k];
-        double const d2 = dx * dx + dy * dy + dz * dz;
-        m_overlap[k] = std::sqrt(d2) < m_reach[k];
+    // overlap decision with the correctly rounded root, branch-free: the loops vectorise.
+    if (oneImage) {
+        // shiftJ is +0.0, which changes d only where x_j is -0.0 (to +0.0): the same squares.
+        for (std::size_t k = 0; k < n; ++k) {
+            double const dx = m_xj[k] - m_xi[k];
+            double const dy = m_yj[k] - m_yi[k];
+            double const dz = m_zj[k] - m_zi[k];
+            double const d2 = dx * dx + dy * dy + dz * dz;
+            m_overlap[k] = std::sqrt(d2) < m_reach[k];
+        }
+    } else {
+        for (std::size_t k = 0; k < n; ++k) {
+            CopyImage const& ki = ps.image(is[k]);
+            CopyImage const& kj = ps.image(js[k]);
+            // imageOffset of the difference: an exact small integer times the period.
+            m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
+            m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();
+            m_sz[k] = static_cast<std::int8_t>(kj[2] - ki[2]) * period.z();
+        }
+        for (std::size_t k = 0; k < n; ++k) {
+            double const dx = (m_xj[k] + m_sx[k]) - m_xi[k];
+            double const dy = (m_yj[k] + m_sy[k]) - m_yi[k];
+            double const dz = (m_zj[k] + m_sz[k]) - m_zi[k];
+            double const d2 = dx * dx + dy * dy + dz * dz;
+            m_overlap[k] = std::sqrt(d2) < m_reach[k];
+        }
     }
     // The overlapping slots, from a bit per pair: eight flags at a time into eight bits (each
     // flag byte is 0 or 1, and the product puts byte b's bit at bit 56 + b without carries),

@@ -41,7 +41,9 @@ public:
         std::size_t const hits = lanes(ps, period, i, j, n, oneImage);
         for (std::size_t h = 0; h < hits; ++h) {
             std::size_t const k = m_hit[h];
-            onHit(k, PairOverlap{i[k], j[k], core::Vec3(m_sx[k], m_sy[k], m_sz[k])});
+            onHit(k, PairOverlap{i[k], j[k],
+                                 oneImage ? core::Vec3::Zero()
+                                          : core::Vec3(m_sx[k], m_sy[k], m_sz[k])});
         }
         return hits;
     }
