@@ -3,9 +3,10 @@
 /// fused contact loop (ContactDetector::listedPass) hands over the live pairs of a block of the
 /// list (VerletList::forEachNearBlock), their separations are computed in structure-of-arrays
 /// lanes that the compiler vectorises, and the overlapping ones are handed on in list order,
-/// from a list built without a branch per pair. Most listed pairs of a gas do not touch, and
-/// in a packing of touching grains whether a pair touches is a coin toss for the branch
-/// predictor; tested one by one with a branch, the test was a quarter of the dense ramp's step.
+/// from a bit mask of the block (a step per overlapping pair, no branch per pair tested). Most
+/// listed pairs of a gas do not touch, and in a packing of touching grains whether a pair
+/// touches is a coin toss for the branch predictor; tested one by one with a branch, the test
+/// was a quarter of the dense ramp's step.
 /// A static packing, where whole blocks overlap, is tested in the lanes too: one by one there
 /// (the branch predictable) the contact phase of the MESA-PD lattice took 1.05x as long.
 ///
