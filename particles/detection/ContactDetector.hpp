@@ -325,9 +325,9 @@ private:
     /// while the list holds (which would share the spring, ContactHistory::touch's `again`).
     [[nodiscard]] bool oneImageInstance(double reach, PeriodicFrame const& frame,
                                         double rounding) const;
-    /// Whether a listed pair whose reference centres are `apart` overlaps (reach r_a + r_b)
-    /// while the list holds.
-    [[nodiscard]] bool pressedWhileListed(double apart, double reach, double rounding) const;
+    /// Whether a listed pair whose reference centres stand sqrt(apart2) apart overlaps (reach
+    /// r_a + r_b) while the list holds.
+    [[nodiscard]] bool pressedWhileListed(double apart2, double reach, double rounding) const;
     /// Fills the kept springs of the pairs from the `first`-th on: from the springs carried
     /// over a rebuild (fillCarriedSprings; `first` 0), else from the histories.
     void fillKeptSprings(ParticleStorage& particles, std::size_t first);

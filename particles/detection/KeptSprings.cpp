@@ -5,6 +5,7 @@
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -40,8 +41,8 @@ PairMode ContactDetector::settledMode(ParticleStorage const& ps, std::size_t ka,
     if (!m_config.keepSprings || !stays)
         return PairMode::Owned;
     double const reach = ps.radius(ka) + ps.radius(kb);
-    bool const pressed =
-        pressedWhileListed((m_list.reference(b) - m_list.reference(a)).norm(), reach, rounding);
+    bool const pressed = pressedWhileListed(
+        (m_list.reference(b) - m_list.reference(a)).squaredNorm(), reach, rounding);
     return pressed ? PairMode::KeptPressed : PairMode::Kept;
 }
 
@@ -62,12 +63,19 @@ bool ContactDetector::oneImageInstance(double reach, PeriodicFrame const& frame,
     return true;
 }
 
-bool ContactDetector::pressedWhileListed(double apart, double reach, double rounding) const {
+bool ContactDetector::pressedWhileListed(double apart2, double reach, double rounding) const {
     // Each centre stays within skin / 2 of its reference (and that within the reference slack
     // of the stored one), so the distance stays below the references' `apart` + skin + 2
     // slacks; the relative 1e-9 covers the rounding of the test in the lanes (PairRule.hpp's
     // overlapping, sqrt(d2) < r_a + r_b).
-    return apart + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < reach * (1.0 - 1e-9);
+    double const within = reach * (1.0 - 1e-9);
+    double const moves = m_listSkin + 2.0 * m_list.referenceSlack() + rounding;
+    // Most listed pairs stand farther apart than `within` less `moves` by far more than any
+    // rounding: no root for them (the sums below only grow with `apart`).
+    double const limit = within - moves;
+    if (limit > 1e-6 * within && apart2 > limit * limit * (1.0 + 1e-6))
+        return false;
+    return std::sqrt(apart2) + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < within;
 }
 
 void ContactDetector::fillKeptSprings(ParticleStorage& ps, std::size_t first) {
