@@ -75,6 +75,7 @@ bool ContactDetector::pressedWhileListed(double apart2, double reach, double rou
     double const limit = within - moves;
     if (limit > 1e-6 * within && apart2 > limit * limit * (1.0 + 1e-6))
         return false;
+    // (Summed from the root on, not as root + moves: the decision as before, bit for bit.)
     return std::sqrt(apart2) + m_listSkin + 2.0 * m_list.referenceSlack() + rounding < within;
 }
 

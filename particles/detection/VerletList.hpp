@@ -208,8 +208,8 @@ public:
     /// the pairs listed stay a superset of the overlapping ones as long as no copy moves the
     /// budget from its moved reference, because a pair's distance changes by at most the sum
     /// of the two displacements less any common drift. `moved` becomes the bound on every
-    /// copy's distance from its moved reference (spread()). The caller settles
-    /// the pairs again (resettle): what was decided from the old references may not hold.
+    /// copy's distance from its moved reference (spread()). The caller settles the pairs
+    /// again (resettle): what was decided from the old references may not hold.
     void shift(core::Vec3 const& drift, double moved);
     /// The references' total shift since the last restart (the cells of that rebuild hold the
     /// copies where they were then) [length].
