@@ -17,6 +17,7 @@
 #include "particles/storage/WallList.hpp"
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -80,19 +81,43 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             KeptSpring* const springs = m_list.springs().data();
             m_list.forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b,
                                         std::uint32_t const* at, std::size_t n) {
+                // Every pair handed on is one this block evaluates (the rule applied).
                 auto const handOn = [&](std::size_t k, PairOverlap const& o)
                     __attribute__((always_inline)) {
                     std::size_t const p = at[k];
-                    PairMode const mode = modes[p];
-                    if (mode == PairMode::Check && !rule.emitsOverlapping(o.i, o.j))
-                        return;
                     if constexpr (TakesKeptSprings<OnPair>) {
-                        if (springsLive && keepsSpring(mode)) {
+                        if (springsLive && keepsSpring(modes[p])) {
                             onPair(o, springs[p]);
                             return;
                         }
                     }
                     onPair(o, hints[p]);
+                };
+                // Of the overlapping pairs among those screened (ti[t], tj[t], the list's pair
+                // listed[t]; bit t), the ones this block evaluates: the pairs that keep the
+                // rule (PairMode::Check) ruled on in the screen's lanes, all at once
+                // (OverlapScreen::ruled). Ruled one by one, each waited on its root and
+                // divisions and on a branch that is a coin toss: the two image instances of a
+                // pair across a periodic face take turns.
+                auto const evaluated = [&](std::uint64_t overlapping, std::uint32_t const* ti,
+                                           std::uint32_t const* tj, std::uint32_t const* listed,
+                                           std::size_t m) {
+                    std::uint64_t check = 0;
+                    for (std::size_t t = 0; t < m; ++t)
+                        check |= std::uint64_t{modes[listed[t]] == PairMode::Check} << t;
+                    std::uint64_t const contested = overlapping & check;
+                    if (contested == 0)
+                        return overlapping;
+                    std::uint64_t unsure = 0;
+                    std::uint64_t const owned =
+                        screen.ruled(ps, region, frame, ti, tj, contested, unsure);
+                    std::uint64_t keep = (overlapping & ~check) | (owned & ~unsure);
+                    for (std::uint64_t u = contested & unsure; u != 0; u &= u - 1) {
+                        auto const t = static_cast<std::size_t>(std::countr_zero(u));
+                        if (rule.emitsOverlapping(ti[t], tj[t]))
+                            keep |= std::uint64_t{1} << t;
+                    }
+                    return keep;
                 };
                 // A block of Kept pairs only (most blocks of a packing's list, whose kept
                 // pairs lead it) is handed on without a mode test per overlapping pair: that
@@ -112,17 +137,20 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                     }
                 }
                 if (!pressedListed) {
-                    overlaps += screen.test(ps, period, a, b, n, handOn);
+                    overlaps += screen.test(ps, period, a, b, n, handOn, [&](std::uint64_t o) {
+                        return evaluated(o, a, b, at, n);
+                    });
                     return;
                 }
                 std::array<bool, VerletList::kBlock> pressed;
-                std::array<std::uint32_t, VerletList::kBlock> slot, ta, tb;
+                std::array<std::uint32_t, VerletList::kBlock> slot, ta, tb, tat;
                 std::size_t tested = 0;
                 for (std::size_t k = 0; k < n; ++k) {
                     pressed[k] = isPressed(modes[at[k]]);
                     slot[tested] = static_cast<std::uint32_t>(k);
                     ta[tested] = a[k];
                     tb[tested] = b[k];
+                    tat[tested] = at[k];
                     tested += pressed[k] ? 0 : 1;
                 }
                 std::size_t next = 0; // the block's first pair not yet handed on or passed
@@ -140,6 +168,9 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                             pressedUpTo(slot[t]);
                             next = slot[t] + 1;
                             handOn(slot[t], o);
+                        },
+                        [&](std::uint64_t o) {
+                            return evaluated(o, ta.data(), tb.data(), tat.data(), tested);
                         });
                 pressedUpTo(n);
             });
