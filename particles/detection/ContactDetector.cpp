@@ -233,6 +233,25 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
     auto referenceOf = [&](VerletList::Id id, std::size_t k) {
         return localPosition(m_list.reference(id), ps.image(k), period);
     };
+    // Each fresh copy is tested against every arrival before it: their reference positions
+    // and radii once, in lanes (x, y, z, r).
+    std::size_t const na = arrivals.size();
+    m_arrivalLanes.resize(4 * na);
+    m_arrivalHits.resize(na);
+    double* const ax = m_arrivalLanes.data();
+    double* const ay = ax + na;
+    double* const az = ay + na;
+    double* const ar = az + na;
+    std::uint8_t* const hit = m_arrivalHits.data();
+    for (std::size_t e = 0; e < na; ++e) {
+        std::uint32_t const k = m_list.indexOf(arrivals[e]);
+        bool const live = k != VerletList::kDead;
+        core::Vec3 const x = live ? referenceOf(arrivals[e], k) : core::Vec3::Zero();
+        ax[e] = x.x();
+        ay[e] = x.y();
+        az[e] = x.z();
+        ar[e] = live ? ps.radius(k) : std::numeric_limits<double>::quiet_NaN();
+    }
     for (std::size_t n = 0; n < m_fresh.size(); ++n) {
         std::size_t const f = m_fresh[n];
         VerletList::Id const idF = VerletList::idOf(ps, f);
@@ -258,8 +277,17 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
         });
         for (VerletList::Id id : m_largeIds)
             test(id);
-        for (std::size_t e = 0; e < firstNew + n; ++e)
-            test(arrivals[e]);
+        // The arrivals before this one: test's operations over the lanes (a dead one's reach
+        // is NaN, which no distance is below), then the hits in order.
+        std::size_t const earlier = firstNew + n;
+        for (std::size_t e = 0; e < earlier; ++e) {
+            double const dx = ax[e] - xf.x(), dy = ay[e] - xf.y(), dz = az[e] - xf.z();
+            double const reach = (rf + ar[e]) + reachSlack;
+            hit[e] = (dx * dx + dy * dy) + dz * dz < reach * reach ? 1 : 0;
+        }
+        for (std::size_t e = 0; e < earlier; ++e)
+            if (hit[e] != 0)
+                m_list.addPair(idF, arrivals[e]);
     }
     classifyListed(ps, region, frame, firstPair);
     return true;
@@ -334,6 +362,7 @@ void ContactDetector::release() {
 std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
+           m_arrivalLanes.capacity() * sizeof(double) + m_arrivalHits.capacity() +
            m_depths.bytes() + m_carried.bytes();
 }
 

@@ -374,9 +374,11 @@ private:
     std::vector<std::size_t> m_large;
     std::vector<double> m_scratch;
     VerletList m_list;
-    std::vector<std::size_t> m_fresh;       ///< storage indices of the copies that just arrived
-    std::vector<VerletList::Id> m_largeIds; ///< the large spheres of the last rebuild
-    ReferenceDepths m_depths;               ///< of the last rebuild's copies, and the shifts since
+    std::vector<std::size_t> m_fresh;        ///< storage indices of the copies that just arrived
+    std::vector<VerletList::Id> m_largeIds;  ///< the large spheres of the last rebuild
+    std::vector<double> m_arrivalLanes;      ///< addArrivals: the arrivals' x, y, z and radii
+    std::vector<std::uint8_t> m_arrivalHits; ///< addArrivals: which of them a fresh copy reaches
+    ReferenceDepths m_depths;                ///< of the last rebuild's copies, and the shifts since
     /// Per listed pair (the first ones), how much deeper inside the block than its settlement
     /// needs both its copies lay at the rebuild: while the drift stays below it, the list's
     /// shifts need not settle it again (ListShift.cpp). Empty until the first shift.
