@@ -81,7 +81,7 @@ void evaluatePair(ParticleStorage& ps, Contact const& c, M const& model, double 
                   std::uint32_t stamp, std::uint8_t& hint, S&& sink) {
     ContactState const s = pairState(ps, c);
     ContactResponse const r =
-        withSprings(ps.history(c.i), ps.uid(c.j), stamp, hint, model.hasRollingSpring(),
+        withSprings(ps.pairHistory(c.i), ps.uid(c.j), stamp, hint, model.hasRollingSpring(),
                     [&](auto& spring, auto& roll) { return model(s, spring, roll, dt); });
     core::Vec3 const torqueJ = (c.point - partnerCentre(ps, c)).cross(r.force) + r.torque;
     core::Vec3 const torqueI = (c.point - ps.position(c.i)).cross(r.force) + r.torque;

@@ -175,7 +175,7 @@ public:
     }
 
     [[gnu::always_inline]] void operator()(PairOverlap const& p, std::uint8_t& hint) {
-        ContactHistory& history = m_ps.history(p.i);
+        ContactHistory& history = m_ps.pairHistory(p.i);
         std::size_t const before = history.size();
         Uid const partner = m_ps.uid(p.j);
         bool again = false;
@@ -223,8 +223,8 @@ public:
                 HistoryEntry* r = batch.rollingEntry(k);
                 if (m_moved) { // found again through the hint, or by search
                     std::uint8_t hint = batch.hint(k);
-                    e = &m_ps.history(i).touch(m_ps.uid(j), m_stamp, hint);
-                    r = m_rolling ? m_ps.history(i).find(rollingKey(m_ps.uid(j))) : nullptr;
+                    e = &m_ps.pairHistory(i).touch(m_ps.uid(j), m_stamp, hint);
+                    r = m_rolling ? m_ps.pairHistory(i).find(rollingKey(m_ps.uid(j))) : nullptr;
                 }
                 e->spring = batch.spring(k);
                 if (r)

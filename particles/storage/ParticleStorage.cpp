@@ -191,6 +191,30 @@ void ParticleStorage::storeOrientations() {
     array<kOrientation>().assign(size(), kIdentityOrientation);
 }
 
+void ParticleStorage::shareHistories(std::span<std::array<Index, 2> const> shared) {
+    stopSharingHistories();
+    if (shared.empty())
+        return;
+    for (auto const& [shadow, master] : shared)
+        if (shadow >= size() || master >= size() ||
+            array<kUid>()[shadow] != array<kUid>()[master] || !flags(shadow).isShadow() ||
+            !flags(master).isMaster())
+            throw core::Error("ParticleStorage::shareHistories: copy " + std::to_string(shadow) +
+                              " is not a shadow of the master at " + std::to_string(master));
+    m_historyOf.resize(size());
+    for (std::size_t k = 0; k < m_historyOf.size(); ++k)
+        m_historyOf[k] = static_cast<std::uint32_t>(k);
+    for (auto const& [shadow, master] : shared)
+        m_historyOf[shadow] = static_cast<std::uint32_t>(master);
+}
+
+void ParticleStorage::stopSharingHistories() {
+    for (std::size_t k = 0; k < m_historyOf.size(); ++k)
+        if (m_historyOf[k] != k)
+            m_history[k].assign(m_history[m_historyOf[k]].entries());
+    m_historyOf.clear();
+}
+
 void ParticleStorage::clear() {
     touchLayout();
     forEachArray([](auto& v) { v.clear(); });

@@ -11,6 +11,7 @@
 #include "particles/storage/ThinList.hpp"
 #include "particles/storage/Uid.hpp"
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -174,6 +175,22 @@ public:
     [[nodiscard]] HolderList const& shadowHolders(Index i) const { return m_shadowHolders[i]; }
     [[nodiscard]] ContactHistory& history(Index i) { return m_history[i]; }
     [[nodiscard]] ContactHistory const& history(Index i) const { return m_history[i]; }
+    /// The history whose springs copy i's pairs use: its own, or its master's while this
+    /// storage holds both and shareHistories() said so.
+    [[nodiscard]] ContactHistory& pairHistory(Index i) {
+        return m_history[m_historyOf.empty() ? i : m_historyOf[i]];
+    }
+    /// Whether copy i's pairs use another copy's history (its own is then not kept current).
+    [[nodiscard]] bool sharesHistory(Index i) const {
+        return !m_historyOf.empty() && m_historyOf[i] != i;
+    }
+    /// From now until the layout changes or stopSharingHistories(), the pairs of each shadow
+    /// `shared[n][0]` use the history of its master `shared[n][1]` (same grain, this storage):
+    /// a spring is then written where the force reduction would have brought it, and the
+    /// update need not copy the history to the shadow. Copy i's own history is current again
+    /// when the sharing stops.
+    void shareHistories(std::span<std::array<Index, 2> const> shared);
+    void stopSharingHistories();
 
     /// Component `c` of the grain field `id` (GrainFields.hpp) of copy i; the field was declared
     /// before the copy was added.
@@ -328,6 +345,7 @@ private:
     std::vector<CopyImage> m_image;
     std::vector<HolderList> m_shadowHolders;
     std::vector<ContactHistory> m_history;
+    std::vector<std::uint32_t> m_historyOf;    ///< shareHistories(): per copy (empty: its own)
     std::vector<std::vector<double>> m_fields; ///< one array per declared grain-field component
     CopyIndex m_index;
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.
@@ -336,7 +354,11 @@ private:
     std::uint64_t m_traceSession = 0;
     bool m_traceBroken = false;
     /// Gives the storage a layout revision no storage had before.
-    void touchLayout() { m_layoutRevision = s_layoutRevisions.fetch_add(1) + 1; }
+    void touchLayout() {
+        if (!m_historyOf.empty())
+            stopSharingHistories();
+        m_layoutRevision = s_layoutRevisions.fetch_add(1) + 1;
+    }
     static inline std::atomic<std::uint64_t> s_layoutRevisions{0};
     std::uint64_t m_layoutRevision = s_layoutRevisions.fetch_add(1) + 1;
 };

@@ -299,6 +299,9 @@ void ParticleSync::syncInFull(LocalParticles& local,
                               std::span<std::vector<std::uint32_t> const> only, double grow) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
+    // Alg. 1 reads and writes every shadow's own history.
+    for (BlockParticles& bp : local.blocks())
+        bp.particles.stopSharingHistories();
     // Every ball reaches half the interaction range farther (SyncConfig::reach).
     double const halfReach = 0.5 * m_config.reach;
     bool const skinned = grow > 0.0;

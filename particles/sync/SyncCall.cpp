@@ -36,6 +36,7 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
         m_last.updated += updated;
         m_last.leaversOnly = true;
         m_last.listFollowed = m_updateList->followLeavers(local, along);
+        m_updateList->shareHistories(local);
         m_last.comm += along;
         m_counters.record(along);
         return;
@@ -52,6 +53,7 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
     if (m_updateList) {
         core::CommStats keys;
         m_updateList->rebuild(local, m_config.skin, keys);
+        m_updateList->shareHistories(local);
         m_last.comm += keys;
         m_counters.record(keys);
     }

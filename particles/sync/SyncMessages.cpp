@@ -95,7 +95,7 @@ void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& po
     to.velocity(k) = from.velocity(i);
     to.angularVelocity(k) = from.angularVelocity(i);
     to.setOrientation(k, from.orientation(i));
-    if (!from.history(i).empty() || !to.history(k).empty())
+    if (!to.sharesHistory(k) && (!from.history(i).empty() || !to.history(k).empty()))
         to.history(k).assign(from.history(i).entries());
     for (std::size_t c = 0; c < from.fieldComponents(); ++c)
         to.fieldComponent(c, k) = from.fieldComponent(c, i);

@@ -5,6 +5,7 @@
 #include "particles/sync/SyncMessages.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -277,6 +278,20 @@ UpdateList::Verdict UpdateList::agree(Verdict own) const {
     return static_cast<Verdict>(m_comm.allReduce(static_cast<int>(own), core::ReduceOp::Max));
 }
 
+void UpdateList::shareHistories(LocalParticles& local) const {
+    if (!m_valid)
+        return;
+    auto blocks = local.blocks();
+    std::vector<std::array<std::size_t, 2>> shared;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        shared.clear();
+        for (Shadow const& s : m_blocks[b].shadows)
+            if (s.masterBlock == b)
+                shared.push_back({s.index, s.master});
+        blocks[b].particles.shareHistories(shared);
+    }
+}
+
 std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {
     auto blocks = local.blocks();
     std::size_t const fields = grainFieldComponents();
@@ -353,7 +368,10 @@ bool UpdateList::reduce(LocalParticles& local, std::uint32_t stamp, core::CommSt
         for (Shadow const& s : m_blocks[b].shadows) {
             if (!sync_detail::mayHaveShare(ps, s.index))
                 continue;
-            sync_detail::touchedEntries(ps, s.index, stamp, entries);
+            if (ps.sharesHistory(s.index)) // its pairs wrote into the master's history
+                entries.clear();
+            else
+                sync_detail::touchedEntries(ps, s.index, stamp, entries);
             sync_detail::addShadowShare(ps, s.index, entries, blocks[s.masterBlock].particles,
                                         s.master);
         }

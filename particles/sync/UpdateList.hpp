@@ -112,6 +112,12 @@ public:
     /// Pre: the ranks agreed on Holds or Leavers, and no storage changed since. COLLECTIVE.
     std::size_t update(LocalParticles& local, core::CommStats& stats);
 
+    /// Lets each shadow listed here whose master lies in the same storage use its master's
+    /// contact history (ParticleStorage::shareHistories), while the layouts stay: update()
+    /// then copies no history to it and reduce() takes none from it. Nothing if not valid.
+    /// Local.
+    void shareHistories(LocalParticles& local) const;
+
     /// Whether the list holds here for the force reduction: valid, and no storage changed
     /// since rebuild(). Local.
     [[nodiscard]] bool holds(LocalParticles const& local) const;

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -252,6 +253,42 @@ TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
     ps.remove(0);
     EXPECT_EQ(ps.find(7, CopyImage{0, -1, 0}), 0U);
     EXPECT_FALSE(ps.contains(7));
+}
+
+TEST(ParticleStorage, AShadowSharesItsMastersHistoryUntilTheLayoutChanges) {
+    ParticleStorage ps;
+    ParticleInit p;
+    p.uid = 7;
+    p.radius = 0.5;
+    p.mass = 1.0;
+    std::size_t const master = ps.add(p);
+    p.uid = 8;
+    std::size_t const other = ps.add(p);
+    p.uid = 7;
+    p.image = CopyImage{1, 0, 0};
+    p.flags = Flag::Shadow;
+    std::size_t const shadow = ps.add(p);
+    ps.history(master).set(HistoryEntry{9, Vec3(0.1, 0.0, 0.0), 3});
+    std::array<std::array<std::size_t, 2>, 1> const shared{{{shadow, master}}};
+    ps.shareHistories(shared);
+    EXPECT_TRUE(ps.sharesHistory(shadow));
+    EXPECT_FALSE(ps.sharesHistory(master));
+    EXPECT_FALSE(ps.sharesHistory(other));
+    EXPECT_EQ(&ps.pairHistory(shadow), &ps.history(master));
+    EXPECT_EQ(&ps.pairHistory(other), &ps.history(other));
+    // A spring the shadow's pair writes lands in the master's history; the shadow's own
+    // history becomes that history again once the layout changes.
+    ps.pairHistory(shadow).set(HistoryEntry{11, Vec3(0.0, 0.2, 0.0), 4});
+    EXPECT_TRUE(ps.history(shadow).empty());
+    ps.remove(other);
+    EXPECT_FALSE(ps.sharesHistory(0));
+    std::size_t const moved = ps.find(7, CopyImage{1, 0, 0});
+    EXPECT_EQ(&ps.pairHistory(moved), &ps.history(moved));
+    ASSERT_EQ(ps.history(moved).size(), 2U);
+    EXPECT_EQ(ps.history(moved).find(11)->spring, Vec3(0.0, 0.2, 0.0));
+    // Only a shadow and its own grain's master may share.
+    std::array<std::array<std::size_t, 2>, 1> const wrong{{{master, moved}}};
+    EXPECT_THROW(ps.shareHistories(wrong), core::Error);
 }
 
 } // namespace
