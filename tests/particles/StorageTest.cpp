@@ -233,12 +233,18 @@ TEST(WallList, NormalisesAndRejectsBadNormals) {
 namespace regolith::particles {
 namespace {
 
-TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
-    ParticleStorage ps;
+/// A sphere of radius 0.5, mass 1 and uid 7 at the origin: a master at image zero.
+ParticleInit grainSeven() {
     ParticleInit p;
     p.uid = 7;
     p.radius = 0.5;
     p.mass = 1.0;
+    return p;
+}
+
+TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
+    ParticleStorage ps;
+    ParticleInit p = grainSeven();
     ps.add(p);
     p.image = CopyImage{1, 0, 0};
     p.flags = Flag::Shadow;
@@ -257,10 +263,7 @@ TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
 
 TEST(ParticleStorage, AShadowSharesItsMastersHistoryUntilTheLayoutChanges) {
     ParticleStorage ps;
-    ParticleInit p;
-    p.uid = 7;
-    p.radius = 0.5;
-    p.mass = 1.0;
+    ParticleInit p = grainSeven();
     std::size_t const master = ps.add(p);
     p.uid = 8;
     std::size_t const other = ps.add(p);
