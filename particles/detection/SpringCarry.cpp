@@ -24,6 +24,10 @@ void CarriedSprings::setAside(VerletList const& list, std::size_t copies) {
         [&](std::size_t i, std::size_t, std::size_t p) { m_start[i + 1] += touched(p) ? 1 : 0; });
     for (std::size_t k = 1; k < m_start.size(); ++k)
         m_start[k] += m_start[k - 1];
+    // With room for a quarter more: a pack's count creeps up from rebuild to rebuild, and each
+    // growth would move the springs to memory touched for the first time.
+    if (m_springs.capacity() < m_start.back())
+        m_springs.reserve(m_start.back() + m_start.back() / 4);
     m_springs.resize(m_start.back());
     m_cursor.assign(m_start.begin(), m_start.end() - 1);
     list.forEachKeptPair([&](std::size_t i, std::size_t j, std::size_t p) {

@@ -4,6 +4,7 @@
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -62,25 +63,45 @@ void ContactDetector::wallPass(ParticleStorage const& ps, WallList const& walls,
 void ContactDetector::screenPlaneWalls(ParticleStorage const& ps, std::span<Wall const> walls,
                                        std::vector<std::uint8_t>& near) {
     std::size_t const n = ps.size();
-    double const* const x = ps.positions().data()->data();
-    double const* const radius = ps.radii().data();
-    std::uint8_t* const mark = near.data();
     for (Wall const& w : walls) {
         if (w.geometry.shape != WallShape::Plane) {
             std::fill_n(near.begin(), n, std::uint8_t{1}); // tested one by one
             return;
         }
-        // WallGeometry::distance's operations, widened by a relative 1e-9 of the coordinates
-        // (its rounding, contracted or not, lies far below it): never narrower than the test.
-        core::Vec3 const p = w.geometry.point, u = w.geometry.normal;
-        double const scale = 1e-9 * (1.0 + p.cwiseAbs().maxCoeff());
+    }
+    double const* const x = ps.positions().data()->data();
+    double const* const radius = ps.radii().data();
+    std::uint8_t* const mark = near.data();
+    // Up to kPlanes planes in one pass over the copies (each copy's centre loaded once); more
+    // in further passes. WallGeometry::distance's operations, widened by a relative 1e-9 of
+    // the coordinates (its rounding, contracted or not, lies far below it): never narrower
+    // than the test.
+    constexpr std::size_t kPlanes = 2;
+    for (std::size_t first = 0; first < walls.size(); first += kPlanes) {
+        std::array<double, 3 * kPlanes> point{}, normal{};
+        std::array<double, kPlanes> scale{};
+        std::size_t const planes = std::min(kPlanes, walls.size() - first);
+        for (std::size_t w = 0; w < kPlanes; ++w) {
+            // A missing second plane repeats the first: the same marks.
+            WallGeometry const& g = walls[first + std::min(w, planes - 1)].geometry;
+            for (int a = 0; a < 3; ++a) {
+                point[3 * w + a] = g.point[a];
+                normal[3 * w + a] = g.normal[a];
+            }
+            scale[w] = 1e-9 * (1.0 + g.point.cwiseAbs().maxCoeff());
+        }
         for (std::size_t k = 0; k < n; ++k) {
-            double const d = (x[3 * k] - p.x()) * u.x() + (x[3 * k + 1] - p.y()) * u.y() +
-                             (x[3 * k + 2] - p.z()) * u.z();
-            double const slack = scale + 1e-9 * (std::abs(x[3 * k]) + std::abs(x[3 * k + 1]) +
-                                                 std::abs(x[3 * k + 2]));
-            // Not finite: marked, and the exact test drops it as before.
-            mark[k] |= !(d >= radius[k] + slack) ? 1 : 0;
+            double const cx = x[3 * k], cy = x[3 * k + 1], cz = x[3 * k + 2];
+            double const relative = 1e-9 * (std::abs(cx) + std::abs(cy) + std::abs(cz));
+            std::uint8_t hit = 0;
+            for (std::size_t w = 0; w < kPlanes; ++w) {
+                double const d = (cx - point[3 * w]) * normal[3 * w] +
+                                 (cy - point[3 * w + 1]) * normal[3 * w + 1] +
+                                 (cz - point[3 * w + 2]) * normal[3 * w + 2];
+                // Not finite: marked, and the exact test drops it as before.
+                hit |= !(d >= radius[k] + (scale[w] + relative)) ? 1 : 0;
+            }
+            mark[k] |= hit;
         }
     }
 }
