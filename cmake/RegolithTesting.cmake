@@ -8,6 +8,19 @@ set(REGOLITH_MPI_TEST_ENV
     OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
     OMPI_MCA_pml=ob1 ASAN_OPTIONS=detect_leaks=0)
 
+# regolith_isolate_mpi_sessions(): gives each test registered in the calling directory its own
+# Open MPI session directory under the build tree. Open MPI 4 removes the shared
+# /tmp/ompi.<host>.<uid> when its last job ends; a job that ctest -j starts in that moment fails
+# with "A call to mkdir was unable to create the desired directory" (open-mpi/ompi#8510).
+# Call it at the end of every CMakeLists.txt that adds tests.
+function(regolith_isolate_mpi_sessions)
+  get_directory_property(tests TESTS)
+  foreach(test IN LISTS tests)
+    set_property(TEST ${test} APPEND PROPERTY ENVIRONMENT
+                 "OMPI_MCA_orte_tmpdir_base=${CMAKE_BINARY_DIR}/mpi-sessions/${test}")
+  endforeach()
+endfunction()
+
 function(regolith_add_mpi_test target)
   cmake_parse_arguments(ARG "" "TIMEOUT;NAME" "RANKS;LABELS;ARGS" ${ARGN})
   if(NOT ARG_RANKS)
