@@ -125,6 +125,12 @@ void SparseExchange::start() {
 }
 
 void SparseExchange::progress() {
+    if (m_comm.size() == 1) {
+        // No other rank: nothing to probe for, no send to match, and the reduction over one
+        // rank is the identity (every one-rank synchronisation calls this).
+        m_global = m_local;
+        m_phase = Phase::Idle;
+    }
     int const tag = currentTag();
     MPI_Comm const raw = m_comm.raw();
     while (m_phase != Phase::Idle) {

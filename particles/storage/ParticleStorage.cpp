@@ -215,6 +215,16 @@ void ParticleStorage::stopSharingHistories() {
     m_historyOf.clear();
 }
 
+void ParticleStorage::copyMastersHistoriesToShadows() {
+    for (Index k = 0, n = size(); k < n; ++k) {
+        if (!flags(k).isShadow())
+            continue;
+        Index const m = find(array<kUid>()[k]);
+        if (m != kNotFound && flags(m).isMaster())
+            m_history[k].assign(m_history[m].entries());
+    }
+}
+
 void ParticleStorage::clear() {
     touchLayout();
     forEachArray([](auto& v) { v.clear(); });

@@ -191,6 +191,13 @@ public:
     /// when the sharing stops.
     void shareHistories(std::span<std::array<Index, 2> const> shared);
     void stopSharingHistories();
+    /// Stops the sharing without bringing the shadows' own histories up to date: for a caller
+    /// that rewrites every such shadow's history from its master's before anything reads it
+    /// (the full synchronisation: each master with shadows updates them).
+    void forgetSharedHistories() { m_historyOf.clear(); }
+    /// Each shadow whose master lies in this storage takes a copy of the master's history:
+    /// what stopSharingHistories() would have done, after forgetSharedHistories().
+    void copyMastersHistoriesToShadows();
 
     /// Component `c` of the grain field `id` (GrainFields.hpp) of copy i; the field was declared
     /// before the copy was added.

@@ -299,9 +299,12 @@ void ParticleSync::syncInFull(LocalParticles& local,
                               std::span<std::vector<std::uint32_t> const> only, double grow) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
-    // Alg. 1 reads and writes every shadow's own history.
+    // Alg. 1 writes the shadows' own histories, and the storages' layouts change: the sharing
+    // stops. The shadows' own histories need not be brought up to date first: a full call
+    // visits every master with shadows and rewrites theirs from its own, and after a call for
+    // the leavers the update list shares the others' again (syncOn).
     for (BlockParticles& bp : local.blocks())
-        bp.particles.stopSharingHistories();
+        bp.particles.forgetSharedHistories();
     // Every ball reaches half the interaction range farther (SyncConfig::reach).
     double const halfReach = 0.5 * m_config.reach;
     bool const skinned = grow > 0.0;

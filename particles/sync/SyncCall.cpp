@@ -36,7 +36,11 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
         m_last.updated += updated;
         m_last.leaversOnly = true;
         m_last.listFollowed = m_updateList->followLeavers(local, along);
-        m_updateList->shareHistories(local);
+        // The shadows of masters that stayed were not rewritten: shared again, or, where the
+        // list broke (a leaver became SOS class), given their masters' histories.
+        if (!m_updateList->shareHistories(local))
+            for (BlockParticles& bp : local.blocks())
+                bp.particles.copyMastersHistoriesToShadows();
         m_last.comm += along;
         m_counters.record(along);
         return;

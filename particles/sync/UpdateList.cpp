@@ -278,9 +278,9 @@ UpdateList::Verdict UpdateList::agree(Verdict own) const {
     return static_cast<Verdict>(m_comm.allReduce(static_cast<int>(own), core::ReduceOp::Max));
 }
 
-void UpdateList::shareHistories(LocalParticles& local) const {
+bool UpdateList::shareHistories(LocalParticles& local) const {
     if (!m_valid)
-        return;
+        return false;
     auto blocks = local.blocks();
     std::vector<std::array<std::size_t, 2>> shared;
     for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -290,6 +290,7 @@ void UpdateList::shareHistories(LocalParticles& local) const {
                 shared.push_back({s.index, s.master});
         blocks[b].particles.shareHistories(shared);
     }
+    return true;
 }
 
 std::size_t UpdateList::update(LocalParticles& local, core::CommStats& stats) {

@@ -114,9 +114,9 @@ public:
 
     /// Lets each shadow listed here whose master lies in the same storage use its master's
     /// contact history (ParticleStorage::shareHistories), while the layouts stay: update()
-    /// then copies no history to it and reduce() takes none from it. Nothing if not valid.
-    /// Local.
-    void shareHistories(LocalParticles& local) const;
+    /// then copies no history to it and reduce() takes none from it. Nothing if not valid;
+    /// returns whether valid. Local.
+    bool shareHistories(LocalParticles& local) const;
 
     /// Whether the list holds here for the force reduction: valid, and no storage changed
     /// since rebuild(). Local.

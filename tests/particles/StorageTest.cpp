@@ -294,5 +294,29 @@ TEST(ParticleStorage, AShadowSharesItsMastersHistoryUntilTheLayoutChanges) {
     EXPECT_THROW(ps.shareHistories(wrong), core::Error);
 }
 
+TEST(ParticleStorage, ForgottenSharingLeavesTheShadowsHistoryUntilCopiedFromTheMaster) {
+    ParticleStorage ps;
+    ParticleInit p = grainSeven();
+    std::size_t const master = ps.add(p);
+    p.uid = 8; // a shadow whose master lies elsewhere: left alone
+    p.flags = Flag::Shadow;
+    std::size_t const foreign = ps.add(p);
+    p.uid = 7;
+    p.image = CopyImage{1, 0, 0};
+    std::size_t const shadow = ps.add(p);
+    ps.history(foreign).set(HistoryEntry{5, Vec3(0.5, 0.0, 0.0), 1});
+    std::array<std::array<std::size_t, 2>, 1> const shared{{{shadow, master}}};
+    ps.shareHistories(shared);
+    ps.pairHistory(shadow).set(HistoryEntry{11, Vec3(0.0, 0.2, 0.0), 4});
+    ps.forgetSharedHistories();
+    EXPECT_FALSE(ps.sharesHistory(shadow));
+    EXPECT_TRUE(ps.history(shadow).empty()); // not brought up to date
+    ps.copyMastersHistoriesToShadows();
+    ASSERT_EQ(ps.history(shadow).size(), 1U);
+    EXPECT_EQ(ps.history(shadow).find(11)->spring, Vec3(0.0, 0.2, 0.0));
+    ASSERT_EQ(ps.history(foreign).size(), 1U);
+    EXPECT_EQ(ps.history(foreign).find(5)->spring, Vec3(0.5, 0.0, 0.0));
+}
+
 } // namespace
 } // namespace regolith::particles
