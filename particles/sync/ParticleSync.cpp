@@ -114,9 +114,11 @@ void ParticleSync::coverReach(double range) {
 namespace {
 
 /// The Update of shadow `t` (on this rank, same image) from master i of `ps`, applied
-/// directly; false if this rank holds no such copy (the buffered path then reports it).
+/// directly; false if this rank holds no such copy (the buffered path then reports it). A
+/// shadow that shares the master's history keeps sharing it (syncInFull) only if the master
+/// `stays` in its block and does not spread (Alg. 2 spreads from the shadows' own histories).
 bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t i,
-                   core::Vec3 const& position, CopyRef const& t, BlockRef owner) {
+                   core::Vec3 const& position, CopyRef const& t, BlockRef owner, bool stays) {
     BlockParticles* target = local.find(t.block);
     if (target == nullptr)
         return false;
@@ -124,6 +126,8 @@ bool updateInPlace(LocalParticles& local, ParticleStorage const& ps, std::size_t
     if (k == ParticleStorage::kNotFound)
         return false;
     copyUpdate(ps, i, position, owner, target->particles, k);
+    if ((!stays || ps.flags(i).has(Flag::Spreads)) && target->particles.sharesHistory(k))
+        target->particles.history(k).assign(ps.history(i).entries());
     if (!ps.flags(i).has(Flag::Spreads) && !target->sent.empty())
         forgetSent(*target, ps.uid(i));
     return true;
@@ -238,7 +242,7 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
             // Safe before the receive round: no record of this round removes or moves it (its
             // master sends it this update only), and it changes no index.
             if (t.rank == me && sameImage(t.image, k) &&
-                updateInPlace(local, ps, i, newPosition, t, newOwner)) {
+                updateInPlace(local, ps, i, newPosition, t, newOwner, !transfer)) {
                 ++stats.updated;
                 continue;
             }
@@ -299,12 +303,6 @@ void ParticleSync::syncInFull(LocalParticles& local,
                               std::span<std::vector<std::uint32_t> const> only, double grow) {
     Impl& engine = *m_impl;
     m_last = SyncStats{};
-    // Alg. 1 writes the shadows' own histories, and the storages' layouts change: the sharing
-    // stops. The shadows' own histories need not be brought up to date first: a full call
-    // visits every master with shadows and rewrites theirs from its own, and after a call for
-    // the leavers the update list shares the others' again (syncOn).
-    for (BlockParticles& bp : local.blocks())
-        bp.particles.forgetSharedHistories();
     // Every ball reaches half the interaction range farther (SyncConfig::reach).
     double const halfReach = 0.5 * m_config.reach;
     bool const skinned = grow > 0.0;
@@ -380,6 +378,11 @@ void ParticleSync::syncInFull(LocalParticles& local,
                      !engine.deepInside(deep, ps.position(i), r))
                 bp.spreadingMasters.push_back({ps.uid(i), i}); // spread visits it (round 2)
         }
+        // The storage's layout changes from here on, and its shadows stop sharing their
+        // masters' histories (UpdateList::shareHistories). Those the masters above updated in
+        // place kept the history shared, not a copy, as along the update list: the list shares
+        // them again after the call, or gives them their masters' histories (syncOn).
+        ps.forgetSharedHistories();
         for (Uid uid : leaving)
             ps.removeUid(uid);
     }

@@ -166,6 +166,9 @@ private:
     /// NNS-class balls grown by `grow` (the skin, or 0).
     void syncInFull(LocalParticles& local, std::span<std::vector<std::uint32_t> const> only,
                     double grow);
+    /// After a call along a valid list (refresh or leavers): the shadows in their master's
+    /// storage share its history again, or, if the list no longer holds, get a copy of it.
+    void shareHistoriesAgain(LocalParticles& local);
 
     core::Comm const* m_comm;
     std::unique_ptr<Impl> m_impl;

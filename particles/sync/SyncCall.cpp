@@ -16,6 +16,14 @@ void ParticleSync::sync(LocalParticles& local, double movedAtMost) {
     syncOn(local, m_updateList ? m_updateList->agree(own) : own);
 }
 
+void ParticleSync::shareHistoriesAgain(LocalParticles& local) {
+    // The call's Alg. 1 left the shadows that shared a history with it (syncInFull): shared
+    // again, or, where the list broke (a copy became SOS class), given their masters'.
+    if (!m_updateList->shareHistories(local))
+        for (BlockParticles& bp : local.blocks())
+            bp.particles.copyMastersHistoriesToShadows();
+}
+
 void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
     // Every rank acts on the same verdict: a refresh and the leavers' Alg. 1 are collective.
     if (!m_updateList && verdict != SyncVerdict::Refresh)
@@ -36,11 +44,7 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
         m_last.updated += updated;
         m_last.leaversOnly = true;
         m_last.listFollowed = m_updateList->followLeavers(local, along);
-        // The shadows of masters that stayed were not rewritten: shared again, or, where the
-        // list broke (a leaver became SOS class), given their masters' histories.
-        if (!m_updateList->shareHistories(local))
-            for (BlockParticles& bp : local.blocks())
-                bp.particles.copyMastersHistoriesToShadows();
+        shareHistoriesAgain(local);
         m_last.comm += along;
         m_counters.record(along);
         return;
@@ -57,7 +61,7 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
     if (m_updateList) {
         core::CommStats keys;
         m_updateList->rebuild(local, m_config.skin, keys);
-        m_updateList->shareHistories(local);
+        shareHistoriesAgain(local);
         m_last.comm += keys;
         m_counters.record(keys);
     }

@@ -46,9 +46,16 @@ bool UpdateList::followStorages(LocalParticles const& local, BlocksById const& b
         std::sort(w.begin(), w.end());
         w.erase(std::unique(w.begin(), w.end()), w.end());
     }
+    // A mark per slot: the shadows' loop below asks twice per shadow.
+    std::vector<std::vector<std::uint8_t>> writtenMark(blocks.size());
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+        writtenMark[b].assign(blocks[b].particles.size(), 0);
+        for (std::uint32_t i : written[b])
+            if (i < writtenMark[b].size())
+                writtenMark[b][i] = 1;
+    }
     auto const changed = [&](std::size_t b, std::uint32_t i) {
-        return i >= blocks[b].particles.size() ||
-               std::binary_search(written[b].begin(), written[b].end(), i);
+        return i >= writtenMark[b].size() || writtenMark[b][i] != 0;
     };
     // The copies decided again: every written slot, and the shadows whose master may have moved
     // (a local master's slot was written; a remote one's owner or class changed in place).
