@@ -51,7 +51,11 @@ void ParticleSync::syncOn(LocalParticles& local, SyncVerdict verdict) {
     }
     if (verdict == SyncVerdict::Idle) {
         // An SOS-class copy somewhere: a list would not hold, so neither growth (more shadows)
-        // nor a refresh (a pass and a key exchange) would pay. The list retries later.
+        // nor a refresh (a pass and a key exchange) would pay. The list retries later. A rank
+        // whose own list held may have shared histories: they are not shared again after this
+        // call, so its shadows take their own copies first.
+        for (BlockParticles& bp : local.blocks())
+            bp.particles.stopSharingHistories();
         syncInFull(local, {}, 0.0);
         m_updateList->invalidate();
         m_last.skinIdle = true;

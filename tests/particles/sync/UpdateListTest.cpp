@@ -4,8 +4,9 @@
 // every copy Alg. 1 needs exists after every call (the invariants with the skin's tolerance),
 // the list carries most calls, masters that cross a block face are handled alone, forces go
 // back to the masters along the list with the springs the shadows touched, a storage change on
-// one rank sends every rank the keyed way, a storage change ends the list, and an SOS-class grain
-// (hybrid) leaves it idle while it exists. On several ranks
+// one rank sends every rank the keyed way, a storage change ends the list, an SOS-class grain
+// (hybrid) leaves it idle while it exists, and an idle call leaves every shadow in its master's
+// storage with the master's history. On several ranks
 // (1-8, the same tests) the remote shadows travel along the owners' send lists and every rank
 // acts on the same verdict. With SOS a skin is refused on every rank.
 #include "particles/sync/UpdateList.hpp"
@@ -317,6 +318,57 @@ TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
     EXPECT_EQ(globalMasters(local, world), 120u);
     auto const v = checkSyncInvariants(local, world, true, kSkin);
     EXPECT_TRUE(v.empty()) << joined(v);
+}
+
+TEST(UpdateList, AnIdleCallLeavesEveryShadowWithItsMastersHistory) {
+    // Hybrid on a periodic row of 4 x 1 x 1 blocks: each block holds the y and z images of its
+    // masters (shadows in their master's storage, which share its history while the list
+    // holds). An SOS-class grain in block 0 reaches blocks 3, 0 and 1 only: on four ranks the
+    // rank of block 2 keeps a valid list at each refresh and shares, then acts on the others'
+    // Idle verdict.
+    Comm world;
+    AABB const domain{Vec3::Zero(), Vec3(8, 8, 8)};
+    domain::BlockForest forest(world, forestSpec(domain.min, domain.max, {4, 1, 1}, allAxes(true)));
+    LocalParticles local(forest);
+    ParticleSync sync(world, forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
+    addAll(local, world, randomGas(domain, 120, 0.2, 0.6, 0.0, 11));
+    addAll(local, world, {grain(makeUid(1, 0), Vec3(1.0, 4.0, 4.0), 2.2)});
+    sync.syncUntilConverged(local);
+    Uid const partner = makeUid(9, 9);
+    std::size_t checked = 0;
+    for (int stretch = 1; stretch <= 2; ++stretch) {
+        // To the end of the idle stretch: the refresh tried again.
+        int calls = 0;
+        do {
+            sync.sync(local);
+        } while (sync.lastStats().skinIdle && ++calls < 4 * UpdateList::kIdleCalls);
+        ASSERT_FALSE(sync.lastStats().skinIdle) << "stretch " << stretch;
+        // Springs the masters' pairs write, then the first idle call after the refresh.
+        for (BlockParticles& bp : local.blocks())
+            bp.particles.forEachMaster([&](std::size_t m) {
+                bp.particles.pairHistory(m).set(HistoryEntry{partner, Vec3(stretch, 0.0, 0.0),
+                                                             static_cast<std::uint32_t>(stretch)});
+            });
+        sync.sync(local);
+        ASSERT_TRUE(sync.lastStats().skinIdle) << "stretch " << stretch;
+        for (BlockParticles const& bp : local.blocks()) {
+            ParticleStorage const& ps = bp.particles;
+            for (std::size_t k = 0; k < ps.size(); ++k) {
+                std::size_t const m = ps.find(ps.uid(k));
+                if (!ps.flags(k).isShadow() || m == ParticleStorage::kNotFound ||
+                    !ps.flags(m).isMaster())
+                    continue;
+                // Not ASSERT: every rank goes on to the same collective calls.
+                HistoryEntry const* own = ps.history(k).find(partner);
+                EXPECT_FALSE(ps.sharesHistory(k)) << "uid " << ps.uid(k);
+                EXPECT_TRUE(own != nullptr && own->spring == Vec3(stretch, 0.0, 0.0))
+                    << "uid " << ps.uid(k) << ", stretch " << stretch
+                    << ": the shadow's own history is not its master's";
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(world.allReduce(checked, regolith::core::ReduceOp::Sum), 0u);
 }
 
 TEST(UpdateList, ASkinIsRefusedWithSosOrNegative) {
