@@ -192,8 +192,8 @@ public:
     void shareHistories(std::span<std::array<Index, 2> const> shared);
     void stopSharingHistories();
     /// Stops the sharing without bringing the shadows' own histories up to date: for a caller
-    /// that rewrites every such shadow's history from its master's before anything reads it
-    /// (the full synchronisation: each master with shadows updates them).
+    /// that shares them again, or calls copyMastersHistoriesToShadows(), before anything reads
+    /// a shadow's own history (ParticleSync's calls along the update list).
     void forgetSharedHistories() { m_historyOf.clear(); }
     /// Each shadow whose master lies in this storage takes a copy of the master's history:
     /// what stopSharingHistories() would have done, after forgetSharedHistories().
