@@ -17,6 +17,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -380,9 +381,10 @@ private:
     std::vector<std::uint8_t> m_arrivalHits; ///< addArrivals: which of them a fresh copy reaches
     ReferenceDepths m_depths;                ///< of the last rebuild's copies, and the shifts since
     /// Per listed pair (the first ones), how much deeper inside the block than its settlement
-    /// needs both its copies lay at the rebuild: while the drift stays below it, the list's
-    /// shifts need not settle it again (ListShift.cpp). Empty until the first shift.
-    std::vector<float> m_margin;
+    /// needs both its copies lay at the rebuild, along each axis: while the drift along every
+    /// axis stays below it, the list's shifts need not settle it again (ListShift.cpp). Empty
+    /// until the first shift.
+    std::vector<std::array<float, 3>> m_margin;
     double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")

@@ -4,9 +4,11 @@
 /// move by their common drift and the pairs are settled again, which keeps the pairs found
 /// and the springs of the pairs deep inside the block. Before the synchronisation, whether a
 /// kept spring must go back to the histories.
+#include "core/math/FloatBounds.hpp"
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -122,28 +124,43 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     ++m_shifts;
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack(); // classifyListed's
     // Both copies of a settled pair deeper inside the block than its ownership reach and the
-    // list's motion (with the rounding): settlePair emits it whenever it overlaps, and settledMode
-    // as before, whose other conditions do not depend on where the pair lies. Measured once
-    // per rebuild, at the first shift, as a margin against the drift.
+    // list's motion (with the rounding), along every axis less the list's shift along it:
+    // settlePair emits it whenever it overlaps, and settledMode as before, whose other
+    // conditions do not depend on where the pair lies. Measured once per rebuild, at the first
+    // shift, as a margin per axis against the drift.
     if (m_margin.empty()) {
         double const motion = listMotion(rounding) + rounding;
-        m_margin.assign(m_list.numPairs(), -std::numeric_limits<float>::infinity());
+        constexpr float kNever = -std::numeric_limits<float>::infinity();
+        m_margin.assign(m_list.numPairs(), {kNever, kNever, kNever});
         m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
             PairMode const mode = m_list.mode(p);
             if (mode == PairMode::Check)
                 return; // the rule per step holds anywhere
             double const need = std::max(listedReach(ps, ka, kb, rounding) + rounding, motion);
             auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
-            double const margin =
-                std::min(m_depths.of(m_list, ps, a), m_depths.of(m_list, ps, b)) - need;
-            // Less a millionth (a float rounds by less): never above the double.
-            m_margin[p] = static_cast<float>(margin - 1e-6 * (std::abs(margin) + m_listSkin));
+            ReferenceDepths::Axes const& da = m_depths.ofAxes(m_list, ps, a);
+            ReferenceDepths::Axes const& db = m_depths.ofAxes(m_list, ps, b);
+            for (std::size_t d = 0; d < 3; ++d) {
+                double const margin = std::min(da[d], db[d]) - need;
+                // Less a millionth (a float rounds by less): never above the double.
+                m_margin[p][d] =
+                    static_cast<float>(margin - 1e-6 * (std::abs(margin) + m_listSkin));
+            }
         });
     }
     m_list.shift(drift, spread);
-    m_depths.setShifted(m_list.drift().cwiseAbs().maxCoeff());
-    auto const unchanged = [&](std::size_t p) {
-        return p < m_margin.size() && m_margin[p] > m_depths.shifted();
+    core::Vec3 const shifted = m_list.drift().cwiseAbs();
+    m_depths.setShifted(shifted);
+    // The shifts as floats not below them: the float comparison holds only where the
+    // doubles' does.
+    std::array<float, 3> const moved{core::floatNotBelow(shifted.x()),
+                                     core::floatNotBelow(shifted.y()),
+                                     core::floatNotBelow(shifted.z())};
+    std::array<float, 3> const* const margin = m_margin.data();
+    std::size_t const margins = m_margin.size();
+    auto const unchanged = [margin, margins, moved](std::size_t p) {
+        return p < margins && margin[p][0] > moved[0] && margin[p][1] > moved[1] &&
+               margin[p][2] > moved[2];
     };
     m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, bool listed, PairMode was,
                                    KeptSpring& spring, std::uint8_t& hint) {

@@ -103,7 +103,7 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     // keeps its spring" for them after reading both copies' flags, images and depths per
     // pair. Those copies are found once; their pairs only need the canonical order and
     // settledMode's pressed test.
-    std::vector<std::uint8_t> const deep = first == 0 && m_depths.shifted() == 0.0
+    std::vector<std::uint8_t> const deep = first == 0 && m_depths.unshifted()
                                                ? deepMasters(ps, frame, rounding)
                                                : std::vector<std::uint8_t>{};
     m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {

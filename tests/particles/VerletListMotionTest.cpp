@@ -1,6 +1,8 @@
 // A Verlet list's motion bounds: when it compares the positions with its references, that its
 // float references never hide a move of half the skin, which pairs it offers as the copies
-// move, and the motion within which no list comes due; and the order its classified pairs take.
+// move, and the motion within which no list comes due; the order its classified pairs take; and
+// how deep its references stand in the block as the list shifts.
+#include "particles/detection/ReferenceDepths.hpp"
 #include "particles/detection/VerletList.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
 
@@ -175,6 +177,40 @@ TEST(VerletList, WithinTheQuietMotionNoListComesDue) {
     // A list without a skin (an empty block's) is due at any motion: no quiet motion.
     list.restart(ps, 0.0);
     EXPECT_EQ(list.quietMotion(), -std::numeric_limits<double>::infinity());
+}
+
+TEST(ReferenceDepths, AShiftCountsAgainstTheDepthAlongItsOwnAxis) {
+    // Two copies near the block's floor (z = 0.6) and in the middle of x and y: deep along x
+    // and y, shallow along z. A shift along x eats the x depth only, so the pair stays deeper
+    // than 0.4 along z; the same shift along z does not leave it so.
+    ParticleStorage ps;
+    ps.add(sphere(1, Vec3(5.0, 5.0, 0.6), 0.5, 1.0));
+    ps.add(sphere(2, Vec3(6.0, 5.0, 0.6), 0.5, 1.0));
+    VerletList list;
+    list.restart(ps, 0.2);
+    regolith::core::AABB const block(Vec3::Zero(), Vec3::Constant(10.0));
+    ReferenceDepths depths;
+    depths.start(list, block, PeriodicFrame{});
+    ReferenceDepths::Axes const& a = depths.ofAxes(list, ps, 0);
+    EXPECT_DOUBLE_EQ(a[0], 5.0);
+    EXPECT_DOUBLE_EQ(a[1], 5.0);
+    EXPECT_DOUBLE_EQ(a[2], 0.6);
+    EXPECT_DOUBLE_EQ(depths.of(list, ps, 1), 0.6);
+    EXPECT_TRUE(depths.unshifted());
+    EXPECT_TRUE(depths.deeperThan(list, ps, 0, 1, 0.4));
+    depths.setShifted(Vec3(1.5, 0.0, 0.0));
+    EXPECT_FALSE(depths.unshifted());
+    EXPECT_TRUE(depths.deeperThan(list, ps, 0, 1, 0.4));
+    EXPECT_FALSE(depths.deeperThan(list, ps, 0, 1, 3.6)); // 4 - 0.4 left along x
+    depths.setShifted(Vec3(0.0, 0.0, 0.3));
+    EXPECT_FALSE(depths.deeperThan(list, ps, 0, 1, 0.4));
+    EXPECT_TRUE(depths.deeperThan(list, ps, 0, 1, 0.25));
+    // Outside the block on one axis: no depth on any.
+    ps.add(sphere(3, Vec3(5.0, 11.0, 5.0), 0.5, 1.0));
+    list.restart(ps, 0.2);
+    depths.start(list, block, PeriodicFrame{});
+    ReferenceDepths::Axes const& out = depths.ofAxes(list, ps, 2);
+    EXPECT_EQ(out, (ReferenceDepths::Axes{0.0, 0.0, 0.0}));
 }
 
 } // namespace
