@@ -36,6 +36,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         if (mode == kDrop) {
             m_parkedAgain.push_back(pair);
             pair[0] = m_hole;
+            m_live.stale = true; // (a mode changed in place leaves the walk as it is)
             continue;
         }
         auto const m = static_cast<PairMode>(mode);
@@ -59,6 +60,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         }
         auto const m = static_cast<PairMode>(mode);
         count(m);
+        m_live.stale = true;
         m_pairs.push_back(pair);
         m_gap.push_back(kNoGap);
         m_mode.push_back(m);

@@ -14,6 +14,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
         throw core::Error("VerletList: too many copies for 32-bit ids");
     m_session = ps.startTracing();
     m_storage = &ps;
+    m_live.stale = true;
     m_skin = skin;
     m_moved = 0.0;
     m_built = ps.size();
@@ -127,11 +128,36 @@ void VerletList::shift(core::Vec3 const& drift, double moved) {
     m_moved = moved + m_referenceSlack;
 }
 
+void VerletList::refreshLive() const {
+    // Every pair written, the count advanced past the live ones: no branch per pair (a dead
+    // copy or a parked pair's hole is rare, but the capacity checks of an append are not).
+    std::size_t const n = m_pairs.size();
+    m_live.a.resize(n);
+    m_live.b.resize(n);
+    m_live.at.resize(n);
+    std::uint32_t* const a = m_live.a.data();
+    std::uint32_t* const b = m_live.b.data();
+    std::uint32_t* const at = m_live.at.data();
+    std::size_t live = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+        std::uint32_t const ka = m_indexOf[m_pairs[p][0]], kb = m_indexOf[m_pairs[p][1]];
+        a[live] = ka;
+        b[live] = kb;
+        at[live] = static_cast<std::uint32_t>(p);
+        live += ka != kDead && kb != kDead ? 1 : 0;
+    }
+    m_live.a.resize(live);
+    m_live.b.resize(live);
+    m_live.at.resize(live);
+    m_live.stale = false;
+}
+
 bool VerletList::follow(ParticleStorage& ps, std::vector<std::size_t>& fresh) {
     fresh.clear();
     if (m_storage != &ps || ps.traceSession() != m_session || ps.traceBroken())
         return false;
     auto const journal = ps.traceJournal();
+    m_live.stale = m_live.stale || !journal.empty();
     // The ids of every written slot die ... unless they turn up in another written slot.
     for (TraceChange const& c : journal)
         if (c.previous != ParticleStorage::kUntraced)
@@ -226,7 +252,9 @@ std::size_t VerletList::bytes() const {
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id) +
            (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]) +
-           m_trailing.capacity() * sizeof(TrailingPair);
+           m_trailing.capacity() * sizeof(TrailingPair) +
+           (m_live.a.capacity() + m_live.b.capacity() + m_live.at.capacity()) *
+               sizeof(std::uint32_t);
 }
 
 } // namespace regolith::particles

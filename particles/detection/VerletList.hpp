@@ -89,7 +89,10 @@ public:
     /// positions = current positions. The caller adds the pairs (addPair, ids = indices).
     void restart(ParticleStorage& ps, double skin);
     /// Forgets the list: the next follow() returns false.
-    void invalidate() { m_storage = nullptr; }
+    void invalidate() {
+        m_storage = nullptr;
+        m_live.stale = true;
+    }
 
     /// A pair's gap not known: forEachNearPair always offers it.
     static constexpr float kNoGap = -std::numeric_limits<float>::infinity();
@@ -98,6 +101,7 @@ public:
     /// Adds a pair in mode Check (any order). `gap` [length]: a lower bound on how much farther
     /// apart than touching the two copies stand now (gapBelow), or kNoGap.
     void addPair(Id a, Id b, float gap = kNoGap) {
+        m_live.stale = true;
         m_pairs.push_back({a, b});
         m_mode.push_back(PairMode::Check);
         m_hint.push_back(0);
@@ -122,6 +126,7 @@ public:
     void classifyFrom(std::size_t first, D&& decide) {
         std::size_t out = first;
         m_trailing.clear();
+        m_live.stale = m_live.stale || first < m_pairs.size();
         auto const put = [&](std::array<Id, 2> const& pair, float gap, PairMode mode) {
             m_pairs[out] = pair;
             m_gap[out] = gap;
@@ -290,50 +295,38 @@ public:
     }
     /// forEachNearPair's pairs a block at a time: calls f(a, b, p, n) with the storage indices
     /// a[k], b[k] and list positions p[k], k < n <= kBlock, of the next n live near pairs, in
-    /// order; every block but the last holds kBlock. The near ones of each stretch of the list
-    /// are picked by their gaps first, without a branch per pair (unless every pair is
-    /// offered), then those alive.
+    /// order; every block but the last holds kBlock. The live pairs' indices are looked up
+    /// once after the list or the storage's layout changed (refreshLive), not every step; the
+    /// near ones are picked by their gaps without a branch per pair (unless every pair is
+    /// offered).
     template <class F>
     void forEachNearBlock(F&& f) const {
-        bool const every = m_apart * kFewApart < m_pairs.size();
-        float const reach = every ? 0.0F : nearReach();
-        std::size_t const n = m_pairs.size();
-        std::array<std::uint32_t, kBlock> near;
-        std::array<std::uint32_t, 2 * kBlock> a, b, at; // a block, and what the next stretch adds
+        if (m_live.stale)
+            refreshLive();
+        std::uint32_t const* const a = m_live.a.data();
+        std::uint32_t const* const b = m_live.b.data();
+        std::uint32_t const* const at = m_live.at.data();
+        std::size_t const n = m_live.a.size();
+        if (m_apart * kFewApart < m_pairs.size()) { // every pair: the walk's own blocks
+            for (std::size_t first = 0; first < n; first += kBlock)
+                f(a + first, b + first, at + first, std::min(kBlock, n - first));
+            return;
+        }
+        float const reach = nearReach();
+        std::array<std::uint32_t, kBlock> nearA, nearB, nearAt;
         std::size_t count = 0;
-        auto const take = [&](std::size_t p) {
-            std::uint32_t const ka = m_indexOf[m_pairs[p][0]], kb = m_indexOf[m_pairs[p][1]];
-            if (ka == kDead || kb == kDead) [[unlikely]]
-                return; // (a copy left since the rebuild: rare, a branch predicted)
-            a[count] = ka;
-            b[count] = kb;
-            at[count] = static_cast<std::uint32_t>(p);
-            ++count;
-        };
-        for (std::size_t first = 0; first < n; first += kBlock) {
-            std::size_t const m = std::min(kBlock, n - first);
-            if (every) {
-                for (std::size_t q = 0; q < m; ++q)
-                    take(first + q);
-            } else {
-                std::size_t nearCount = 0;
-                for (std::size_t q = 0; q < m; ++q) {
-                    near[nearCount] = static_cast<std::uint32_t>(first + q);
-                    nearCount += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
-                }
-                for (std::size_t h = 0; h < nearCount; ++h)
-                    take(near[h]);
-            }
-            if (count >= kBlock) {
-                f(a.data(), b.data(), at.data(), kBlock);
-                count -= kBlock;
-                std::copy_n(a.data() + kBlock, count, a.data());
-                std::copy_n(b.data() + kBlock, count, b.data());
-                std::copy_n(at.data() + kBlock, count, at.data());
+        for (std::size_t q = 0; q < n; ++q) {
+            nearA[count] = a[q];
+            nearB[count] = b[q];
+            nearAt[count] = at[q];
+            count += !(m_gap[at[q]] >= reach) ? 1 : 0; // NaN: near
+            if (count == kBlock) {
+                f(nearA.data(), nearB.data(), nearAt.data(), kBlock);
+                count = 0;
             }
         }
         if (count != 0)
-            f(a.data(), b.data(), at.data(), count);
+            f(nearA.data(), nearB.data(), nearAt.data(), count);
     }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
     /// Every pair's mode, hint and kept spring (empty while none is kept), by position: for
@@ -365,6 +358,14 @@ private:
         if (a != kDead && b != kDead)
             f(std::size_t{a}, std::size_t{b}, p);
     }
+    /// The live pairs' storage indices and list positions, in list order: forEachNearBlock's
+    /// walk, looked up again (refreshLive) after anything changed the pairs or the ids' indices.
+    struct LivePairs {
+        std::vector<std::uint32_t> a, b, at;
+        bool stale = true;
+    };
+    void refreshLive() const;
+    mutable LivePairs m_live;
     ParticleStorage const* m_storage = nullptr;
     std::uint64_t m_session = 0;
     double m_skin = 0.0;

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -339,6 +340,37 @@ TEST(VerletList, TheDetectorsQuietMotionEndsWithAChangeOfItsStorage) {
     EXPECT_EQ(listed.quietMotion(ps, s.region, s.frame), -inf);
     listed.detect(ps, {}, s.region, s.frame, out);
     EXPECT_GT(listed.quietMotion(ps, s.region, s.frame), 0.0);
+}
+
+TEST(VerletList, ItsWalkFollowsTheStoragesLayout) {
+    // A row of eight touching copies, a pair per neighbour. The walk looks the copies' indices
+    // up once; after a removal (the last copy takes the removed one's slot) and follow(), it
+    // hands over the new indices, without the removed copy's pairs.
+    ParticleStorage ps;
+    for (Uid u = 1; u <= 8; ++u)
+        ps.add(sphere(u, Vec3(double(u), 0.0, 0.0), 0.5, 1.0));
+    VerletList list;
+    list.restart(ps, 0.1);
+    for (VerletList::Id k = 0; k + 1 < 8; ++k)
+        list.addPair(k, k + 1);
+    using Walked = std::vector<std::array<std::size_t, 3>>;
+    auto const walk = [&list] {
+        Walked out;
+        list.forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b,
+                                  std::uint32_t const* p, std::size_t n) {
+            for (std::size_t k = 0; k < n; ++k)
+                out.push_back({a[k], b[k], p[k]});
+        });
+        return out;
+    };
+    EXPECT_EQ(
+        walk(),
+        (Walked{{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 4, 3}, {4, 5, 4}, {5, 6, 5}, {6, 7, 6}}));
+    ps.remove(2);
+    std::vector<std::size_t> fresh;
+    ASSERT_TRUE(list.follow(ps, fresh));
+    EXPECT_TRUE(fresh.empty());
+    EXPECT_EQ(walk(), (Walked{{0, 1, 0}, {3, 4, 3}, {4, 5, 4}, {5, 6, 5}, {6, 2, 6}}));
 }
 
 } // namespace
