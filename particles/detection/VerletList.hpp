@@ -295,38 +295,54 @@ public:
     }
     /// forEachNearPair's pairs a block at a time: calls f(a, b, p, n) with the storage indices
     /// a[k], b[k] and list positions p[k], k < n <= kBlock, of the next n live near pairs, in
-    /// order; every block but the last holds kBlock. The live pairs' indices are looked up
-    /// once after the list or the storage's layout changed (refreshLive), not every step; the
-    /// near ones are picked by their gaps without a branch per pair (unless every pair is
-    /// offered).
+    /// order; every block but the last holds kBlock. Where every pair is offered (a packing's
+    /// first shell), the live pairs' indices are looked up once after the list or the
+    /// storage's layout changed (refreshLive), not every step. Else the near ones of each
+    /// stretch of the list are picked by their gaps first, without a branch per pair, and
+    /// only those looked up (a gas's list is mostly pairs far apart).
     template <class F>
     void forEachNearBlock(F&& f) const {
-        if (m_live.stale)
-            refreshLive();
-        std::uint32_t const* const a = m_live.a.data();
-        std::uint32_t const* const b = m_live.b.data();
-        std::uint32_t const* const at = m_live.at.data();
-        std::size_t const n = m_live.a.size();
-        if (m_apart * kFewApart < m_pairs.size()) { // every pair: the walk's own blocks
+        if (m_apart * kFewApart < m_pairs.size()) {
+            if (m_live.stale)
+                refreshLive();
+            std::size_t const n = m_live.a.size();
             for (std::size_t first = 0; first < n; first += kBlock)
-                f(a + first, b + first, at + first, std::min(kBlock, n - first));
+                f(m_live.a.data() + first, m_live.b.data() + first, m_live.at.data() + first,
+                  std::min(kBlock, n - first));
             return;
         }
         float const reach = nearReach();
-        std::array<std::uint32_t, kBlock> nearA, nearB, nearAt;
+        std::size_t const n = m_pairs.size();
+        std::array<std::uint32_t, kBlock> near;
+        std::array<std::uint32_t, 2 * kBlock> a, b, at; // a block, and what the next stretch adds
         std::size_t count = 0;
-        for (std::size_t q = 0; q < n; ++q) {
-            nearA[count] = a[q];
-            nearB[count] = b[q];
-            nearAt[count] = at[q];
-            count += !(m_gap[at[q]] >= reach) ? 1 : 0; // NaN: near
-            if (count == kBlock) {
-                f(nearA.data(), nearB.data(), nearAt.data(), kBlock);
-                count = 0;
+        for (std::size_t first = 0; first < n; first += kBlock) {
+            std::size_t const m = std::min(kBlock, n - first);
+            std::size_t nearCount = 0;
+            for (std::size_t q = 0; q < m; ++q) {
+                near[nearCount] = static_cast<std::uint32_t>(first + q);
+                nearCount += !(m_gap[first + q] >= reach) ? 1 : 0; // NaN: near
+            }
+            for (std::size_t h = 0; h < nearCount; ++h) {
+                std::size_t const p = near[h];
+                std::uint32_t const ka = m_indexOf[m_pairs[p][0]], kb = m_indexOf[m_pairs[p][1]];
+                if (ka == kDead || kb == kDead) [[unlikely]]
+                    continue; // (a copy left since the rebuild: rare, a branch predicted)
+                a[count] = ka;
+                b[count] = kb;
+                at[count] = static_cast<std::uint32_t>(p);
+                ++count;
+            }
+            if (count >= kBlock) {
+                f(a.data(), b.data(), at.data(), kBlock);
+                count -= kBlock;
+                std::copy_n(a.data() + kBlock, count, a.data());
+                std::copy_n(b.data() + kBlock, count, b.data());
+                std::copy_n(at.data() + kBlock, count, at.data());
             }
         }
         if (count != 0)
-            f(nearA.data(), nearB.data(), nearAt.data(), count);
+            f(a.data(), b.data(), at.data(), count);
     }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
     /// Every pair's mode, hint and kept spring (empty while none is kept), by position: for
@@ -359,7 +375,8 @@ private:
             f(std::size_t{a}, std::size_t{b}, p);
     }
     /// The live pairs' storage indices and list positions, in list order: forEachNearBlock's
-    /// walk, looked up again (refreshLive) after anything changed the pairs or the ids' indices.
+    /// walk over every pair, looked up again (refreshLive) after anything changed the pairs or
+    /// the ids' indices.
     struct LivePairs {
         std::vector<std::uint32_t> a, b, at;
         bool stale = true;
