@@ -87,7 +87,7 @@ core::AABB everywhere();
 /// A list that follows a drift (ListShift.cpp; docs/sync.md, "A list follows a drift"): where
 /// the copies moved together, the references shift by their common drift instead of a
 /// rebuild, the candidates stay, and only the pairs near a face and the parked ones are
-/// settled again (a margin per pair against the drift).
+/// settled again (a margin per pair and axis against the drift along it).
 ///
 /// A skin for the scene (DetectorConfig::widestRelativeSkin): a packing lists its first shell
 /// with a wider skin at no cost per step and rebuilds less often; a gas keeps relativeSkin.

@@ -36,7 +36,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         if (mode == kDrop) {
             m_parkedAgain.push_back(pair);
             pair[0] = m_hole;
-            m_live.stale = true; // (a mode changed in place leaves the walk as it is)
+            m_live.stale = true; // a hole the walk skips (a mode changed in place: no change)
             continue;
         }
         auto const m = static_cast<PairMode>(mode);
