@@ -99,25 +99,20 @@ core::AABB everywhere();
 /// reference midpoint): pairs some other block or image instance evaluates are dropped, pairs
 /// this block evaluates whenever they overlap are stored in canonical order (PairMode::Owned),
 /// and only pairs near a block or domain face keep the rule (PairMode::Check). Per step a
-/// listed pair then costs the canonical distance test (PairRule.hpp's overlapGeometry, or
-/// for a callback that takes PairOverlaps OverlapScreen's lanes over a block of pairs: the
-/// same bits as the rule's) and, with the callback overload of detect, its evaluation right
-/// away, with the history slot hint kept beside the pair (LAMMPS's half list with shear
-/// history beside each pair does the same in one loop). The contacts are the same set as the
-/// full rule finds (tests/particles/VerletListTest.cpp).
+/// listed pair then costs the canonical distance test (PairRule.hpp, or OverlapScreen's lanes:
+/// the same bits) and, with the callback overload of detect, its evaluation right away (one
+/// loop, as LAMMPS's half list with shear history beside each pair). The contacts are the
+/// same set as the full rule finds (tests/particles/VerletListTest.cpp).
 ///
 /// Springs kept beside the list (DetectorConfig::keepSprings; KeptSprings.cpp, docs/sync.md
 /// "Tangential springs beside the Verlet list"). A settled pair that cannot migrate, wrap or
 /// change hands while the list holds (two masters deeper than skin / 2 inside the block, one
 /// image instance) keeps its tangential spring beside the pair (PairMode::Kept,
-/// VerletList::spring), handed to the callback in place of the history hint, as LAMMPS's fix
-/// neigh/history keeps its shear history. The grains' histories are stale for those pairs until
-/// writeBackSprings(), which the caller must call before anything reads or changes them: a
-/// checkpoint, release(); a count of the contacts adds the kept ones (countKeptContacts).
-/// Before a synchronisation whose motion could reach skin / 2 (beforeSync) the springs of the
-/// pairs with a copy outside the block, which that synchronisation moves, go back; a rebuild
-/// carries the others from the old list to the new one (SpringCarry.cpp). Every step computes
-/// the same bits as with the histories.
+/// VerletList::spring), as LAMMPS's fix neigh/history keeps its shear history. The grains'
+/// histories lack them until writeBackSprings(), which the caller calls before anything reads
+/// or changes the histories (a checkpoint, release(); countKeptContacts adds them to a count).
+/// beforeSync writes back those a synchronisation moves; a rebuild carries the others over
+/// (SpringCarry.cpp). Every step computes the same bits as with the histories.
 ///
 /// Wall rule. Walls are global and not periodic, so a sphere-wall contact is decided by the
 /// sphere's canonical centre: it is emitted only for the master copy (Shadow flag clear, image
@@ -177,13 +172,11 @@ public:
     };
     /// Optional, between noteMotion and the next mutable detect on `particles` (the same
     /// region and frame): follows the storage's changes and decides whether that detect
-    /// rebuilds the list, which it then does; rebuildNext() makes it rebuild in any case. So
-    /// that the ranks can agree to rebuild their lists in the same step (DemStep): a rebuild
-    /// costs about eight steps of the list, and a rank that rebuilds alone keeps the others
-    /// waiting at the next exchange. Without a list (no skin, sortByUid) nothing is decided
-    /// ({false, false}). Not collective. Without `halfwayNeeded` (a step in which no list can
-    /// come due on any rank: nobody reads it) "halfway" is not worth comparing the positions
-    /// for: they are compared only where the bound reaches the whole budget, as in updateList.
+    /// rebuilds the list; rebuildNext() makes it rebuild in any case. So that the ranks rebuild
+    /// in the same step (DemStep): a rank that rebuilds alone keeps the others waiting.
+    /// Without a list (no skin, sortByUid): {false, false}. Not collective. Without
+    /// `halfwayNeeded` (no list can come due on any rank) the positions are compared only
+    /// where the bound reaches the whole budget, as in updateList.
     ListOutlook prepareList(ParticleStorage& particles, core::AABB const& evaluationRegion,
                             PeriodicFrame const& frame, bool halfwayNeeded = true);
     /// After prepareList: the next detect rebuilds the list (the contacts are the same).

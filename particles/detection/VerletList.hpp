@@ -28,20 +28,17 @@
 /// movedTooFar tests skin / 2 - referenceSlack(), and users widen their own tests of
 /// reference positions by it (a superset of pairs, the same contacts).
 ///
-/// Beside each pair the list keeps what its user decided once for the pair's life (a
-/// PairMode, see ContactDetector: whether the contact-point rule must run every step) and a
-/// one-byte hint where the pair's tangential spring sat in its owner's ContactHistory last
-/// time (ContactHistory::touch with a hint), so that the per-step loop neither repeats the
-/// rule nor searches the history. For the pairs kept (PairMode::Kept) it holds the tangential
-/// spring itself (ContactDetector, "Springs kept beside the list").
+/// Beside each pair the list keeps its PairMode, a one-byte hint where its tangential spring
+/// sat in its owner's ContactHistory last time (ContactHistory::touch), and for the pairs kept
+/// the spring itself: the per-step loop neither repeats the rule nor searches the history.
 #include "core/math/FloatBounds.hpp"
 #include "core/math/Vec3.hpp"
+#include "particles/detection/PairMode.hpp"
 #include "particles/storage/ContactHistory.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -49,32 +46,6 @@
 #include <vector>
 
 namespace regolith::particles {
-
-/// What the per-step loop does with a listed pair.
-enum class PairMode : std::uint8_t {
-    /// Run the full contact-point rule (the pair may change hands before the next rebuild).
-    Check = 0,
-    /// Stored in canonical order (uid(first) < uid(second)); whenever the two overlap, this
-    /// block evaluates them (decided at listing time for the list's life).
-    Owned = 1,
-    /// Owned, and the pair's tangential spring lives beside the list (spring()), not in the
-    /// grains' histories, until the list writes it back (ContactDetector, "Springs kept
-    /// beside the list").
-    Kept = 2,
-    /// Kept, and overlapping for the list's whole life (it overlapped by more than the skin
-    /// when listed): evaluated without testing it.
-    KeptPressed = 3,
-};
-
-/// Whether a pair of mode `m` is evaluated untested (it overlaps while the list holds).
-[[nodiscard]] constexpr bool isPressed(PairMode m) {
-    return m == PairMode::KeptPressed;
-}
-
-/// Whether a pair of mode `m` keeps its spring beside the list.
-[[nodiscard]] constexpr bool keepsSpring(PairMode m) {
-    return m == PairMode::Kept || isPressed(m);
-}
 
 class VerletList {
 public:
@@ -282,9 +253,7 @@ public:
                 visitLive(p, f);
     }
     /// forEachPair over the pairs whose gap (addPair) is below twice moved() (+ the reference
-    /// slack): the others cannot have closed it. Same pairs overlapping, same order. Blocks of
-    /// pairs are selected without a branch per pair (near or not is a coin toss as the list
-    /// ages); a list with few pairs far apart (a packing's first shell) offers every pair.
+    /// slack): the others cannot have closed it. Same pairs overlapping, same order.
     template <class F>
     void forEachNearPair(F&& f) const {
         forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b, std::uint32_t const* p,
@@ -295,11 +264,11 @@ public:
     }
     /// forEachNearPair's pairs a block at a time: calls f(a, b, p, n) with the storage indices
     /// a[k], b[k] and list positions p[k], k < n <= kBlock, of the next n live near pairs, in
-    /// order; every block but the last holds kBlock. Where every pair is offered (a packing's
-    /// first shell), the live pairs' indices are looked up once after the list or the
-    /// storage's layout changed (refreshLive), not every step. Else the near ones of each
-    /// stretch of the list are picked by their gaps first, without a branch per pair, and
-    /// only those looked up (a gas's list is mostly pairs far apart).
+    /// order; every block but the last holds kBlock. A list with few pairs far apart (a
+    /// packing's first shell) offers every pair, their indices looked up again only after the
+    /// pairs or the storage's layout changed (refreshLive). Else the near ones of each stretch
+    /// are picked by their gaps without a branch per pair (near or not is a coin toss as the
+    /// list ages), and only those looked up (a gas's list is mostly pairs far apart).
     template <class F>
     void forEachNearBlock(F&& f) const {
         if (m_apart * kFewApart < m_pairs.size()) {
