@@ -164,7 +164,6 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     m_listRegion = region;
     m_listFrame = frame;
     m_largeIds.clear();
-    m_margin.clear();
     m_spreadOut = false;
     if (ps.empty()) {
         m_stats = DetectorStats{};
@@ -195,6 +194,12 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     }
     m_listSkin = m_stats.skin;
     m_list.restart(ps, m_listSkin); // ids = indices, as the cells' members
+    m_builtRadiusMin = std::numeric_limits<double>::infinity();
+    m_builtRadiusMax = 0.0;
+    for (double const r : ps.radii()) {
+        m_builtRadiusMin = std::min(m_builtRadiusMin, r);
+        m_builtRadiusMax = std::max(m_builtRadiusMax, r);
+    }
     // Binned wider than the list's skin: the candidates beyond it are left out (in the local
     // frame, which the slack covers, as the cells' own test). The cells' bound on how far
     // apart a pair is tells the per-step pass when it may first overlap
@@ -363,7 +368,7 @@ std::size_t ContactDetector::bytes() const {
     return m_cells.bytes() + m_small.capacity() * sizeof(std::uint32_t) +
            m_large.capacity() * sizeof(std::size_t) + m_scratch.capacity() * sizeof(double) +
            m_arrivalLanes.capacity() * sizeof(double) + m_arrivalHits.capacity() +
-           m_depths.bytes() + m_carried.bytes();
+           m_depths.bytes() + m_carried.bytes() + m_deepIds.capacity();
 }
 
 } // namespace regolith::particles

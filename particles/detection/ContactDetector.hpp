@@ -87,7 +87,7 @@ core::AABB everywhere();
 /// A list that follows a drift (ListShift.cpp; docs/sync.md, "A list follows a drift"): where
 /// the copies moved together, the references shift by their common drift instead of a
 /// rebuild, the candidates stay, and only the pairs near a face and the parked ones are
-/// settled again (a margin per pair and axis against the drift along it).
+/// settled again (the copies' depths along each axis against the drift along it).
 ///
 /// A skin for the scene (DetectorConfig::widestRelativeSkin): a packing lists its first shell
 /// with a wider skin at no cost per step and rebuilds less often; a gas keeps relativeSkin.
@@ -280,9 +280,13 @@ private:
                                     std::size_t kb, VerletList::Id a, VerletList::Id b,
                                     core::AABB const& region, PeriodicFrame const& frame,
                                     double rounding) const;
+    /// How deep inside the block (along each axis, the list's shifts counted) both copies of a
+    /// pair of the rebuild's copies must lie for settlePair to emit it whenever it overlaps:
+    /// deeper than any listed pair's ownership reach and the list's motion.
+    [[nodiscard]] double settledDepth(double rounding) const;
     /// Per id of a rebuild (its storage index): a master at image zero, not fixed, deeper inside
-    /// the block than any listed pair's ownership reach and the list's motion, so that every
-    /// pair of two such copies stays in the block (classifyListed's shortcut of settlePair).
+    /// the block than settledDepth, so that every pair of two such copies stays in the block
+    /// (classifyListed's shortcut of settlePair).
     [[nodiscard]] std::vector<std::uint8_t> deepMasters(ParticleStorage const& particles,
                                                         PeriodicFrame const& frame,
                                                         double rounding) const;
@@ -373,11 +377,10 @@ private:
     std::vector<double> m_arrivalLanes;      ///< addArrivals: the arrivals' x, y, z and radii
     std::vector<std::uint8_t> m_arrivalHits; ///< addArrivals: which of them a fresh copy reaches
     ReferenceDepths m_depths;                ///< of the last rebuild's copies, and the shifts since
-    /// Per listed pair (the first ones), how much deeper inside the block than its settlement
-    /// needs both its copies lay at the rebuild, along each axis: while the drift along every
-    /// axis stays below it, the list's shifts need not settle it again (ListShift.cpp). Empty
-    /// until the first shift.
-    std::vector<std::array<float, 3>> m_margin;
+    /// shiftList: per id of the rebuild, whether it lies deeper than settledDepth (1 or 0).
+    std::vector<std::uint8_t> m_deepIds;
+    double m_builtRadiusMin = 0.0; ///< the smallest radius of the rebuild's copies
+    double m_builtRadiusMax = 0.0; ///< and the largest
     double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")

@@ -4,7 +4,6 @@
 /// move by their common drift and the pairs are settled again, which keeps the pairs found
 /// and the springs of the pairs deep inside the block. Before the synchronisation, whether a
 /// kept spring must go back to the histories.
-#include "core/math/FloatBounds.hpp"
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
@@ -28,8 +27,9 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
     std::size_t const listed = m_pairs.size();
     for (std::size_t p = 0; p < listed; ++p) {
         auto& pair = m_pairs[p];
-        if (unchanged(p) || m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
-            continue; // (in that order: most pairs are unchanged, and their ids are not read)
+        if (unchanged(pair[0], pair[1]) || m_indexOf[pair[0]] == kDead ||
+            m_indexOf[pair[1]] == kDead)
+            continue; // (in that order: most pairs are unchanged)
         KeptSpring spare{};
         KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
         int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);
@@ -125,44 +125,25 @@ void ContactDetector::followDrift(ParticleStorage& ps, double motion) {
 void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, double spread) {
     ++m_shifts;
     double const rounding = 4.0 * m_stats.slack + m_list.referenceSlack(); // classifyListed's
-    // Both copies of a settled pair deeper inside the block than its ownership reach and the
-    // list's motion (with the rounding), along every axis less the list's shift along it:
-    // settlePair emits it whenever it overlaps, and settledMode as before, whose other
-    // conditions do not depend on where the pair lies. Measured once per rebuild, at the first
-    // shift, as a margin per axis against the drift.
-    if (m_margin.empty()) {
-        double const motion = listMotion(rounding) + rounding;
-        constexpr float kNever = -std::numeric_limits<float>::infinity();
-        m_margin.assign(m_list.numPairs(), {kNever, kNever, kNever});
-        m_list.forEachPair([&](std::size_t ka, std::size_t kb, std::size_t p) {
-            PairMode const mode = m_list.mode(p);
-            if (mode == PairMode::Check)
-                return; // the rule per step holds anywhere
-            double const need = std::max(listedReach(ps, ka, kb, rounding) + rounding, motion);
-            auto const a = VerletList::idOf(ps, ka), b = VerletList::idOf(ps, kb);
-            ReferenceDepths::Axes const& da = m_depths.ofAxes(m_list, ps, a);
-            ReferenceDepths::Axes const& db = m_depths.ofAxes(m_list, ps, b);
-            for (std::size_t d = 0; d < 3; ++d) {
-                double const margin = std::min(da[d], db[d]) - need;
-                // Less a millionth (a float rounds by less): never above the double.
-                m_margin[p][d] =
-                    static_cast<float>(margin - 1e-6 * (std::abs(margin) + m_listSkin));
-            }
-        });
-    }
     m_list.shift(drift, spread);
     core::Vec3 const shifted = m_list.drift().cwiseAbs();
     m_depths.setShifted(shifted);
-    // The shifts as floats not below them: the float comparison holds only where the
-    // doubles' does.
-    std::array<float, 3> const moved{core::floatNotBelow(shifted.x()),
-                                     core::floatNotBelow(shifted.y()),
-                                     core::floatNotBelow(shifted.z())};
-    std::array<float, 3> const* const margin = m_margin.data();
-    std::size_t const margins = m_margin.size();
-    auto const unchanged = [margin, margins, moved](std::size_t p) {
-        return p < margins && margin[p][0] > moved[0] && margin[p][1] > moved[1] &&
-               margin[p][2] > moved[2];
+    // The rebuild's copies deeper inside the block than settledDepth along every axis, less
+    // the list's shift along it: a pair of two of them is emitted whenever it overlaps, and
+    // settledMode answers as before (its other conditions do not depend on where the pair
+    // lies), so it is not settled again. Arrivals have no depth.
+    double const depth = settledDepth(rounding);
+    std::size_t const built = m_list.builtSize();
+    m_deepIds.resize(built);
+    for (std::size_t id = 0; id < built; ++id) {
+        ReferenceDepths::Axes const& d =
+            m_depths.ofAxes(m_list, ps, static_cast<VerletList::Id>(id));
+        m_deepIds[id] = d[0] > depth + shifted.x() && d[1] > depth + shifted.y() &&
+                        d[2] > depth + shifted.z();
+    }
+    std::uint8_t const* const deep = m_deepIds.data();
+    auto const unchanged = [deep, built](VerletList::Id a, VerletList::Id b) {
+        return a < built && b < built && (deep[a] & deep[b]) != 0;
     };
     m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, bool listed, PairMode was,
                                    KeptSpring& spring, std::uint8_t& hint) {

@@ -64,26 +64,26 @@ VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, Verl
     return check;
 }
 
+double ContactDetector::settledDepth(double rounding) const {
+    // listedReach's terms at their largest (the rebuild's radii bound every listed pair's),
+    // then the depths settlePair and staysInBlock ask for; a relative 1e-9 more covers the
+    // sums' rounding (a pair near the bound goes the long way, with the same answer).
+    double const rMin = m_builtRadiusMin, rMax = m_builtRadiusMax;
+    double const reach =
+        0.5 * m_listSkin + 0.5 * (rMax - rMin) + rounding + 1e-12 * (2.0 * rMax + m_listSkin);
+    return (std::max(reach, listMotion(rounding)) + rounding) * (1.0 + 1e-9);
+}
+
 std::vector<std::uint8_t> ContactDetector::deepMasters(ParticleStorage const& ps,
                                                        PeriodicFrame const& frame,
                                                        double rounding) const {
-    // The rebuild's ids are its storage indices. The radii bound every listed pair's reach.
+    // The rebuild's ids are its storage indices.
     std::size_t const n = m_list.builtSize();
-    double rMin = std::numeric_limits<double>::infinity(), rMax = 0.0;
-    for (std::size_t k = 0; k < n; ++k) {
-        rMin = std::min(rMin, ps.radius(k));
-        rMax = std::max(rMax, ps.radius(k));
-    }
     std::vector<std::uint8_t> deep(n, 0);
-    if (n == 0 || !std::isfinite(rMax) || !oneImageInstance(2.0 * rMax, frame, rounding))
+    if (n == 0 || !std::isfinite(m_builtRadiusMax) ||
+        !oneImageInstance(2.0 * m_builtRadiusMax, frame, rounding))
         return deep;
-    // listedReach's terms at their largest, then the depths settlePair and staysInBlock ask
-    // for; a relative 1e-9 more covers the sums' rounding (a pair near the bound goes the long
-    // way, with the same answer).
-    double const reach =
-        0.5 * m_listSkin + 0.5 * (rMax - rMin) + rounding + 1e-12 * (2.0 * rMax + m_listSkin);
-    double const depth = std::max(reach, listMotion(rounding)) + rounding;
-    double const bound = depth * (1.0 + 1e-9);
+    double const bound = settledDepth(rounding);
     for (std::size_t k = 0; k < n; ++k) {
         auto const id = static_cast<VerletList::Id>(k);
         deep[k] = ps.flags(k).isMaster() && !ps.flags(k).isFixed() && isZero(ps.image(k)) &&

@@ -132,7 +132,7 @@ public:
     }
 
     /// After shift(): calls `decide(a, b, listed, was, spring, hint)` for every pair whose two
-    /// copies live, the listed ones first unless `unchanged(p)` (listed = true, `was` their
+    /// copies live, the listed ones first unless `unchanged(a, b)` (listed = true, `was` their
     /// mode, `spring` and `hint` theirs, in place), then the parked ones (listed = false,
     /// PairMode::Check, an empty spring, hint 0), and lists each with the mode returned and
     /// `spring` and `hint` as `decide` left them (a listed pair in its place, a parked one
