@@ -381,7 +381,7 @@ private:
     std::vector<std::uint8_t> m_deepIds;
     double m_builtRadiusMin = 0.0; ///< the smallest radius of the rebuild's copies
     double m_builtRadiusMax = 0.0; ///< and the largest
-    double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
+    double m_listScale = 0.0;      ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)

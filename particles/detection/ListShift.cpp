@@ -138,8 +138,8 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     for (std::size_t id = 0; id < built; ++id) {
         ReferenceDepths::Axes const& d =
             m_depths.ofAxes(m_list, ps, static_cast<VerletList::Id>(id));
-        m_deepIds[id] = d[0] > depth + shifted.x() && d[1] > depth + shifted.y() &&
-                        d[2] > depth + shifted.z();
+        m_deepIds[id] =
+            d[0] > depth + shifted.x() && d[1] > depth + shifted.y() && d[2] > depth + shifted.z();
     }
     std::uint8_t const* const deep = m_deepIds.data();
     auto const unchanged = [deep, built](VerletList::Id a, VerletList::Id b) {
