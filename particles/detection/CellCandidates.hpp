@@ -36,6 +36,9 @@ struct SlotPair {
 /// Working storage of appendCellOverlaps, kept across cells so that it is allocated once.
 struct CellScratch {
     std::vector<double> centres; ///< the cell's spheres in double: x, y, z, radius per slot
+    /// The lanes' hits of one cell, as slot s, slot t and d2 (appendCellOverlapsInLanes).
+    std::vector<std::uint32_t> s, t;
+    std::vector<double> d2;
 };
 
 /// Appends to `out` the pairs of one cell's sweep whose spheres may overlap, d2 < (r_s + r_t +

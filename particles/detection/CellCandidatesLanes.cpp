@@ -49,17 +49,6 @@ __mmask8 firstLanes(std::uint32_t n) {
     return static_cast<__mmask8>(n >= 8 ? 0xFFU : (1U << n) - 1U);
 }
 
-/// Calls emit(lane, d2 of the lane) for the lanes of `hit`, ascending.
-template <class Emit>
-void eachHit(__mmask8 hit, __m512d d2, Emit&& emit) {
-    if (hit == 0)
-        return;
-    alignas(64) double d2s[8];
-    _mm512_store_pd(d2s, d2);
-    for (unsigned bits = hit; bits != 0; bits &= bits - 1)
-        emit(static_cast<std::uint32_t>(__builtin_ctz(bits)), d2s[__builtin_ctz(bits)]);
-}
-
 } // namespace
 
 bool cellLanesCompiled() {
@@ -83,21 +72,55 @@ void appendCellOverlapsInLanes(SphereLanes const& lanes, SlotRange own,
         c[2] = static_cast<double>(lanes.z[s]);
         c[3] = static_cast<double>(lanes.radius[s]);
     }
+    // The hits in the sweep's order, without a branch per hit: each block's lanes compressed
+    // in registers (a compressing store to memory is microcoded on Zen 4) and stored whole at
+    // the count so far, the lanes past the hits overwritten by the next block's; appended to
+    // `out` whenever one more sphere's sweep of a range (and a block's eight lanes past its
+    // hits) might not fit.
+    std::size_t longest = members;
+    for (SlotRange const& r : forward)
+        longest = std::max<std::size_t>(longest, r.end - r.begin);
+    std::size_t const room = std::max<std::size_t>(1024, 2 * (longest + 8));
+    if (scratch.t.size() < room) {
+        scratch.s.resize(room);
+        scratch.t.resize(room);
+        scratch.d2.resize(room);
+    }
+    std::uint32_t* const ss = scratch.s.data();
+    std::uint32_t* const ts = scratch.t.data();
+    double* const ds = scratch.d2.data();
+    std::size_t count = 0;
+    auto const flush = [&] {
+        for (std::size_t k = 0; k < count; ++k)
+            out.push_back({ss[k], ts[k], ds[k]});
+        count = 0;
+    };
+    __m256i const laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     auto each = [&](std::uint32_t t0, std::uint32_t t1) {
         for (std::uint32_t m = 0; m < members; ++m) {
+            if (count + (t1 - t0) + 8 > room)
+                flush();
             std::uint32_t const s = own.begin + m;
             Centre const a = centreAt(&scratch.centres[4 * std::size_t{m}]);
+            __m256i const sLanes = _mm256_set1_epi32(static_cast<int>(s));
             // 64-bit: t1 may lie within a block of eight of the slots' 32-bit limit.
             for (std::uint64_t block = std::max(t0, s + 1); block < t1; block += 8) {
                 auto const t = static_cast<std::uint32_t>(block);
                 __mmask8 const hit = test(a, lanes, t, firstLanes(t1 - t), slackLanes, d2);
-                eachHit(hit, d2, [&](std::uint32_t k, double d) { out.push_back({s, t + k, d}); });
+                __m256i const tLanes =
+                    _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(t)), laneIndex);
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(ss + count), sLanes);
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(ts + count),
+                                    _mm256_maskz_compress_epi32(hit, tLanes));
+                _mm512_storeu_pd(ds + count, _mm512_maskz_compress_pd(hit, d2));
+                count += static_cast<std::size_t>(__builtin_popcount(hit));
             }
         }
     };
     each(own.begin, own.end);
     for (SlotRange const& r : forward)
         each(r.begin, r.end);
+    flush();
 }
 
 #else

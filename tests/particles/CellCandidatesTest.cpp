@@ -1,7 +1,7 @@
 // The cells' candidate sweep, one by one and in lanes (where the build and the processor have
 // AVX-512), against its definition: the same pairs, in the same order, with the same squared
 // distances, bit for bit, for cells with one grain to many and ranges shorter and longer than a
-// lane block.
+// lane block, and a cell with more hits than the lanes collect before appending them.
 #include "particles/detection/CellCandidates.hpp"
 
 #include <gtest/gtest.h>
@@ -22,10 +22,12 @@ struct Slots {
     }
 };
 
-/// `n` spheres in a 3 x 3 x 3 box, radii in [0.3, 0.5]: about half of the pairs within reach.
-Slots sample(std::size_t n, std::uint32_t seed) {
+/// `n` spheres in a box of edge `edge`, radii in [0.3, 0.5] (in the 3 x 3 x 3 box about a tenth
+/// of the pairs within reach; in a box of edge 0.3, whose diagonal is shorter than 0.6, every
+/// pair).
+Slots sample(std::size_t n, std::uint32_t seed, float edge = 3.0F) {
     std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> at(0.0F, 3.0F);
+    std::uniform_real_distribution<float> at(0.0F, edge);
     std::uniform_real_distribution<float> r(0.3F, 0.5F);
     Slots s;
     for (std::size_t k = 0; k < n; ++k) {
@@ -94,6 +96,25 @@ TEST(CellCandidates, SweepsACellAsTheScalarDefinitionInOrderAndBitForBit) {
         }
     }
     EXPECT_GT(hits, 300U); // the comparisons had pairs to compare
+}
+
+TEST(CellCandidates, SweepsACrowdedCellWithMoreHitsThanTheLanesCollectAtOnce) {
+    // 300 spheres in a box of edge 0.3, every pair within reach: 39,900 hits, appended in rounds
+    // (the lanes collect about a thousand before appending them).
+    Slots const s = sample(300, 5, 0.3F);
+    SlotRange const own{0, 200};
+    std::vector<SlotRange> const forward{{200, 300}};
+    std::vector<SlotPair> const want = scalarSweep(s, own, forward, 0.0);
+    ASSERT_EQ(want.size(), 200U * 199U / 2U + 200U * 100U);
+    std::vector<SlotPair> got;
+    CellScratch scratch;
+    appendCellOverlaps(s.lanes(), own, forward, 0.0, scratch, got);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t k = 0; k < want.size(); ++k) {
+        ASSERT_EQ(got[k].s, want[k].s) << k;
+        ASSERT_EQ(got[k].t, want[k].t) << k;
+        ASSERT_EQ(got[k].d2, want[k].d2) << k;
+    }
 }
 
 TEST(CellCandidates, UsesTheLanesWhereTheBuildAndTheProcessorHaveThem) {
