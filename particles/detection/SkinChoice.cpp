@@ -7,8 +7,9 @@
 // relativeSkin; the rebuilds until the next choice use it. In a packing of equal spheres the
 // next shell lies 0.41 diameters beyond the first, so the list of the first shell takes a skin
 // of up to 0.4 diameters at no cost per step (the ramp of the first paper's scene B: half the
-// rebuilds). The list holds the pairs of any skin's list: the contacts, and the trajectory
-// with them, do not depend on it.
+// rebuilds). The list holds the pairs of any skin's list: the contacts do not depend on it. The
+// order in which their forces are summed does (the list's rebuilds and arrivals order its
+// pairs), and with it the trajectory's last bits, except in reproducible mode.
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
