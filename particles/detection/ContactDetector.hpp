@@ -17,7 +17,6 @@
 #include "particles/storage/ParticleStorage.hpp"
 #include "particles/storage/WallList.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -39,14 +38,11 @@ core::AABB everywhere();
 /// visits the cells its ball (radius r + r_small_max) covers, row by row, and the large ones
 /// are tested against each other by sort-and-sweep along their axis of largest spread (Baraff,
 /// "Dynamic simulation of non-penetrating rigid bodies", PhD thesis, Cornell 1992, ch. 6). Why:
-/// with one cell size for all, a radius-30 sphere among radius-0.4 grains would force cells of edge
-/// 60 holding ~10^5 grains each, O(N^2) work; with the large one inserted into every cell it
-/// covers, every visit of one of those ~2 * 10^5 cells would test it. Here each small sphere costs
-/// O(1) (bounded occupancy per cell) and each large sphere costs the number of cells in its ball,
-/// which is the number of small grains that could fill that volume, so the total is O(N) in the
-/// number of grains the scene could hold — the spirit of the multilevel grids of Ogarko &
-/// Luding (Comput. Phys. Commun. 183 (2012) 931) with two levels. Pairs of two Fixed spheres
-/// are skipped (neither can move).
+/// one cell size for all would give a radius-30 sphere among radius-0.4 grains cells of edge 60
+/// (~10^5 grains each, O(N^2) work). Here a small sphere costs O(1) and a large one the cells in
+/// its ball, which as many small grains could fill: O(N) in the grains the scene could hold, the
+/// two-level case of the multilevel grids of Ogarko & Luding (Comput. Phys. Commun. 183 (2012)
+/// 931). Pairs of two Fixed spheres are skipped (neither can move).
 ///
 /// Limits of the automatic threshold (2 x median radius): it suits "few large among many
 /// small". If most grains are large (say 60 % of radius 10 among radius 0.4), the median is
@@ -280,13 +276,12 @@ private:
                                     std::size_t kb, VerletList::Id a, VerletList::Id b,
                                     core::AABB const& region, PeriodicFrame const& frame,
                                     double rounding) const;
-    /// How deep inside the block (along each axis, the list's shifts counted) both copies of a
-    /// pair of the rebuild's copies must lie for settlePair to emit it whenever it overlaps:
-    /// deeper than any listed pair's ownership reach and the list's motion.
+    /// The depth (per axis, shifts counted) beyond which both copies of a pair of the rebuild's
+    /// copies make settlePair emit it whenever it overlaps: past any listed pair's reach and
+    /// motion.
     [[nodiscard]] double settledDepth(double rounding) const;
-    /// Per id of a rebuild (its storage index): a master at image zero, not fixed, deeper inside
-    /// the block than settledDepth, so that every pair of two such copies stays in the block
-    /// (classifyListed's shortcut of settlePair).
+    /// Per id of a rebuild: a master at image zero, not fixed, deeper than settledDepth, so that
+    /// every pair of two such copies stays in the block (classifyListed's shortcut of settlePair).
     [[nodiscard]] std::vector<std::uint8_t> deepMasters(ParticleStorage const& particles,
                                                         PeriodicFrame const& frame,
                                                         double rounding) const;
@@ -379,9 +374,8 @@ private:
     ReferenceDepths m_depths;                ///< of the last rebuild's copies, and the shifts since
     /// shiftList: per id of the rebuild, whether it lies deeper than settledDepth (1 or 0).
     std::vector<std::uint8_t> m_deepIds;
-    double m_builtRadiusMin = 0.0; ///< the smallest radius of the rebuild's copies
-    double m_builtRadiusMax = 0.0; ///< and the largest
-    double m_listScale = 0.0;      ///< coordinate scale of the last rebuild (its slack)
+    double m_builtRadiusMin = 0.0, m_builtRadiusMax = 0.0; ///< the rebuild's copies' radii
+    double m_listScale = 0.0; ///< coordinate scale of the last rebuild (its slack)
     double m_listSkin = 0.0;
     double m_relativeSkin = 0.0;  ///< chosen for the scene (0: not yet; "A skin for the scene")
     std::uint32_t m_rebuilds = 0; ///< list rebuilds so far (every 16th chooses the skin)

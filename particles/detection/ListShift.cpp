@@ -7,9 +7,7 @@
 #include "particles/detection/ContactDetector.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 
 namespace regolith::particles {
 
