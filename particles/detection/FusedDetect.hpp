@@ -129,9 +129,11 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                         kept &= modes[at[k]] == PairMode::Kept;
                     if (kept) {
                         overlaps += screen.test(
-                            ps, period, a, b, n,
-                            [&](std::size_t k, PairOverlap const& o)
-                                __attribute__((always_inline)) { onPair(o, springs[at[k]]); },
+                            ps, period, a, b, n, [](std::size_t, PairOverlap const&) {},
+                            [&](std::uint64_t o) {
+                                detection_detail::handOverKeptHits(onPair, a, b, at, o, springs);
+                                return std::uint64_t{0}; // handed over
+                            },
                             true);
                         return;
                     }

@@ -5,6 +5,7 @@
 #include "particles/detection/Contact.hpp"
 #include "particles/detection/VerletList.hpp"
 
+#include <bit>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -25,7 +26,32 @@ concept TakesKeptSprings = requires(OnPair& f) {
 &&(std::invocable<OnPair&, PairOverlap const&, KeptSpring&> ||
    std::invocable<OnPair&, Contact const&, KeptSpring&>);
 
+/// A callback that takes kept springs and, for a block of kept pairs in one image, all of its
+/// overlapping pairs at once: keptHits(i, j, at, hits, springs), pair t (bit t of `hits`)
+/// joining copies i[t] and j[t] with its spring at springs[at[t]].
+template <class OnPair>
+concept TakesKeptHits = TakesKeptSprings<OnPair> &&
+    requires(OnPair& f, std::uint32_t const* ids, std::uint64_t hits, KeptSpring* springs) {
+    f.keptHits(ids, ids, ids, hits, springs);
+};
+
 namespace detection_detail {
+/// Hands the overlapping pairs `hits` of a block of kept pairs in one image to onPair (see
+/// TakesKeptHits), all at once where it takes them so, else one by one, in the order of
+/// their bits.
+template <class OnPair>
+void handOverKeptHits(OnPair& onPair, std::uint32_t const* i, std::uint32_t const* j,
+                      std::uint32_t const* at, std::uint64_t hits, KeptSpring* springs) {
+    if constexpr (TakesKeptHits<OnPair>) {
+        onPair.keptHits(i, j, at, hits, springs);
+    } else {
+        for (; hits != 0; hits &= hits - 1) {
+            auto const t = static_cast<std::size_t>(std::countr_zero(hits));
+            onPair(PairOverlap{i[t], j[t], core::Vec3::Zero()}, springs[at[t]]);
+        }
+    }
+}
+
 /// Hands contact `c` to onPair in the form it takes: with its kept spring if it has one
 /// (non-null) and onPair takes it, else with its history hint.
 template <class OnPair>

@@ -28,6 +28,7 @@
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -68,6 +69,34 @@ public:
         m_s[0][k] = continued ? kept.spring.x() : 0.0;
         m_s[1][k] = continued ? kept.spring.y() : 0.0;
         m_s[2][k] = continued ? kept.spring.z() : 0.0;
+    }
+
+    /// addKept for the overlapping pairs of a block of a list whose pairs are all kept and join
+    /// two copies in one image (shift +0): pair t (bit t of `hits`) joins copies i[t], j[t]
+    /// and keeps its spring at springs[at[t]]. Adds them in the order of their bits until the
+    /// batch is full and returns the bits not added. One loop over the hits with the batch's
+    /// size and the arrays' addresses in registers: the pass over a packing's list hands
+    /// over most of its contacts here.
+    [[gnu::always_inline]] std::uint64_t addKeptHits(std::uint32_t const* i, std::uint32_t const* j,
+                                                     std::uint32_t const* at, std::uint64_t hits,
+                                                     KeptSpring* springs, std::uint32_t stamp) {
+        std::size_t k = m_size;
+        for (; hits != 0 && k < kCapacity; hits &= hits - 1, ++k) {
+            auto const t = static_cast<std::size_t>(std::countr_zero(hits));
+            KeptSpring& kept = springs[at[t]];
+            m_i[k] = i[t];
+            m_j[k] = j[t];
+            m_kept[k] = &kept;
+            m_shift[0][k] = 0.0;
+            m_shift[1][k] = 0.0;
+            m_shift[2][k] = 0.0;
+            bool const continued = ContactHistory::continues(kept.stamp, stamp);
+            m_s[0][k] = continued ? kept.spring.x() : 0.0;
+            m_s[1][k] = continued ? kept.spring.y() : 0.0;
+            m_s[2][k] = continued ? kept.spring.z() : 0.0;
+        }
+        m_size = k;
+        return hits;
     }
 
     /// Evaluates every added contact of `ps` (the storage whose copies were added, its
@@ -201,6 +230,14 @@ public:
         m_batch.addKept(p.i, p.j, p.shiftJ, kept, m_stamp);
     }
     void operator()(Contact const& c, KeptSpring& kept) { (*this)(PairOverlap::of(c), kept); }
+    /// The same for the overlapping pairs `hits` of a block of kept pairs in one image
+    /// (SpringDashpotBatch::addKeptHits), in the order of their bits.
+    [[gnu::always_inline]] void keptHits(std::uint32_t const* i, std::uint32_t const* j,
+                                         std::uint32_t const* at, std::uint64_t hits,
+                                         KeptSpring* springs) {
+        while ((hits = m_batch.addKeptHits(i, j, at, hits, springs, m_stamp)) != 0)
+            finish();
+    }
     /// The pass (ContactHistory stamp) this evaluates.
     [[nodiscard]] std::uint32_t pass() const { return m_stamp; }
 

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <bit>
 #include <random>
 #include <vector>
 
@@ -319,3 +321,103 @@ TEST_P(SpringDashpotBatchModels, FreshSpringsOfOneGrainSurviveTheGrowthOfItsHist
 
 INSTANTIATE_TEST_SUITE_P(SpringDashpotBatch, SpringDashpotBatchModels, ::testing::Bool(),
                          [](auto const& p) { return p.param ? "ModelC" : "ModelA"; });
+
+TEST(SpringDashpotBatch, KeptHitsAreHandedOverAsOneByOne) {
+    // A list's blocks of kept pairs handed over at once (keptHits) and pair by pair: the same
+    // shares with the same bits, the same springs and stamps left beside the list, the batch
+    // filling in the middle of a block; springs that continue (stamped this pass or the one
+    // before) and springs that restart from zero (older, or never touched).
+    SpringDashpot const model = oneMaterial(false);
+    ParticleStorage ps = randomPack(11, 600, 7.0);
+    for (std::size_t k = 0; k < ps.size(); ++k)
+        ps.setType(k, 0);
+    WallList walls;
+    ContactDetector detector;
+    ContactList contacts;
+    detector.detect(ps, walls, everywhere(), contacts);
+    std::size_t const n = contacts.pairs.size();
+    ASSERT_GT(n, 4 * SpringDashpotBatch::kCapacity);
+    std::uint32_t const stamp = 7;
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<KeptSpring> byOne(n);
+    for (std::size_t p = 0; p < n; ++p) {
+        byOne[p].spring = Vec3(u(rng), u(rng), u(rng)) * 1e-3;
+        std::uint32_t const stamps[] = {stamp, stamp - 1, stamp - 2, KeptSpring::kUntouched};
+        byOne[p].stamp = stamps[p % 4];
+    }
+    std::vector<KeptSpring> atOnce = byOne;
+    std::vector<Share> expected, got;
+    auto recordInto = [](std::vector<Share>& out) {
+        return [&out](std::size_t k, Uid partner, Vec3 const& f, Vec3 const& t) {
+            out.push_back(Share{k, partner, f, t});
+        };
+    };
+    auto oneSink = recordInto(expected);
+    auto allSink = recordInto(got);
+    SpringDashpotBatch oneBatch, allBatch;
+    BatchedSpringDashpot one(ps, model, 1e-2, stamp, oneBatch, oneSink);
+    BatchedSpringDashpot all(ps, model, 1e-2, stamp, allBatch, allSink);
+    std::size_t handed = 0;
+    for (std::size_t first = 0; first + 64 <= n; first += 64) {
+        std::array<std::uint32_t, 64> i{}, j{}, at{};
+        std::uint64_t hits = 0;
+        for (std::size_t t = 0; t < 64; ++t) {
+            Contact const& c = contacts.pairs[first + t];
+            i[t] = static_cast<std::uint32_t>(c.i);
+            j[t] = static_cast<std::uint32_t>(c.j);
+            at[t] = static_cast<std::uint32_t>(first + 63 - t); // any slots, in any order
+            hits |= std::uint64_t{u(rng) < 0.4 ? 1U : 0U} << t;
+        }
+        for (std::uint64_t h = hits; h != 0; h &= h - 1) {
+            auto const t = static_cast<std::size_t>(std::countr_zero(h));
+            one(PairOverlap{i[t], j[t], Vec3::Zero()}, byOne[at[t]]);
+            ++handed;
+        }
+        all.keptHits(i.data(), j.data(), at.data(), hits, atOnce.data());
+    }
+    one.finish();
+    all.finish();
+    ASSERT_GT(handed, 2 * SpringDashpotBatch::kCapacity);
+    ASSERT_EQ(expected.size(), 2 * handed);
+    ASSERT_EQ(got.size(), expected.size());
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(got[k].copy, expected[k].copy) << "share " << k;
+        ASSERT_EQ(got[k].partner, expected[k].partner) << "share " << k;
+        EXPECT_TRUE(sameBits(got[k].force, expected[k].force)) << "share " << k;
+        EXPECT_TRUE(sameBits(got[k].torque, expected[k].torque)) << "share " << k;
+    }
+    std::size_t restarted = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+        EXPECT_EQ(atOnce[p].stamp, byOne[p].stamp) << "pair " << p;
+        EXPECT_TRUE(sameBits(atOnce[p].spring, byOne[p].spring)) << "pair " << p;
+        restarted += byOne[p].stamp == stamp && p % 4 >= 2 ? 1 : 0;
+    }
+    EXPECT_GT(restarted, 0U); // springs that restarted from zero were handed over
+}
+
+TEST(SpringDashpotBatch, AddKeptHitsStopsWhenFullAndReturnsTheRest) {
+    ParticleStorage ps = randomPack(17, 40, 3.0);
+    std::vector<KeptSpring> springs(80);
+    SpringDashpotBatch batch;
+    for (std::size_t k = 0; k + 4 < SpringDashpotBatch::kCapacity; ++k)
+        batch.addKept(0, 1, Vec3::Zero(), springs[k], 1);
+    std::array<std::uint32_t, 64> i{}, j{}, at{};
+    for (std::uint32_t t = 0; t < 64; ++t) {
+        i[t] = t % 20;
+        j[t] = 20 + t % 20;
+        at[t] = 10 + t;
+    }
+    std::uint64_t const hits = 0b1011'0110'1000ULL; // bits 3, 5, 6, 8, 9, 11
+    std::uint64_t const rest =
+        batch.addKeptHits(i.data(), j.data(), at.data(), hits, springs.data(), 1);
+    EXPECT_EQ(rest, 0b1010'0000'0000ULL); // four added, 9 and 11 left
+    ASSERT_TRUE(batch.full());
+    std::size_t const added[] = {3, 5, 6, 8};
+    for (std::size_t a = 0; a < 4; ++a) {
+        std::size_t const k = SpringDashpotBatch::kCapacity - 4 + a;
+        EXPECT_EQ(batch.i(k), i[added[a]]);
+        EXPECT_EQ(batch.j(k), j[added[a]]);
+        EXPECT_EQ(batch.kept(k), &springs[at[added[a]]]);
+    }
+}
