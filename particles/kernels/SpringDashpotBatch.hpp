@@ -25,6 +25,8 @@
 #include "particles/detection/Contact.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "particles/kernels/SpringDashpot.hpp"
+#include "particles/kernels/SpringDashpotParameters.hpp"
+#include "particles/kernels/SpringDashpotWallBatch.hpp"
 #include "particles/storage/ParticleStorage.hpp"
 
 #include <array>
@@ -143,14 +145,8 @@ private:
             return {ps.invMasses().data(), ps.invInertias().data(), ps.radii().data()};
         }
     };
-    /// A pair's material parameters as the lanes read them; model C's are read only by
-    /// Rolling::Spring (`spring` 1 where the pair has it, else 0: model A).
-    struct Parameters {
-        double k, kt, ratio, mu, ctRatio, muRoll, spring, kr, etaR;
-    };
-    /// Which rolling resistance the lanes compute: none (every mu_r = 0), model A's couple, or
-    /// model C's spring where a pair has it and model A's elsewhere.
-    enum class Rolling { None, Constant, Spring };
+    using Parameters = spring_lanes::Parameters;
+    using Rolling = spring_lanes::Rolling;
     /// evaluate's loop over the lanes, with `uniform`'s parameters in every lane or each
     /// lane's own (m_k ...).
     template <Rolling kRolling, bool kUniform>
@@ -307,6 +303,7 @@ private:
 template <>
 struct BatchKernel<SpringDashpot> {
     using Workspace = SpringDashpotBatch;
+    using Walls = SpringDashpotWallBatch;
     template <class Sink>
     using Pairs = BatchedSpringDashpot<Sink>;
 };

@@ -21,13 +21,15 @@
 
 namespace regolith::particles {
 
-/// A contact model with a batch kernel: BatchKernel<M> names its reusable workspace and the
-/// pair callback that evaluates the pairs the Verlet loop finds a batch at a time (the
-/// spring-dashpot's: SpringDashpotBatch.hpp). A model of one's own gets one by specialising
-/// BatchKernel beside it.
+/// A contact model with a batch kernel: BatchKernel<M> names its reusable workspace, the
+/// pair callback that evaluates the pairs the Verlet loop finds a batch at a time, and the
+/// workspace that evaluates the wall contacts (`walls.evaluate(ps, walls, list, model, dt,
+/// stamp, sink)`, as evaluateWallsWith) (the spring-dashpot's: SpringDashpotBatch.hpp). A model
+/// of one's own gets one by specialising BatchKernel beside it.
 template <class M>
 concept BatchedContactModel = ContactModel<M> && requires {
     typename BatchKernel<M>::Workspace;
+    typename BatchKernel<M>::Walls;
 };
 
 /// The batch kernel's lanes of a batched model, made on first use and reused from block to
@@ -35,6 +37,7 @@ concept BatchedContactModel = ContactModel<M> && requires {
 template <class M, bool = BatchedContactModel<M>>
 struct BatchLanes {
     std::unique_ptr<typename BatchKernel<M>::Workspace> lanes;
+    std::unique_ptr<typename BatchKernel<M>::Walls> walls;
 };
 template <class M>
 struct BatchLanes<M, false> {};
@@ -107,13 +110,18 @@ private:
                 ps, m_model, p.dt, p.stamp, *lanes, sink);
             p.detector.detect(ps, p.walls, p.region, p.frame, p.contacts, pairs, p.keepPairs);
             pairs.finish();
+            auto& walls = m_batch.walls;
+            if (!walls && !p.contacts.walls.empty())
+                walls = std::make_unique<typename BatchKernel<M>::Walls>();
+            if (walls)
+                walls->evaluate(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
         } else {
             auto onePair = [&](Contact const& c, std::uint8_t& hint) {
                 evaluatePair(ps, c, m_model, p.dt, p.stamp, hint, sink);
             };
             p.detector.detect(ps, p.walls, p.region, p.frame, p.contacts, onePair, p.keepPairs);
+            evaluateWallsWith(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
         }
-        evaluateWallsWith(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
     }
 
     M const& m_model;
