@@ -44,8 +44,9 @@ concept ContactModel = requires(M const& m, ContactState const& s, core::Vec3& s
 };
 
 /// A model's batch kernel, where it has one: a specialisation beside the model names its
-/// reusable `Workspace` and its pair callback `Pairs<Sink>` (SpringDashpotBatch.hpp), and the
-/// contact loop then evaluates the pairs it finds a batch at a time (BlockContactLoop.hpp).
+/// reusable `Workspace`, its pair callback `Pairs<Sink>` and its wall contacts' workspace
+/// `Walls` (SpringDashpotBatch.hpp), and the contact loop then evaluates the pairs it finds and
+/// the wall contacts a batch at a time (BlockContactLoop.hpp).
 template <class M>
 struct BatchKernel {};
 

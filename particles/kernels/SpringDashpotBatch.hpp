@@ -299,7 +299,8 @@ private:
 };
 
 /// The spring-dashpot's batch kernel (ContactState.hpp, BatchKernel): the contact loop
-/// evaluates its pairs with BatchedSpringDashpot.
+/// evaluates its pairs with BatchedSpringDashpot, then its wall contacts with
+/// SpringDashpotWallBatch.
 template <>
 struct BatchKernel<SpringDashpot> {
     using Workspace = SpringDashpotBatch;
