@@ -21,26 +21,35 @@
 
 namespace regolith::particles {
 
-/// A contact model with a batch kernel: BatchKernel<M> names its reusable workspace, the
-/// pair callback that evaluates the pairs the Verlet loop finds a batch at a time, and the
-/// workspace that evaluates the wall contacts (`walls.evaluate(ps, walls, list, model, dt,
-/// stamp, sink)`, as evaluateWallsWith) (the spring-dashpot's: SpringDashpotBatch.hpp). A model
-/// of one's own gets one by specialising BatchKernel beside it.
+/// A contact model with a batch kernel: BatchKernel<M> names its reusable workspace and the
+/// pair callback that evaluates the pairs the Verlet loop finds a batch at a time (the
+/// spring-dashpot's: SpringDashpotBatch.hpp). A model of one's own gets one by specialising
+/// BatchKernel beside it.
 template <class M>
 concept BatchedContactModel = ContactModel<M> && requires {
     typename BatchKernel<M>::Workspace;
+};
+/// One whose batch kernel also names a workspace for the wall contacts, `Walls`, with
+/// `evaluate(ps, walls, list, model, dt, stamp, sink)` as evaluateWallsWith (the others'
+/// wall contacts are evaluated one by one).
+template <class M>
+concept BatchedWallModel = BatchedContactModel<M> && requires {
     typename BatchKernel<M>::Walls;
 };
 
 /// The batch kernel's lanes of a batched model, made on first use and reused from block to
 /// block and step to step; nothing for the others.
-template <class M, bool = BatchedContactModel<M>>
+template <class M, bool = BatchedContactModel<M>, bool = BatchedWallModel<M>>
 struct BatchLanes {
     std::unique_ptr<typename BatchKernel<M>::Workspace> lanes;
     std::unique_ptr<typename BatchKernel<M>::Walls> walls;
 };
 template <class M>
-struct BatchLanes<M, false> {};
+struct BatchLanes<M, true, false> {
+    std::unique_ptr<typename BatchKernel<M>::Workspace> lanes;
+};
+template <class M>
+struct BatchLanes<M, false, false> {};
 
 /// What one block's pass works on.
 struct BlockPass {
@@ -110,11 +119,15 @@ private:
                 ps, m_model, p.dt, p.stamp, *lanes, sink);
             p.detector.detect(ps, p.walls, p.region, p.frame, p.contacts, pairs, p.keepPairs);
             pairs.finish();
-            auto& walls = m_batch.walls;
-            if (!walls && !p.contacts.walls.empty())
-                walls = std::make_unique<typename BatchKernel<M>::Walls>();
-            if (walls)
-                walls->evaluate(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
+            if constexpr (BatchedWallModel<M>) {
+                auto& walls = m_batch.walls;
+                if (!walls && !p.contacts.walls.empty())
+                    walls = std::make_unique<typename BatchKernel<M>::Walls>();
+                if (walls)
+                    walls->evaluate(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
+            } else {
+                evaluateWallsWith(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
+            }
         } else {
             auto onePair = [&](Contact const& c, std::uint8_t& hint) {
                 evaluatePair(ps, c, m_model, p.dt, p.stamp, hint, sink);
