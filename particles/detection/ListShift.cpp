@@ -58,7 +58,11 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         }
         auto const m = static_cast<PairMode>(mode);
         count(m);
-        m_live.stale = true;
+        // Its copies live (tested above): the walk's arrays take it at the end, where
+        // refreshLive would put it.
+        m_live.a.push_back(m_indexOf[pair[0]]);
+        m_live.b.push_back(m_indexOf[pair[1]]);
+        m_live.at.push_back(static_cast<std::uint32_t>(m_pairs.size()));
         m_pairs.push_back(pair);
         m_gap.push_back(kNoGap);
         m_mode.push_back(m);
