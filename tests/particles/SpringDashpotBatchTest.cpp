@@ -10,6 +10,7 @@
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
 #include "tests/particles/PeriodicTestUtil.hpp"
+#include "tests/particles/SharesTestUtil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -68,13 +69,6 @@ ParticleStorage randomPack(std::uint64_t seed, std::size_t n, double box) {
     }
     return ps;
 }
-
-struct Share {
-    std::size_t copy;
-    Uid partner;
-    Vec3 force;
-    Vec3 torque;
-};
 
 /// Springs of every kind the scalar code branches on, on the first contacts' histories (with
 /// `rolling`, model C's rolling springs too, in another order).
@@ -147,11 +141,6 @@ void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
     for (std::uint32_t stamp = 1; stamp <= 4; ++stamp) {
         detector.detect(one, walls, everywhere(), contacts);
         std::vector<Share> expected, got;
-        auto recordInto = [](std::vector<Share>& out) {
-            return [&out](std::size_t k, Uid partner, Vec3 const& f, Vec3 const& t) {
-                out.push_back(Share{k, partner, f, t});
-            };
-        };
         auto scalarSink = recordInto(expected);
         for (Contact const& c : contacts.pairs) {
             std::uint8_t hint = 0;
@@ -165,23 +154,8 @@ void expectSameSharesAndSpringsAsEvaluatePair(SpringDashpot const& model) {
         }
         pairs.finish();
 
-        ASSERT_EQ(got.size(), expected.size());
-        for (std::size_t k = 0; k < got.size(); ++k) {
-            ASSERT_EQ(got[k].copy, expected[k].copy) << "share " << k;
-            ASSERT_EQ(got[k].partner, expected[k].partner) << "share " << k;
-            EXPECT_TRUE(sameBits(got[k].force, expected[k].force)) << "share " << k;
-            EXPECT_TRUE(sameBits(got[k].torque, expected[k].torque)) << "share " << k;
-        }
-        for (std::size_t k = 0; k < one.size(); ++k) {
-            auto const& a = one.history(k).entries();
-            auto const& b = batched.history(k).entries();
-            ASSERT_EQ(a.size(), b.size()) << "uid " << one.uid(k);
-            for (std::size_t e = 0; e < a.size(); ++e) {
-                EXPECT_EQ(a[e].partner, b[e].partner);
-                EXPECT_EQ(a[e].stamp, b[e].stamp);
-                EXPECT_TRUE(sameBits(a[e].spring, b[e].spring)) << "uid " << one.uid(k);
-            }
-        }
+        expectSameShares(got, expected);
+        expectSameHistories(batched, one);
         for (ParticleStorage* ps : {&one, &batched})
             for (std::size_t k = 0; k < ps->size(); ++k) {
                 ps->position(k) += dt * ps->velocity(k);
@@ -348,11 +322,6 @@ TEST(SpringDashpotBatch, KeptHitsAreHandedOverAsOneByOne) {
     }
     std::vector<KeptSpring> atOnce = byOne;
     std::vector<Share> expected, got;
-    auto recordInto = [](std::vector<Share>& out) {
-        return [&out](std::size_t k, Uid partner, Vec3 const& f, Vec3 const& t) {
-            out.push_back(Share{k, partner, f, t});
-        };
-    };
     auto oneSink = recordInto(expected);
     auto allSink = recordInto(got);
     SpringDashpotBatch oneBatch, allBatch;
@@ -380,13 +349,7 @@ TEST(SpringDashpotBatch, KeptHitsAreHandedOverAsOneByOne) {
     all.finish();
     ASSERT_GT(handed, 2 * SpringDashpotBatch::kCapacity);
     ASSERT_EQ(expected.size(), 2 * handed);
-    ASSERT_EQ(got.size(), expected.size());
-    for (std::size_t k = 0; k < got.size(); ++k) {
-        ASSERT_EQ(got[k].copy, expected[k].copy) << "share " << k;
-        ASSERT_EQ(got[k].partner, expected[k].partner) << "share " << k;
-        EXPECT_TRUE(sameBits(got[k].force, expected[k].force)) << "share " << k;
-        EXPECT_TRUE(sameBits(got[k].torque, expected[k].torque)) << "share " << k;
-    }
+    expectSameShares(got, expected);
     std::size_t restarted = 0;
     for (std::size_t p = 0; p < n; ++p) {
         EXPECT_EQ(atOnce[p].stamp, byOne[p].stamp) << "pair " << p;

@@ -10,7 +10,7 @@
 #include "particles/detection/ContactDetector.hpp"
 #include "particles/kernels/ContactEvaluation.hpp"
 #include "tests/particles/ParticleTestUtil.hpp"
-#include "tests/particles/PeriodicTestUtil.hpp"
+#include "tests/particles/SharesTestUtil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -92,13 +92,6 @@ ParticleStorage spheres(std::uint64_t seed) {
     return ps;
 }
 
-struct Share {
-    std::size_t copy;
-    Uid partner;
-    Vec3 force;
-    Vec3 torque;
-};
-
 void expectSameAsEvaluateWallsWith(SpringDashpot const& model, std::uint32_t wallType) {
     SCOPED_TRACE(model.hasRollingSpring() ? "model C" : "model A");
     double const dt = 2e-3;
@@ -119,22 +112,11 @@ void expectSameAsEvaluateWallsWith(SpringDashpot const& model, std::uint32_t wal
     for (std::uint32_t stamp = 1; stamp <= 4; ++stamp) {
         detector.detect(one, oneWalls, everywhere(), contacts);
         std::vector<Share> expected, got;
-        auto recordInto = [](std::vector<Share>& out) {
-            return [&out](std::size_t k, Uid partner, Vec3 const& f, Vec3 const& t) {
-                out.push_back(Share{k, partner, f, t});
-            };
-        };
         oneWalls.resetForces();
         batchedWalls.resetForces();
         evaluateWallsWith(one, oneWalls, contacts.walls, model, dt, stamp, recordInto(expected));
         batch.evaluate(batched, batchedWalls, contacts.walls, model, dt, stamp, recordInto(got));
-        ASSERT_EQ(got.size(), expected.size());
-        for (std::size_t k = 0; k < got.size(); ++k) {
-            ASSERT_EQ(got[k].copy, expected[k].copy) << "share " << k;
-            ASSERT_EQ(got[k].partner, expected[k].partner) << "share " << k;
-            EXPECT_TRUE(sameBits(got[k].force, expected[k].force)) << "share " << k;
-            EXPECT_TRUE(sameBits(got[k].torque, expected[k].torque)) << "share " << k;
-        }
+        expectSameShares(got, expected);
         for (std::size_t w = 0; w < oneWalls.size(); ++w) {
             EXPECT_TRUE(sameBits(batchedWalls.load(w).force, oneWalls.load(w).force)) << w;
             EXPECT_TRUE(sameBits(batchedWalls.load(w).torque, oneWalls.load(w).torque)) << w;
@@ -143,16 +125,7 @@ void expectSameAsEvaluateWallsWith(SpringDashpot const& model, std::uint32_t wal
                 << w;
         }
         EXPECT_NE(oneWalls.load(2).power, 0.0); // the moving wall's terms were exercised
-        for (std::size_t k = 0; k < one.size(); ++k) {
-            auto const& a = one.history(k).entries();
-            auto const& b = batched.history(k).entries();
-            ASSERT_EQ(a.size(), b.size()) << "uid " << one.uid(k);
-            for (std::size_t e = 0; e < a.size(); ++e) {
-                EXPECT_EQ(a[e].partner, b[e].partner);
-                EXPECT_EQ(a[e].stamp, b[e].stamp);
-                EXPECT_TRUE(sameBits(a[e].spring, b[e].spring)) << "uid " << one.uid(k);
-            }
-        }
+        expectSameHistories(batched, one);
         for (ParticleStorage* ps : {&one, &batched})
             for (std::size_t k = 0; k < ps->size(); ++k) {
                 ps->position(k) += dt * ps->velocity(k);
