@@ -128,13 +128,9 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                     for (std::size_t k = 0; k < n; ++k)
                         kept &= modes[at[k]] == PairMode::Kept;
                     if (kept) {
-                        overlaps += screen.test(
-                            ps, period, a, b, n, [](std::size_t, PairOverlap const&) {},
-                            [&](std::uint64_t o) {
-                                detection_detail::handOverKeptHits(onPair, a, b, at, o, springs);
-                                return std::uint64_t{0}; // handed over
-                            },
-                            true);
+                        std::uint64_t const hits = screen.overlapping(ps, period, a, b, n, true);
+                        overlaps += static_cast<std::size_t>(std::popcount(hits));
+                        detection_detail::handOverKeptHits(onPair, a, b, at, hits, springs);
                         return;
                     }
                 }

@@ -53,6 +53,14 @@ public:
         }
         return static_cast<std::size_t>(std::popcount(overlapping));
     }
+    /// The overlapping pairs of (i[k], j[k]), k < n <= kCapacity, bit k for pair k, for a
+    /// caller that hands them on itself (`oneImage` as in test()).
+    std::uint64_t overlapping(ParticleStorage const& ps, core::Vec3 const& period,
+                              std::uint32_t const* i, std::uint32_t const* j, std::size_t n,
+                              bool oneImage) {
+        assert(n <= kCapacity);
+        return lanes(ps, period, i, j, n, oneImage);
+    }
     /// test() handing on every overlapping pair.
     template <class OnHit>
     std::size_t test(ParticleStorage const& ps, core::Vec3 const& period, std::uint32_t const* i,

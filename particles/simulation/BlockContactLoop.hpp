@@ -120,11 +120,12 @@ private:
             p.detector.detect(ps, p.walls, p.region, p.frame, p.contacts, pairs, p.keepPairs);
             pairs.finish();
             if constexpr (BatchedWallModel<M>) {
-                auto& walls = m_batch.walls;
-                if (!walls && !p.contacts.walls.empty())
-                    walls = std::make_unique<typename BatchKernel<M>::Walls>();
-                if (walls)
+                if (!p.contacts.walls.empty()) {
+                    auto& walls = m_batch.walls;
+                    if (!walls)
+                        walls = std::make_unique<typename BatchKernel<M>::Walls>();
                     walls->evaluate(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
+                }
             } else {
                 evaluateWallsWith(ps, p.walls, p.contacts.walls, m_model, p.dt, p.stamp, sink);
             }
