@@ -108,7 +108,10 @@ particles::InsertSpec parseInsert(core::ConfigTable const& t, domain::ForestSpec
 std::int64_t batchSize(particles::InsertSpec const& spec, double dt) {
     if (!spec.rate)
         return spec.count;
-    double const perBatch = std::ceil(*spec.rate * static_cast<double>(spec.every) * dt);
+    // Rounded up, but not for the product's rounding above a whole number (5000 x 500 x 2e-5
+    // is 50.00000000000001): a relative 1e-12 below it still counts as it.
+    double const exact = *spec.rate * static_cast<double>(spec.every) * dt;
+    double const perBatch = std::ceil(exact * (1.0 - 1e-12));
     return std::min(spec.count, static_cast<std::int64_t>(std::max(perBatch, 1.0)));
 }
 

@@ -16,7 +16,8 @@ namespace regolith::apps {
                                                 domain::ForestSpec const& forest);
 
 /// The most grains one batch of `spec` asks for with time step `dt`: count without a rate,
-/// else rate x every x dt rounded up (at most count).
+/// else rate x every x dt rounded up (at most count; a product within a relative 1e-12 above a
+/// whole number is taken as it).
 [[nodiscard]] std::int64_t batchSize(particles::InsertSpec const& spec, double dt);
 
 /// Throws core::InputError ("insert[k].count: ..." or ".rate") if one batch of the smallest
