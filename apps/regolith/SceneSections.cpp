@@ -14,11 +14,14 @@
 #include "particles/simulation/ContactModelRegistry.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <string>
+#include <vector>
 
 namespace regolith::apps {
 
@@ -307,23 +310,30 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
 /// with a gap of 1.5 across one face).
 void warnLatticeOffPeriod(particles::LatticeSpec const& lattice, core::ConfigTable const& entry,
                           domain::ForestSpec const& forest) {
+    std::vector<std::string> axes; // one clause per axis off its period
     for (int a = 0; a < 3; ++a) {
         double const lo = forest.domain.min[a], hi = forest.domain.max[a];
         if (!forest.periodic[static_cast<std::size_t>(a)] || lattice.region.min[a] != lo ||
             lattice.region.max[a] != hi)
             continue;
         double const period = particles::latticePeriod(lattice.lattice, lattice.spacing, a);
+        if (!(period > 0.0) || !std::isfinite(period))
+            return; // a bad spacing, which the lattice's own check refuses
         double const periods = (hi - lo) / period;
         double const whole = std::max(std::round(periods), 1.0);
         if (std::abs(periods - whole) <= 1e-9 * whole)
             continue;
-        core::log::warn("{}: {}: the lattice repeats every {} along {}, which does not divide "
-                        "the periodic domain's extent {} there ({:.6g} periods): the grains "
-                        "across that face are not spaced as inside; make the extent a multiple "
-                        "of the period, e.g. {}",
-                        entry.location(), entry.keyPath("spacing"), period, "xyz"[a], hi - lo,
-                        periods, whole * period);
+        axes.push_back(fmt::format("along {} every {}, which does not divide the extent {} "
+                                   "({:.6g} periods; e.g. {} would)",
+                                   "xyz"[a], period, hi - lo, periods, whole * period));
     }
+    if (axes.empty())
+        return;
+    core::log::warn("{}: {}: the lattice repeats {}: the grains across a periodic face are not "
+                    "spaced as inside; make the periodic domain's extent a multiple of the "
+                    "period",
+                    entry.has("spacing") ? entry.location("spacing") : entry.location(),
+                    entry.keyPath("spacing"), fmt::join(axes, "; "));
 }
 
 } // namespace

@@ -1,13 +1,18 @@
 #include "core/app/CliOptions.hpp"
 
 #include "core/Error.hpp"
+#include "core/config/Suggest.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <system_error>
+#include <vector>
 
 namespace regolith::core {
 
@@ -31,7 +36,9 @@ std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, st
         ->type_name("FILE");
     app->add_option("--dump", o.dumpPath, "Write the final particles (CSV, sorted by uid) here")
         ->type_name("FILE");
-    app->add_option("--steps", steps, "Number of time steps (overrides time.steps)")
+    app->add_option("--steps", steps,
+                    "The step to end at (sets time.steps; after --restart a total, not the "
+                    "steps left)")
         ->type_name("N");
     app->add_option("--output", o.outputDir, "Output directory (overrides output.dir)")
         ->type_name("DIR");
@@ -40,6 +47,26 @@ std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, st
     app->add_flag("--quiet", o.quiet, "Print only warnings and errors");
     app->add_flag("--version", o.version, "Print the version and exit");
     return app;
+}
+
+/// "; did you mean '--steps'?" for the first argument that looks like an option the parser does
+/// not know but is a plausible misspelling of one it does (closestMatch), else "".
+std::string suggestOption(CLI::App const& app, int argc, char const* const* argv) {
+    std::vector<std::string> known;
+    for (CLI::Option const* option : app.get_options())
+        for (std::string const& name : option->get_lnames())
+            known.push_back("--" + name);
+    for (int k = 1; k < argc; ++k) {
+        std::string_view arg = argv[k];
+        if (!arg.starts_with("--"))
+            continue;
+        arg = arg.substr(0, arg.find('='));
+        if (std::find(known.begin(), known.end(), arg) != known.end())
+            continue;
+        if (auto const match = closestMatch(arg, known))
+            return fmt::format("; did you mean '{}' for '{}'?", *match, arg);
+    }
+    return "";
 }
 
 /// `s` as a TOML basic string, quotes included.
@@ -84,7 +111,8 @@ CliOptions parseCommandLine(int argc, char const* const* argv, std::string_view 
         options.help = true;
         return options;
     } catch (CLI::ParseError const& e) {
-        throw InputError(fmt::format("{} (run '{} --help' for the options)", e.what(), appName));
+        throw InputError(fmt::format("{}{} (run '{} --help' for the options)", e.what(),
+                                     suggestOption(*app, argc, argv), appName));
     }
     if (app->count("--steps") > 0)
         options.steps = parseSteps(steps);

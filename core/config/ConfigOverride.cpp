@@ -127,8 +127,16 @@ void ConfigTable::applyOverride(std::string_view assignment, std::string_view or
                 table->insert_or_assign(seg, std::move(*parsed.get("v")));
                 return;
             }
-            if (!table->contains(seg))
+            if (!table->contains(seg)) {
+                // An index next names an entry of an array of tables the scene does not have;
+                // the tables created here would only be refused later, as not an array.
+                if (parseIndex(segments[i + 1]))
+                    throw InputError(fmt::format(
+                        "{}: the scene has no '{}' entries to take entry {} of (--set edits "
+                        "the entries a scene file has; add a [[{}]] section to it)",
+                        from, detail::joinPath(walked, seg), segments[i + 1], seg));
                 table->insert(seg, toml::table{});
+            }
             auto const it = table->find(seg);
             key = &it->first;
             current = &it->second;

@@ -51,6 +51,13 @@ TEST(CliOptions, BadCommandLinesAreInputErrors) {
     };
     EXPECT_NE(err({"--bogus"}).find("--bogus"), std::string::npos);
     EXPECT_NE(err({"--bogus"}).find("run 'regolith --help'"), std::string::npos);
+    // A misspelt option is named with the option meant; a word like no option is not.
+    EXPECT_NE(err({"a.toml", "--stpes", "1"}).find("; did you mean '--steps' for '--stpes'?"),
+              std::string::npos);
+    EXPECT_NE(err({"--quite"}).find("did you mean '--quiet'"), std::string::npos);
+    EXPECT_NE(err({"--jsno=s.json"}).find("did you mean '--json' for '--jsno'?"),
+              std::string::npos);
+    EXPECT_EQ(err({"--bogus"}).find("did you mean"), std::string::npos);
     EXPECT_NE(err({"a.toml", "b.toml"}).find("b.toml"), std::string::npos);
     EXPECT_NE(err({"--steps", "many"}).find("--steps"), std::string::npos);
     // Decimal only (CLI11 itself reads 010 as octal 8, 0x10 as 16), and no silent overflow.

@@ -149,6 +149,13 @@ TEST(ConfigOverride, MalformedAssignmentsAreInputErrors) {
               "--set particles.x.radius=1: 'particles' has 2 entries; 'x' is not an index of it");
     EXPECT_EQ(err("time.dt.x=1"), "--set time.dt.x=1: 'time.dt' is a number (written by "
                                   "scene.toml:6), not a table");
+    // An entry of an array of tables the scene does not have (it was created as tables named
+    // "0", then refused as not an array, showing those tables).
+    EXPECT_EQ(err("materials.0.stiffness=5"),
+              "--set materials.0.stiffness=5: the scene has no 'materials' entries to take entry "
+              "0 of (--set edits the entries a scene file has; add a [[materials]] section to "
+              "it)");
+    EXPECT_FALSE(root.has("materials"));
     std::string const m = err("domain.blocks=[2,2");
     EXPECT_EQ(m.rfind("--set domain.blocks=[2,2: malformed value '[2,2': ", 0), 0u) << m;
     EXPECT_EQ(err("sync.method=\"sos").rfind("--set sync.method=\"sos: malformed value", 0), 0u);
