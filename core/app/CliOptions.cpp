@@ -24,7 +24,8 @@ std::unique_ptr<CLI::App> makeParser(std::string_view appName, CliOptions& o, st
         "Runs a Regolith scene (TOML). Without a scene file it runs its embedded default "
         "scene.\nScene keys can be overridden with --set section.key=value, where value is "
         "TOML (1e-3, true, \"sos\", [2,2,2]); a bare word is a string (--set sync.method=sos), "
-        "and arrays of tables are indexed as particles.0.radius.",
+        "and an entry of an array of tables is named as particles[0].radius (or "
+        "particles.0.radius).",
         std::string(appName));
     app->set_help_flag("-h,--help", "Print this help and exit");
     app->add_option("scene", o.scenePath, "Scene file (TOML); default: the embedded scene")
