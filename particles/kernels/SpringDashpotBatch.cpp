@@ -61,16 +61,7 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
     if (!uniform) {
         for (std::size_t k = 0; k < n; ++k) {
             std::uint32_t const a = ps.type(m_i[k]), b = ps.type(m_j[k]);
-            Parameters const p = spring_lanes::parametersOf(model, a, b);
-            m_k[k] = p.k;
-            m_kt[k] = p.kt;
-            m_ratio[k] = p.ratio;
-            m_mu[k] = p.mu;
-            m_ctRatio[k] = p.ctRatio;
-            m_muRoll[k] = p.muRoll;
-            m_spring[k] = p.spring;
-            m_kr[k] = p.kr;
-            m_etaR[k] = p.etaR;
+            m_parameters.set(k, spring_lanes::parametersOf(model, a, b));
         }
     }
     // Rolling resistance costs a root and two divisions per lane (model C three of each and
@@ -78,7 +69,7 @@ void SpringDashpotBatch::evaluate(ParticleStorage const& ps, SpringDashpot const
     // them, with the same bits (its torque is then + 0.0).
     bool rolling = uniform && one.rollingFriction > 0.0;
     for (std::size_t k = 0; !uniform && k < n; ++k)
-        rolling = rolling || m_muRoll[k] > 0.0;
+        rolling = rolling || m_parameters.muRoll[k] > 0.0;
     Rolling const law = model.hasRollingSpring() ? Rolling::Spring
                         : rolling                ? Rolling::Constant
                                                  : Rolling::None;
@@ -154,9 +145,7 @@ void SpringDashpotBatch::evaluateLanes(GrainScalars g, Parameters const uniform,
         double const reff = a * b / (a + b);
         double const invIsum = invI[m_i[k]] + invI[m_j[k]];
         // SpringDashpot::operator() with the pair's parameters.
-        Parameters const p = kUniform ? uniform : Parameters{m_k[k],      m_kt[k],      m_ratio[k],
-                                                             m_mu[k],     m_ctRatio[k], m_muRoll[k],
-                                                             m_spring[k], m_kr[k],      m_etaR[k]};
+        Parameters const p = kUniform ? uniform : m_parameters.at(k);
         spring_lanes::LaneState const q{nx, ny, nz, pen,  ux,   uy,     uz,
                                         ox, oy, oz, meff, reff, invIsum};
         double sx = m_s[0][k], sy = m_s[1][k], sz = m_s[2][k];

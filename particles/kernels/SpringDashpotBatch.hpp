@@ -148,7 +148,7 @@ private:
     using Parameters = spring_lanes::Parameters;
     using Rolling = spring_lanes::Rolling;
     /// evaluate's loop over the lanes, with `uniform`'s parameters in every lane or each
-    /// lane's own (m_k ...).
+    /// lane's own (m_parameters).
     template <Rolling kRolling, bool kUniform>
     void evaluateLanes(GrainScalars g, Parameters uniform, double dt);
     /// Loads the centres of the contacts, eight at a time (the lanes beyond size() repeat
@@ -171,7 +171,7 @@ private:
     alignas(64) Lane3 m_s, m_r;
     // The pair's material parameters, from the tables (several materials only: with one, the
     // lanes read Parameters and these are neither filled nor read).
-    alignas(64) Lane m_k, m_kt, m_ratio, m_mu, m_ctRatio, m_muRoll, m_spring, m_kr, m_etaR;
+    spring_lanes::ParameterLanes<kCapacity> m_parameters;
     // Outputs (the rolling spring's with model C only).
     alignas(64) Lane3 m_f, m_ti, m_tj, m_rOut;
 };

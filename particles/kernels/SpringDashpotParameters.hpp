@@ -3,6 +3,8 @@
 /// SpringDashpotWallBatch; the lanes' arithmetic in SpringDashpotLanes.hpp).
 #include "particles/kernels/SpringDashpot.hpp"
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace regolith::particles::spring_lanes {
@@ -11,6 +13,29 @@ namespace regolith::particles::spring_lanes {
 /// Rolling::Spring (`spring` 1 where the pair has it, else 0: model A).
 struct Parameters {
     double k, kt, ratio, mu, ctRatio, muRoll, spring, kr, etaR;
+};
+
+/// Each of N contacts' parameters in lanes of their own (a batch with several materials; with
+/// one, the lanes read Parameters as constants).
+template <std::size_t N>
+struct ParameterLanes {
+    using Lane = std::array<double, N>;
+    alignas(64) Lane k, kt, ratio, mu, ctRatio, muRoll, spring, kr, etaR;
+
+    void set(std::size_t i, Parameters const& p) {
+        k[i] = p.k;
+        kt[i] = p.kt;
+        ratio[i] = p.ratio;
+        mu[i] = p.mu;
+        ctRatio[i] = p.ctRatio;
+        muRoll[i] = p.muRoll;
+        spring[i] = p.spring;
+        kr[i] = p.kr;
+        etaR[i] = p.etaR;
+    }
+    [[nodiscard]] Parameters at(std::size_t i) const {
+        return {k[i], kt[i], ratio[i], mu[i], ctRatio[i], muRoll[i], spring[i], kr[i], etaR[i]};
+    }
 };
 
 /// The parameters of materials (a, b) of `model`.

@@ -57,15 +57,7 @@ void SpringDashpotWallBatch::evaluateBatch(ParticleStorage& ps, WallList const& 
         if (!uniform) {
             Parameters const p = spring_lanes::parametersOf(model, wall.type, ps.type(sphere));
             rolling = rolling || p.muRoll > 0.0;
-            m_parameters.k[k] = p.k;
-            m_parameters.kt[k] = p.kt;
-            m_parameters.ratio[k] = p.ratio;
-            m_parameters.mu[k] = p.mu;
-            m_parameters.ctRatio[k] = p.ctRatio;
-            m_parameters.muRoll[k] = p.muRoll;
-            m_parameters.spring[k] = p.spring;
-            m_parameters.kr[k] = p.kr;
-            m_parameters.etaR[k] = p.etaR;
+            m_parameters.set(k, p);
         }
     }
     // The spheres' centres, velocities and spins, eight contacts at a time (the lanes beyond n
@@ -104,7 +96,7 @@ void SpringDashpotWallBatch::evaluateBatch(ParticleStorage& ps, WallList const& 
 template <SpringDashpotWallBatch::Rolling kRolling, bool kUniform>
 void SpringDashpotWallBatch::evaluateLanes(Parameters const uniform, double dt) {
     std::size_t const n = m_size;
-    ParameterLanes const& lanes = m_parameters;
+    spring_lanes::ParameterLanes<kCapacity> const& lanes = m_parameters;
     // One contact per iteration, branch-free (SpringDashpotBatch::evaluateLanes): the loop GCC
     // vectorises.
     for (std::size_t k = 0; k < n; ++k) {
@@ -129,10 +121,7 @@ void SpringDashpotWallBatch::evaluateLanes(Parameters const uniform, double dt) 
                                         m_meff[k],
                                         m_radius[k],
                                         m_invI[k]};
-        Parameters const p =
-            kUniform ? uniform : Parameters{lanes.k[k],      lanes.kt[k],      lanes.ratio[k],
-                                            lanes.mu[k],     lanes.ctRatio[k], lanes.muRoll[k],
-                                            lanes.spring[k], lanes.kr[k],      lanes.etaR[k]};
+        Parameters const p = kUniform ? uniform : lanes.at(k);
         double sx = m_s[0][k], sy = m_s[1][k], sz = m_s[2][k];
         double fx, fy, fz, mx, my, mz;
         spring_lanes::springDashpot<kRolling>(q, p, dt, sx, sy, sz, m_r[0][k], m_r[1][k], m_r[2][k],

@@ -78,12 +78,8 @@ private:
     // one into m_rOut).
     alignas(64) Lane3 m_normal, m_point, m_x, m_v, m_w, m_wallV, m_wallW, m_s, m_r;
     alignas(64) Lane m_pen, m_meff, m_radius, m_invI; ///< wallState's m, r and 1/I: the sphere's
-    /// Each contact's parameters, with several materials (with one, the lanes read them as
-    /// constants).
-    struct ParameterLanes {
-        alignas(64) Lane k, kt, ratio, mu, ctRatio, muRoll, spring, kr, etaR;
-    };
-    ParameterLanes m_parameters;
+    /// Each contact's parameters, with several materials.
+    spring_lanes::ParameterLanes<kCapacity> m_parameters;
     // Outputs: the force on the sphere, its torque about the centre, the couple.
     alignas(64) Lane3 m_f, m_torque, m_couple, m_rOut;
 };
