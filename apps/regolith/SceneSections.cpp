@@ -1,6 +1,7 @@
 #include "apps/regolith/SceneSections.hpp"
 
 #include "apps/regolith/InsertSection.hpp"
+#include "apps/regolith/LatticeChecks.hpp"
 #include "apps/regolith/SceneKeyLocation.hpp"
 #include "apps/regolith/WallSection.hpp"
 #include "core/Error.hpp"
@@ -9,12 +10,10 @@
 #include "coupling/gravity/GravityMethod.hpp"
 #include "domain/ForestConfig.hpp"
 #include "domain/SpecValidation.hpp"
-#include "particles/generators/LatticeSites.hpp"
 #include "particles/generators/ParticleSpecValidation.hpp"
 #include "particles/simulation/ContactModelRegistry.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <array>
 #include <cmath>
@@ -303,39 +302,6 @@ void requireGravityMatchesPeriodicity(core::ConfigTable const& root,
                     self, axes, methodsWith(&coupling::GravityMethodEntry::periodic, " or ")));
 }
 
-/// Warns where a lattice entry fills a periodic axis whose extent is not a multiple of the
-/// lattice's period there (particles::latticePeriod): the sites across the face are then
-/// closer (the overlap check refuses them once they overlap) or farther apart than inside,
-/// so the lattice is not the uniform one asked for (a gas box of 10.5 at spacing 1 would run
-/// with a gap of 1.5 across one face).
-void warnLatticeOffPeriod(particles::LatticeSpec const& lattice, core::ConfigTable const& entry,
-                          domain::ForestSpec const& forest) {
-    std::vector<std::string> axes; // one clause per axis off its period
-    for (int a = 0; a < 3; ++a) {
-        double const lo = forest.domain.min[a], hi = forest.domain.max[a];
-        if (!forest.periodic[static_cast<std::size_t>(a)] || lattice.region.min[a] != lo ||
-            lattice.region.max[a] != hi)
-            continue;
-        double const period = particles::latticePeriod(lattice.lattice, lattice.spacing, a);
-        if (!(period > 0.0) || !std::isfinite(period))
-            return; // a bad spacing, which the lattice's own check refuses
-        double const periods = (hi - lo) / period;
-        double const whole = std::max(std::round(periods), 1.0);
-        if (std::abs(periods - whole) <= 1e-9 * whole)
-            continue;
-        axes.push_back(fmt::format("along {} every {}, which does not divide the extent {} "
-                                   "({:.6g} periods; e.g. {} would)",
-                                   "xyz"[a], period, hi - lo, periods, whole * period));
-    }
-    if (axes.empty())
-        return;
-    core::log::warn("{}: {}: the lattice repeats {}: the grains across a periodic face are not "
-                    "spaced as inside; make the periodic domain's extent a multiple of the "
-                    "period",
-                    entry.has("spacing") ? entry.location("spacing") : entry.location(),
-                    entry.keyPath("spacing"), fmt::join(axes, "; "));
-}
-
 } // namespace
 
 SceneDescription parseScene(core::ConfigTable const& root, std::string const& scenePath) {
@@ -371,23 +337,7 @@ SceneDescription parseScene(core::ConfigTable const& root, std::string const& sc
     requireGravityMatchesPeriodicity(root, scene);
     for (std::size_t i = 0; i < walls.size(); ++i)
         requireRepeatsAlongPeriodicAxes(walls[i], scene.walls[i], scene.forest);
-    // A lattice whose neighbours overlap more than the validation accepts would be refused
-    // after generation, and a spacing far below the diameter generates (and compares) more
-    // grains than memory holds first: refused here.
-    for (std::size_t i = 0; i < scene.particles.size(); ++i)
-        if (auto const* lattice = std::get_if<particles::LatticeSpec>(&scene.particles[i].kind)) {
-            double const overlap = 2.0 * lattice->radius - lattice->spacing;
-            if (overlap > scene.contact.initialOverlap * lattice->radius)
-                entries[i].fail(
-                    "spacing", fmt::format("grains of radius {:g} at spacing {:g} overlap their "
-                                           "neighbours by {:g}, more than contact."
-                                           "initial_overlap = {:g} of the radius; expected a "
-                                           "spacing of at least {:g}",
-                                           lattice->radius, lattice->spacing, overlap,
-                                           scene.contact.initialOverlap,
-                                           (2.0 - scene.contact.initialOverlap) * lattice->radius));
-            warnLatticeOffPeriod(*lattice, entries[i], scene.forest);
-        }
+    checkLattices(scene.particles, entries, scene.contact.initialOverlap, scene.forest);
     // The value rules of [[particles]] are the generators' (one place); checked here too so a
     // bad entry fails before anything is built, with the line it was written on.
     try {
