@@ -23,6 +23,10 @@ struct PeriodicFrame {
     core::AABB domain{core::Vec3::Constant(-std::numeric_limits<double>::infinity()),
                       core::Vec3::Constant(std::numeric_limits<double>::infinity())};
     std::array<bool, 3> periodic{false, false, false};
+    /// Periodic axes the detecting storage spans and holds no image on: its pairs across
+    /// those faces are found through cells that wrap, each with its shift (LinkedCells), and
+    /// the contact-point rule does not look at them (one instance per pair).
+    std::array<bool, 3> wrapped{false, false, false};
 
     /// Non-periodic and infinite.
     PeriodicFrame() = default;
@@ -37,6 +41,7 @@ struct PeriodicFrame {
     /// CopyImage.hpp's imageOffset / localPosition).
     [[nodiscard]] core::Vec3 period() const;
     [[nodiscard]] bool anyPeriodic() const { return periodic[0] || periodic[1] || periodic[2]; }
+    [[nodiscard]] bool anyWrapped() const { return wrapped[0] || wrapped[1] || wrapped[2]; }
 
     /// (w, o) with w in [min, max) on every periodic axis (p unchanged on the others) and
     /// p ~ w + o * extent, o = 0 on non-periodic axes. The image is decided against the
