@@ -53,10 +53,10 @@ LocalPositions ContactDetector::classify(ParticleStorage const& ps, PeriodicFram
             continue;
         shifted = true;
         for (std::size_t a = 0; a < 3; ++a)
-            if (image[a] != 0 && !frame.periodic[a])
+            if (image[a] != 0 && (!frame.periodic[a] || frame.wrapped[a]))
                 throw core::Error("contact detection: uid " + std::to_string(ps.uid(k)) +
                                   " has a periodic image on axis " + std::to_string(a) +
-                                  ", which is not periodic in the detection frame");
+                                  ", which is not periodic or wraps in the detection frame");
     }
     LocalPositions const positions = shifted ? LocalPositions(ps.positions(), ps.images(), period)
                                              : LocalPositions(ps.positions());
@@ -106,9 +106,14 @@ LocalPositions ContactDetector::bin(ParticleStorage const& ps, PeriodicFrame con
     double edge = 2.0 * rSmallMax + skin + range;
     if (!(edge > 0.0)) // only zero radii: any positive edge is right
         edge = 1.0;
+    LinkedCells::Wrap wrap;
+    for (std::size_t a = 0; a < 3; ++a)
+        wrap.axes[a] = frame.periodic[a] && frame.wrapped[a];
+    wrap.min = frame.domain.min;
+    wrap.max = frame.domain.max;
     m_cells.build(positions, ps.radii(), m_small, edge + 2.0 * slack,
                   m_config.maxCellsPerSphere * std::max<std::size_t>(m_small.size(), 1),
-                  slack + skin + range);
+                  slack + skin + range, wrap);
     // The cells hold the small spheres now (their members): the list's 4 bytes per copy
     // would only add to the peak while the Verlet list is built next.
     std::vector<std::uint32_t>().swap(m_small);
@@ -134,9 +139,11 @@ void ContactDetector::detect(ParticleStorage const& ps, WallList const& walls,
     }
     LocalPositions const positions = bin(ps, frame, 0.0);
     PairRule const rule(ps, region, frame, m_stats, m_config.range);
-    auto emit = [&](std::size_t a, std::size_t b) { rule(a, b, out.pairs); };
+    auto emit = [&](std::size_t a, std::size_t b, double = 0.0, CopyImage shift = kNoImage) {
+        rule(a, b, out.pairs, shift);
+    };
     m_cells.forEachOverlap(emit);
-    largePass(positions, ps, m_stats.slack + m_config.range, emit);
+    largePass(positions, ps, frame, m_stats.slack + m_config.range, emit);
     wallPass(ps, walls, out);
 
     if (m_config.sortByUid)
@@ -205,18 +212,21 @@ void ContactDetector::rebuildList(ParticleStorage& ps, core::AABB const& region,
     // apart a pair is tells the per-step pass when it may first overlap
     // (VerletList::forEachNearPair); the large pass does not measure it.
     double const slack = m_stats.slack;
+    core::Vec3 const period = frame.period();
     auto const add = [&](std::size_t a, std::size_t b,
-                         double apart = -std::numeric_limits<double>::infinity()) {
+                         double apart = -std::numeric_limits<double>::infinity(),
+                         CopyImage shift = kNoImage) {
         if (m_listSkin < binned) {
             double const reach = ps.radius(a) + ps.radius(b) + m_listSkin + m_config.range + slack;
-            if (!((positions[a] - positions[b]).squaredNorm() < reach * reach))
+            if (!((localPosition(positions[b], shift, period) - positions[a]).squaredNorm() <
+                  reach * reach))
                 return;
         }
         m_list.addPair(static_cast<VerletList::Id>(a), static_cast<VerletList::Id>(b),
-                       VerletList::gapBelow(apart - m_config.range - slack));
+                       VerletList::gapBelow(apart - m_config.range - slack), shift);
     };
     m_cells.forEachOverlap(add);
-    largePass(positions, ps, slack + binned + m_config.range, add);
+    largePass(positions, ps, frame, slack + binned + m_config.range, add);
     for (Index k : m_large)
         m_largeIds.push_back(static_cast<VerletList::Id>(k));
     m_depths.start(m_list, region, frame);
@@ -271,20 +281,31 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
             if (k == VerletList::kDead)
                 return;
             double const reach = rf + ps.radius(k) + reachSlack;
-            if ((referenceOf(id, k) - xf).squaredNorm() < reach * reach)
-                m_list.addPair(idF, id);
+            core::Vec3 const x = referenceOf(id, k);
+            frame.forEachWrappedImage(xf - x, reach, [&](CopyImage const& shift) {
+                if ((localPosition(x, shift, period) - xf).squaredNorm() < reach * reach)
+                    m_list.addPair(idF, id, VerletList::kNoGap, shift);
+            });
         };
         // The cells hold the small spheres' local positions at the rebuild, by id: their
-        // references less the list's drift since (VerletList::shift).
-        m_cells.forEachOverlapWith(xf - drift, rf + referenceSlack, [&](std::size_t id) {
-            if (m_list.indexOf(static_cast<VerletList::Id>(id)) != VerletList::kDead)
-                m_list.addPair(idF, static_cast<VerletList::Id>(id));
-        });
+        // references less the list's drift since (VerletList::shift). Where they wrap, the
+        // query's images find the ids across the faces, each with its shift.
+        m_cells.forEachOverlapWith(
+            xf - drift, rf + referenceSlack, [&](std::uint32_t id, CopyImage shift) {
+                if (m_list.indexOf(static_cast<VerletList::Id>(id)) != VerletList::kDead)
+                    m_list.addPair(idF, static_cast<VerletList::Id>(id), VerletList::kNoGap, shift);
+            });
         for (VerletList::Id id : m_largeIds)
             test(id);
         // The arrivals before this one: test's operations over the lanes (a dead one's reach
         // is NaN, which no distance is below), then the hits in order.
         std::size_t const earlier = firstNew + n;
+        if (frame.anyWrapped()) { // the earlier arrivals' images across the wrapped faces
+            for (std::size_t e = 0; e < earlier; ++e)
+                if (m_list.indexOf(arrivals[e]) != VerletList::kDead)
+                    test(arrivals[e]);
+            continue;
+        }
         for (std::size_t e = 0; e < earlier; ++e) {
             double const dx = ax[e] - xf.x(), dy = ay[e] - xf.y(), dz = az[e] - xf.z();
             double const reach = (rf + ar[e]) + reachSlack;
@@ -300,15 +321,32 @@ bool ContactDetector::addArrivals(ParticleStorage const& ps, core::AABB const& r
 
 template <class F>
 void ContactDetector::largePass(LocalPositions const& pos, ParticleStorage const& ps,
-                                double reachSlack, F&& f) {
+                                PeriodicFrame const& frame, double reachSlack, F&& f) {
     if (m_large.empty())
         return;
+    double const noGap = -std::numeric_limits<double>::infinity();
     // Large against small: the cells of the ball (their reach includes the skin).
     for (Index a : m_large) {
-        m_stats.largeCellVisits += m_cells.forEachOverlapWith(pos[a], ps.radius(a), [&](Index b) {
-            ++m_stats.largeCandidates;
-            f(a, b);
-        });
+        m_stats.largeCellVisits +=
+            m_cells.forEachOverlapWith(pos[a], ps.radius(a), [&](std::uint32_t b, CopyImage shift) {
+                ++m_stats.largeCandidates;
+                f(a, Index{b}, noGap, shift);
+            });
+    }
+    if (frame.anyWrapped()) { // large against large, every image across the wrapped faces
+        core::Vec3 const period = frame.period();
+        for (std::size_t s = 0; s < m_large.size(); ++s)
+            for (std::size_t t = s + 1; t < m_large.size(); ++t) {
+                Index const a = m_large[s], b = m_large[t];
+                double const reach = ps.radius(a) + ps.radius(b) + reachSlack;
+                ++m_stats.largeCandidates;
+                frame.forEachWrappedImage(pos[a] - pos[b], reach, [&](CopyImage const& shift) {
+                    if ((localPosition(pos[b], shift, period) - pos[a]).squaredNorm() <
+                        reach * reach)
+                        f(a, b, noGap, shift);
+                });
+            }
+        return;
     }
     // Large against large: sort by the lower bound along the axis where the large centres
     // spread most (fewest overlapping intervals), sweep while the next lower bound is below
@@ -333,14 +371,14 @@ void ContactDetector::largePass(LocalPositions const& pos, ParticleStorage const
             ++m_stats.largeCandidates;
             double const reach = ps.radius(a) + ps.radius(b) + reachSlack;
             if ((pos[b] - pos[a]).squaredNorm() < reach * reach)
-                f(a, b);
+                f(a, b, noGap, kNoImage);
         }
     }
 }
 
 void ContactDetector::sortByUid(ParticleStorage const& ps, ContactList& out) const {
     auto pairKey = [&ps](Contact const& c) {
-        return std::tuple(ps.uid(c.i), ps.uid(c.j), imageDifference(ps.image(c.j), ps.image(c.i)));
+        return std::tuple(ps.uid(c.i), ps.uid(c.j), c.shiftJ.x(), c.shiftJ.y(), c.shiftJ.z());
     };
     std::sort(out.pairs.begin(), out.pairs.end(),
               [&](Contact const& x, Contact const& y) { return pairKey(x) < pairKey(y); });

@@ -257,7 +257,7 @@ private:
     /// Calls f(a, b) for the candidate pairs with a large sphere (reach as bin's).
     template <class F>
     void largePass(LocalPositions const& positions, ParticleStorage const& particles,
-                   double reachSlack, F&& f);
+                   PeriodicFrame const& frame, double reachSlack, F&& f);
     void rebuildList(ParticleStorage& particles, core::AABB const& region,
                      PeriodicFrame const& frame);
     /// Whether the list's skin adapts to the scene, and the relative skin the next rebuilds
@@ -293,7 +293,7 @@ private:
     /// Looks up the storage indices ka, kb of the listed ids a, b and puts both in canonical
     /// order (uid(ka) <= uid(kb)).
     void orderListed(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
-                     std::size_t& ka, std::size_t& kb) const;
+                     std::size_t& ka, std::size_t& kb, CopyImage& shift) const;
     /// The ownership reach of listed pair ka, kb (ownershipReach with the list's skin, the
     /// rounding widened by the pair's scale).
     [[nodiscard]] double listedReach(ParticleStorage const& particles, std::size_t ka,
@@ -306,7 +306,7 @@ private:
     /// (shiftList) settle a pair.
     [[nodiscard]] VerletList::Decision
     settlePair(ParticleStorage const& particles, VerletList::Id& a, VerletList::Id& b,
-               std::size_t& ka, std::size_t& kb, core::AABB const& region,
+               CopyImage& shift, std::size_t& ka, std::size_t& kb, core::AABB const& region,
                PeriodicFrame const& frame, double rounding) const;
     /// Writes a kept spring back to the history of copy i, for partner `partner` (whose entry
     /// fillKeptSprings found in slot `hint`).

@@ -77,6 +77,10 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
             bool const pressedListed =
                 TakesKeptSprings<OnPair> && springsLive && m_list.numPressed() != 0;
             PairMode const* const modes = m_list.modes().data();
+            // The pairs' own shifts across the wrapped faces, gathered per block where any.
+            CopyImage const* const pairShifts =
+                frame.anyWrapped() ? m_list.shifts().data() : nullptr;
+            std::array<CopyImage, VerletList::kBlock> blockShifts;
             std::uint8_t* const hints = m_list.hints().data();
             KeptSpring* const springs = m_list.springs().data();
             m_list.forEachNearBlock([&](std::uint32_t const* a, std::uint32_t const* b,
@@ -114,7 +118,9 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                     std::uint64_t keep = (overlapping & ~check) | (owned & ~unsure);
                     for (std::uint64_t u = contested & unsure; u != 0; u &= u - 1) {
                         auto const t = static_cast<std::size_t>(std::countr_zero(u));
-                        if (rule.emitsOverlapping(ti[t], tj[t]))
+                        CopyImage const shift =
+                            pairShifts != nullptr ? pairShifts[listed[t]] : kNoImage;
+                        if (rule.emitsOverlapping(ti[t], tj[t], shift))
                             keep |= std::uint64_t{1} << t;
                     }
                     return keep;
@@ -134,14 +140,20 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                         return;
                     }
                 }
+                if (pairShifts != nullptr)
+                    for (std::size_t k = 0; k < n; ++k)
+                        blockShifts[k] = pairShifts[at[k]];
+                CopyImage const* const shifts =
+                    pairShifts != nullptr ? blockShifts.data() : nullptr;
                 if (!pressedListed) {
-                    overlaps += screen.test(ps, period, a, b, n, handOn, [&](std::uint64_t o) {
-                        return evaluated(o, a, b, at, n);
-                    });
+                    overlaps += screen.test(
+                        ps, period, a, b, n, handOn,
+                        [&](std::uint64_t o) { return evaluated(o, a, b, at, n); }, false, shifts);
                     return;
                 }
                 std::array<bool, VerletList::kBlock> pressed;
                 std::array<std::uint32_t, VerletList::kBlock> slot, ta, tb, tat;
+                std::array<CopyImage, VerletList::kBlock> tsh;
                 std::size_t tested = 0;
                 for (std::size_t k = 0; k < n; ++k) {
                     pressed[k] = isPressed(modes[at[k]]);
@@ -149,6 +161,7 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                     ta[tested] = a[k];
                     tb[tested] = b[k];
                     tat[tested] = at[k];
+                    tsh[tested] = shifts != nullptr ? shifts[k] : kNoImage;
                     tested += pressed[k] ? 0 : 1;
                 }
                 std::size_t next = 0; // the block's first pair not yet handed on or passed
@@ -169,7 +182,8 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
                         },
                         [&](std::uint64_t o) {
                             return evaluated(o, ta.data(), tb.data(), tat.data(), tested);
-                        });
+                        },
+                        false, shifts != nullptr ? tsh.data() : nullptr);
                 pressedUpTo(n);
             });
             m_stats.overlapsFound += overlaps;
@@ -181,19 +195,20 @@ void ContactDetector::listedPass(ParticleStorage const& ps, core::AABB const& re
         __attribute__((always_inline)) {
         PairMode const mode = m_list.mode(p);
         KeptSpring* const kept = m_springsLive && keepsSpring(mode) ? &m_list.spring(p) : nullptr;
+        CopyImage const& shift = m_list.shift(p);
         if (mode != PairMode::Check) {
-            if (!detection_detail::overlapGeometry(ps, a, b, period, c, range))
+            if (!detection_detail::overlapGeometry(ps, a, b, period, c, range, shift))
                 return;
             ++overlaps;
         } else {
             // A cheap rejection first (most listed pairs are apart), generous by the slack:
             // the rule decides exactly.
             core::Vec3 d = x[b] - x[a];
-            if (!sameImage(ps.image(a), ps.image(b)))
-                d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a)),
+            if (!sameImage(ps.image(a), ps.image(b)) || !isZero(shift))
+                d += imageOffset(detection_detail::imageDifference(ps.image(b), ps.image(a), shift),
                                  period);
             double const reach = ps.radius(a) + ps.radius(b) + rangeSlack;
-            if (!(d.squaredNorm() < reach * reach) || !rule(a, b, c))
+            if (!(d.squaredNorm() < reach * reach) || !rule(a, b, c, shift))
                 return;
         }
         if (keepPairs)

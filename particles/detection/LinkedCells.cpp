@@ -66,6 +66,11 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
     double edge = minEdge;
     // Cell ids are stored as 32-bit integers.
     maxCells = std::clamp<std::size_t>(maxCells, 1, std::numeric_limits<std::uint32_t>::max() - 1);
+    // Never fewer than the grid can have: one real cell and two ghost layers on a wrapped axis.
+    std::size_t fewest = 1;
+    for (int d = 0; d < 3; ++d)
+        fewest *= m_period[d] > 0.0 ? 3 : 1;
+    maxCells = std::max(maxCells, fewest);
     std::array<double, 3> n{};
     for (;;) {
         // Count in double and convert only once the grid is known to fit: a runaway grain can
@@ -174,8 +179,7 @@ void LinkedCells::build(LocalPositions const& positions, std::span<double const>
     for (Slot const& slot : slots) {
         std::uint32_t const at = m_start[slot.cell]++;
         m_member[at] = slot.member;
-        core::Vec3 const x =
-            localPosition(positions[slot.member], slot.shift, m_period) - m_origin;
+        core::Vec3 const x = localPosition(positions[slot.member], slot.shift, m_period) - m_origin;
         m_x[at] = static_cast<float>(x.x());
         m_y[at] = static_cast<float>(x.y());
         m_z[at] = static_cast<float>(x.z());

@@ -30,9 +30,9 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
             continue; // (in that order: most pairs are unchanged)
         KeptSpring spare{};
         KeptSpring& spring = p < m_springs.size() ? m_springs[p] : spare;
-        int const mode = decide(pair[0], pair[1], true, m_mode[p], spring, m_hint[p]);
+        int const mode = decide(pair[0], pair[1], m_shift[p], true, m_mode[p], spring, m_hint[p]);
         if (mode == kDrop) {
-            m_parkedAgain.push_back(pair);
+            m_parkedAgain.push_back({pair, m_shift[p]});
             pair[0] = m_hole;
             m_live.stale = true; // a hole the walk skips (a mode changed in place: no change)
             continue;
@@ -46,14 +46,16 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
             m_springs[p] = spare;
         }
     }
-    for (auto pair : m_parked) {
+    for (auto parked : m_parked) {
+        auto& pair = parked.pair;
         if (m_indexOf[pair[0]] == kDead || m_indexOf[pair[1]] == kDead)
             continue;
         KeptSpring spring{};
         std::uint8_t hint = 0;
-        int const mode = decide(pair[0], pair[1], false, PairMode::Check, spring, hint);
+        int const mode =
+            decide(pair[0], pair[1], parked.shift, false, PairMode::Check, spring, hint);
         if (mode == kDrop) {
-            m_parkedAgain.push_back(pair);
+            m_parkedAgain.push_back(parked);
             continue;
         }
         auto const m = static_cast<PairMode>(mode);
@@ -64,6 +66,7 @@ void VerletList::resettle(S&& unchanged, D&& decide) {
         m_live.b.push_back(m_indexOf[pair[1]]);
         m_live.at.push_back(static_cast<std::uint32_t>(m_pairs.size()));
         m_pairs.push_back(pair);
+        m_shift.push_back(parked.shift);
         m_gap.push_back(kNoGap);
         m_mode.push_back(m);
         m_hint.push_back(hint);
@@ -147,12 +150,14 @@ void ContactDetector::shiftList(ParticleStorage& ps, core::Vec3 const& drift, do
     auto const unchanged = [deep, built](VerletList::Id a, VerletList::Id b) {
         return a < built && b < built && (deep[a] & deep[b]) != 0;
     };
-    m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, bool listed, PairMode was,
-                                   KeptSpring& spring, std::uint8_t& hint) {
+    m_list.resettle(unchanged, [&](VerletList::Id& a, VerletList::Id& b, CopyImage& shift,
+                                   bool listed, PairMode was, KeptSpring& spring,
+                                   std::uint8_t& hint) {
         if (listed && was == PairMode::Check)
             return static_cast<int>(PairMode::Check); // the rule per step holds in any frame
         std::size_t ka = 0, kb = 0;
-        int const mode = settlePair(ps, a, b, ka, kb, m_listRegion, m_listFrame, rounding).mode;
+        int const mode =
+            settlePair(ps, a, b, shift, ka, kb, m_listRegion, m_listFrame, rounding).mode;
         // A spring beside the list goes back to the history, or comes from it, where the
         // pair's mode changes (the canonical i's history: settlePair ordered ka, kb).
         bool const had = listed && keepsSpring(was);

@@ -12,12 +12,13 @@
 namespace regolith::particles {
 
 void ContactDetector::orderListed(ParticleStorage const& ps, VerletList::Id& a, VerletList::Id& b,
-                                  std::size_t& ka, std::size_t& kb) const {
+                                  std::size_t& ka, std::size_t& kb, CopyImage& shift) const {
     ka = m_list.indexOf(a);
     kb = m_list.indexOf(b);
     if (ps.uid(kb) < ps.uid(ka)) {
         std::swap(a, b);
         std::swap(ka, kb);
+        shift = negated(shift);
     }
 }
 
@@ -28,18 +29,20 @@ double ContactDetector::listedReach(ParticleStorage const& ps, std::size_t ka, s
 }
 
 VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, VerletList::Id& a,
-                                                 VerletList::Id& b, std::size_t& ka,
-                                                 std::size_t& kb, core::AABB const& region,
+                                                 VerletList::Id& b, CopyImage& shift,
+                                                 std::size_t& ka, std::size_t& kb,
+                                                 core::AABB const& region,
                                                  PeriodicFrame const& frame,
                                                  double rounding) const {
     constexpr VerletList::Decision drop{VerletList::kDrop, false};
     constexpr VerletList::Decision check{static_cast<int>(PairMode::Check), false};
     // Emitted whenever the two overlap: whether it stays in the block, and its mode.
     auto const always = [&]() -> VerletList::Decision {
-        bool const stays = staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
+        // (A pair across a wrapped face joins copies near it: not deep inside, never kept.)
+        bool const stays = isZero(shift) && staysInBlock(ps, ka, kb, a, b, region, frame, rounding);
         return {static_cast<int>(settledMode(ps, ka, kb, a, b, stays, rounding)), stays};
     };
-    orderListed(ps, a, b, ka, kb);
+    orderListed(ps, a, b, ka, kb, shift);
     if (ps.uid(ka) == ps.uid(kb))
         return drop; // a grain and its own periodic image: never a contact
     if (ps.flags(ka).isFixed() && ps.flags(kb).isFixed())
@@ -50,8 +53,9 @@ VerletList::Decision ContactDetector::settlePair(ParticleStorage const& ps, Verl
     if (m_depths.deeperThan(m_list, ps, a, b, reach + rounding))
         return always();
     core::Vec3 const period = frame.period();
-    core::Vec3 const mid = 0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
-                                  localPosition(m_list.reference(b), ps.image(kb), period));
+    core::Vec3 const mid =
+        0.5 * (localPosition(m_list.reference(a), ps.image(ka), period) +
+               localPosition(m_list.reference(b), addImages(ps.image(kb), shift), period));
     switch (settleOwnership(mid, reach, region, frame)) {
     case Settled::Never:
         return drop;
@@ -105,14 +109,14 @@ void ContactDetector::classifyListed(ParticleStorage const& ps, core::AABB const
     std::vector<std::uint8_t> const deep = first == 0 && m_depths.unshifted()
                                                ? deepMasters(ps, frame, rounding)
                                                : std::vector<std::uint8_t>{};
-    m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b) {
+    m_list.classifyFrom(first, [&](VerletList::Id& a, VerletList::Id& b, CopyImage& shift) {
         std::size_t ka = 0, kb = 0;
-        if (a < deep.size() && b < deep.size() && (deep[a] & deep[b]) != 0) {
-            orderListed(ps, a, b, ka, kb);
+        if (a < deep.size() && b < deep.size() && (deep[a] & deep[b]) != 0 && isZero(shift)) {
+            orderListed(ps, a, b, ka, kb, shift);
             return VerletList::Decision{
                 static_cast<int>(settledMode(ps, ka, kb, a, b, true, rounding)), true};
         }
-        return settlePair(ps, a, b, ka, kb, region, frame, rounding);
+        return settlePair(ps, a, b, shift, ka, kb, region, frame, rounding);
     });
 }
 

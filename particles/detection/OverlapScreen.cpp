@@ -29,7 +29,7 @@ std::uint64_t maskOf(bool const* flags, std::size_t n) {
 
 std::uint64_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& period,
                                    std::uint32_t const* is, std::uint32_t const* js, std::size_t n,
-                                   bool oneImage) {
+                                   bool oneImage, CopyImage const* shifts) {
     // Gather: centres four pairs at a time (transposed in registers), then the images (as
     // PairRule's imageDifference: the int8 difference) and the reach pair by pair.
     double const* const x = ps.positions().data()->data();
@@ -63,13 +63,23 @@ std::uint64_t OverlapScreen::lanes(ParticleStorage const& ps, core::Vec3 const& 
             m_overlap[k] = std::sqrt(d2) < m_reach[k];
         }
     } else {
-        for (std::size_t k = 0; k < n; ++k) {
-            CopyImage const& ki = ps.image(is[k]);
-            CopyImage const& kj = ps.image(js[k]);
-            // imageOffset of the difference: an exact small integer times the period.
-            m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
-            m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();
-            m_sz[k] = static_cast<std::int8_t>(kj[2] - ki[2]) * period.z();
+        if (shifts == nullptr) {
+            for (std::size_t k = 0; k < n; ++k) {
+                CopyImage const& ki = ps.image(is[k]);
+                CopyImage const& kj = ps.image(js[k]);
+                // imageOffset of the difference: an exact small integer times the period.
+                m_sx[k] = static_cast<std::int8_t>(kj[0] - ki[0]) * period.x();
+                m_sy[k] = static_cast<std::int8_t>(kj[1] - ki[1]) * period.y();
+                m_sz[k] = static_cast<std::int8_t>(kj[2] - ki[2]) * period.z();
+            }
+        } else {
+            for (std::size_t k = 0; k < n; ++k) {
+                CopyImage const d =
+                    detection_detail::imageDifference(ps.image(js[k]), ps.image(is[k]), shifts[k]);
+                m_sx[k] = d[0] * period.x();
+                m_sy[k] = d[1] * period.y();
+                m_sz[k] = d[2] * period.z();
+            }
         }
         for (std::size_t k = 0; k < n; ++k) {
             double const dx = (m_xj[k] + m_sx[k]) - m_xi[k];
@@ -119,15 +129,15 @@ std::uint64_t OverlapScreen::ruled(ParticleStorage const& ps, core::AABB const& 
     std::array<double, 3> lo{}, hi{}, extent{}, top{}, lowest{}, highest{}, rmin{}, rmax{};
     for (int a = 0; a < 3; ++a) {
         auto const u = static_cast<std::size_t>(a);
-        bool const periodic = frame.periodic[u];
+        bool const periodic = frame.periodic[u] && !frame.wrapped[u];
         lo[u] = periodic ? frame.domain.min[a] : -kInf;
         hi[u] = periodic ? frame.domain.max[a] : kInf;
         extent[u] = periodic ? hi[u] - lo[u] : 0.0;
         top[u] = std::nextafter(hi[u], lo[u]);
         lowest[u] = periodic ? lo[u] - 2.0 * extent[u] : -kInf;
         highest[u] = periodic ? hi[u] + 2.0 * extent[u] : kInf;
-        rmin[u] = region.min[a];
-        rmax[u] = region.max[a];
+        rmin[u] = frame.wrapped[u] ? -kInf : region.min[a];
+        rmax[u] = frame.wrapped[u] ? kInf : region.max[a];
     }
     // The conditions as selects between doubles (1 for true): GCC vectorises no logic on
     // bools here (their byte lanes need AVX-512BW).

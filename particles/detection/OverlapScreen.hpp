@@ -42,9 +42,9 @@ public:
     template <class OnHit, class Select>
     std::size_t test(ParticleStorage const& ps, core::Vec3 const& period, std::uint32_t const* i,
                      std::uint32_t const* j, std::size_t n, OnHit&& onHit, Select&& select,
-                     bool oneImage = false) {
+                     bool oneImage = false, CopyImage const* shifts = nullptr) {
         assert(n <= kCapacity);
-        std::uint64_t const overlapping = lanes(ps, period, i, j, n, oneImage);
+        std::uint64_t const overlapping = lanes(ps, period, i, j, n, oneImage, shifts);
         for (std::uint64_t hits = select(overlapping); hits != 0; hits &= hits - 1) {
             auto const k = static_cast<std::size_t>(std::countr_zero(hits));
             onHit(k, PairOverlap{i[k], j[k],
@@ -59,7 +59,7 @@ public:
                               std::uint32_t const* i, std::uint32_t const* j, std::size_t n,
                               bool oneImage) {
         assert(n <= kCapacity);
-        return lanes(ps, period, i, j, n, oneImage);
+        return lanes(ps, period, i, j, n, oneImage, nullptr);
     }
     /// test() handing on every overlapping pair.
     template <class OnHit>
@@ -82,9 +82,12 @@ public:
                         std::uint64_t pairs, std::uint64_t& unsure);
 
 private:
-    /// Fills the shifts of the pairs and returns the overlapping ones, bit k for pair k.
+    /// Fills the shifts of the pairs (the images' difference, plus shifts[k] where given: the
+    /// pairs' own across wrapped faces, VerletList::shift) and returns the overlapping ones,
+    /// bit k for pair k.
     std::uint64_t lanes(ParticleStorage const& ps, core::Vec3 const& period, std::uint32_t const* i,
-                        std::uint32_t const* j, std::size_t n, bool oneImage);
+                        std::uint32_t const* j, std::size_t n, bool oneImage,
+                        CopyImage const* shifts);
 
     using Lane = std::array<double, kCapacity>;
     alignas(64) Lane m_xi, m_yi, m_zi, m_xj, m_yj, m_zj, m_reach;

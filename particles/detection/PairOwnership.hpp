@@ -30,7 +30,7 @@ enum class Settled {
 
 /// Where the contact-point rule emits a pair whose ownership point lies there: `region`, and on
 /// a periodic axis of `frame` the domain too (a point outside it wraps to another image:
-/// ContactDetector's `image(i) == -o`).
+/// ContactDetector's `image(i) == -o`); anywhere along a wrapped axis (one instance).
 [[nodiscard]] core::AABB emittingBox(core::AABB const& region, PeriodicFrame const& frame);
 
 /// Settles the rule for a pair whose reference midpoint, in the frame of the copy of i the

@@ -15,11 +15,13 @@
 
 namespace regolith::particles::detection_detail {
 
-/// image(j) - image(i) per axis, unchecked (both are within +-kMaxImage, so it fits).
-[[nodiscard]] inline CopyImage imageDifference(CopyImage const& kj, CopyImage const& ki) {
+/// image(j) - image(i) per axis, unchecked (both are within +-kMaxImage, so it fits), plus
+/// the pair's shift on the axes where the cells wrap (there both images are 0).
+[[nodiscard]] inline CopyImage imageDifference(CopyImage const& kj, CopyImage const& ki,
+                                               CopyImage const& shift = kNoImage) {
     CopyImage out{};
     for (std::size_t a = 0; a < 3; ++a)
-        out[a] = static_cast<std::int8_t>(kj[a] - ki[a]);
+        out[a] = static_cast<std::int8_t>(kj[a] - ki[a] + shift[a]);
     return out;
 }
 
@@ -33,9 +35,10 @@ struct PairSeparation {
 };
 
 [[nodiscard, gnu::always_inline]] inline PairSeparation
-separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 const& period) {
+separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 const& period,
+           CopyImage const& shift = kNoImage) {
     PairSeparation s;
-    s.shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i)), period);
+    s.shiftJ = imageOffset(imageDifference(ps.image(j), ps.image(i), shift), period);
     // Always x_j + shiftJ (also for a zero shift), as ContactEvaluation computes it.
     s.d = (ps.position(j) + s.shiftJ) - ps.position(i);
     s.d2 = s.d.squaredNorm();
@@ -67,11 +70,10 @@ separation(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 c
 /// bits are computed, so that every path (full rule, fused Verlet loop) agrees; a consumer of
 /// PairOverlap that computes them itself (SpringDashpotBatch) follows these operations.
 /// Always inlined: it runs once per listed pair and step.
-[[nodiscard, gnu::always_inline]] inline bool overlapGeometry(ParticleStorage const& ps,
-                                                              std::size_t i, std::size_t j,
-                                                              core::Vec3 const& period, Contact& c,
-                                                              double range = 0.0) {
-    PairSeparation const s = separation(ps, i, j, period);
+[[nodiscard, gnu::always_inline]] inline bool
+overlapGeometry(ParticleStorage const& ps, std::size_t i, std::size_t j, core::Vec3 const& period,
+                Contact& c, double range = 0.0, CopyImage const& shift = kNoImage) {
+    PairSeparation const s = separation(ps, i, j, period, shift);
     if (!overlapping(s, range))
         return false;
     double const dist = std::sqrt(s.d2);
@@ -101,15 +103,16 @@ public:
         , m_stats(stats)
         , m_range(range) {}
 
-    /// Tests candidate copies a and b (any order); true (and `c` filled) if this block
-    /// evaluates their contact.
-    bool operator()(std::size_t a, std::size_t b, Contact& c) const {
+    /// Tests candidate copies a and b (any order; b at `shift` from a beyond the images, on the
+    /// wrapped axes); true (and `c` filled) if this block evaluates their contact.
+    bool operator()(std::size_t a, std::size_t b, Contact& c,
+                    CopyImage const& shift = kNoImage) const {
         ParticleStorage const& ps = m_ps;
         if (ps.uid(a) == ps.uid(b))
             return false; // a grain and its own periodic image
         std::size_t const i = ps.uid(a) < ps.uid(b) ? a : b;
         std::size_t const j = i == a ? b : a;
-        if (!overlapGeometry(ps, i, j, m_period, c, m_range))
+        if (!overlapGeometry(ps, i, j, m_period, c, m_range, i == a ? shift : negated(shift)))
             return false;
         ++m_stats.overlapsFound;
         if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
@@ -120,18 +123,20 @@ public:
     /// The rule for listed copies i, j in canonical order (uid(i) < uid(j)) known to overlap
     /// (OverlapScreen decided it with the same bits): not both Fixed, and the ownership point
     /// in this block. Counts nothing: the screen counted the overlap.
-    [[nodiscard]] bool emitsOverlapping(std::size_t i, std::size_t j) const {
+    [[nodiscard]] bool emitsOverlapping(std::size_t i, std::size_t j,
+                                        CopyImage const& shift = kNoImage) const {
         ParticleStorage const& ps = m_ps;
         if (ps.flags(i).isFixed() && ps.flags(j).isFixed())
             return false;
         Contact c;
-        return overlapGeometry(ps, i, j, m_period, c, m_range) && owns(c);
+        return overlapGeometry(ps, i, j, m_period, c, m_range, shift) && owns(c);
     }
 
     /// Appends the contact of a and b to `out` if this block evaluates it.
-    void operator()(std::size_t a, std::size_t b, std::vector<Contact>& out) const {
+    void operator()(std::size_t a, std::size_t b, std::vector<Contact>& out,
+                    CopyImage const& shift = kNoImage) const {
         Contact c;
-        if ((*this)(a, b, c))
+        if ((*this)(a, b, c, shift))
             out.push_back(c);
     }
 
@@ -151,7 +156,7 @@ public:
         auto const [w, o] = m_frame.wrap(q);
         CopyImage const& ki = ps.image(c.i);
         for (std::size_t ax = 0; ax < 3; ++ax)
-            if (ki[ax] != -o[ax])
+            if (ki[ax] != -o[ax] && !m_frame.wrapped[ax])
                 return false; // another image instance of this pair (or another block)
         return m_region.contains(w);
     }

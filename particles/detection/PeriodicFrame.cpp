@@ -1,6 +1,7 @@
 #include "particles/detection/PeriodicFrame.hpp"
 
 #include "core/Error.hpp"
+#include "domain/BlockForest.hpp"
 #include "domain/ForestGeometry.hpp"
 
 #include <cmath>
@@ -11,6 +12,17 @@ namespace regolith::particles {
 PeriodicFrame::PeriodicFrame(domain::ForestGeometry const& geometry)
     : domain(geometry.domain())
     , periodic(geometry.periodic()) {}
+
+PeriodicFrame::PeriodicFrame(domain::BlockForest const& forest)
+    : domain(forest.domain())
+    , periodic(forest.periodic())
+    , wrapped(wrappedAxes(forest)) {}
+
+std::array<bool, 3> wrappedAxes(domain::BlockForest const& forest) {
+    if (forest.globalSubdomainCount() != 1)
+        return {false, false, false};
+    return forest.periodic();
+}
 
 core::Vec3 PeriodicFrame::period() const {
     core::Vec3 out = core::Vec3::Zero();

@@ -6,12 +6,14 @@
 #include "particles/storage/CopyImage.hpp"
 
 #include <array>
+#include <cmath>
 #include <limits>
 #include <utility>
 
 namespace regolith::domain {
+class BlockForest;
 class ForestGeometry;
-}
+} // namespace regolith::domain
 
 namespace regolith::particles {
 
@@ -34,8 +36,11 @@ struct PeriodicFrame {
     PeriodicFrame(core::AABB const& domainBox, std::array<bool, 3> periodicAxes)
         : domain(domainBox)
         , periodic(periodicAxes) {}
-    /// The frame of a block forest: its domain and periodicity.
+    /// The frame of a block forest's geometry: its domain and periodicity, no axis wrapped
+    /// (for copies at every image; the particles of a BlockForest use the constructor below).
     explicit PeriodicFrame(domain::ForestGeometry const& geometry);
+    /// The frame the particles of `forest` are detected in: wrappedAxes(forest) wrap.
+    explicit PeriodicFrame(domain::BlockForest const& forest);
 
     /// Domain extent on periodic axes, 0 on the others [length] (the `period` of
     /// CopyImage.hpp's imageOffset / localPosition).
@@ -60,10 +65,36 @@ struct PeriodicFrame {
         return {p, kNoImage};
     }
 
+    /// Calls f(shift) for every shift s (whole periods on the wrapped axes, 0 on the others)
+    /// with |d_a - s_a * period_a| <= reach on each wrapped axis: the images of a point at
+    /// x - d from x that may lie within `reach` of x.
+    template <class F>
+    void forEachWrappedImage(core::Vec3 const& d, double reach, F&& f) const {
+        std::array<int, 3> lo{0, 0, 0}, hi{0, 0, 0};
+        core::Vec3 const p = period();
+        for (std::size_t a = 0; a < 3; ++a)
+            if (wrapped[a]) {
+                double const e = p[static_cast<int>(a)];
+                lo[a] = static_cast<int>(std::ceil((d[static_cast<int>(a)] - reach) / e));
+                hi[a] = static_cast<int>(std::floor((d[static_cast<int>(a)] + reach) / e));
+            }
+        for (int i = lo[0]; i <= hi[0]; ++i)
+            for (int j = lo[1]; j <= hi[1]; ++j)
+                for (int k = lo[2]; k <= hi[2]; ++k)
+                    f(CopyImage{static_cast<std::int8_t>(i), static_cast<std::int8_t>(j),
+                                static_cast<std::int8_t>(k)});
+    }
+
 private:
     [[nodiscard]] std::pair<core::Vec3, CopyImage> wrapOutside(core::Vec3 const& p) const;
 
 public:
 };
+
+/// The periodic axes along which the particles of `forest` hold no periodic images: the pairs
+/// across those faces are found by cells that wrap (PeriodicFrame::wrapped), and the
+/// synchronisation makes no copy through them. Those of a forest whose particles run on one
+/// subdomain, which spans every axis.
+[[nodiscard]] std::array<bool, 3> wrappedAxes(domain::BlockForest const& forest);
 
 } // namespace regolith::particles

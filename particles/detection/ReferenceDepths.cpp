@@ -8,7 +8,11 @@ namespace regolith::particles {
 
 void ReferenceDepths::start(VerletList const& list, core::AABB const& region,
                             PeriodicFrame const& frame) {
-    m_emits = emittingBox(region, frame);
+    // From the domain's faces also where the cells wrap: a master that crosses one is a new
+    // copy for the list, so its pairs must not keep their springs beside it.
+    PeriodicFrame faces = frame;
+    faces.wrapped = {false, false, false};
+    m_emits = emittingBox(region, faces);
     m_period = frame.period();
     m_shifted = core::Vec3::Zero();
     m_depth.assign(list.builtSize(), Axes{kUnmeasured, kUnmeasured, kUnmeasured});

@@ -19,6 +19,7 @@ void VerletList::restart(ParticleStorage& ps, double skin) {
     m_moved = 0.0;
     m_built = ps.size();
     m_pairs.clear();
+    m_shift.clear();
     m_gap.clear();
     m_apart = 0;
     m_parked.clear();
@@ -247,8 +248,9 @@ float VerletList::nearReach() const {
 }
 
 std::size_t VerletList::bytes() const {
-    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_gap.capacity() * sizeof(float) +
-           m_mode.capacity() + m_hint.capacity() + m_springs.capacity() * sizeof(KeptSpring) +
+    return m_pairs.capacity() * sizeof(m_pairs[0]) + m_shift.capacity() * sizeof(CopyImage) +
+           m_gap.capacity() * sizeof(float) + m_mode.capacity() + m_hint.capacity() +
+           m_springs.capacity() * sizeof(KeptSpring) +
            m_indexOf.capacity() * sizeof(std::uint32_t) +
            m_reference.capacity() * sizeof(Reference) + m_arrivals.capacity() * sizeof(Id) +
            (m_parked.capacity() + m_parkedAgain.capacity()) * sizeof(m_parked[0]) +

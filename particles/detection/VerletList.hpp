@@ -70,10 +70,13 @@ public:
     /// `gap` as addPair takes it: in single precision, rounded down.
     [[nodiscard]] static float gapBelow(double gap) { return core::floatNotAbove(gap); }
     /// Adds a pair in mode Check (any order). `gap` [length]: a lower bound on how much farther
-    /// apart than touching the two copies stand now (gapBelow), or kNoGap.
-    void addPair(Id a, Id b, float gap = kNoGap) {
+    /// apart than touching the two copies stand now (gapBelow), or kNoGap. `shift`: b's
+    /// whole periods from a beyond the copies' images, on the axes where the cells wrap
+    /// (PeriodicFrame::wrapped): b stands at its local position + shift * period from a.
+    void addPair(Id a, Id b, float gap = kNoGap, CopyImage const& shift = kNoImage) {
         m_live.stale = true;
         m_pairs.push_back({a, b});
+        m_shift.push_back(shift);
         m_mode.push_back(PairMode::Check);
         m_hint.push_back(0);
         m_gap.push_back(gap);
@@ -85,7 +88,8 @@ public:
         int mode = kDrop;
         bool leads = false;
     };
-    /// Calls `decide(a, b)` (ids by reference: it may swap them; returns a Decision) for every
+    /// Calls `decide(a, b, shift)` (by reference: it may swap a and b, and then negates the
+    /// shift; returns a Decision) for every
     /// pair from the `first`-th on, keeps the pair with the mode decided or parks it (kDrop:
     /// out of the per-step loop, but decided again by resettle). The pairs kept from the
     /// `first`-th on are ordered: those that lead first, then the others, each in the order
@@ -98,8 +102,10 @@ public:
         std::size_t out = first;
         m_trailing.clear();
         m_live.stale = m_live.stale || first < m_pairs.size();
-        auto const put = [&](std::array<Id, 2> const& pair, float gap, PairMode mode) {
+        auto const put = [&](std::array<Id, 2> const& pair, CopyImage const& shift, float gap,
+                             PairMode mode) {
             m_pairs[out] = pair;
+            m_shift[out] = shift;
             m_gap[out] = gap;
             m_mode[out] = mode;
             m_hint[out] = 0;
@@ -107,9 +113,10 @@ public:
         };
         for (std::size_t p = first; p < m_pairs.size(); ++p) {
             auto pair = m_pairs[p];
-            Decision const decided = decide(pair[0], pair[1]);
+            CopyImage shift = m_shift[p];
+            Decision const decided = decide(pair[0], pair[1], shift);
             if (decided.mode == kDrop) {
-                m_parked.push_back(pair);
+                m_parked.push_back({pair, shift});
                 continue;
             }
             auto const mode = static_cast<PairMode>(decided.mode);
@@ -117,13 +124,14 @@ public:
             m_kept += keepsSpring(mode) ? 1 : 0;
             m_pressed += isPressed(mode) ? 1 : 0;
             if (decided.leads)
-                put(pair, m_gap[p], mode);
+                put(pair, shift, m_gap[p], mode);
             else
-                m_trailing.push_back({pair, m_gap[p], mode});
+                m_trailing.push_back({pair, shift, m_gap[p], mode});
         }
         for (TrailingPair const& t : m_trailing)
-            put(t.pair, t.gap, t.mode);
+            put(t.pair, t.shift, t.gap, t.mode);
         m_pairs.resize(out);
+        m_shift.resize(out);
         m_gap.resize(out);
         m_mode.resize(out);
         m_hint.resize(out);
@@ -131,8 +139,8 @@ public:
             m_springs.resize(out);
     }
 
-    /// After shift(): calls `decide(a, b, listed, was, spring, hint)` for every pair whose two
-    /// copies live, the listed ones first unless `unchanged(a, b)` (listed = true, `was` their
+    /// After shift(): calls `decide(a, b, shift, listed, was, spring, hint)` for every pair whose
+    /// two copies live, the listed ones first unless `unchanged(a, b)` (listed = true, `was` their
     /// mode, `spring` and `hint` theirs, in place), then the parked ones (listed = false,
     /// PairMode::Check, an empty spring, hint 0), and lists each with the mode returned and
     /// `spring` and `hint` as `decide` left them (a listed pair in its place, a parked one
@@ -314,6 +322,10 @@ public:
             f(a.data(), b.data(), at.data(), count);
     }
     [[nodiscard]] PairMode mode(std::size_t p) const { return m_mode[p]; }
+    /// Pair p's shift (addPair).
+    [[nodiscard]] CopyImage const& shift(std::size_t p) const { return m_shift[p]; }
+    /// Every pair's shift, by position.
+    [[nodiscard]] std::span<CopyImage const> shifts() const { return m_shift; }
     /// Every pair's mode, hint and kept spring (empty while none is kept), by position: for
     /// a loop whose stores the compiler cannot tell apart from the list's own.
     [[nodiscard]] std::span<PairMode const> modes() const { return m_mode; }
@@ -361,8 +373,13 @@ private:
     std::size_t m_kept = 0;
     std::size_t m_pressed = 0;
     std::vector<std::array<Id, 2>> m_pairs;
-    std::vector<std::array<Id, 2>> m_parked;      ///< pairs dropped from the loop (classifyFrom)
-    std::vector<std::array<Id, 2>> m_parkedAgain; ///< resettle's, swapped with m_parked
+    std::vector<CopyImage> m_shift; ///< per pair: addPair's
+    struct ParkedPair {
+        std::array<Id, 2> pair;
+        CopyImage shift;
+    };
+    std::vector<ParkedPair> m_parked;      ///< pairs dropped from the loop (classifyFrom)
+    std::vector<ParkedPair> m_parkedAgain; ///< resettle's, swapped with m_parked
     Id m_hole = 0; ///< an id that is never alive (a parked pair's place in m_pairs names it)
     std::vector<float> m_gap; ///< per pair: addPair's (forEachNearPair)
     /// Pairs listed since the restart with a gap of kApart x skin or more (skipped for half the
@@ -374,6 +391,7 @@ private:
     [[nodiscard]] float nearReach() const;
     struct TrailingPair {
         std::array<Id, 2> pair;
+        CopyImage shift;
         float gap;
         PairMode mode;
     };

@@ -25,7 +25,7 @@ DemStep::DemStep(core::Comm const& comm, ParticleSync& sync, LocalParticles& loc
     , m_walls(std::move(walls))
     , m_config(config)
     , m_timers(&timers)
-    , m_frame(local.forest().geometry())
+    , m_frame(local.forest())
     , m_loop(m_model.blockLoop()) {
     if (!(config.dt > 0.0) || !std::isfinite(config.dt))
         throw core::Error("DemStep: the time step must be positive and finite");
@@ -49,6 +49,7 @@ void DemStep::placeOnBlocks() {
         m_reachEdge.push_back(edge);
     }
     m_movedSinceSync.assign(m_reachEdge.size(), 0.0);
+    m_frame = PeriodicFrame(m_local->forest()); // a rebalance may change the wrapped axes
     std::size_t const blocks = m_local->blocks().size();
     // A batch kernel takes springs kept beside the lists (without model C's rolling spring,
     // which stays in the histories).

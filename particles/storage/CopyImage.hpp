@@ -64,6 +64,11 @@ namespace copy_image_detail {
 [[nodiscard]] inline CopyImage addImages(CopyImage const& a, CopyImage const& b) {
     return copy_image_detail::checked({a[0] + b[0], a[1] + b[1], a[2] + b[2]});
 }
+/// -k per axis.
+[[nodiscard]] inline CopyImage negated(CopyImage const& k) {
+    return {static_cast<std::int8_t>(-k[0]), static_cast<std::int8_t>(-k[1]),
+            static_cast<std::int8_t>(-k[2])};
+}
 /// a - b per axis; throws core::Error beyond +-kMaxImage.
 [[nodiscard]] inline CopyImage subtractImages(CopyImage const& a, CopyImage const& b) {
     return copy_image_detail::checked({a[0] - b[0], a[1] - b[1], a[2] - b[2]});

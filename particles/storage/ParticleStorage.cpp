@@ -154,6 +154,15 @@ void ParticleStorage::setImage(Index i, CopyImage const& image) {
     }
 }
 
+void ParticleStorage::moveByPeriods(Index i, core::Vec3 const& x) {
+    touchLayout();
+    array<kPosition>()[i] = x;
+    if (tracing()) { // its local position jumped: a new copy for the follower
+        m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
+        m_traceTag[i] = kUntraced;
+    }
+}
+
 void ParticleStorage::permute(std::span<Index const> newToOld) {
     touchLayout();
     Index const n = size();

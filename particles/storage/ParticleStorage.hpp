@@ -227,6 +227,9 @@ public:
     void setOwner(Index i, BlockRef owner) { m_ownerSlot[i] = ownerSlot(owner); }
     /// Re-keys copy i to `image`; throws core::Error if (uid, image) is held already.
     void setImage(Index i, CopyImage const& image);
+    /// Moves copy i to `x`, its position wrapped by whole periods along an axis where no image
+    /// is kept (PeriodicFrame::wrapped): a new copy for a running trace, as setImage.
+    void moveByPeriods(Index i, core::Vec3 const& x);
 
     // ---- bulk access ---------------------------------------------------------------------
     [[nodiscard]] std::vector<Uid> const& uids() const { return array<kUid>(); }

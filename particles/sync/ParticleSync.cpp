@@ -1,6 +1,8 @@
 #include "particles/sync/ParticleSync.hpp"
 
 #include "core/Error.hpp"
+#include "domain/ForestGeometry.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 #include "particles/sync/CopyScan.hpp"
 #include "particles/sync/SpreadRound.hpp"
 #include "particles/sync/SyncEngine.hpp"
@@ -28,6 +30,7 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
     core::Vec3 const extent = forest.domain().extent();
     for (int a = 0; a < 3; ++a)
         m_period[a] = forest.periodic()[static_cast<std::size_t>(a)] ? extent[a] : 0.0;
+    m_wrapped = wrappedAxes(forest);
     // Rounding of x + k * period is a few ulps of the coordinates' magnitude; 1e-12 of it is
     // far above that and far below any grain.
     core::AABB const& d = forest.domain();
@@ -54,7 +57,9 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         t.reachBox = t.box = b.aabb;
         double const far = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {
-            if (forest.periodic()[static_cast<std::size_t>(a)])
+            // No block beyond an open face, and no copy through a wrapped one.
+            if (forest.periodic()[static_cast<std::size_t>(a)] &&
+                !m_wrapped[static_cast<std::size_t>(a)])
                 continue;
             if (b.aabb.min[a] <= d.min[a])
                 t.reachBox.min[a] = -far;
@@ -64,6 +69,11 @@ ParticleSync::Impl::Impl(core::Comm const& comm, domain::BlockForest const& fore
         t.open = t.reachBox.min != t.box.min || t.reachBox.max != t.box.max;
         auto& groups = m_linksByDirection[b.id.raw()];
         for (std::size_t k = 0; k < b.neighbours.size(); ++k) {
+            bool throughWrapped = false;
+            for (std::size_t a = 0; a < 3; ++a)
+                throughWrapped = throughWrapped || (m_wrapped[a] && b.neighbours[k].image[a] != 0);
+            if (throughWrapped)
+                continue; // the pairs across a wrapped face are found without copies
             core::AABB const box = b.neighbours[k].imageBox();
             int code = 0;
             for (int a = 0, weight = 1; a < 3; ++a, weight *= 3) {
@@ -113,6 +123,20 @@ void ParticleSync::coverReach(double range) {
 
 namespace {
 
+/// Wraps `x` onto the domain along the wrapped axes it lies outside of (domain::wrapOnAxis,
+/// the rule of ForestGeometry::wrap); whether it did.
+bool wrapsOutside(ParticleSync::Impl const& engine, core::Vec3& x) {
+    core::AABB const& d = engine.forest().domain();
+    bool moved = false;
+    for (int a = 0; a < 3; ++a)
+        if (engine.wrapped()[static_cast<std::size_t>(a)] &&
+            !(x[a] >= d.min[a] && x[a] < d.max[a])) {
+            x[a] = domain::wrapOnAxis(d.min[a], d.max[a], x[a]).second;
+            moved = true;
+        }
+    return moved;
+}
+
 /// The Update of shadow `t` (on this rank, same image) from master i of `ps`, applied
 /// directly; false if this rank holds no such copy (the buffered path then reports it). A
 /// shadow that shares the master's history keeps sharing it (syncInFull) only if the master
@@ -158,7 +182,13 @@ bool processMaster(ParticleSync::Impl& engine, LocalParticles& local, BlockParti
     int const me = engine.rank();
     core::Vec3 const& period = engine.period();
     Uid const uid = ps.uid(i);
-    core::Vec3 const x = ps.position(i);
+    core::Vec3 x = ps.position(i);
+    // Across a wrapped face the master stays: wrapped in place (ForestGeometry::wrap's rule on
+    // those axes), a new copy for the contact detection's lists.
+    if (wrapsOutside(engine, x)) {
+        ps.moveByPeriods(i, x);
+        x = ps.position(i);
+    }
     // An NNS-class grain's copies are decided for its ball grown by the skin (UpdateList.hpp).
     double const r = ps.radius(i) + (nnsClass ? grow : halfReach);
 
@@ -286,7 +316,8 @@ bool withinNeighbourhood(ParticleSync::Impl const& engine, domain::Block const& 
     auto const& periodic = engine.forest().periodic();
     double const reach = r * (1.0 + ParticleSync::kOverlapMargin);
     for (int a = 0; a < 3; ++a) {
-        bool const open = !periodic[static_cast<std::size_t>(a)];
+        bool const open =
+            !periodic[static_cast<std::size_t>(a)] || engine.wrapped()[static_cast<std::size_t>(a)];
         bool const lowOk =
             (open && block.aabb.min[a] <= domain.min[a]) || x[a] - reach > block.aabb.min[a] - edge;
         bool const highOk =

@@ -80,6 +80,8 @@ public:
                         f(block.neighbours[l]);
     }
     [[nodiscard]] core::Vec3 const& period() const { return m_period; }
+    /// The periodic axes the particles hold no images on (wrappedAxes): no link across them.
+    [[nodiscard]] std::array<bool, 3> const& wrapped() const { return m_wrapped; }
     /// What deepInside measures against in one block: the box from which the reach is
     /// measured (the block's box with every face on an open, non-periodic, domain boundary
     /// moved to infinity: no block lies beyond it), and the block's box itself, which the
@@ -135,6 +137,7 @@ private:
     core::Comm m_comm;
     domain::BlockForest const* m_forest;
     core::Vec3 m_period;
+    std::array<bool, 3> m_wrapped{false, false, false};
     double m_imageSlack = 0.0;                            ///< see deepInside
     std::unique_ptr<core::NeighbourExchange> m_neighbour; ///< NNS: neighbour ranks only
     std::unique_ptr<core::SparseExchange> m_sparse;       ///< SOS / hybrid: any rank

@@ -6,6 +6,7 @@
 #include "core/Error.hpp"
 #include "core/mpi/Buffer.hpp"
 #include "domain/BlockId.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 #include "particles/sync/InvariantRecords.hpp"
 #include "particles/sync/ParticleSync.hpp"
 
@@ -58,10 +59,11 @@ bool sameBits(core::Quat const& a, core::Quat const& b) {
 /// Rank 0's check of the gathered state.
 class Checker {
 public:
-    Checker(domain::ForestGeometry const& geometry, core::Vec3 const& period, bool converged,
-            double skin)
+    Checker(domain::ForestGeometry const& geometry, core::Vec3 const& period,
+            std::array<bool, 3> const& wrapped, bool converged, double skin)
         : m_geometry(geometry)
         , m_period(period)
+        , m_wrapped(wrapped)
         , m_converged(converged)
         , m_skin(skin) {}
 
@@ -238,8 +240,8 @@ private:
         double const reach = r * (1.0 + 2.0 * ParticleSync::kOverlapMargin);
         std::array<int, 3> kLo{0, 0, 0}, kHi{0, 0, 0};
         for (int a = 0; a < 3; ++a) {
-            if (m_period[a] <= 0.0)
-                continue;
+            if (m_period[a] <= 0.0 || m_wrapped[static_cast<std::size_t>(a)])
+                continue; // (no copy through a wrapped face: the cells find those pairs)
             auto const lo = std::floor((domain.min[a] - x[a] - reach) / m_period[a]);
             auto const hi = std::ceil((domain.max[a] - x[a] + reach) / m_period[a]);
             kLo[static_cast<std::size_t>(a)] = static_cast<int>(std::max<double>(lo, -kMaxImage));
@@ -282,6 +284,7 @@ private:
 
     domain::ForestGeometry const& m_geometry;
     core::Vec3 m_period;
+    std::array<bool, 3> m_wrapped;
     bool m_converged;
     double m_skin = 0.0;
     std::unordered_map<std::uint64_t, BlockRecord> m_blocks;
@@ -310,7 +313,7 @@ std::vector<std::string> checkSyncInvariants(LocalParticles const& local, core::
         std::vector<std::pair<std::uint64_t, BlockRecord>> blocks;
         for (std::size_t r = 0; r < gathered.size(); ++r)
             unpackRank(static_cast<int>(r), gathered[r], copies, blocks);
-        Checker checker(forest.geometry(), period, spreadingConverged, skin);
+        Checker checker(forest.geometry(), period, wrappedAxes(forest), spreadingConverged, skin);
         checker.addBlocks(blocks);
         checker.run(copies);
         core::SendBuffer b;

@@ -95,7 +95,10 @@ TEST(GrainFields, ShadowsReadTheirMastersValuesWhileTheGrainsMove) {
     core::Comm const world;
     particles::GrainFieldId const t = temperature();
     particles::GrainFieldId const q = heatFlux();
-    coupling::Simulation sim(world, gasSetup());
+    // One particle subdomain per block: shadows on every rank count, also on one rank.
+    coupling::SimulationSetup setup = gasSetup();
+    setup.subdomains = domain::Subdomains::Blocks;
+    coupling::Simulation sim(world, setup);
     addGas(sim);
     std::int64_t lastSet = -1;
     // Every 20 steps the masters get new values; 7 steps later every copy must hold them.

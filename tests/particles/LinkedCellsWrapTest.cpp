@@ -79,7 +79,8 @@ void checkWrapped(Box const& box, std::size_t n, double edge, std::uint32_t seed
                     for (int k = -reachZ; k <= reachZ; ++k) {
                         CopyImage const s{static_cast<std::int8_t>(i), static_cast<std::int8_t>(j),
                                           static_cast<std::int8_t>(k)};
-                        if (a == b && (isZero(s) || i < 0 || (i == 0 && (j < 0 || (j == 0 && k < 0)))))
+                        if (a == b &&
+                            (isZero(s) || i < 0 || (i == 0 && (j < 0 || (j == 0 && k < 0)))))
                             continue; // a grain with itself: each image pair once
                         if (!(distance(a, b, s) < r[a] + r[b] + slack))
                             continue;
@@ -104,7 +105,8 @@ void checkWrapped(Box const& box, std::size_t n, double edge, std::uint32_t seed
                                           static_cast<std::int8_t>(k)};
                         if (distance(q, b, s) < r[q] + r[b] + slack) {
                             EXPECT_TRUE(seen.count({q, b, i, j, k}))
-                                << "query " << q << " missed " << b << " " << i << " " << j << " " << k;
+                                << "query " << q << " missed " << b << " " << i << " " << j << " "
+                                << k;
                         }
                     }
     }
@@ -118,7 +120,26 @@ TEST(LinkedCellsWrap, FindsEveryPairInstanceAcrossWrappedFaces) {
 TEST(LinkedCellsWrap, OneOrTwoCellsAlongAWrappedAxis) {
     // 1.5 and 2.5 cell edges: one and two cells, where a pair meets in several images.
     checkWrapped({core::Vec3(0, 0, 0), core::Vec3(1.6, 6, 2.5), {true, false, true}}, 120, 1.05, 9);
-    checkWrapped({core::Vec3(0, 0, 0), core::Vec3(2.2, 2.2, 2.2), {true, true, true}}, 60, 1.05, 11);
+    checkWrapped({core::Vec3(0, 0, 0), core::Vec3(2.2, 2.2, 2.2), {true, true, true}}, 60, 1.05,
+                 11);
+}
+
+TEST(LinkedCellsWrap, ACellBudgetBelowTheGhostLayersStillBuilds) {
+    // One grain, a budget of one cell: the grid still takes its 3 cells per wrapped axis.
+    std::vector<core::Vec3> const x{core::Vec3(0.2, 0.2, 0.2)};
+    std::vector<double> const r{0.5};
+    std::vector<std::uint32_t> const members{0};
+    LinkedCells::Wrap wrap;
+    wrap.axes = {true, true, true};
+    wrap.min = core::Vec3::Zero();
+    wrap.max = core::Vec3::Constant(3.0);
+    LinkedCells cells;
+    cells.build(x, r, members, 1.05, 1, 0.0, wrap);
+    std::vector<CopyImage> hits;
+    cells.forEachOverlapWith(core::Vec3(2.9, 2.9, 2.9), 0.5,
+                             [&](std::uint32_t, CopyImage s) { hits.push_back(s); });
+    ASSERT_EQ(hits.size(), 1U);
+    EXPECT_EQ(hits[0], (CopyImage{1, 1, 1}));
 }
 
 } // namespace

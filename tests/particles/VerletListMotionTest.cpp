@@ -126,7 +126,7 @@ TEST(VerletList, ClassifyingPutsTheLeadingPairsFirstEachInTheOrderAdded) {
     list.restart(ps, 0.5);
     for (VerletList::Id k = 0; k + 1 < 8; ++k)
         list.addPair(k, k + 1, VerletList::gapBelow(k % 2 == 1 ? 0.01 : 0.3));
-    list.classifyFrom(0, [](VerletList::Id& a, VerletList::Id&) {
+    list.classifyFrom(0, [](VerletList::Id& a, VerletList::Id&, CopyImage&) {
         if (a == 4)
             return VerletList::Decision{VerletList::kDrop, false};
         PairMode const mode = a == 5       ? PairMode::Kept

@@ -75,7 +75,7 @@ Outcome run(Comm const& comm, domain::ForestSpec const& spec, SyncConfig config,
     addAll(local, comm, gas);
     sync.requireNnsApplicable(local);
     sync.syncUntilConverged(local);
-    PeriodicFrame const frame(forest.geometry());
+    PeriodicFrame const frame(forest);
     SpringDashpot const contactModel = model();
     VelocityVerlet const integrator;
     WallList walls;

@@ -63,7 +63,7 @@ void sideBySide(std::array<int, 3> blocks, bool periodic) {
     AABB const domain{Vec3::Zero(), Vec3(9, 9, 9)};
     domain::BlockForest const forest(world,
                                      forestSpec(domain.min, domain.max, blocks, allAxes(periodic)));
-    PeriodicFrame const frame(forest.geometry());
+    PeriodicFrame const frame(forest);
     std::ostringstream label;
     label << blocks[0] << "x" << blocks[1] << "x" << blocks[2]
           << (periodic ? " periodic" : " open");

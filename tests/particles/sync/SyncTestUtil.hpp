@@ -6,6 +6,7 @@
 #include "core/random/CounterRng.hpp"
 #include "domain/BlockForest.hpp"
 #include "domain/ForestSpec.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 #include "particles/sync/BlockParticles.hpp"
 #include "particles/sync/ParticleSync.hpp"
 #include "particles/sync/SyncInvariants.hpp"
@@ -161,8 +162,11 @@ inline std::size_t expectPresence(LocalParticles const& local, Uid uid, Vec3 con
         for (std::size_t i = 0; i < ps.size(); ++i)
             held += ps.uid(i) == uid ? 1 : 0;
         std::size_t judged = 0, needed = 0, present = 0;
-        int const rx = period[0] > 0 ? 1 : 0, ry = period[1] > 0 ? 1 : 0,
-                  rz = period[2] > 0 ? 1 : 0;
+        // No image through a wrapped face (wrappedAxes: the cells find those pairs).
+        std::array<bool, 3> const wrapped = wrappedAxes(local.forest());
+        int const rx = period[0] > 0 && !wrapped[0] ? 1 : 0,
+                  ry = period[1] > 0 && !wrapped[1] ? 1 : 0,
+                  rz = period[2] > 0 && !wrapped[2] ? 1 : 0;
         for (int i = -rx; i <= rx; ++i)
             for (int j = -ry; j <= ry; ++j)
                 for (int l = -rz; l <= rz; ++l) {
