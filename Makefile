@@ -3,9 +3,10 @@ PRESET ?= default
 BUILD  := build/$(PRESET)
 RANKS  ?= 2
 SCENE  ?=
+PREFIX ?= $(HOME)/regolith
 MPIRUN := OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec --oversubscribe
 
-.PHONY: all deps configure build run test bench format clean
+.PHONY: all deps configure build install run test bench format clean
 
 all: build
 
@@ -19,6 +20,13 @@ configure: deps $(BUILD)/CMakeCache.txt
 
 build: configure
 	cmake --build --preset $(PRESET)
+
+# Configured with the prefix, so that programs built against the install find its shared
+# modules (PETSc, HDF5, VTK) there.
+install: configure
+	cmake --preset $(PRESET) -DCMAKE_INSTALL_PREFIX=$(PREFIX)
+	cmake --build --preset $(PRESET)
+	cmake --install $(BUILD)
 
 run: build
 	mkdir -p out

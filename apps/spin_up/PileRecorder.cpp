@@ -10,9 +10,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <utility>
 
 namespace regolith::apps {
@@ -20,6 +22,9 @@ namespace regolith::apps {
 using core::Vec3;
 
 namespace {
+
+/// What rank 0 broadcasts for a record it cannot find (a record starts with '#').
+constexpr std::string_view kMissing = "(no such file)";
 
 /// The drop below the peak spin [omega_c] that marks the peak as the failure spin.
 constexpr double kFailureDrop = 0.02;
@@ -98,7 +103,7 @@ void PileRecorder::openRecord(char const* mode) {
             fmt::format("pile.file = \"{}\": cannot write the file", m_scene.pile.file));
 }
 
-void PileRecorder::resume(std::int64_t stepsDone) {
+void PileRecorder::resume(std::int64_t stepsDone, std::string const& checkpoint) {
     m_forceCalls = stepsDone + 1; // the next force computation is the next step's
     if (stepsDone < m_scene.pile.settleSteps)
         return;
@@ -106,8 +111,17 @@ void PileRecorder::resume(std::int64_t stepsDone) {
     // checkpoint kept (the rest is written again), the last one's pile centre.
     std::string text;
     if (m_comm->rank() == 0)
-        text = readPileRecord(m_scene.pile.file);
+        text = std::filesystem::exists(m_scene.pile.file) ? readPileRecord(m_scene.pile.file)
+                                                          : std::string(kMissing);
     m_comm->broadcast(text, 0);
+    if (text == kMissing) {
+        std::filesystem::path const beside = std::filesystem::path(checkpoint).parent_path() /
+                                             std::filesystem::path(m_scene.pile.file).filename();
+        throw core::InputError(fmt::format(
+            "pile.file = \"{}\": no such file; a restart continues the record of the run being "
+            "restarted: copy it there (probably {}, beside the checkpoint)",
+            m_scene.pile.file, beside.string()));
+    }
     double const until = static_cast<double>(stepsDone - m_scene.pile.settleSteps) * m_dt;
     ResumedRecord const resumed = resumeRecord(text, until, m_scene.pile.file);
     m_reference = resumed.reference;

@@ -54,8 +54,9 @@ public:
     /// Instead of the first force computation's measure, on a restart after `stepsDone` steps:
     /// the pile's scales, centre and peak spin from the record written so far (pile.file),
     /// whose rows after the checkpoint are dropped, to be written again. InputError (every
-    /// rank) if the record is missing or unreadable. COLLECTIVE.
-    void resume(std::int64_t stepsDone);
+    /// rank) if the record is missing (naming where the restarted `checkpoint`'s record
+    /// probably is) or unreadable. COLLECTIVE.
+    void resume(std::int64_t stepsDone, std::string const& checkpoint);
 
     /// Throws core::Error unless the force computations counted so far are those of
     /// `stepsDone` steps (the recorder's clock: time = force computations x dt).

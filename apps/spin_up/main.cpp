@@ -56,7 +56,8 @@ int runRubblePile(core::AppContext& ctx) {
 
     PileRecorder recorder(ctx.world, piles, scene.gravity.G, scene.time.dt);
     if (!ctx.options.restartPath.empty())
-        recorder.resume(io::readCheckpoint(ctx.world, ctx.options.restartPath).info.step);
+        recorder.resume(io::readCheckpoint(ctx.world, ctx.options.restartPath).info.step,
+                        ctx.options.restartPath);
     SceneHooks hooks;
     hooks.bodyForces.emplace_back(
         [&recorder](particles::LocalParticles& grains) { recorder.addForces(grains); });
@@ -76,10 +77,14 @@ int runRubblePile(core::AppContext& ctx) {
             fmt::print("rubble pile: failure (peak spin) {}; mass shed from {}\n",
                        spinText(recorder.failureSpin()), spinText(recorder.sheddingOnset()));
         fmt::print("rubble pile at t = {:.6g}: spin {:.3f} omega_c, shed {:.4f}, largest "
-                   "remnant {:.4f} ({} clusters); record: {}\n",
+                   "remnant {:.4f}, clusters {}; record: {}\n",
                    last->time, last->spin / recorder.reference().omegaC, last->shedFraction,
                    last->remnantFraction, last->clusters, piles.pile.file);
     }
+    if (ctx.isRoot() && !ctx.options.quiet && !last && code == 0)
+        fmt::print("rubble pile: nothing recorded: the run ended before the pile settled "
+                   "(pile.settle_steps = {}) and was first recorded\n",
+                   piles.pile.settleSteps);
     return code;
 }
 

@@ -202,11 +202,16 @@ def add_run_options(p):
 
 
 def parse_run_options(p):
-    """The arguments, with the output folders made."""
+    """The arguments, the folders made absolute (the runs start in the repository) and made
+    where a run writes into them."""
     args = p.parse_args()
-    os.makedirs(args.out, exist_ok=True)
+    args.out = os.path.abspath(args.out)
     if args.images:
-        os.makedirs(args.images, exist_ok=True)
+        args.images = os.path.abspath(args.images)
+    if getattr(args, "what", None) != "chart":
+        os.makedirs(args.out, exist_ok=True)
+        if args.images:
+            os.makedirs(args.images, exist_ok=True)
     return args
 
 

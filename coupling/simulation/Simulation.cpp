@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <span>
+#include <string>
 #include <utility>
 #include <variant>
 
@@ -21,6 +23,29 @@ namespace {
 
 bool usesGrid(std::optional<SelfGravityConfig> const& gravity) {
     return gravity && gravityMethod(gravity->method).usesGrid;
+}
+
+/// What the scene driver checks as it reads the gravity section, for a program that sets
+/// the self-gravity itself: a Plummer length only for a method that softens, and in a
+/// periodic domain only a method with periodic images (a free-space sum would pull grains
+/// across a periodic face apart through the whole domain).
+void requireGravityFitsTheDomain(SelfGravityConfig const& g, std::array<bool, 3> const& periodic) {
+    GravityMethodEntry const& method = gravityMethod(g.method);
+    if (g.softening > 0.0 && !method.softens)
+        throw core::InputError(
+            fmt::format("Simulation: self-gravity method \"{}\" does not soften, but "
+                        "SelfGravityConfig::softening = {:g}: use a method that softens, or 0",
+                        g.method, g.softening));
+    std::string axes;
+    for (std::size_t a = 0; a < 3; ++a)
+        if (periodic[a])
+            axes += std::string(axes.empty() ? "" : ", ") + "xyz"[a];
+    if (!axes.empty() && !method.periodic)
+        throw core::InputError(fmt::format(
+            "Simulation: self-gravity method \"{}\" sums in free space, without periodic "
+            "images, but SimulationSetup::domain.periodic makes {} periodic: use a method with "
+            "periodic images (a grid method), or an open domain",
+            g.method, axes));
 }
 
 } // namespace
@@ -34,6 +59,8 @@ Simulation::Simulation(core::Comm const& comm, SimulationSetup setup)
     if (!(m_setup.dem.dt > 0.0))
         throw core::InputError(fmt::format(
             "Simulation: time step {}: expected dt > 0 (SimulationSetup::dem.dt)", m_setup.dem.dt));
+    if (m_setup.selfGravity)
+        requireGravityFitsTheDomain(*m_setup.selfGravity, m_setup.domain.periodic);
     if (usesGrid(m_setup.selfGravity))
         m_setup.domain.cellsPerBlock = m_setup.selfGravity->cellsPerBlock;
 }
@@ -85,6 +112,42 @@ void Simulation::checkTimeStep() const {
     particles::checkTimeStep(m_setup.dem.dt, shortest, m_setup.allowUnstable);
 }
 
+namespace {
+
+/// The sum of each given grain's FNV-1a hash over its state: equal on every rank iff every rank
+/// was given the same grains, in any order (up to a collision of about 2^-64).
+std::uint64_t digestOf(std::vector<particles::ParticleInit> const& grains) {
+    std::uint64_t sum = 0, h = 0;
+    auto mix = [&h](auto const& value) {
+        auto const* bytes = reinterpret_cast<unsigned char const*>(&value);
+        for (std::size_t k = 0; k < sizeof(value); ++k)
+            h = (h ^ bytes[k]) * 0x100000001b3ULL;
+    };
+    auto vec = [&mix](core::Vec3 const& v) {
+        for (int a = 0; a < 3; ++a)
+            mix(v[a]);
+    };
+    for (particles::ParticleInit const& g : grains) {
+        h = 0xcbf29ce484222325ULL;
+        mix(g.uid);
+        vec(g.position);
+        vec(g.velocity);
+        vec(g.angularVelocity);
+        vec(g.orientation.vec());
+        mix(g.orientation.w());
+        mix(g.radius);
+        mix(g.mass);
+        mix(g.type);
+        mix(g.flags.bits());
+        for (double f : g.fields)
+            mix(f);
+        sum += h;
+    }
+    return sum;
+}
+
+} // namespace
+
 void Simulation::start() {
     if (m_dem)
         throw core::Error("Simulation::start or resume called twice");
@@ -95,6 +158,12 @@ void Simulation::start() {
             m_comm->allReduce(given, core::ReduceOp::Max))
             throw core::InputError("Simulation::start: the ranks were given different numbers "
                                    "of grains (addGrain: every rank gives every grain)");
+        auto const digest = static_cast<unsigned long long>(digestOf(m_pending));
+        if (m_comm->allReduce(digest, core::ReduceOp::Min) !=
+            m_comm->allReduce(digest, core::ReduceOp::Max))
+            throw core::InputError("Simulation::start: the ranks were given different grains "
+                                   "(addGrain: every rank gives every grain, the same bits; a "
+                                   "random start needs the same seed on every rank)");
         place({});
         BlockLoadModel load;
         if (usesGrid(m_setup.selfGravity))

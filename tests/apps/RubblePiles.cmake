@@ -17,6 +17,11 @@ regolith_app_test(unknown_key APP spin_up ARGS ${spin_up_scene} --set spin_up.ra
 regolith_app_test(flyby_small APP spin_up ARGS ${PROJECT_SOURCE_DIR}/scenes/flyby.toml
   --set particles.0.count=60 --set particles.0.radius=3.5 --set pile.settle_steps=100
   --set time.steps=300 --output ${app_test_out}/spin_up_flyby_small_@NP@ STDOUT_HAS "fly-by: the pass takes" "largest remnant")
+# A run shorter than the settling says so instead of ending silently.
+regolith_app_test(ends_before_settled APP spin_up ARGS ${PROJECT_SOURCE_DIR}/scenes/flyby.toml
+  --set particles.0.count=60 --set particles.0.radius=3.5 --set pile.settle_steps=100
+  --set time.steps=50 --output ${app_test_out}/spin_up_ends_before_settled_@NP@
+  STDOUT_HAS "rubble pile: nothing recorded: the run ended before the pile settled (pile.settle_steps = 100)")
 # The record and the state continue bit for bit across a restart on another rank count.
 if(Python3_Interpreter_FOUND)
   add_test(NAME spin_up.restart_equality

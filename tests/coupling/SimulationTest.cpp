@@ -28,7 +28,8 @@ coupling::SimulationSetup boxSetup(std::array<int, 3> blocks, bool selfGravity) 
     coupling::SimulationSetup s;
     s.domain.domain = core::AABB{Vec3::Zero(), Vec3::Constant(6.0)};
     s.domain.rootBlocks = blocks;
-    s.domain.periodic = {true, true, false};
+    // Self-gravity by a free-space sum needs an open domain.
+    s.domain.periodic = {!selfGravity, !selfGravity, false};
     s.sync.reproducible = true;
     particles::LinearContactParams p;
     p.stiffness = 1000.0;
@@ -289,5 +290,32 @@ TEST(Simulation, RefusesWhatCannotRun) {
             sim.start();
         });
         EXPECT_NE(different.find("different numbers of grains"), std::string::npos) << different;
+        // The same count, one grain a hair apart on the last rank (a rank-seeded start).
+        std::string const moved = errorOf([&] {
+            coupling::Simulation sim(world, boxSetup({2, 2, 2}, false));
+            particles::ParticleInit p;
+            p.uid = 1;
+            p.position = Vec3(3.0, 3.0, world.rank() + 1 == world.size() ? 3.01 : 3.0);
+            p.radius = 0.5;
+            p.mass = 1.0;
+            sim.addGrain(p);
+            sim.start();
+        });
+        EXPECT_NE(moved.find("the ranks were given different grains"), std::string::npos) << moved;
     }
+
+    // The gravity method's limits, as the scene driver checks them.
+    coupling::SimulationSetup softened = boxSetup({1, 1, 1}, true);
+    softened.selfGravity->method = "tree-nodes";
+    softened.selfGravity->softening = 0.1;
+    EXPECT_NE(errorOf([&] {
+                  coupling::Simulation sim(world, softened);
+              }).find("\"tree-nodes\" does not soften, but SelfGravityConfig::softening = 0.1"),
+              std::string::npos);
+    coupling::SimulationSetup periodic = boxSetup({1, 1, 1}, true);
+    periodic.domain.periodic = {true, false, true};
+    EXPECT_NE(errorOf([&] { coupling::Simulation sim(world, periodic); })
+                  .find("\"direct\" sums in free space, without periodic images, but "
+                        "SimulationSetup::domain.periodic makes x, z periodic"),
+              std::string::npos);
 }
