@@ -37,8 +37,8 @@ public:
     virtual ~GravityMethod() = default;
     /// The field at this rank's grains: overwrites `out` (n accelerations, positions wrapped on
     /// periodic axes as the synchronisation leaves masters) and returns ½ Σ m φ over all
-    /// ranks [J]. In reproducible mode the grains come in uid order, and the result must depend
-    /// on them only (not on the block layout or the rank count). COLLECTIVE.
+    /// ranks [energy]. In reproducible mode the grains come in uid order, and the result must
+    /// depend on them only (not on the block layout or the rank count). COLLECTIVE.
     virtual double evaluate(gravity::PointMasses const& grains, gravity::FieldOut out) = 0;
     /// The cell fields (density, potential, acceleration) of the last evaluate(), for a method
     /// on the blocks' grid; nullopt for the others. Not collective.

@@ -30,11 +30,12 @@ class GravityMethod;
 struct SelfGravityConfig {
     /// gravity.self: a registered method's name (gravityMethodNames() in GravityMethod.hpp).
     std::string method = "direct";
-    double G = 6.674e-11;             ///< gravity.G [m^3 kg^-1 s^-2]
-    double softening = 0.0;           ///< gravity.softening, Plummer length [m]
+    /// gravity.G [length^3 mass^-1 time^-2]; the default is SI's, a unit-free set-up sets it.
+    double G = 6.674e-11;
+    double softening = 0.0;           ///< gravity.softening, Plummer length [length]
     double theta = 0.5;               ///< gravity.theta (tree methods)
     bool allowLargeTheta = false;     ///< gravity.allow_large_theta
-    double updateThreshold = 0.0;     ///< gravity.update_threshold [m]; 0: every step
+    double updateThreshold = 0.0;     ///< gravity.update_threshold [length]; 0: every step
     gravity::UpdateInterval interval; ///< gravity.update_every (field extrapolated between)
     /// sync.reproducible: each update from the local grains in uid order and (grid methods)
     /// each Poisson solve from zero, so that the field depends on the grains only, not on
@@ -48,8 +49,8 @@ struct SelfGravityConfig {
     double p3mCutoffCells = 4.0; ///< gravity.p3m_cutoff [cells] (P3M only)
     // Node methods (occupied-cells, tree-nodes) only; the node lattice starts at the domain's
     // minimum corner:
-    double gridSpacing = 0.0;    ///< gravity.grid_spacing, node distance [m] (> 0)
-    double neighbourhood = -1.0; ///< gravity.neighbourhood [m] (tree-nodes; < 0: grid_spacing)
+    double gridSpacing = 0.0;    ///< gravity.grid_spacing, node distance [length] (> 0)
+    double neighbourhood = -1.0; ///< gravity.neighbourhood [length] (tree-nodes; < 0: grid_spacing)
     ForceCheckSchedule check;    ///< gravity.check_every: the run's measured error
     /// A registered method's own settings (GravityMethodEntry::readKeys reads them from the
     /// scene; a program sets them itself); empty for the built-in methods.
@@ -60,14 +61,14 @@ struct SelfGravityConfig {
 struct SelfGravityStats {
     long long evaluations = 0;    ///< times the field was computed (updates)
     long long steps = 0;          ///< times the forces were applied
-    double potentialEnergy = 0.0; ///< ½ Σ m φ at the last update, over all ranks [J]
+    double potentialEnergy = 0.0; ///< ½ Σ m φ at the last update, over all ranks [energy]
 };
 
 /// The state kept between updates besides the per-grain records (UpdatePolicy): what a
 /// checkpoint stores so that a restart continues bit for bit with a threshold above 0.
 struct SelfGravityState {
     long long updates = 0;        ///< field updates so far (0: the next step updates)
-    double potentialEnergy = 0.0; ///< ½ Σ m φ of the last update [J]
+    double potentialEnergy = 0.0; ///< ½ Σ m φ of the last update [energy]
     long long sinceUpdate = 0;    ///< steps since the last update (gravity.update_every)
     long long interval = 0;       ///< the update interval then [steps] (0: none)
 };

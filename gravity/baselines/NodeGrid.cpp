@@ -36,7 +36,7 @@ std::array<std::int64_t, 3> cellOf(NodeGrid const& g, double x, double y, double
         double const f = std::floor(s[a]);
         if (!(std::abs(f) < static_cast<double>(kBias - 4)))
             throw core::InputError(fmt::format(
-                "gravity.grid_spacing = {} m: a grain lies {} nodes from the origin, beyond "
+                "gravity.grid_spacing = {}: a grain lies {} nodes from the origin, beyond "
                 "the grid's index range",
                 g.spacing, f));
         c[a] = static_cast<std::int64_t>(f);

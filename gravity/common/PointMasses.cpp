@@ -26,7 +26,7 @@ void validatePointMasses(PointMasses const& masses, char const* key) {
             !std::isfinite(masses.z[i]))
             throw core::InputError(fmt::format("{}: position of grain {} is not finite", key, i));
         if (!masses.r.empty() && !(masses.r[i] >= 0.0))
-            throw core::InputError(fmt::format("{}: radius of grain {} is {} m; radii must be >= 0",
+            throw core::InputError(fmt::format("{}: radius of grain {} is {}; radii must be >= 0",
                                                key, i, masses.r[i]));
     }
 }

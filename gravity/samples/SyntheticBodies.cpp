@@ -133,7 +133,7 @@ Body packedAgglomerate(std::size_t n, double rMin, double rMax, double density, 
         }
         if (!placed)
             throw core::InputError(
-                fmt::format("agglomerate: grain {} of {} (radius {} m) found no place at packing "
+                fmt::format("agglomerate: grain {} of {} (radius {}) found no place at packing "
                             "fraction {}",
                             i, n, r, packing));
     }

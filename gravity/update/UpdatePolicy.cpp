@@ -274,7 +274,7 @@ std::string UpdatePolicy::thresholdWarning(double threshold, double spacing) {
     if (!(threshold > spacing))
         return {};
     return fmt::format(
-        "gravity.update_threshold = {} m exceeds the grain spacing {} m: between updates a "
+        "gravity.update_threshold = {} exceeds the grain spacing {}: between updates a "
         "neighbour's pull may be off by up to ~2 x threshold / spacing = {:.0f}% (the paper "
         "used twice the largest radius)",
         threshold, spacing, 200.0 * threshold / spacing);

@@ -25,7 +25,7 @@ namespace regolith::gravity {
 
 /// What the policy remembers of one grain from the last update.
 struct GrainRecord {
-    std::array<double, 3> reference{}; ///< position at the last update [m]
+    std::array<double, 3> reference{}; ///< position at the last update [length]
     std::array<double, 3> field{};     ///< acceleration computed then [m s^-2]
     /// With an update interval: the field's rate of change between the grain's last two
     /// updates [m s^-3] (0 after its first), which extrapolates it until the next.
@@ -164,7 +164,7 @@ private:
     /// markUpdated's prediction errors of the grains here, with their uids (adaptInterval).
     std::vector<std::uint64_t> m_judgedUid;
     std::vector<double> m_judgedError;
-    std::array<double, 3> m_period; ///< periodic extents, 0 on open axes [m]
+    std::array<double, 3> m_period; ///< periodic extents, 0 on open axes [length]
     long long m_updates = 0;
     double m_lastMax = 0.0;
     std::uint64_t m_call = 0; ///< due() calls so far (Entry::seen)

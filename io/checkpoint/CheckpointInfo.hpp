@@ -42,7 +42,7 @@ struct CheckpointInfo {
     std::uint64_t grainCount = 0;   ///< over all ranks (filled by the writer)
     std::uint64_t historyCount = 0; ///< over all ranks (filled by the writer)
     /// Self-gravity: field updates so far (0: none, or no self-gravity) and ½ Σ m φ of the
-    /// last one [J]; the per-grain records are GrainState::gravity*.
+    /// last one [energy]; the per-grain records are GrainState::gravity*.
     std::int64_t gravityUpdates = 0;
     double gravityPotentialEnergy = 0.0;
     /// gravity.update_every: steps since the last update, and the interval then (0: none).
