@@ -54,6 +54,13 @@ BlockForest::BlockForest(ForestBuilder const& builder, int rank, int rankCount,
     SubdomainCut const cut =
         subdomains == Subdomains::RankBoxes ? mergeRankLeaves(leaves) : oneBoxPerLeaf(leaves);
     m_globalSubdomainCount = cut.boxes.size();
+    for (int a = 0; a < 3; ++a) {
+        auto const u = static_cast<std::size_t>(a);
+        m_spanned[u] = !cut.boxes.empty();
+        for (RankBox const& box : cut.boxes)
+            m_spanned[u] = m_spanned[u] && box.lattice.lo[u] == 0 &&
+                           box.lattice.hi[u] == m_geometry.latticeSize(a);
+    }
     std::vector<std::uint32_t> boxOf(leaves.size()); // per leaf, its box
     for (std::size_t b = 0; b < cut.boxes.size(); ++b)
         for (std::uint32_t l : cut.leavesOf(cut.boxes[b]))

@@ -51,6 +51,8 @@ public:
     [[nodiscard]] std::size_t globalBlockCount() const { return m_globalBlockCount; }
     /// Subdomains of all ranks: globalBlockCount() for Subdomains::Blocks, fewer if merged.
     [[nodiscard]] std::size_t globalSubdomainCount() const { return m_globalSubdomainCount; }
+    /// Per axis: whether every subdomain of every rank spans the domain along it.
+    [[nodiscard]] std::array<bool, 3> const& spannedBySubdomains() const { return m_spanned; }
     [[nodiscard]] Subdomains subdomains() const { return m_subdomains; }
     [[nodiscard]] int rank() const { return m_rank; }
     [[nodiscard]] int rankCount() const { return m_rankCount; }
@@ -119,6 +121,7 @@ private:
     int m_rankCount = 1;
     std::size_t m_globalBlockCount = 0;
     std::size_t m_globalSubdomainCount = 0;
+    std::array<bool, 3> m_spanned{false, false, false};
     Subdomains m_subdomains = Subdomains::Blocks;
     int m_idleRankCount = 0;
     double m_localLoad = 0.0;

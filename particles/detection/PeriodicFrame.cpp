@@ -19,9 +19,10 @@ PeriodicFrame::PeriodicFrame(domain::BlockForest const& forest)
     , wrapped(wrappedAxes(forest)) {}
 
 std::array<bool, 3> wrappedAxes(domain::BlockForest const& forest) {
-    if (forest.globalSubdomainCount() != 1)
-        return {false, false, false};
-    return forest.periodic();
+    std::array<bool, 3> out{};
+    for (std::size_t a = 0; a < 3; ++a)
+        out[a] = forest.periodic()[a] && forest.spannedBySubdomains()[a];
+    return out;
 }
 
 core::Vec3 PeriodicFrame::period() const {

@@ -93,8 +93,8 @@ public:
 
 /// The periodic axes along which the particles of `forest` hold no periodic images: the pairs
 /// across those faces are found by cells that wrap (PeriodicFrame::wrapped), and the
-/// synchronisation makes no copy through them. Those of a forest whose particles run on one
-/// subdomain, which spans every axis.
+/// synchronisation makes no copy through them. Those that every subdomain spans (one
+/// subdomain spans every axis; slabs span the axes they are not cut along).
 [[nodiscard]] std::array<bool, 3> wrappedAxes(domain::BlockForest const& forest);
 
 } // namespace regolith::particles

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -161,6 +162,16 @@ void ParticleStorage::moveByPeriods(Index i, core::Vec3 const& x) {
         m_traceJournal.push_back({static_cast<std::uint32_t>(i), m_traceTag[i]});
         m_traceTag[i] = kUntraced;
     }
+}
+
+void ParticleStorage::receivePosition(Index i, core::Vec3 const& x) {
+    core::Vec3 const& old = array<kPosition>()[i];
+    for (int a = 0; a < 3; ++a)
+        if (m_wrapPeriod[a] > 0.0 && std::abs(x[a] - old[a]) > 0.5 * m_wrapPeriod[a]) {
+            moveByPeriods(i, x);
+            return;
+        }
+    position(i) = x;
 }
 
 void ParticleStorage::permute(std::span<Index const> newToOld) {

@@ -230,6 +230,13 @@ public:
     /// Moves copy i to `x`, its position wrapped by whole periods along an axis where no image
     /// is kept (PeriodicFrame::wrapped): a new copy for a running trace, as setImage.
     void moveByPeriods(Index i, core::Vec3 const& x);
+    /// The periods along the axes where no image is kept (wrappedAxes), 0 on the others.
+    void setWrapPeriod(core::Vec3 const& period) { m_wrapPeriod = period; }
+    [[nodiscard]] core::Vec3 const& wrapPeriod() const { return m_wrapPeriod; }
+    /// Writes the position of copy i as the synchronisation received it from its master: a
+    /// jump of more than half a period along a wrapped axis is the master wrapping there, a
+    /// new copy for a running trace (moveByPeriods); anything else a plain write.
+    void receivePosition(Index i, core::Vec3 const& x);
 
     // ---- bulk access ---------------------------------------------------------------------
     [[nodiscard]] std::vector<Uid> const& uids() const { return array<kUid>(); }
@@ -361,6 +368,7 @@ private:
     // Tracing (empty while off): tag per copy, slots written since the follower last looked.
     std::vector<std::uint32_t> m_traceTag;
     std::vector<TraceChange> m_traceJournal;
+    core::Vec3 m_wrapPeriod = core::Vec3::Zero();
     std::uint64_t m_traceSession = 0;
     bool m_traceBroken = false;
     /// Gives the storage a layout revision no storage had before.

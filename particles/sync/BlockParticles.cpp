@@ -1,8 +1,10 @@
 #include "particles/sync/BlockParticles.hpp"
 
 #include "core/Error.hpp"
+#include "particles/detection/PeriodicFrame.hpp"
 
 #include <algorithm>
+#include <array>
 #include <string>
 #include <utility>
 
@@ -14,8 +16,18 @@ LocalParticles::LocalParticles(domain::BlockForest const& forest)
     for (domain::Block const& b : forest.blocks()) {
         m_byId.emplace_back(b.id.raw(), m_blocks.size());
         m_blocks.push_back(BlockParticles{&b, ParticleStorage{}, {}, {}});
+        m_blocks.back().particles.setWrapPeriod(wrapPeriod());
     }
     std::sort(m_byId.begin(), m_byId.end());
+}
+
+core::Vec3 LocalParticles::wrapPeriod() const {
+    std::array<bool, 3> const wrapped = wrappedAxes(*m_forest);
+    core::Vec3 const extent = m_forest->domain().extent();
+    core::Vec3 out = core::Vec3::Zero();
+    for (int a = 0; a < 3; ++a)
+        out[a] = wrapped[static_cast<std::size_t>(a)] ? extent[a] : 0.0;
+    return out;
 }
 
 BlockParticles* LocalParticles::find(std::uint64_t blockId) {
@@ -68,6 +80,7 @@ void LocalParticles::adoptMasters(ParticleStorage&& masters) {
         }
         if (asIs) {
             m_blocks[0].particles = std::move(masters);
+            m_blocks[0].particles.setWrapPeriod(wrapPeriod());
             return;
         }
     }

@@ -40,6 +40,9 @@ public:
     explicit LocalParticles(domain::BlockForest const& forest);
 
     [[nodiscard]] domain::BlockForest const& forest() const { return *m_forest; }
+    /// The domain's extent along the axes where the particles keep no image (wrappedAxes), 0
+    /// on the others: each storage's ParticleStorage::wrapPeriod.
+    [[nodiscard]] core::Vec3 wrapPeriod() const;
     [[nodiscard]] std::span<BlockParticles> blocks() { return m_blocks; }
     [[nodiscard]] std::span<BlockParticles const> blocks() const { return m_blocks; }
     /// The local block with this raw id, or nullptr.

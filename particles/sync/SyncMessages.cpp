@@ -79,7 +79,7 @@ std::size_t addFull(ParticleStorage& ps, FullState const& s, bool master) {
 }
 
 void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
-    ps.position(i) = u.position;
+    ps.receivePosition(i, u.position);
     ps.velocity(i) = u.velocity;
     ps.angularVelocity(i) = u.angularVelocity;
     ps.setOrientation(i, u.orientation);
@@ -91,7 +91,7 @@ void applyUpdate(ParticleStorage& ps, std::size_t i, UpdateState const& u) {
 
 void copyMotion(ParticleStorage const& from, std::size_t i, core::Vec3 const& position,
                 ParticleStorage& to, std::size_t k) {
-    to.position(k) = position;
+    to.receivePosition(k, position);
     to.velocity(k) = from.velocity(i);
     to.angularVelocity(k) = from.angularVelocity(i);
     to.setOrientation(k, from.orientation(i));
@@ -161,7 +161,7 @@ void readMotion(core::RecvBuffer& b, ParticleStorage& ps, std::size_t k,
     std::uint32_t head[2];
     b.readBytes(motion, sizeof motion, "a shadow's motion");
     b.readBytes(head, sizeof head, "a shadow's motion");
-    ps.position(k) = core::Vec3(motion[0], motion[1], motion[2]);
+    ps.receivePosition(k, core::Vec3(motion[0], motion[1], motion[2]));
     ps.velocity(k) = core::Vec3(motion[3], motion[4], motion[5]);
     ps.angularVelocity(k) = core::Vec3(motion[6], motion[7], motion[8]);
     if (head[1] != 0) {

@@ -1,7 +1,9 @@
-// Periodic axes with one or two blocks: a block is its own neighbour (one block) or its
-// neighbour's on both sides (two blocks). Copies appear at their periodic images in the right
-// blocks, also side by side with the master in one block, and the invariants hold while a gas
-// moves -- where a common reference implementation demands three blocks per periodic axis.
+// Periodic axes with one or two blocks: along an axis every block spans (one block) the
+// particles wrap and keep no image (wrappedAxes); with two blocks each is its neighbour's on
+// both sides. Copies appear at their periodic images in the right blocks, and the invariants
+// hold while a gas moves -- where a common reference implementation demands three blocks per
+// periodic axis. (A block that spans an axis that others do not holds its own images:
+// UpdateListTest's refined row.)
 #include "tests/particles/sync/SyncTestUtil.hpp"
 
 #include <sstream>
@@ -24,8 +26,8 @@ TEST(PeriodicSmallAxes, CopiesSitAtTheirImages) {
     for (SyncMethod m : {SyncMethod::NextNeighbour, SyncMethod::ShadowOwner, SyncMethod::Hybrid}) {
         LocalParticles local(forest);
         ParticleSync sync(world, forest, SyncConfig{m, false});
-        // A grain in the corner of block (0, 0, 0): its images through x (the same block), y
-        // (the other y block) and z (the last z block) reach back into the domain.
+        // A grain in the corner of block (0, 0, 0): its images through y (the other y block)
+        // and z (the last z block) reach back into the domain; across x it wraps.
         Uid const uid = makeUid(0, 3);
         Vec3 const x(0.2, 0.25, 0.15);
         double const r = 0.5;
@@ -34,15 +36,15 @@ TEST(PeriodicSmallAxes, CopiesSitAtTheirImages) {
         sync.syncUntilConverged(local);
         std::string const where = methodName(m);
         std::uint64_t const copies = expectPresence(local, uid, x, r, where);
-        // Images (dx, dy, dz) with dx in {0, 1}, dy in {0, 1}, dz in {0, 1}: 8 copies in 4
-        // blocks (x has one block), the master among them.
-        EXPECT_EQ(world.allReduce(copies, regolith::core::ReduceOp::Sum), 8U) << where;
+        // Images (0, dy, dz) with dy in {0, 1}, dz in {0, 1} (x wraps: every block spans
+        // it): 4 copies in 4 blocks, the master among them.
+        EXPECT_EQ(world.allReduce(copies, regolith::core::ReduceOp::Sum), 4U) << where;
         if (domain::Block const* b = forest.localBlockContaining(x)) {
             ParticleStorage const& ps = local.find(b->id.raw())->particles;
-            EXPECT_TRUE(ps.contains(uid, CopyImage{1, 0, 0})) << where << ": self image";
+            EXPECT_FALSE(ps.contains(uid, CopyImage{1, 0, 0})) << where << ": self image";
             std::size_t const mi = ps.find(uid);
             ASSERT_NE(mi, ParticleStorage::kNotFound);
-            EXPECT_EQ(ps.shadowHolders(mi).size(), 7U) << where;
+            EXPECT_EQ(ps.shadowHolders(mi).size(), 3U) << where;
         }
         auto const v = checkSyncInvariants(local, world, true);
         EXPECT_TRUE(v.empty()) << where << joined(v);

@@ -321,14 +321,16 @@ TEST(UpdateList, AnSosClassGrainIdlesTheListUntilItIsGone) {
 }
 
 TEST(UpdateList, AnIdleCallLeavesEveryShadowWithItsMastersHistory) {
-    // Hybrid on a periodic row of 4 x 1 x 1 blocks: each block holds the y and z images of its
+    // Hybrid on a periodic row of 4 x 1 x 1 blocks, the last refined once (so y and z do not
+    // wrap: its children do not span them): blocks 0 to 2 hold the y and z images of their
     // masters (shadows in their master's storage, which share its history while the list
-    // holds). An SOS-class grain in block 0 reaches blocks 3, 0 and 1 only: on four ranks the
-    // rank of block 2 keeps a valid list at each refresh and shares, then acts on the others'
-    // Idle verdict.
+    // holds). An SOS-class grain in block 0 reaches blocks 3, 0 and 1 only: the rank of block
+    // 2 keeps a valid list at each refresh and shares, then acts on the others' Idle verdict.
     Comm world;
     AABB const domain{Vec3::Zero(), Vec3(8, 8, 8)};
-    domain::BlockForest forest(world, forestSpec(domain.min, domain.max, {4, 1, 1}, allAxes(true)));
+    domain::ForestSpec spec = forestSpec(domain.min, domain.max, {4, 1, 1}, allAxes(true));
+    spec.refine.push_back({AABB{Vec3(6.5, 0.5, 0.5), Vec3(7.5, 7.5, 7.5)}, 1});
+    domain::BlockForest forest(world, spec);
     LocalParticles local(forest);
     ParticleSync sync(world, forest, SyncConfig{SyncMethod::Hybrid, false, kSkin});
     addAll(local, world, randomGas(domain, 120, 0.2, 0.6, 0.0, 11));
