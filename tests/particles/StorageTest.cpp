@@ -261,6 +261,27 @@ TEST(ParticleStorage, OneUidAtSeveralPeriodicImages) {
     EXPECT_FALSE(ps.contains(7));
 }
 
+TEST(ParticleStorage, AReceivedJumpAcrossAWrappedAxisIsANewCopyForTheTrace) {
+    ParticleStorage ps;
+    ps.setWrapPeriod(regolith::core::Vec3(0.0, 10.0, 0.0)); // y wraps with period 10
+    ParticleInit p = grainSeven();
+    p.position = regolith::core::Vec3(5.0, 9.9, 5.0);
+    p.flags = Flag::Shadow;
+    ps.add(p);
+    ps.startTracing();
+    // A move (even a long one along an axis that does not wrap) is a plain write.
+    ps.receivePosition(0, regolith::core::Vec3(7.0, 9.95, 5.0));
+    EXPECT_TRUE(ps.traceJournal().empty());
+    EXPECT_EQ(ps.traceTag(0), 0U);
+    // The master wrapped along y: the copy jumps by a period, a new copy for the follower.
+    ps.receivePosition(0, regolith::core::Vec3(7.0, 0.05, 5.0));
+    ASSERT_EQ(ps.traceJournal().size(), 1U);
+    EXPECT_EQ(ps.traceJournal()[0].index, 0U);
+    EXPECT_EQ(ps.traceJournal()[0].previous, 0U);
+    EXPECT_EQ(ps.traceTag(0), ParticleStorage::kUntraced);
+    EXPECT_TRUE(ps.position(0) == regolith::core::Vec3(7.0, 0.05, 5.0));
+}
+
 TEST(ParticleStorage, AShadowSharesItsMastersHistoryUntilTheLayoutChanges) {
     ParticleStorage ps;
     ParticleInit p = grainSeven();
