@@ -33,6 +33,14 @@ core::Vec3 PeriodicFrame::period() const {
     return out;
 }
 
+core::Vec3 PeriodicFrame::wrapPeriod() const {
+    core::Vec3 out = period();
+    for (int a = 0; a < 3; ++a)
+        if (!wrapped[static_cast<std::size_t>(a)])
+            out[a] = 0.0;
+    return out;
+}
+
 std::pair<core::Vec3, CopyImage> PeriodicFrame::wrapOutside(core::Vec3 const& p) const {
     core::Vec3 w = p;
     CopyImage image = kNoImage;

@@ -45,6 +45,8 @@ struct PeriodicFrame {
     /// Domain extent on periodic axes, 0 on the others [length] (the `period` of
     /// CopyImage.hpp's imageOffset / localPosition).
     [[nodiscard]] core::Vec3 period() const;
+    /// period() on the wrapped axes, 0 on the others (ParticleStorage::wrapPeriod).
+    [[nodiscard]] core::Vec3 wrapPeriod() const;
     [[nodiscard]] bool anyPeriodic() const { return periodic[0] || periodic[1] || periodic[2]; }
     [[nodiscard]] bool anyWrapped() const { return wrapped[0] || wrapped[1] || wrapped[2]; }
 

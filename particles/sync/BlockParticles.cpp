@@ -4,7 +4,6 @@
 #include "particles/detection/PeriodicFrame.hpp"
 
 #include <algorithm>
-#include <array>
 #include <string>
 #include <utility>
 
@@ -22,12 +21,7 @@ LocalParticles::LocalParticles(domain::BlockForest const& forest)
 }
 
 core::Vec3 LocalParticles::wrapPeriod() const {
-    std::array<bool, 3> const wrapped = wrappedAxes(*m_forest);
-    core::Vec3 const extent = m_forest->domain().extent();
-    core::Vec3 out = core::Vec3::Zero();
-    for (int a = 0; a < 3; ++a)
-        out[a] = wrapped[static_cast<std::size_t>(a)] ? extent[a] : 0.0;
-    return out;
+    return PeriodicFrame(*m_forest).wrapPeriod();
 }
 
 BlockParticles* LocalParticles::find(std::uint64_t blockId) {
